@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Set-up shared by the README's commands, safe to re-run: installs what is missing
+# (Debian packages, the Python venv when requirements.txt changed) and builds.
+# Nothing is reinstalled when nothing changed.
+set -euo pipefail
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+
+APT_PACKAGES=(build-essential cmake ninja-build pkg-config libsundials-dev libcriterion-dev
+              python3 python3-venv zip)
+missing=()
+for p in "${APT_PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO=sudo
+  echo "setup: installing ${missing[*]}"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
+fi
+
+# Debian's python3 (not whatever python3 is first on PATH), so that a fresh Debian 12
+# machine and this one get the same interpreter.
+PYTHON=/usr/bin/python3
+VENV="$ROOT/.venv"
+want=$(sha256sum "$ROOT/requirements.txt" | cut -d' ' -f1)
+if [ ! -x "$VENV/bin/python" ] || [ "$(cat "$VENV/.requirements.sha256" 2>/dev/null)" != "$want" ]; then
+  echo "setup: creating the Python venv in .venv"
+  rm -rf "$VENV"
+  "$PYTHON" -m venv "$VENV"
+  "$VENV/bin/pip" install -q --disable-pip-version-check -r "$ROOT/requirements.txt"
+  echo "$want" > "$VENV/.requirements.sha256"
+fi
+
+build() { # build <dir> <cmake args...>
+  local dir=$1; shift
+  if [ ! -f "$ROOT/$dir/build.ninja" ]; then
+    cmake -S "$ROOT" -B "$ROOT/$dir" -G Ninja -DTRIBO_PYTHON="$VENV/bin/python" "$@" >/dev/null
+  fi
+  cmake --build "$ROOT/$dir"
+}
+build build -DCMAKE_BUILD_TYPE=Release
+if [ "${TRIBO_SETUP_SANITIZE:-0}" = 1 ]; then
+  build build-sanitize -DCMAKE_BUILD_TYPE=Debug -DTRIBO_SANITIZE=ON -DTRIBO_BUILD_FMU=OFF
+fi

@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Every test: set up (if needed), then the C unit tests (Release, and again under
+# AddressSanitizer + UndefinedBehaviorSanitizer) and the Python tests.
+set -euo pipefail
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+TRIBO_SETUP_SANITIZE=1 "$ROOT/scripts/setup.sh"
+JOBS=$(nproc)
+echo "== C unit tests (Release)"
+ctest --test-dir "$ROOT/build" --output-on-failure -j "$JOBS"
+echo "== C unit tests (AddressSanitizer + UndefinedBehaviorSanitizer)"
+ctest --test-dir "$ROOT/build-sanitize" --output-on-failure -j "$JOBS"
+if compgen -G "$ROOT/tests/python/test_*.py" >/dev/null; then
+  echo "== Python tests (pytest + fmpy)"
+  "$ROOT/.venv/bin/python" -m pytest -q "$ROOT/tests/python"
+fi

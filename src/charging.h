@@ -1,0 +1,66 @@
+/* charging.h: the two charge models over the particle's boundary segments (MODEL §5). */
+#ifndef TRIBO_CHARGING_H
+#define TRIBO_CHARGING_H
+
+#include "geometry.h"
+
+/* Charging parameters (tunable between steps). */
+typedef struct tribo_charge_params {
+    double tau0, tau_r, Sigma0, eta;
+} tribo_charge_params;
+
+/* The contact held over an interval of the motion: which arc of the boundary touches
+   the plate and for how long. Both models are exact given these (MODEL §5): the static
+   one is linear with constant coefficients, the sliding one is taken with Sigma_s
+   linear over the interval. */
+typedef struct tribo_contact_sample {
+    double duration;
+    int in_contact;
+    double s_centre;      /* arc-length coordinate of the contact centre */
+    double half_width;    /* Sc = sqrt(rho_c delta_y), MODEL §5 eq. 4 */
+    double work_begin, work_end; /* omega at both ends (sliding model) */
+    /* filled by tribo_charging_saturation: Sigma_s at both ends */
+    double Sigma_s_begin, Sigma_s_end;
+} tribo_contact_sample;
+
+/* Exponentials of the last durations seen, so that a run at a fixed step costs no
+   transcendental call per step. */
+typedef struct tribo_decay_cache {
+    double duration, tau, decay, one_minus_decay, phi1;
+} tribo_decay_cache;
+
+typedef struct tribo_charging {
+    int with_static, with_sliding;
+    int n;                    /* segments */
+    double segments_per_length; /* n / perimeter */
+    tribo_arclength arc;
+    double *q;                /* static q_i = sigma_i / sigma_0 (NULL without the model)   */
+    double *sigma;            /* sliding Sigma_i (NULL without the model)                  */
+    tribo_decay_cache charge_cache, relax_cache;
+} tribo_charging;
+
+/* Allocate for the models wanted; returns 0, or -1 if out of memory. */
+int tribo_charging_init(tribo_charging *c, double eps, int n, int with_static, int with_sliding);
+void tribo_charging_free(tribo_charging *c);
+/* All segment charges to 0 (MODEL §7). */
+void tribo_charging_reset(tribo_charging *c);
+
+/* Describe the contact at orientation pose with indentation delta_y held for
+   `duration` (the segments under [s_c - Sc, s_c + Sc] charge, MODEL §5). */
+void tribo_charging_sample(const tribo_charging *c, const tribo_pose *pose, double delta_y,
+                           double duration, double work_begin, double work_end,
+                           tribo_contact_sample *sample);
+
+/* Advance Sigma_s over the sample (MODEL §5b) and record it at both ends in the sample. */
+void tribo_charging_saturation(tribo_charging *c, const tribo_charge_params *p,
+                               double *Sigma_s, tribo_contact_sample *sample);
+
+/* Charge the segments in contact over the sample (MODEL §5a, §5b). q / sigma may be the
+   committed arrays or a copy; a NULL array is skipped. */
+void tribo_charging_segments(tribo_charging *c, const tribo_charge_params *p,
+                             const tribo_contact_sample *sample, double *q, double *sigma);
+
+/* Mean of an array of n values. */
+double tribo_charging_mean(const double *v, int n);
+
+#endif

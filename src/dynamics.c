@@ -1,0 +1,100 @@
+/* dynamics.c: equations of motion (MODEL §4) under the contact force law (MODEL §3). */
+#include "dynamics.h"
+
+#include "contact.h"
+
+#include <string.h>
+
+void tribo_contact_at(const tribo_dyn_params *p, const tribo_force_law *law, const double *y,
+                      tribo_contact_eval *ev)
+{
+    tribo_pose_at(p->eps2, y[TRIBO_IPHI], &ev->pose);
+    ev->delta_y = tribo_indentation(ev->pose.h, y[TRIBO_IY]);
+    ev->in_contact = ev->delta_y > 0.0;
+    ev->vs = y[TRIBO_IU] + ev->pose.h * y[TRIBO_IOMEGA]; /* MODEL §2 */
+    if (!ev->in_contact) {
+        ev->sign_v = 0.0;
+        ev->psi_n = ev->psi_t = ev->limit = 0.0;
+        return;
+    }
+    switch (law->normal) {
+    case TRIBO_NORMAL_REGULARISED:
+        ev->sign_v = p->nu > 0.0 ? tribo_regularised_sign(y[TRIBO_IV], p->v_reg) : 0.0;
+        ev->psi_n = tribo_normal_force(ev->delta_y, p->nu, ev->sign_v);
+        break;
+    case TRIBO_NORMAL_SIGN:
+        ev->sign_v = law->normal_sign;
+        ev->psi_n = tribo_normal_force(ev->delta_y, p->nu, ev->sign_v);
+        break;
+    case TRIBO_NORMAL_LOCK:
+        /* V held at 0: the normal force is whatever balances the rest (MODEL §3). */
+        ev->psi_n = p->g_n - p->F_N;
+        ev->sign_v = p->nu > 0.0 && ev->delta_y > 0.0 ? (1.0 - ev->psi_n / ev->delta_y) / p->nu
+                                                       : 0.0;
+        break;
+    }
+    ev->limit = p->mu * ev->psi_n;
+    switch (law->tangent) {
+    case TRIBO_TANGENT_CLAMP:
+        ev->psi_t = -tribo_clamp(y[TRIBO_IDX], ev->limit);
+        break;
+    case TRIBO_TANGENT_STICK:
+        ev->psi_t = -y[TRIBO_IDX];
+        break;
+    case TRIBO_TANGENT_SLIP:
+        ev->psi_t = -ev->limit * law->slip_sign;
+        break;
+    }
+}
+
+void tribo_dynamics_rhs(const tribo_dyn_params *p, const tribo_force_law *law, const double *y,
+                        double *dydt, tribo_contact_eval *ev_out)
+{
+    tribo_contact_eval ev_local, *ev = ev_out ? ev_out : &ev_local;
+    tribo_contact_at(p, law, y, ev);
+
+    const double U = y[TRIBO_IU], V = y[TRIBO_IV], Om = y[TRIBO_IOMEGA];
+    dydt[TRIBO_IX] = U;
+    dydt[TRIBO_IY] = law->normal == TRIBO_NORMAL_LOCK ? 0.0 : V;
+    dydt[TRIBO_IPHI] = Om;
+    /* MODEL §4 */
+    dydt[TRIBO_IU] = p->g_t + p->F_T + ev->psi_t;
+    dydt[TRIBO_IV] = law->normal == TRIBO_NORMAL_LOCK ? 0.0 : -p->g_n + p->F_N + ev->psi_n;
+    dydt[TRIBO_IOMEGA] = p->inv_inertia * (ev->pose.h * ev->psi_t + ev->pose.cx * ev->psi_n);
+    dydt[TRIBO_IWEXT] = p->F_T * U + p->F_N * V;
+
+    if (!ev->in_contact) {
+        dydt[TRIBO_IDX] = 0.0;
+        dydt[TRIBO_IWDISS] = 0.0;
+        dydt[TRIBO_IWORK] = 0.0;
+        return;
+    }
+    /* MODEL §3: the stretch follows the slip velocity of the contact point. */
+    const double ddx = law->tangent == TRIBO_TANGENT_SLIP ? 0.0 : ev->vs;
+    dydt[TRIBO_IDX] = ddx;
+    /* Power lost from E (MODEL §6): dE/dtau = Psi_T vs + dx ddx + (Psi_N - dy)(V + cx Om)
+       + external power, so the contact dissipates -Psi_T vs - dx ddx + (dy - Psi_N)(V + cx Om).
+       (In slip the stretch sits at the limit; the power it takes from the spring as the
+       limit moves is accounted where the stretch is set.) */
+    dydt[TRIBO_IWDISS] = -ev->psi_t * ev->vs - y[TRIBO_IDX] * ddx +
+                         (ev->delta_y - ev->psi_n) * (V + ev->pose.cx * Om);
+    if (p->work_per_area) {
+        /* MODEL §5b: d omega = mu dy |vs| / (2 Sc), Sc = sqrt(rho_c dy)
+           = mu |vs| sqrt(dy / rho_c) / 2. */
+        const double rho_c = tribo_contact_curvature_radius(p->eps2, ev->pose.h);
+        dydt[TRIBO_IWORK] = 0.5 * p->mu * fabs(ev->vs) * sqrt(ev->delta_y / rho_c);
+    } else {
+        dydt[TRIBO_IWORK] = 0.0;
+    }
+}
+
+double tribo_energy(const tribo_dyn_params *p, const double *y)
+{
+    tribo_pose g;
+    tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
+    const double dy = tribo_indentation(g.h, y[TRIBO_IY]);
+    const double U = y[TRIBO_IU], V = y[TRIBO_IV], Om = y[TRIBO_IOMEGA], dx = y[TRIBO_IDX];
+    /* MODEL §6 */
+    return 0.5 * (U * U + V * V) + 0.125 * (1.0 + p->eps2) * Om * Om +
+           (p->g_n * y[TRIBO_IY] - p->g_t * y[TRIBO_IX]) + 0.5 * dy * dy + 0.5 * dx * dx;
+}

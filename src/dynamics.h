@@ -1,0 +1,70 @@
+/* dynamics.h: rigid-body motion of the particle (MODEL §4) as a first-order system,
+   with the quadratures the outputs need (dissipated and external work, MODEL §6, and
+   the frictional work per unit area of the sliding charge model, MODEL §5b). */
+#ifndef TRIBO_DYNAMICS_H
+#define TRIBO_DYNAMICS_H
+
+#include "geometry.h"
+
+/* Components of the state vector. */
+enum {
+    TRIBO_IX,      /* X: centre along the plate, down-slope positive          */
+    TRIBO_IY,      /* Y: centre height above the plate                        */
+    TRIBO_IPHI,    /* phi: anticlockwise angle plate -> long axis             */
+    TRIBO_IU,      /* U = dX/dtau                                             */
+    TRIBO_IV,      /* V = dY/dtau                                             */
+    TRIBO_IOMEGA,  /* Omega = dphi/dtau                                       */
+    TRIBO_IDX,     /* delta_x: tangential spring stretch                      */
+    TRIBO_IWDISS,  /* work dissipated by the contact forces                   */
+    TRIBO_IWEXT,   /* work done by the external forces F_T_ext, F_N_ext        */
+    TRIBO_IWORK,   /* omega: cumulative frictional work per unit contact area */
+    TRIBO_NSTATE
+};
+
+/* Everything the right-hand side needs, derived once from the scene. */
+typedef struct tribo_dyn_params {
+    double eps, eps2;
+    double mu, nu, Gamma;
+    double g_t, g_n;     /* Gamma sin(beta), Gamma cos(beta) */
+    double inv_inertia;  /* 4 / (1 + eps^2): m (a^2 + b^2) / 4, MODEL §4 */
+    double v_reg;
+    double F_T, F_N;     /* external force (inputs) */
+    int work_per_area;   /* integrate omega (sliding charge model only) */
+} tribo_dyn_params;
+
+/* How the set-valued parts of the force law are resolved (MODEL §3). The fixed-step
+   integrator uses the regularised sign and the clamped stretch throughout; an
+   event-driven integrator selects a mode per smooth piece of the motion. */
+typedef enum { TRIBO_NORMAL_REGULARISED, TRIBO_NORMAL_SIGN, TRIBO_NORMAL_LOCK } tribo_normal_mode;
+typedef enum { TRIBO_TANGENT_CLAMP, TRIBO_TANGENT_STICK, TRIBO_TANGENT_SLIP } tribo_tangent_mode;
+
+typedef struct tribo_force_law {
+    tribo_normal_mode normal;
+    double normal_sign;   /* s for TRIBO_NORMAL_SIGN (+1 / -1)              */
+    tribo_tangent_mode tangent;
+    double slip_sign;     /* direction of slip for TRIBO_TANGENT_SLIP (+1 / -1) */
+} tribo_force_law;
+
+/* The contact as seen by one evaluation of the right-hand side. */
+typedef struct tribo_contact_eval {
+    tribo_pose pose;
+    double delta_y;   /* indentation (0 in flight) */
+    int in_contact;
+    double vs;        /* slip velocity U + h Omega of the contact point */
+    double sign_v;    /* the s used in Psi_N */
+    double psi_n, psi_t;
+    double limit;     /* Coulomb limit mu Psi_N */
+} tribo_contact_eval;
+
+/* dy/dtau at state y under the force law; fills ev (may be NULL). */
+void tribo_dynamics_rhs(const tribo_dyn_params *p, const tribo_force_law *law, const double *y,
+                        double *dydt, tribo_contact_eval *ev);
+
+/* Evaluate the contact at y without derivatives (for outputs and post-step work). */
+void tribo_contact_at(const tribo_dyn_params *p, const tribo_force_law *law, const double *y,
+                      tribo_contact_eval *ev);
+
+/* Mechanical energy E of MODEL §6. */
+double tribo_energy(const tribo_dyn_params *p, const double *y);
+
+#endif

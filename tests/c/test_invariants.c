@@ -1,0 +1,211 @@
+/* The invariants of MODEL §6 on whole runs of the fixed-step integrator. */
+#include <criterion/criterion.h>
+#include <math.h>
+
+#include "geometry.h"
+#include "tribo.h"
+
+static tribo_model *make(const tribo_scene *s)
+{
+    char err[256];
+    tribo_model *m = tribo_create(s, err, sizeof err);
+    cr_assert(m, "%s", err);
+    return m;
+}
+
+static tribo_scene paper(double mu, double nu, double dt)
+{
+    tribo_scene s;
+    tribo_scene_defaults(&s); /* MODEL §7 at eps = 0.5 */
+    s.mu = mu;
+    s.nu = nu;
+    s.dt = dt;
+    s.charge_model = TRIBO_CHARGE_NONE;
+    return s;
+}
+
+/* mu = nu = 0: E is conserved. At dt = 1e-3 over tau = 1000 the largest drift measured
+   is 1.3e-11, i.e. 2.0e-8 of E(0) (the particle slides 700 units down the plate and its
+   kinetic energy grows to 400 E(0) meanwhile). */
+Test(invariants, energy_conserved_without_friction, .timeout = 60)
+{
+    tribo_scene s = paper(0.0, 0.0, 1e-3);
+    tribo_model *m = make(&s);
+    const double E0 = tribo_get(m, TRIBO_Q_ENERGY);
+    double drift = 0.0;
+    int contacts = 0;
+    for (int k = 1; k <= 1000; k++) {
+        cr_assert_eq(tribo_advance(m, k), TRIBO_OK);
+        drift = fmax(drift, fabs(tribo_get(m, TRIBO_Q_ENERGY) - E0));
+        contacts += tribo_get(m, TRIBO_Q_IN_CONTACT) != 0.0;
+    }
+    cr_expect(contacts > 0, "the particle touched the plate");
+    cr_expect(drift / E0 < 1e-7, "relative energy drift %.3g", drift / E0);
+    tribo_free(m);
+}
+
+/* nu = 0, mu > 0: E falls only by the friction work, E(tau) = E(0) - W. The residual is
+   the fixed step's error across the kinks of the contact law: second order. */
+static double balance_residual(double mu, double dt, double *work)
+{
+    tribo_scene s = paper(mu, 0.0, dt);
+    tribo_model *m = make(&s);
+    const double E0 = tribo_get(m, TRIBO_Q_ENERGY);
+    double worst = 0.0;
+    for (int k = 1; k <= 1000; k++) {
+        cr_assert_eq(tribo_advance(m, k), TRIBO_OK);
+        const double r = tribo_get(m, TRIBO_Q_ENERGY) + tribo_get(m, TRIBO_Q_WORK_DISSIPATED) - E0;
+        worst = fmax(worst, fabs(r));
+    }
+    *work = tribo_get(m, TRIBO_Q_WORK_DISSIPATED);
+    tribo_free(m);
+    return worst;
+}
+
+Test(invariants, energy_balance_with_friction_work, .timeout = 120)
+{
+    const double mus[] = {0.1, 1.0};
+    for (int i = 0; i < 2; i++) {
+        double w1, w2;
+        const double r1 = balance_residual(mus[i], 1e-3, &w1);
+        const double r2 = balance_residual(mus[i], 5e-4, &w2);
+        cr_expect(w1 > 1e-3, "mu = %g: friction did work %g", mus[i], w1);
+        cr_expect(r1 / w1 < 1e-5, "mu = %g dt = 1e-3: residual %.3g of W", mus[i], r1 / w1);
+        cr_expect(r2 < r1 / 3.0, "mu = %g: residual %.3g at dt = 5e-4 vs %.3g at 1e-3", mus[i],
+                  r2, r1);
+    }
+}
+
+/* The same work counted independently: with nu = 0 the contact dissipates only by
+   slipping, mu Psi_N |vs| (MODEL §6), plus the spring energy a shrinking limit
+   releases, which is small here. A Riemann sum over the grid must agree. */
+Test(invariants, friction_work_is_mu_psi_n_slip_speed, .timeout = 60)
+{
+    tribo_scene s = paper(0.1, 0.0, 1e-4);
+    tribo_model *m = make(&s);
+    double sum = 0.0;
+    const int n = 200000; /* tau = 20 */
+    for (int k = 1; k <= n; k++) {
+        cr_assert_eq(tribo_advance(m, k * s.dt), TRIBO_OK);
+        if (tribo_get(m, TRIBO_Q_SLIPPING) != 0.0) {
+            tribo_pose g;
+            tribo_pose_at(s.epsilon * s.epsilon, tribo_get(m, TRIBO_Q_PHI), &g);
+            const double vs = tribo_get(m, TRIBO_Q_U) + g.h * tribo_get(m, TRIBO_Q_OMEGA);
+            sum += s.mu * tribo_get(m, TRIBO_Q_PSI_N) * fabs(vs) * s.dt;
+        }
+    }
+    const double W = tribo_get(m, TRIBO_Q_WORK_DISSIPATED);
+    cr_expect(W > 1e-5, "W = %g", W);
+    cr_expect(fabs(sum - W) < 0.02 * W, "sum mu Psi_N |vs| dt = %.6g, W = %.6g", sum, W);
+    tribo_free(m);
+}
+
+/* Flat plate (beta = 0), dropped from rest at first touch without spin. */
+static tribo_scene flat(double nu)
+{
+    tribo_scene s = paper(0.1, nu, 1e-3);
+    s.beta = 0.0;
+    s.drop_speed = 0.0;
+    return s;
+}
+
+Test(invariants, flat_plate_elastic_oscillates_about_gamma, .timeout = 60)
+{
+    tribo_scene s = flat(0.0);
+    tribo_model *m = make(&s);
+    const double E0 = tribo_get(m, TRIBO_Q_ENERGY);
+    double sum = 0.0, lo = INFINITY, hi = 0.0, drift = 0.0;
+    const int n = 200000; /* tau = 200, ~32 periods of 2 pi */
+    for (int k = 1; k <= n; k++) {
+        cr_assert_eq(tribo_advance(m, k * s.dt), TRIBO_OK);
+        const double dy = tribo_get(m, TRIBO_Q_DELTA_Y);
+        sum += dy;
+        lo = fmin(lo, dy);
+        hi = fmax(hi, dy);
+        drift = fmax(drift, fabs(tribo_get(m, TRIBO_Q_ENERGY) - E0));
+    }
+    const double G = s.Gamma;
+    cr_expect(fabs(sum / n - G) < 0.01 * G, "mean delta_y %.6g, Gamma %g", sum / n, G);
+    cr_expect(lo < 1e-3 * G && fabs(hi - 2 * G) < 1e-3 * G, "delta_y in [%g, %g]", lo, hi);
+    cr_expect(drift < 1e-9 * fabs(E0) + 1e-15, "energy drift %g of %g", drift, E0);
+    cr_expect_eq(tribo_get(m, TRIBO_Q_PHI), 0.0, "no rocking");
+    tribo_free(m);
+}
+
+Test(invariants, flat_plate_damped_comes_to_normal_lock, .timeout = 60)
+{
+    const double nus[] = {0.2, 0.5, 0.9};
+    for (int i = 0; i < 3; i++) {
+        tribo_scene s = flat(nus[i]);
+        tribo_model *m = make(&s);
+        cr_assert_eq(tribo_advance(m, 200.0), TRIBO_OK);
+        const double dy = tribo_get(m, TRIBO_Q_DELTA_Y), V = tribo_get(m, TRIBO_Q_V);
+        const double G = s.Gamma;
+        /* V = 0 up to the regularisation's velocity scale (MODEL §3) */
+        cr_expect(fabs(V) < s.v_reg, "nu = %g: V = %g", nus[i], V);
+        cr_expect(dy >= G / (1 + nus[i]) && dy <= G / (1 - nus[i]),
+                  "nu = %g: delta_y = %g outside [%g, %g]", nus[i], dy, G / (1 + nus[i]),
+                  G / (1 - nus[i]));
+        /* Psi_N balances gravity up to the creep's deceleration (measured: 1.5e-6 Gamma) */
+        cr_expect_float_eq(tribo_get(m, TRIBO_Q_PSI_N), G, 1e-5 * G, "nu = %g: Psi_N = %.12g",
+                           nus[i], tribo_get(m, TRIBO_Q_PSI_N));
+        tribo_free(m);
+    }
+}
+
+/* Static charge: 0 <= Q_static <= 1, never decreasing, over a tumbling-prone run. */
+Test(invariants, static_charge_bounded_and_non_decreasing, .timeout = 60)
+{
+    const double mus[] = {0.1, 1.0};
+    for (int i = 0; i < 2; i++) {
+        tribo_scene s = paper(mus[i], mus[i], 1e-3);
+        s.epsilon = 0.3;
+        s.charge_model = TRIBO_CHARGE_STATIC;
+        s.n_segments = 500;
+        tribo_model *m = make(&s);
+        double prev = 0.0;
+        double q[500];
+        for (int k = 1; k <= 2000; k++) {
+            cr_assert_eq(tribo_advance(m, 0.25 * k), TRIBO_OK);
+            const double Q = tribo_get(m, TRIBO_Q_STATIC);
+            cr_assert(Q >= prev && Q <= 1.0, "mu = %g tau = %g: Q = %.17g after %.17g", mus[i],
+                      0.25 * k, Q, prev);
+            prev = Q;
+        }
+        cr_expect(prev > 0.05, "mu = %g: charged to %g", mus[i], prev);
+        cr_assert_eq(tribo_get_segment_charges(m, TRIBO_SEGMENTS_STATIC, q, 500), TRIBO_OK);
+        for (int j = 0; j < 500; j++)
+            cr_assert(q[j] >= 0.0 && q[j] <= 1.0, "q[%d] = %g", j, q[j]);
+        tribo_free(m);
+    }
+}
+
+/* A disc (eps = 1) dropped without spin rolls once the bounces die out: the contact point
+   stays under the centre and U + Omega -> 0, accelerating at g sin(beta) / (1 + 1/2).
+   What is left of U + Omega is the tangential spring's oscillation in stick, which the
+   model does not damp: with the stretch within mu Psi_N and the spring's frequency
+   sqrt(1/m + R^2/I) = sqrt(3), |U + Omega| <= sqrt(3) mu Psi_N, while U grows. */
+Test(invariants, disc_rolls_without_slip, .timeout = 60)
+{
+    tribo_scene s = paper(0.5, 0.5, 1e-3);
+    s.epsilon = 1.0;
+    tribo_model *m = make(&s);
+    cr_assert_eq(tribo_advance(m, 100.0), TRIBO_OK);
+    const double U1 = tribo_get(m, TRIBO_Q_U);
+    for (int k = 1; k <= 200; k++) {
+        cr_assert_eq(tribo_advance(m, 100.0 + k), TRIBO_OK);
+        const double U = tribo_get(m, TRIBO_Q_U), Om = tribo_get(m, TRIBO_Q_OMEGA);
+        const double bound = sqrt(3.0) * s.mu * tribo_get(m, TRIBO_Q_PSI_N);
+        cr_assert(fabs(U + Om) <= bound, "tau = %d: U + Omega = %g, bound %g (U = %g)", 100 + k,
+                  U + Om, bound, U);
+        const double dy = tribo_get(m, TRIBO_Q_DELTA_Y), gn = s.Gamma * sqrt(0.5);
+        cr_assert(dy >= gn / (1 + s.nu) && dy <= gn / (1 - s.nu),
+                  "rolling in steady contact (normal lock): delta_y = %g", dy);
+        cr_assert_eq(tribo_get(m, TRIBO_Q_SLIPPING), 0.0);
+    }
+    const double accel = (tribo_get(m, TRIBO_Q_U) - U1) / 200.0;
+    const double expected = s.Gamma * sin(M_PI / 4) / 1.5;
+    cr_expect(fabs(accel - expected) < 1e-3 * expected, "acceleration %.6g, expected %.6g",
+              accel, expected);
+    tribo_free(m);
+}
