@@ -136,3 +136,224 @@ double tribo_charging_mean(const double *v, int n)
         sum += v[i];
     return sum / (double)n;
 }
+
+/* ---- sweeping a contact along an interval ------------------------------------------------ */
+
+/* The contact at one time; the centre is unwrapped against a neighbouring point, so that
+   the edges move continuously across the start of the numbering. */
+typedef struct probe_point {
+    double t, lo, hi, rate, speed;
+    double work; /* omega, known at the ends of accepted pieces */
+} probe_point;
+
+typedef struct sweep {
+    tribo_charging *c;
+    const tribo_charge_params *p;
+    const tribo_contact_probe *probe;
+    double perimeter, seg; /* perimeter, segment length */
+    double rtol;
+    double *Sigma_s;
+    tribo_sample_sink sink;
+    void *sink_ctx;
+    int status;
+} sweep;
+
+static probe_point probe_at(sweep *w, double t, const probe_point *near)
+{
+    double s_c, half, rate, speed;
+    w->probe->at(w->probe->ctx, t, &s_c, &half, &rate, &speed);
+    if (near)
+        s_c -= w->perimeter * floor((s_c - 0.5 * (near->lo + near->hi)) / w->perimeter + 0.5);
+    const probe_point pt = {t, s_c - half, s_c + half, rate, speed, 0.0};
+    return pt;
+}
+
+static double edge_of(const probe_point *p, int hi_edge) { return hi_edge ? p->hi : p->lo; }
+
+/* When an edge (lo or hi), moving monotonically through a, m, b, crosses the boundary at
+   x: first the inverse quadratic through the three points, checked on the probe; then, if
+   needed, the Illinois variant of regula falsi from the tighter bracket. Located to
+   rtol of the piece's duration. */
+static double crossing(sweep *w, probe_point a, const probe_point *m, probe_point b, int hi_edge,
+                       double x)
+{
+    const double tol = w->rtol * (b.t - a.t) + 1e-15 * fabs(b.t);
+    const double ea = edge_of(&a, hi_edge), em = edge_of(m, hi_edge), eb = edge_of(&b, hi_edge);
+    double fa = ea - x, fb = eb - x;
+    if (ea != em && em != eb && ea != eb) {
+        /* Lagrange interpolation of t as a function of the edge */
+        const double t = a.t * (x - em) * (x - eb) / ((ea - em) * (ea - eb)) +
+                         m->t * (x - ea) * (x - eb) / ((em - ea) * (em - eb)) +
+                         b.t * (x - ea) * (x - em) / ((eb - ea) * (eb - em));
+        if (t > a.t && t < b.t) {
+            const probe_point p = probe_at(w, t, m);
+            const double fp = edge_of(&p, hi_edge) - x;
+            const double speed = fabs(eb - ea) / (b.t - a.t);
+            if (fabs(fp) <= speed * tol)
+                return t;
+            if ((fp > 0) == (fb > 0)) {
+                b = p;
+                fb = fp;
+            } else {
+                a = p;
+                fa = fp;
+            }
+        }
+    }
+    int side = 0;
+    for (int it = 0; it < 100 && b.t - a.t > tol; it++) {
+        double t = (a.t * fb - b.t * fa) / (fb - fa);
+        if (!(t > a.t && t < b.t))
+            t = 0.5 * (a.t + b.t);
+        const probe_point p = probe_at(w, t, &a);
+        const double fp = edge_of(&p, hi_edge) - x;
+        if ((fp > 0) == (fb > 0)) {
+            b = p;
+            fb = fp;
+            if (side == -1)
+                fa *= 0.5;
+            side = -1;
+        } else {
+            a = p;
+            fa = fp;
+            if (side == +1)
+                fb *= 0.5;
+            side = +1;
+        }
+    }
+    return 0.5 * (a.t + b.t);
+}
+
+/* A boundary crossing inside a piece: when, and which edge's segment index moves how. */
+typedef struct cut {
+    double t;
+    int hi_edge, step;
+} cut;
+
+static int cmp_cut(const void *x, const void *y)
+{
+    const double a = ((const cut *)x)->t, b = ((const cut *)y)->t;
+    return (a > b) - (a < b);
+}
+
+static int inside(double e0, double em, double e1)
+{
+    const double slack = 1e-12 * (fabs(e0) + fabs(e1) + 1.0);
+    return em >= fmin(e0, e1) - slack && em <= fmax(e0, e1) + slack;
+}
+
+/* Sigma_s over a piece of the contact from work w0 to w1 (MODEL §5b). */
+static double saturation_after(sweep *w, double S, double duration, double w0, double w1)
+{
+    tribo_contact_sample piece = {duration, 1, 0, 0, w0, w1, 0, 0};
+    tribo_charging_saturation(w->c, w->p, &S, &piece);
+    return S;
+}
+
+/* A piece in which each edge moves monotonically by at most a segment and Sigma_s (with
+   the sliding model) is quadratic to the tolerances: locate the boundary crossings, and
+   charge the parts between them, each with its fixed set of segments (MODEL §5a, §5b). */
+static void charge_piece(sweep *w, const probe_point *a, const probe_point *m,
+                         const probe_point *b, const double S[3])
+{
+    cut cuts[8];
+    int n = 0;
+    double cell[2] = {floor(a->lo / w->seg), floor(a->hi / w->seg)};
+    for (int edge = 0; edge < 2; edge++) {
+        const double e0 = edge_of(a, edge), e1 = edge_of(b, edge);
+        const int step = e1 > e0 ? 1 : -1;
+        const double lo = fmin(e0, e1), hi = fmax(e0, e1);
+        for (double k = floor(lo / w->seg) + 1; k * w->seg < hi && n < 8; k++) {
+            const cut c = {crossing(w, *a, m, *b, edge, k * w->seg), edge, step};
+            cuts[n++] = c;
+        }
+    }
+    qsort(cuts, (size_t)n, sizeof cuts[0], cmp_cut);
+
+    /* Sigma_s within the piece: the quadratic through its start, middle and end */
+    const double T = b->t - a->t;
+    const double c1 = -3.0 * S[0] + 4.0 * S[1] - S[2], c2 = 2.0 * (S[0] - 2.0 * S[1] + S[2]);
+    double t0 = a->t;
+    for (int i = 0; i <= n && !w->status; i++) {
+        const double t1 = i < n ? cuts[i].t : b->t;
+        if (t1 > t0) {
+            /* the segments from the lower edge's to the upper edge's, as the crossings so
+               far have moved them: a contact whose edges sit mid-segment covers exactly those */
+            const double u0 = (t0 - a->t) / T, u1 = (t1 - a->t) / T;
+            tribo_contact_sample s;
+            s.duration = t1 - t0;
+            s.in_contact = 1;
+            s.s_centre = 0.5 * (cell[0] + cell[1] + 1.0) * w->seg;
+            s.half_width = 0.5 * (cell[1] - cell[0]) * w->seg;
+            s.work_begin = s.work_end = 0.0; /* Sigma_s is given */
+            s.Sigma_s_begin = S[0] + u0 * (c1 + u0 * c2);
+            s.Sigma_s_end = S[0] + u1 * (c1 + u1 * c2);
+            w->status = w->sink(w->sink_ctx, &s);
+            t0 = t1;
+        }
+        if (i < n)
+            cell[cuts[i].hi_edge] += cuts[i].step;
+    }
+}
+
+int tribo_charging_sweep(tribo_charging *c, const tribo_charge_params *p,
+                         const tribo_contact_probe *probe, double a, double b, double rtol,
+                         double atol, double *work, double *Sigma_s, tribo_sample_sink sink,
+                         void *sink_ctx)
+{
+    if (!(b > a))
+        return 0;
+    sweep w = {c, p, probe, c->arc.perimeter, c->arc.perimeter / c->n, rtol, Sigma_s,
+               sink, sink_ctx, 0};
+    /* Left to right in pieces; a trial piece is at most a segment's travel of the centre,
+       halved until the piece is regular, and grown after each accepted one. */
+    probe_point cur = probe_at(&w, a, NULL);
+    cur.work = *work;
+    const double min_piece = 1e-13 * (1.0 + fabs(b));
+    double trial = b - a;
+    while (cur.t < b && !w.status) {
+        if (cur.speed > 0.0)
+            trial = fmin(trial, w.seg / cur.speed);
+        double t1 = fmin(cur.t + trial, b);
+        if (b - t1 < min_piece)
+            t1 = b;
+        const double h = t1 - cur.t;
+        const probe_point m = probe_at(&w, cur.t + 0.5 * h, &cur);
+        probe_point next = probe_at(&w, t1, &m);
+        int ok = fabs(next.lo - cur.lo) <= w.seg && fabs(next.hi - cur.hi) <= w.seg &&
+                 inside(cur.lo, m.lo, next.lo) && inside(cur.hi, m.hi, next.hi);
+        double work_end = cur.work, S[3] = {*Sigma_s, *Sigma_s, *Sigma_s};
+        if (ok && c->with_sliding) {
+            /* omega by Simpson on the halves against Simpson on the whole (MODEL §5b), to
+               the tolerances CVODE holds the motion to: rtol of the piece's work, atol per
+               unit time (the rate is ~0 and noisy in stick, and goes as sqrt(delta_y) at
+               the ends of a contact) */
+            const probe_point q1 = probe_at(&w, cur.t + 0.25 * h, &cur);
+            const probe_point q3 = probe_at(&w, cur.t + 0.75 * h, &cur);
+            const double whole = h / 6.0 * (cur.rate + 4.0 * m.rate + next.rate);
+            const double left = h / 12.0 * (cur.rate + 4.0 * q1.rate + m.rate);
+            const double right = h / 12.0 * (m.rate + 4.0 * q3.rate + next.rate);
+            const double halves = left + right;
+            ok = fabs(halves - whole) <= 15.0 * (rtol * fabs(halves) + atol * h);
+            work_end = cur.work + halves + (halves - whole) / 15.0;
+            /* Sigma_s over the two halves against over the whole: its relaxation (tau_r)
+               must be resolved as well as the work */
+            const double work_mid = cur.work + left;
+            S[1] = saturation_after(&w, S[0], 0.5 * h, cur.work, work_mid);
+            S[2] = saturation_after(&w, S[1], 0.5 * h, work_mid, work_end);
+            const double S_whole = saturation_after(&w, S[0], h, cur.work, work_end);
+            ok = ok && fabs(S[2] - S_whole) <= rtol * fabs(S[2]) + atol;
+        }
+        if (ok || h <= 2.0 * min_piece) {
+            next.work = work_end;
+            charge_piece(&w, &cur, &m, &next, S);
+            *Sigma_s = S[2];
+            cur = next;
+            trial = 2.0 * h;
+        } else {
+            trial = 0.5 * h;
+        }
+    }
+    *work = cur.work;
+    return w.status;
+}

@@ -60,6 +60,31 @@ void tribo_charging_saturation(tribo_charging *c, const tribo_charge_params *p,
 void tribo_charging_segments(tribo_charging *c, const tribo_charge_params *p,
                              const tribo_contact_sample *sample, double *q, double *sigma);
 
+/* The contact along an interval of the motion, as an integrator with dense output sees it:
+   at time t, the arc-length coordinate of the contact centre (in [0, perimeter)), the
+   half-width Sc, the rate of frictional work d omega / dtau (0 if not wanted), and the
+   speed of the centre along the boundary. */
+typedef struct tribo_contact_probe {
+    void (*at)(void *ctx, double t, double *s_centre, double *half_width, double *work_rate,
+               double *centre_speed);
+    void *ctx;
+} tribo_contact_probe;
+
+/* Receives the samples of a sweep; returns 0, or non-zero to stop it. */
+typedef int (*tribo_sample_sink)(void *ctx, const tribo_contact_sample *sample);
+
+/* Sweep a contact that lasts over [a, b]: cut it where an edge of the contact crosses a
+   segment boundary (located on the probe to ~1e-10 of the interval), so that every
+   sample holds a fixed set of segments and the charge models are exact given the probe
+   (MODEL §5). With the sliding model, omega is integrated along the way (adaptive
+   Simpson to rtol of the work and atol per unit time) and Sigma_s follows it. Advances
+   *work and *Sigma_s; each sample goes to the sink. Returns 0, or the sink's non-zero
+   value. */
+int tribo_charging_sweep(tribo_charging *c, const tribo_charge_params *p,
+                         const tribo_contact_probe *probe, double a, double b, double rtol,
+                         double atol, double *work, double *Sigma_s, tribo_sample_sink sink,
+                         void *sink_ctx);
+
 /* Mean of an array of n values. */
 double tribo_charging_mean(const double *v, int n);
 

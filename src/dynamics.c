@@ -5,32 +5,46 @@
 
 #include <string.h>
 
+/* d(mu Psi_N)/dtau for Psi_N = max(0, dy (1 - nu s)) at fixed s, one-sided where dy = 0:
+   at the instant of contact the limit is 0 but already growing. */
+static double limit_rate(const tribo_dyn_params *p, const tribo_contact_eval *ev, double ddy)
+{
+    const double factor = 1.0 - p->nu * ev->sign_v;
+    return factor > 0.0 && (ev->delta_y > 0.0 || ddy > 0.0) ? p->mu * factor * ddy : 0.0;
+}
+
 void tribo_contact_at(const tribo_dyn_params *p, const tribo_force_law *law, const double *y,
                       tribo_contact_eval *ev)
 {
     tribo_pose_at(p->eps2, y[TRIBO_IPHI], &ev->pose);
     ev->delta_y = tribo_indentation(ev->pose.h, y[TRIBO_IY]);
-    ev->in_contact = ev->delta_y > 0.0;
+    ev->in_contact = law->contact == TRIBO_CONTACT_BY_GEOMETRY ? ev->delta_y > 0.0
+                                                                : law->contact == TRIBO_CONTACT_ON;
     ev->vs = y[TRIBO_IU] + ev->pose.h * y[TRIBO_IOMEGA]; /* MODEL §2 */
     if (!ev->in_contact) {
         ev->sign_v = 0.0;
-        ev->psi_n = ev->psi_t = ev->limit = 0.0;
+        ev->psi_n = ev->psi_t = ev->limit = ev->limit_rate = 0.0;
         return;
     }
+    /* d(delta_y)/dtau = (dh/dphi) Omega - V = -cx Omega - V (MODEL §2) */
+    const double ddy = -ev->pose.cx * y[TRIBO_IOMEGA] - y[TRIBO_IV];
     switch (law->normal) {
     case TRIBO_NORMAL_REGULARISED:
         ev->sign_v = p->nu > 0.0 ? tribo_regularised_sign(y[TRIBO_IV], p->v_reg) : 0.0;
         ev->psi_n = tribo_normal_force(ev->delta_y, p->nu, ev->sign_v);
+        ev->limit_rate = limit_rate(p, ev, ddy);
         break;
     case TRIBO_NORMAL_SIGN:
         ev->sign_v = law->normal_sign;
         ev->psi_n = tribo_normal_force(ev->delta_y, p->nu, ev->sign_v);
+        ev->limit_rate = limit_rate(p, ev, ddy);
         break;
     case TRIBO_NORMAL_LOCK:
         /* V held at 0: the normal force is whatever balances the rest (MODEL §3). */
         ev->psi_n = p->g_n - p->F_N;
         ev->sign_v = p->nu > 0.0 && ev->delta_y > 0.0 ? (1.0 - ev->psi_n / ev->delta_y) / p->nu
                                                        : 0.0;
+        ev->limit_rate = 0.0;
         break;
     }
     ev->limit = p->mu * ev->psi_n;
@@ -69,20 +83,18 @@ void tribo_dynamics_rhs(const tribo_dyn_params *p, const tribo_force_law *law, c
         dydt[TRIBO_IWORK] = 0.0;
         return;
     }
-    /* MODEL §3: the stretch follows the slip velocity of the contact point. */
-    const double ddx = law->tangent == TRIBO_TANGENT_SLIP ? 0.0 : ev->vs;
+    /* MODEL §3: the stretch follows the slip velocity of the contact point; in slip it
+       is held at the limit and moves with it. */
+    const double ddx =
+        law->tangent == TRIBO_TANGENT_SLIP ? law->slip_sign * ev->limit_rate : ev->vs;
     dydt[TRIBO_IDX] = ddx;
     /* Power lost from E (MODEL §6): dE/dtau = Psi_T vs + dx ddx + (Psi_N - dy)(V + cx Om)
-       + external power, so the contact dissipates -Psi_T vs - dx ddx + (dy - Psi_N)(V + cx Om).
-       (In slip the stretch sits at the limit; the power it takes from the spring as the
-       limit moves is accounted where the stretch is set.) */
+       + external power, so the contact dissipates -Psi_T vs - dx ddx + (dy - Psi_N)(V + cx Om). */
     dydt[TRIBO_IWDISS] = -ev->psi_t * ev->vs - y[TRIBO_IDX] * ddx +
                          (ev->delta_y - ev->psi_n) * (V + ev->pose.cx * Om);
     if (p->work_per_area) {
-        /* MODEL §5b: d omega = mu dy |vs| / (2 Sc), Sc = sqrt(rho_c dy)
-           = mu |vs| sqrt(dy / rho_c) / 2. */
         const double rho_c = tribo_contact_curvature_radius(p->eps2, ev->pose.h);
-        dydt[TRIBO_IWORK] = 0.5 * p->mu * fabs(ev->vs) * sqrt(ev->delta_y / rho_c);
+        dydt[TRIBO_IWORK] = tribo_work_rate(p->mu, ev->vs, ev->delta_y, rho_c);
     } else {
         dydt[TRIBO_IWORK] = 0.0;
     }

@@ -29,16 +29,23 @@ typedef struct tribo_dyn_params {
     double inv_inertia;  /* 4 / (1 + eps^2): m (a^2 + b^2) / 4, MODEL §4 */
     double v_reg;
     double F_T, F_N;     /* external force (inputs) */
-    int work_per_area;   /* integrate omega (sliding charge model only) */
+    int work_per_area;   /* integrate omega in the state (sliding model, fixed step) */
 } tribo_dyn_params;
 
 /* How the set-valued parts of the force law are resolved (MODEL §3). The fixed-step
    integrator uses the regularised sign and the clamped stretch throughout; an
    event-driven integrator selects a mode per smooth piece of the motion. */
+typedef enum {
+    TRIBO_CONTACT_BY_GEOMETRY, /* in contact where delta_y > 0 (fixed step)              */
+    TRIBO_CONTACT_OFF,         /* flight mode: no contact force whatever delta_y is       */
+    TRIBO_CONTACT_ON           /* contact mode: the law with max(delta_y, 0), so that the
+                                  right-hand side is smooth up to the located switch     */
+} tribo_contact_rule;
 typedef enum { TRIBO_NORMAL_REGULARISED, TRIBO_NORMAL_SIGN, TRIBO_NORMAL_LOCK } tribo_normal_mode;
 typedef enum { TRIBO_TANGENT_CLAMP, TRIBO_TANGENT_STICK, TRIBO_TANGENT_SLIP } tribo_tangent_mode;
 
 typedef struct tribo_force_law {
+    tribo_contact_rule contact;
     tribo_normal_mode normal;
     double normal_sign;   /* s for TRIBO_NORMAL_SIGN (+1 / -1)              */
     tribo_tangent_mode tangent;
@@ -54,6 +61,7 @@ typedef struct tribo_contact_eval {
     double sign_v;    /* the s used in Psi_N */
     double psi_n, psi_t;
     double limit;     /* Coulomb limit mu Psi_N */
+    double limit_rate; /* d(mu Psi_N)/dtau within the current normal mode (0 in lock) */
 } tribo_contact_eval;
 
 /* dy/dtau at state y under the force law; fills ev (may be NULL). */

@@ -22,7 +22,7 @@ typedef struct fixed_step {
     long long k;    /* steps taken on the grid */
 } fixed_step;
 
-static const tribo_force_law LAW = {TRIBO_NORMAL_REGULARISED, 0.0, TRIBO_TANGENT_CLAMP, 0.0};
+static const tribo_force_law LAW = {TRIBO_CONTACT_BY_GEOMETRY, TRIBO_NORMAL_REGULARISED, 0.0, TRIBO_TANGENT_CLAMP, 0.0};
 
 /* One step of size h from p to next; the contact over the step is returned in sample
    (charged at the end point's contact for the whole step, as the paper does). */

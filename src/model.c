@@ -18,7 +18,7 @@ tribo_status tribo_fail(tribo_model *m, tribo_status status, const char *fmt, ..
 
 static const tribo_integrator_ops *integrator_for(int kind)
 {
-    return kind == TRIBO_INTEGRATOR_CVODE ? &tribo_cvode_ops : &tribo_fixed_step_ops;
+    return kind == TRIBO_INTEGRATOR_FIXED_STEP ? &tribo_fixed_step_ops : &tribo_cvode_ops;
 }
 
 void tribo_derive_params(tribo_model *m)
@@ -35,7 +35,10 @@ void tribo_derive_params(tribo_model *m)
     d->g_n = s->Gamma * cos(beta);
     d->inv_inertia = 4.0 / (1.0 + d->eps2); /* MODEL §4 */
     d->v_reg = s->v_reg;
-    d->work_per_area = (s->charge_model & TRIBO_CHARGE_SLIDING) != 0;
+    /* the fixed step integrates omega with the motion; CVODE integrates it along its
+       charging sweep, so that it does not steer the steps */
+    d->work_per_area = (s->charge_model & TRIBO_CHARGE_SLIDING) != 0 &&
+                       s->integrator == TRIBO_INTEGRATOR_FIXED_STEP;
     m->charge.tau0 = s->tau0;
     m->charge.tau_r = s->tau_r;
     m->charge.Sigma0 = s->Sigma0;
@@ -58,7 +61,7 @@ void tribo_initial_point(const tribo_model *m, tribo_point *p)
     p->y[TRIBO_IV] = -s->drop_speed * cos(beta);
     p->y[TRIBO_IOMEGA] = s->Omega0;
     p->Sigma_s = s->Sigma0;
-    static const tribo_force_law law = {TRIBO_NORMAL_REGULARISED, 0, TRIBO_TANGENT_CLAMP, 0};
+    static const tribo_force_law law = {TRIBO_CONTACT_BY_GEOMETRY, TRIBO_NORMAL_REGULARISED, 0, TRIBO_TANGENT_CLAMP, 0};
     tribo_contact_at(&m->dyn, &law, p->y, &p->contact);
 }
 
@@ -96,7 +99,14 @@ void tribo_commit_output(tribo_model *m)
         apply_pending(m, m->charging.q, m->charging.sigma);
     m->committed = m->out;
     tribo_pending_clear(m);
+}
+
+/* Start the integrator afresh from the committed point, which is also the output now. */
+static void restart_here(tribo_model *m)
+{
     m->integrator->restart(m);
+    m->out = m->committed;
+    tribo_pending_clear(m);
 }
 
 tribo_model *tribo_create(const tribo_scene *scene, char *err, size_t err_size)
@@ -161,10 +171,8 @@ void tribo_reset(tribo_model *m)
     if (m->has_charging)
         tribo_charging_reset(&m->charging);
     memset(&m->stats, 0, sizeof m->stats);
-    m->out = m->committed;
-    tribo_pending_clear(m);
     m->error[0] = '\0';
-    m->integrator->restart(m);
+    restart_here(m);
 }
 
 tribo_status tribo_advance(tribo_model *m, double t)
@@ -194,7 +202,7 @@ tribo_status tribo_set_param(tribo_model *m, const char *name, double value)
     tribo_commit_output(m);
     tribo_param_write(&m->scene, p, value);
     tribo_derive_params(m);
-    m->integrator->restart(m);
+    restart_here(m);
     return TRIBO_OK;
 }
 
@@ -208,7 +216,7 @@ tribo_status tribo_set_external_force(tribo_model *m, double F_T, double F_N)
     tribo_commit_output(m);
     m->dyn.F_T = F_T;
     m->dyn.F_N = F_N;
-    m->integrator->restart(m);
+    restart_here(m);
     return TRIBO_OK;
 }
 

@@ -54,7 +54,8 @@ void tribo_initial_point(const tribo_model *m, tribo_point *p);
 tribo_status tribo_pending_push(tribo_model *m, const tribo_contact_sample *sample);
 void tribo_pending_clear(tribo_model *m);
 
-/* Make the output point the committed one (before a tunable or input changes there). */
+/* Make the output point the committed one (before a tunable or input changes there);
+   the caller then restarts the integrator. */
 void tribo_commit_output(tribo_model *m);
 
 /* Recompute dyn / charge from the scene (after a tunable changed). */

@@ -53,7 +53,8 @@ typedef enum tribo_charge_models {
 
 typedef enum tribo_integrator_kind {
     TRIBO_INTEGRATOR_FIXED_STEP = 0, /* classical RK4, fixed step dt (the paper's)  */
-    TRIBO_INTEGRATOR_CVODE = 1       /* SUNDIALS CVODE with event location          */
+    TRIBO_INTEGRATOR_CVODE = 1,      /* SUNDIALS CVODE, Adams, with event location  */
+    TRIBO_INTEGRATOR_CVODE_BDF = 2   /* the same with BDF (for stiff scenes)        */
 } tribo_integrator_kind;
 
 typedef struct tribo_scene {

@@ -6,7 +6,7 @@
 #include "dynamics.h"
 #include "tribo.h"
 
-static const tribo_force_law LAW = {TRIBO_NORMAL_REGULARISED, 0.0, TRIBO_TANGENT_CLAMP, 0.0};
+static const tribo_force_law LAW = {TRIBO_CONTACT_BY_GEOMETRY, TRIBO_NORMAL_REGULARISED, 0.0, TRIBO_TANGENT_CLAMP, 0.0};
 
 static tribo_dyn_params params(double eps, double mu, double nu)
 {

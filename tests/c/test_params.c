@@ -89,7 +89,7 @@ Test(params, the_ranges_of_model_section_1)
         {"nu", 0.0, -1e-12},     {"Gamma", 1e-9, 0.0},           {"beta", 0.0, 90.0},
         {"beta", 89.999, -1e-9}, {"tau0", 1e-9, 0.0},            {"Sigma0", 1e-9, 0.0},
         {"eta", 0.0, -1e-12},    {"tau_r", 1e-9, 0.0},           {"n_segments", 16, 15},
-        {"v_reg", 1e-12, 0.0},   {"charge_model", 3, 4},         {"integrator", 1, 2},
+        {"v_reg", 1e-12, 0.0},   {"charge_model", 3, 4},         {"integrator", 2, 3},
         {"dt", 1e-3, 0.0},       {"gap0", 0.0, -1e-9},           {"drop_speed", 0.0, -1e-9},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {

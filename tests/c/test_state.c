@@ -6,7 +6,12 @@
 
 #include "tribo.h"
 
-static tribo_scene scene(void)
+/* Every test here runs under each integrator. */
+static const int INTEGRATORS[] = {TRIBO_INTEGRATOR_FIXED_STEP, TRIBO_INTEGRATOR_CVODE,
+                                  TRIBO_INTEGRATOR_CVODE_BDF};
+#define FOR_EACH_INTEGRATOR for (int integ = 0; integ < 3; integ++)
+
+static tribo_scene scene_with(int integrator)
 {
     tribo_scene s;
     tribo_scene_defaults(&s);
@@ -14,8 +19,10 @@ static tribo_scene scene(void)
     s.mu = s.nu = 1.0;
     s.dt = 2e-4;
     s.n_segments = 300;
+    s.integrator = integrator;
     return s;
 }
+#define scene() scene_with(INTEGRATORS[integ])
 
 static tribo_model *make(const tribo_scene *s)
 {
@@ -45,133 +52,145 @@ static void expect_same(tribo_model *a, tribo_model *b, const char *what)
 
 Test(state, copy_out_and_in_continues_bit_identically)
 {
-    tribo_scene s = scene();
-    tribo_model *a = make(&s);
-    /* off the step grid, so that the saved point carries a partial step */
-    cr_assert_eq(tribo_advance(a, 3.00013), TRIBO_OK);
-    const size_t n = tribo_state_size(a);
-    unsigned char *saved = malloc(n);
-    cr_assert_eq(tribo_state_save(a, saved, n), TRIBO_OK);
-    cr_assert_eq(tribo_advance(a, 10.0), TRIBO_OK);
+    FOR_EACH_INTEGRATOR {
+        tribo_scene s = scene();
+        tribo_model *a = make(&s);
+        /* off the step grid, so that the saved point carries a partial step */
+        cr_assert_eq(tribo_advance(a, 3.00013), TRIBO_OK);
+        const size_t n = tribo_state_size(a);
+        unsigned char *saved = malloc(n);
+        cr_assert_eq(tribo_state_save(a, saved, n), TRIBO_OK);
+        cr_assert_eq(tribo_advance(a, 10.0), TRIBO_OK);
 
-    tribo_model *b = make(&s); /* a fresh instance */
-    cr_assert_eq(tribo_state_load(b, saved, n), TRIBO_OK, "%s", tribo_last_error(b));
-    cr_expect_eq(tribo_get(b, TRIBO_Q_TIME), 3.00013);
-    cr_assert_eq(tribo_advance(b, 10.0), TRIBO_OK);
-    expect_same(a, b, "restored instance");
+        tribo_model *b = make(&s); /* a fresh instance */
+        cr_assert_eq(tribo_state_load(b, saved, n), TRIBO_OK, "%s", tribo_last_error(b));
+        cr_expect_eq(tribo_get(b, TRIBO_Q_TIME), 3.00013);
+        cr_assert_eq(tribo_advance(b, 10.0), TRIBO_OK);
+        expect_same(a, b, "restored instance");
 
-    /* and back into the first instance, after it has moved on */
-    cr_assert_eq(tribo_state_load(a, saved, n), TRIBO_OK);
-    cr_assert_eq(tribo_advance(a, 10.0), TRIBO_OK);
-    expect_same(a, b, "rewound instance");
+        /* and back into the first instance, after it has moved on */
+        cr_assert_eq(tribo_state_load(a, saved, n), TRIBO_OK);
+        cr_assert_eq(tribo_advance(a, 10.0), TRIBO_OK);
+        expect_same(a, b, "rewound instance");
 
-    /* the saved bytes of equal states are equal */
-    unsigned char *again_a = malloc(n), *again_b = malloc(n);
-    cr_assert_eq(tribo_state_save(a, again_a, n), TRIBO_OK);
-    cr_assert_eq(tribo_state_save(b, again_b, n), TRIBO_OK);
-    cr_expect(memcmp(again_a, again_b, n) == 0);
-    free(saved);
-    free(again_a);
-    free(again_b);
-    tribo_free(a);
-    tribo_free(b);
+        /* the saved bytes of equal states are equal */
+        unsigned char *again_a = malloc(n), *again_b = malloc(n);
+        cr_assert_eq(tribo_state_save(a, again_a, n), TRIBO_OK);
+        cr_assert_eq(tribo_state_save(b, again_b, n), TRIBO_OK);
+        cr_expect(memcmp(again_a, again_b, n) == 0);
+        free(saved);
+        free(again_a);
+        free(again_b);
+        tribo_free(a);
+        tribo_free(b);
+    }
 }
 
 Test(state, tunables_and_inputs_travel_with_the_state)
 {
-    tribo_scene s = scene();
-    tribo_model *a = make(&s);
-    cr_assert_eq(tribo_advance(a, 2.0), TRIBO_OK);
-    cr_assert_eq(tribo_set_param(a, "mu", 0.3), TRIBO_OK);
-    cr_assert_eq(tribo_set_external_force(a, 1e-4, -2e-4), TRIBO_OK);
-    const size_t n = tribo_state_size(a);
-    unsigned char *saved = malloc(n);
-    cr_assert_eq(tribo_state_save(a, saved, n), TRIBO_OK);
-    tribo_model *b = make(&s);
-    cr_assert_eq(tribo_state_load(b, saved, n), TRIBO_OK);
-    cr_expect_eq(tribo_get_scene(b)->mu, 0.3);
-    cr_assert_eq(tribo_advance(a, 6.0), TRIBO_OK);
-    cr_assert_eq(tribo_advance(b, 6.0), TRIBO_OK);
-    expect_same(a, b, "with tunables and inputs");
-    cr_expect(tribo_get(a, TRIBO_Q_WORK_EXTERNAL) != 0.0);
-    free(saved);
-    tribo_free(a);
-    tribo_free(b);
+    FOR_EACH_INTEGRATOR {
+        tribo_scene s = scene();
+        tribo_model *a = make(&s);
+        cr_assert_eq(tribo_advance(a, 2.0), TRIBO_OK);
+        cr_assert_eq(tribo_set_param(a, "mu", 0.3), TRIBO_OK);
+        cr_assert_eq(tribo_set_external_force(a, 1e-4, -2e-4), TRIBO_OK);
+        const size_t n = tribo_state_size(a);
+        unsigned char *saved = malloc(n);
+        cr_assert_eq(tribo_state_save(a, saved, n), TRIBO_OK);
+        tribo_model *b = make(&s);
+        cr_assert_eq(tribo_state_load(b, saved, n), TRIBO_OK);
+        cr_expect_eq(tribo_get_scene(b)->mu, 0.3);
+        cr_assert_eq(tribo_advance(a, 6.0), TRIBO_OK);
+        cr_assert_eq(tribo_advance(b, 6.0), TRIBO_OK);
+        expect_same(a, b, "with tunables and inputs");
+        cr_expect(tribo_get(a, TRIBO_Q_WORK_EXTERNAL) != 0.0);
+        free(saved);
+        tribo_free(a);
+        tribo_free(b);
+    }
 }
 
 Test(state, foreign_or_corrupt_state_is_refused)
 {
-    tribo_scene s = scene();
-    tribo_model *a = make(&s);
-    cr_assert_eq(tribo_advance(a, 1.0), TRIBO_OK);
-    const size_t n = tribo_state_size(a);
-    unsigned char *saved = malloc(n);
-    cr_assert_eq(tribo_state_save(a, saved, n), TRIBO_OK);
-    cr_expect_eq(tribo_state_save(a, saved, n - 1), TRIBO_ERR_INVALID_ARGUMENT);
+    FOR_EACH_INTEGRATOR {
+        tribo_scene s = scene();
+        tribo_model *a = make(&s);
+        cr_assert_eq(tribo_advance(a, 1.0), TRIBO_OK);
+        const size_t n = tribo_state_size(a);
+        unsigned char *saved = malloc(n);
+        cr_assert_eq(tribo_state_save(a, saved, n), TRIBO_OK);
+        cr_expect_eq(tribo_state_save(a, saved, n - 1), TRIBO_ERR_INVALID_ARGUMENT);
 
-    tribo_scene other = s;
-    other.epsilon = 0.41;
-    tribo_model *b = make(&other);
-    cr_expect_eq(tribo_state_load(b, saved, n), TRIBO_ERR_STATE);
-    cr_expect(strstr(tribo_last_error(b), "epsilon") != NULL, "%s", tribo_last_error(b));
-    cr_expect_eq(tribo_state_load(a, saved, n - 8), TRIBO_ERR_STATE);
-    saved[0] ^= 0xff;
-    cr_expect_eq(tribo_state_load(a, saved, n), TRIBO_ERR_STATE);
-    cr_expect_eq(tribo_advance(a, 2.0), TRIBO_OK, "a refused load leaves the instance usable");
-    free(saved);
-    tribo_free(a);
-    tribo_free(b);
+        tribo_scene other = s;
+        other.epsilon = 0.41;
+        tribo_model *b = make(&other);
+        cr_expect_eq(tribo_state_load(b, saved, n), TRIBO_ERR_STATE);
+        cr_expect(strstr(tribo_last_error(b), "epsilon") != NULL, "%s", tribo_last_error(b));
+        cr_expect_eq(tribo_state_load(a, saved, n - 8), TRIBO_ERR_STATE);
+        saved[0] ^= 0xff;
+        cr_expect_eq(tribo_state_load(a, saved, n), TRIBO_ERR_STATE);
+        cr_expect_eq(tribo_advance(a, 2.0), TRIBO_OK, "a refused load leaves the instance usable");
+        free(saved);
+        tribo_free(a);
+        tribo_free(b);
+    }
 }
 
 /* The committed integration does not depend on the times asked for: 250 advances by
    h = 0.0123 (not a multiple of dt) end exactly where one advance to 250 h does. */
 Test(state, many_advances_equal_one)
 {
-    tribo_scene s = scene();
-    tribo_model *a = make(&s), *b = make(&s);
-    const double h = 0.0123;
-    for (int k = 1; k <= 250; k++) {
-        cr_assert_eq(tribo_advance(a, k * h), TRIBO_OK);
-        (void)tribo_get(a, TRIBO_Q_STATIC); /* reading must not disturb either */
+    FOR_EACH_INTEGRATOR {
+        tribo_scene s = scene();
+        tribo_model *a = make(&s), *b = make(&s);
+        const double h = 0.0123;
+        for (int k = 1; k <= 250; k++) {
+            cr_assert_eq(tribo_advance(a, k * h), TRIBO_OK);
+            (void)tribo_get(a, TRIBO_Q_STATIC); /* reading must not disturb either */
+        }
+        cr_assert_eq(tribo_advance(b, 250 * h), TRIBO_OK);
+        expect_same(a, b, "stepwise vs at once");
+        tribo_free(a);
+        tribo_free(b);
     }
-    cr_assert_eq(tribo_advance(b, 250 * h), TRIBO_OK);
-    expect_same(a, b, "stepwise vs at once");
-    tribo_free(a);
-    tribo_free(b);
 }
 
 Test(state, interleaved_instances_equal_each_alone)
 {
-    tribo_scene s1 = scene(), s2 = scene();
-    s2.epsilon = 0.8;
-    s2.mu = s2.nu = 0.1;
-    tribo_model *a = make(&s1), *b = make(&s2);
-    for (int k = 1; k <= 40; k++) {
-        cr_assert_eq(tribo_advance(a, 0.25 * k), TRIBO_OK);
-        cr_assert_eq(tribo_advance(b, 0.25 * k), TRIBO_OK);
+    FOR_EACH_INTEGRATOR {
+        tribo_scene s1 = scene(), s2 = scene();
+        s2.epsilon = 0.8;
+        s2.mu = s2.nu = 0.1;
+        tribo_model *a = make(&s1), *b = make(&s2);
+        for (int k = 1; k <= 40; k++) {
+            cr_assert_eq(tribo_advance(a, 0.25 * k), TRIBO_OK);
+            cr_assert_eq(tribo_advance(b, 0.25 * k), TRIBO_OK);
+        }
+        tribo_model *a_alone = make(&s1), *b_alone = make(&s2);
+        cr_assert_eq(tribo_advance(a_alone, 10.0), TRIBO_OK);
+        cr_assert_eq(tribo_advance(b_alone, 10.0), TRIBO_OK);
+        expect_same(a, a_alone, "first instance");
+        expect_same(b, b_alone, "second instance");
+        tribo_free(a);
+        tribo_free(b);
+        tribo_free(a_alone);
+        tribo_free(b_alone);
     }
-    tribo_model *a_alone = make(&s1), *b_alone = make(&s2);
-    cr_assert_eq(tribo_advance(a_alone, 10.0), TRIBO_OK);
-    cr_assert_eq(tribo_advance(b_alone, 10.0), TRIBO_OK);
-    expect_same(a, a_alone, "first instance");
-    expect_same(b, b_alone, "second instance");
-    tribo_free(a);
-    tribo_free(b);
-    tribo_free(a_alone);
-    tribo_free(b_alone);
 }
 
 Test(state, reset_reruns_identically)
 {
-    tribo_scene s = scene();
-    tribo_model *a = make(&s), *b = make(&s);
-    cr_assert_eq(tribo_advance(a, 4.0), TRIBO_OK);
-    tribo_reset(a);
-    cr_expect_eq(tribo_get(a, TRIBO_Q_TIME), 0.0);
-    cr_expect_eq(tribo_get(a, TRIBO_Q_STATIC), 0.0);
-    cr_assert_eq(tribo_advance(a, 4.0), TRIBO_OK);
-    cr_assert_eq(tribo_advance(b, 4.0), TRIBO_OK);
-    expect_same(a, b, "after reset");
-    tribo_free(a);
-    tribo_free(b);
+    FOR_EACH_INTEGRATOR {
+        tribo_scene s = scene();
+        tribo_model *a = make(&s), *b = make(&s);
+        cr_assert_eq(tribo_advance(a, 4.0), TRIBO_OK);
+        tribo_reset(a);
+        cr_expect_eq(tribo_get(a, TRIBO_Q_TIME), 0.0);
+        cr_expect_eq(tribo_get(a, TRIBO_Q_STATIC), 0.0);
+        cr_assert_eq(tribo_advance(a, 4.0), TRIBO_OK);
+        cr_assert_eq(tribo_advance(b, 4.0), TRIBO_OK);
+        expect_same(a, b, "after reset");
+        tribo_free(a);
+        tribo_free(b);
+    }
 }

@@ -1,0 +1,224 @@
+/* The event-driven CVODE integrator against the physics and against the fixed step. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tribo.h"
+
+static tribo_model *make(const tribo_scene *s)
+{
+    char err[512];
+    tribo_model *m = tribo_create(s, err, sizeof err);
+    cr_assert(m, "%s", err);
+    return m;
+}
+
+static tribo_scene cvode_scene(double rtol)
+{
+    tribo_scene s;
+    tribo_scene_defaults(&s);
+    s.integrator = TRIBO_INTEGRATOR_CVODE;
+    s.rtol = rtol;
+    s.atol = rtol * 1e-2;
+    return s;
+}
+
+/* A disc dropped from a known gap meets the plate at the analytic time of a fall under
+   Gamma cos(beta) from normal speed v_n: gap = v_n t + g_n t^2 / 2. The onset is read back
+   from the contact time accumulated since. */
+Test(cvode, contact_onset_at_the_analytic_drop_time)
+{
+    const double rtols[] = {1e-6, 1e-8, 1e-10};
+    double previous = INFINITY;
+    for (int i = 0; i < 3; i++) {
+        tribo_scene s = cvode_scene(rtols[i]);
+        s.epsilon = 1.0;
+        s.gap0 = 0.01;
+        s.charge_model = TRIBO_CHARGE_NONE;
+        const double vn = s.drop_speed * cos(M_PI / 4), gn = s.Gamma * cos(M_PI / 4);
+        const double t_star = (-vn + sqrt(vn * vn + 2 * gn * s.gap0)) / gn;
+        tribo_model *m = make(&s);
+        cr_assert_eq(tribo_advance(m, t_star + 1.0), TRIBO_OK);
+        cr_assert_eq(tribo_get(m, TRIBO_Q_IN_CONTACT), 1.0);
+        const double measured = t_star + 1.0 - tribo_get(m, TRIBO_Q_CONTACT_TIME);
+        const double err = fabs(measured - t_star);
+        cr_expect(err <= 10 * rtols[i] * t_star, "rtol %g: onset at %.15g, analytic %.15g", rtols[i],
+                  measured, t_star);
+        cr_expect(err <= previous, "error grows as rtol shrinks: %g after %g", err, previous);
+        previous = err;
+        tribo_free(m);
+    }
+}
+
+/* With nu = 0 the energy balance E(0) = E + W holds to a bound that tightens with rtol
+   (measured: 7e-6 at 1e-4, 3e-9 at 1e-6, 2e-11 at 1e-10 over tau = 1000, W = 0.056). */
+static double balance(double rtol)
+{
+    tribo_scene s = cvode_scene(rtol);
+    s.mu = 0.3;
+    s.nu = 0.0;
+    s.charge_model = TRIBO_CHARGE_NONE;
+    tribo_model *m = make(&s);
+    const double E0 = tribo_get(m, TRIBO_Q_ENERGY);
+    double worst = 0.0;
+    for (int k = 1; k <= 1000; k++) {
+        cr_assert_eq(tribo_advance(m, k), TRIBO_OK, "%s", tribo_last_error(m));
+        worst = fmax(worst, fabs(tribo_get(m, TRIBO_Q_ENERGY) +
+                                 tribo_get(m, TRIBO_Q_WORK_DISSIPATED) - E0));
+    }
+    cr_expect(tribo_get(m, TRIBO_Q_WORK_DISSIPATED) > 0.01);
+    tribo_free(m);
+    return worst;
+}
+
+Test(cvode, energy_balance_tightens_with_rtol, .timeout = 60)
+{
+    const double r4 = balance(1e-4), r6 = balance(1e-6), r10 = balance(1e-10);
+    cr_expect(r4 < 1e-4 && r6 < r4 / 100 && r10 < r6 / 10,
+              "residuals %.3g (1e-4), %.3g (1e-6), %.3g (1e-10)", r4, r6, r10);
+    cr_expect(r10 < 1e-9, "residual %.3g at rtol 1e-10", r10);
+}
+
+/* The fixed step converges to CVODE on a regular (non-tumbling) case as its step shrinks.
+   Low friction: the particle slides and rocks, no normal lock, so v_reg plays no part. */
+static double state_distance(tribo_model *a, tribo_model *b)
+{
+    const tribo_quantity q[] = {TRIBO_Q_X, TRIBO_Q_Y, TRIBO_Q_PHI, TRIBO_Q_U, TRIBO_Q_V, TRIBO_Q_OMEGA};
+    double d = 0.0;
+    for (int i = 0; i < 6; i++)
+        d = fmax(d, fabs(tribo_get(a, q[i]) - tribo_get(b, q[i])));
+    return d;
+}
+
+Test(cvode, fixed_step_converges_to_cvode, .timeout = 60)
+{
+    tribo_scene ref_scene = cvode_scene(1e-12);
+    ref_scene.epsilon = 0.3;
+    ref_scene.charge_model = TRIBO_CHARGE_NONE;
+    tribo_model *ref = make(&ref_scene);
+    cr_assert_eq(tribo_advance(ref, 20.0), TRIBO_OK);
+    const double dts[] = {4e-3, 1e-3, 2.5e-4};
+    double previous = INFINITY;
+    for (int i = 0; i < 3; i++) {
+        tribo_scene s = ref_scene;
+        s.integrator = TRIBO_INTEGRATOR_FIXED_STEP;
+        s.dt = dts[i];
+        tribo_model *m = make(&s);
+        cr_assert_eq(tribo_advance(m, 20.0), TRIBO_OK);
+        const double d = state_distance(m, ref);
+        cr_expect(d < previous / 2, "dt = %g: distance %.3g after %.3g", dts[i], d, previous);
+        previous = d;
+        tribo_free(m);
+    }
+    cr_expect(previous < 1e-6, "dt = 2.5e-4: %.3g from CVODE", previous);
+    tribo_free(ref);
+}
+
+/* High friction: the particle comes to normal lock, which the fixed step reaches through
+   the regularised sign; as v_reg shrinks (with a step that keeps tanh(V/v_reg) stable)
+   it approaches CVODE's set-valued lock. */
+Test(cvode, regularised_lock_converges_to_the_set_valued_one, .timeout = 120)
+{
+    tribo_scene ref_scene = cvode_scene(1e-11);
+    ref_scene.mu = ref_scene.nu = 1.0;
+    ref_scene.charge_model = TRIBO_CHARGE_NONE;
+    tribo_model *ref = make(&ref_scene);
+    cr_assert_eq(tribo_advance(ref, 10.0), TRIBO_OK);
+    const double v_regs[] = {1e-4, 1e-5, 1e-6};
+    double previous = INFINITY;
+    for (int i = 0; i < 3; i++) {
+        tribo_scene s = ref_scene;
+        s.integrator = TRIBO_INTEGRATOR_FIXED_STEP;
+        s.v_reg = v_regs[i];
+        s.dt = 4e-5;
+        tribo_model *m = make(&s);
+        cr_assert_eq(tribo_advance(m, 10.0), TRIBO_OK);
+        const double d = state_distance(m, ref);
+        cr_expect(d < previous / 3, "v_reg = %g: distance %.3g after %.3g", v_regs[i], d, previous);
+        previous = d;
+        tribo_free(m);
+    }
+    cr_expect(tribo_get(ref, TRIBO_Q_V) == 0.0, "CVODE's lock holds V = 0 exactly");
+    tribo_free(ref);
+}
+
+/* The charge models ride along: they do not change a single step of the motion. */
+Test(cvode, charging_does_not_steer_the_motion)
+{
+    tribo_scene s = cvode_scene(1e-8);
+    s.mu = s.nu = 1.0;
+    s.n_segments = 500;
+    tribo_model *with = make(&s);
+    s.charge_model = TRIBO_CHARGE_NONE;
+    tribo_model *without = make(&s);
+    cr_assert_eq(tribo_advance(with, 50.0), TRIBO_OK);
+    cr_assert_eq(tribo_advance(without, 50.0), TRIBO_OK);
+    const tribo_quantity q[] = {TRIBO_Q_X, TRIBO_Q_Y, TRIBO_Q_PHI, TRIBO_Q_U, TRIBO_Q_V,
+                                TRIBO_Q_OMEGA, TRIBO_Q_DELTA_X, TRIBO_Q_ENERGY};
+    for (int i = 0; i < 8; i++)
+        cr_expect_eq(tribo_get(with, q[i]), tribo_get(without, q[i]), "%s",
+                     tribo_quantity_name(q[i]));
+    tribo_stats a, b;
+    tribo_get_stats(with, &a);
+    tribo_get_stats(without, &b);
+    cr_expect_eq(a.steps, b.steps);
+    cr_expect(tribo_get(with, TRIBO_Q_STATIC) > 0.1);
+    tribo_free(with);
+    tribo_free(without);
+}
+
+/* Both CVODE methods agree with each other on a regular case, and charge alike. */
+Test(cvode, adams_and_bdf_agree)
+{
+    tribo_scene s = cvode_scene(1e-10);
+    s.epsilon = 0.9;
+    s.n_segments = 400;
+    tribo_model *adams = make(&s);
+    s.integrator = TRIBO_INTEGRATOR_CVODE_BDF;
+    tribo_model *bdf = make(&s);
+    cr_assert_eq(tribo_advance(adams, 30.0), TRIBO_OK);
+    cr_assert_eq(tribo_advance(bdf, 30.0), TRIBO_OK);
+    cr_expect(state_distance(adams, bdf) < 1e-6, "distance %.3g", state_distance(adams, bdf));
+    cr_expect(fabs(tribo_get(adams, TRIBO_Q_STATIC) - tribo_get(bdf, TRIBO_Q_STATIC)) < 1e-5);
+    tribo_free(adams);
+    tribo_free(bdf);
+}
+
+/* Every switch of the force law shows in the counters and the flags: a high-friction
+   run sticks, slips and locks; a low-friction one flies between bounces. */
+Test(cvode, modes_are_visited_and_counted)
+{
+    int flight = 0, lock = 0, slip = 0, stick = 0;
+    const double mus[] = {1.0, 0.1};
+    for (int r = 0; r < 2; r++) {
+        tribo_scene s = cvode_scene(1e-8);
+        s.mu = s.nu = mus[r];
+        s.charge_model = TRIBO_CHARGE_NONE;
+        tribo_model *m = make(&s);
+        for (int k = 1; k <= 2000; k++) {
+            cr_assert_eq(tribo_advance(m, 0.05 * k), TRIBO_OK);
+            const int c = tribo_get(m, TRIBO_Q_IN_CONTACT) != 0.0;
+            const int slipping = tribo_get(m, TRIBO_Q_SLIPPING) != 0.0;
+            flight += !c;
+            lock += c && tribo_get(m, TRIBO_Q_V) == 0.0;
+            slip += c && slipping;
+            stick += c && !slipping;
+            if (!c)
+                cr_assert(tribo_get(m, TRIBO_Q_PSI_N) == 0.0 && tribo_get(m, TRIBO_Q_DELTA_X) == 0.0);
+            if (slipping)
+                cr_assert_float_eq(fabs(tribo_get(m, TRIBO_Q_PSI_T)),
+                                   s.mu * tribo_get(m, TRIBO_Q_PSI_N), 1e-15);
+            else if (c)
+                cr_assert(fabs(tribo_get(m, TRIBO_Q_DELTA_X)) <=
+                          s.mu * tribo_get(m, TRIBO_Q_PSI_N) * (1 + 1e-9));
+        }
+        tribo_stats st;
+        tribo_get_stats(m, &st);
+        cr_expect(st.events > 2 && st.restarts >= st.events, "mu = %g: %lld events, %lld restarts",
+                  mus[r], st.events, st.restarts);
+        tribo_free(m);
+    }
+    cr_expect(flight > 0 && lock > 0 && slip > 0 && stick > 0,
+              "flight %d, lock %d, slip %d, stick %d samples", flight, lock, slip, stick);
+}
