@@ -1,0 +1,61 @@
+/* instance_private.h: what the files of the instance layer share (not the wrappers). */
+#ifndef TRIBO_FMU_INSTANCE_PRIVATE_H
+#define TRIBO_FMU_INSTANCE_PRIVATE_H
+
+#include "instance.h"
+
+/* The states of FMI 2.0 / 3.0 co-simulation that this FMU has. FMI 2.0 has no
+   Configuration Mode; Step Mode is FMI 2.0's slaveInitialized. */
+typedef enum fmu_mode {
+    FMU_MODE_INSTANTIATED,
+    FMU_MODE_CONFIGURATION,
+    FMU_MODE_INITIALIZATION,
+    FMU_MODE_STEP,
+    FMU_MODE_TERMINATED,
+    FMU_MODE_ERROR /* the core failed: only reset, a saved FMU state or free help */
+} fmu_mode;
+
+#define FMU_MODE_BIT(m) (1u << (m))
+
+struct fmu_instance {
+    int fmi_version;
+    char *name;
+    fmu_logger logger;
+    int log_enabled[FMU_LOG_CATEGORY_COUNT];
+
+    fmu_mode mode;
+    /* The parameters as the importer sees them; once running, also the model's scene
+       (tunable changes go to both). */
+    tribo_scene scene;
+    double inputs[FMU_INPUT_COUNT];
+    /* The core instance: made when first needed after initialization starts, remade
+       when a parameter changed since (model_outdated). */
+    tribo_model *model;
+    int model_outdated;
+
+    double start_time;
+    double stop_time;
+    int stop_time_defined;
+    double time; /* the FMU's time: start_time + the core's time */
+};
+
+/* Log through the importer's logger if the category is enabled. */
+void fmu_log(fmu_instance *inst, fmu_status status, fmu_log_category category, const char *fmt,
+             ...) __attribute__((format(printf, 4, 5)));
+/* Log an error (category logStatusError) and return FMU_ERROR. */
+fmu_status fmu_error(fmu_instance *inst, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+int fmu_log_enabled(const fmu_instance *inst, fmu_log_category category);
+/* Route the core's own messages to the importer. */
+void fmu_core_logger(void *inst, int level, const char *message);
+
+const char *fmu_mode_name(fmu_mode mode);
+/* 1 if inst is in one of the modes (FMU_MODE_BIT mask); else logs why fn is refused. */
+int fmu_mode_allows(fmu_instance *inst, const char *fn, unsigned modes);
+
+/* Make the core instance from the current parameters if there is none or it is
+   outdated. */
+fmu_status fmu_ensure_model(fmu_instance *inst, const char *fn);
+/* Drop the core instance and put every variable back to its start value. */
+void fmu_restore_start_values(fmu_instance *inst);
+
+#endif

@@ -1,0 +1,208 @@
+/* lifecycle.c: creating and freeing instances and moving them between FMI states. */
+#include "instance_private.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const MODE_NAMES[] = {
+    [FMU_MODE_INSTANTIATED] = "Instantiated",
+    [FMU_MODE_CONFIGURATION] = "Configuration Mode",
+    [FMU_MODE_INITIALIZATION] = "Initialization Mode",
+    [FMU_MODE_STEP] = "Step Mode",
+    [FMU_MODE_TERMINATED] = "Terminated",
+    [FMU_MODE_ERROR] = "Error (after a failure of the core: reset the instance or restore a state)",
+};
+
+const char *fmu_mode_name(fmu_mode mode) { return MODE_NAMES[mode]; }
+
+int fmu_mode_allows(fmu_instance *inst, const char *fn, unsigned modes)
+{
+    if (modes & FMU_MODE_BIT(inst->mode))
+        return 1;
+    fmu_error(inst, "%s is not allowed in state %s", fn, fmu_mode_name(inst->mode));
+    return 0;
+}
+
+void fmu_restore_start_values(fmu_instance *inst)
+{
+    tribo_free(inst->model);
+    inst->model = NULL;
+    inst->model_outdated = 0;
+    tribo_scene_defaults(&inst->scene);
+    for (int i = 0; i < FMU_INPUT_COUNT; i++)
+        inst->inputs[i] = 0.0;
+    inst->start_time = 0.0;
+    inst->stop_time = 0.0;
+    inst->stop_time_defined = 0;
+    inst->time = 0.0;
+    inst->mode = FMU_MODE_INSTANTIATED;
+}
+
+void fmu_refuse_instantiation(const fmu_logger *logger, const char *fn, const char *name,
+                              const char *reason)
+{
+    if (!logger || !logger->sink)
+        return;
+    char message[512];
+    snprintf(message, sizeof message, "%s: %s", fn, reason);
+    logger->sink(logger, name ? name : "", FMU_ERROR, fmu_log_category_name(FMU_LOG_ERROR), message);
+}
+
+fmu_instance *fmu_instantiate(int fmi_version, const char *fn, const char *name,
+                              const char *token, const fmu_logger *logger, int logging_on)
+{
+    if (!name || !*name) {
+        fmu_refuse_instantiation(logger, fn, name, "the instance name is empty");
+        return NULL;
+    }
+    if (!token || strcmp(token, FMU_INSTANTIATION_TOKEN) != 0) {
+        fmu_refuse_instantiation(logger, fn, name,
+                                 "the instantiation token (GUID) is not this FMU's: the "
+                                 "modelDescription.xml does not belong to this binary");
+        return NULL;
+    }
+    fmu_instance *inst = calloc(1, sizeof *inst);
+    /* a copy: the importer may free its string once we return */
+    char *name_copy = malloc(strlen(name) + 1);
+    if (!inst || !name_copy) {
+        free(inst);
+        free(name_copy);
+        fmu_refuse_instantiation(logger, fn, name, "out of memory");
+        return NULL;
+    }
+    inst->name = strcpy(name_copy, name);
+    inst->fmi_version = fmi_version;
+    if (logger)
+        inst->logger = *logger;
+    for (int c = 0; c < FMU_LOG_CATEGORY_COUNT; c++)
+        inst->log_enabled[c] = logging_on || c == FMU_LOG_ERROR;
+    fmu_restore_start_values(inst);
+    fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s(instanceName = \"%s\", loggingOn = %d)", fn, name,
+            logging_on != 0);
+    return inst;
+}
+
+void fmu_free(fmu_instance *inst)
+{
+    if (!inst)
+        return;
+    tribo_free(inst->model);
+    free(inst->name);
+    free(inst);
+}
+
+double fmu_time(const fmu_instance *inst) { return inst->time; }
+
+fmu_status fmu_refuse(fmu_instance *inst, const char *fn, const char *reason)
+{
+    if (!inst)
+        return FMU_ERROR;
+    return fmu_error(inst, "%s: %s", fn, reason);
+}
+
+fmu_status fmu_setup_experiment(fmu_instance *inst, const char *fn, int tolerance_defined,
+                                double tolerance, double start_time, int stop_time_defined,
+                                double stop_time)
+{
+    if (!inst || !fmu_mode_allows(inst, fn, FMU_MODE_BIT(FMU_MODE_INSTANTIATED)))
+        return FMU_ERROR;
+    if (!isfinite(start_time))
+        return fmu_error(inst, "%s: startTime = %g is invalid: it must be finite", fn, start_time);
+    if (stop_time_defined && !(isfinite(stop_time) && stop_time >= start_time))
+        return fmu_error(inst,
+                         "%s: stopTime = %.17g is invalid: it must be finite and >= startTime = "
+                         "%.17g",
+                         fn, stop_time, start_time);
+    inst->start_time = start_time;
+    inst->time = start_time;
+    inst->stop_time_defined = stop_time_defined != 0;
+    inst->stop_time = stop_time_defined ? stop_time : 0.0;
+    fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s(startTime = %.17g, stopTime = %s%.17g)", fn,
+            start_time, stop_time_defined ? "" : "(undefined) ", stop_time);
+    /* The accuracy is the FMU's own parameters' business (dt, or rtol / atol for CVODE),
+       so that a run is the same whoever imports it. */
+    if (tolerance_defined)
+        fmu_log(inst, FMU_OK, FMU_LOG_CALLS,
+                "%s: tolerance = %g noted but not used: the parameters dt (fixed step) and "
+                "rtol / atol (CVODE) set the accuracy",
+                fn, tolerance);
+    return FMU_OK;
+}
+
+fmu_status fmu_enter_configuration(fmu_instance *inst, const char *fn)
+{
+    if (!inst || !fmu_mode_allows(inst, fn, FMU_MODE_BIT(FMU_MODE_INSTANTIATED)))
+        return FMU_ERROR;
+    inst->mode = FMU_MODE_CONFIGURATION;
+    fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s()", fn);
+    return FMU_OK;
+}
+
+fmu_status fmu_exit_configuration(fmu_instance *inst, const char *fn)
+{
+    if (!inst || !fmu_mode_allows(inst, fn, FMU_MODE_BIT(FMU_MODE_CONFIGURATION)))
+        return FMU_ERROR;
+    inst->mode = FMU_MODE_INSTANTIATED;
+    fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s()", fn);
+    return FMU_OK;
+}
+
+fmu_status fmu_enter_initialization(fmu_instance *inst, const char *fn)
+{
+    if (!inst || !fmu_mode_allows(inst, fn, FMU_MODE_BIT(FMU_MODE_INSTANTIATED)))
+        return FMU_ERROR;
+    inst->mode = FMU_MODE_INITIALIZATION;
+    fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s()", fn);
+    return FMU_OK;
+}
+
+fmu_status fmu_ensure_model(fmu_instance *inst, const char *fn)
+{
+    if (inst->model && !inst->model_outdated)
+        return FMU_OK;
+    char why[512];
+    tribo_model *model = tribo_create(&inst->scene, why, sizeof why);
+    if (!model)
+        return fmu_error(inst, "%s: the model cannot be created: %s", fn, why);
+    tribo_free(inst->model);
+    inst->model = model;
+    inst->model_outdated = 0;
+    tribo_set_logger(model, fmu_core_logger, inst);
+    return FMU_OK;
+}
+
+fmu_status fmu_exit_initialization(fmu_instance *inst, const char *fn)
+{
+    if (!inst || !fmu_mode_allows(inst, fn, FMU_MODE_BIT(FMU_MODE_INITIALIZATION)))
+        return FMU_ERROR;
+    /* on failure the instance stays in Initialization Mode, where parameters can
+       still be changed */
+    if (fmu_ensure_model(inst, fn) != FMU_OK)
+        return FMU_ERROR;
+    if (tribo_set_external_force(inst->model, inst->inputs[FMU_INPUT_F_T],
+                                 inst->inputs[FMU_INPUT_F_N]) != TRIBO_OK)
+        return fmu_error(inst, "%s: %s", fn, tribo_last_error(inst->model));
+    inst->mode = FMU_MODE_STEP;
+    fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s() at time %.17g", fn, inst->time);
+    return FMU_OK;
+}
+
+fmu_status fmu_terminate(fmu_instance *inst, const char *fn)
+{
+    if (!inst || !fmu_mode_allows(inst, fn, FMU_MODE_BIT(FMU_MODE_STEP)))
+        return FMU_ERROR;
+    inst->mode = FMU_MODE_TERMINATED;
+    fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s() at time %.17g", fn, inst->time);
+    return FMU_OK;
+}
+
+fmu_status fmu_reset(fmu_instance *inst, const char *fn)
+{
+    if (!inst)
+        return FMU_ERROR;
+    fmu_restore_start_values(inst);
+    fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s()", fn);
+    return FMU_OK;
+}

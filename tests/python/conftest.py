@@ -1,0 +1,64 @@
+"""Fixtures of the FMU tests.
+
+The FMUs and the test tools come from the build directory: build/ by default, or the
+one named by the environment variable TRIBO_BUILD_DIR (e.g. build-fmu). Build first
+(scripts/setup.sh, or cmake --build <dir>); the tests fail, not skip, without them.
+"""
+
+import json
+import os
+import subprocess
+import zipfile
+
+import pytest
+
+from tribo_fmu import BUILD_DIR
+
+
+def built(*parts):
+    path = os.path.join(BUILD_DIR, *parts)
+    if not os.path.exists(path):
+        pytest.fail(f"{path} is missing: build first (scripts/setup.sh or cmake --build), "
+                    f"or point TRIBO_BUILD_DIR at the build directory")
+    return path
+
+
+@pytest.fixture(scope="session")
+def fmu_file():
+    return lambda version: built("fmu", f"tribo_fmi{version}.fmu")
+
+
+@pytest.fixture(scope="session")
+def fmu_dir(tmp_path_factory):
+    """The unpacked FMU of an FMI version (unpacked once per session)."""
+    dirs = {}
+
+    def unpack(version):
+        if version not in dirs:
+            target = tmp_path_factory.mktemp(f"tribo_fmi{version}")
+            with zipfile.ZipFile(built("fmu", f"tribo_fmi{version}.fmu")) as z:
+                z.extractall(target)
+            dirs[version] = str(target)
+        return dirs[version]
+
+    return unpack
+
+
+@pytest.fixture(scope="session")
+def table():
+    """The FMU's variable table (fmu/variables.c) as the tribo_fmu_variables tool prints it."""
+    out = subprocess.run([built("fmu", "tribo_fmu_variables")], capture_output=True, text=True,
+                         check=True)
+    return json.loads(out.stdout)
+
+
+@pytest.fixture(scope="session")
+def reference_exe():
+    return built("fmu", "tribo_reference_run")
+
+
+@pytest.fixture(scope="session")
+def output_names(table):
+    """The scalar outputs, in table order."""
+    return [v["name"] for v in table["variables"]
+            if v["causality_fmi2"] == "output" and v["maps_to"] == "quantity"]
