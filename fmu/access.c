@@ -160,22 +160,6 @@ fmu_status fmu_get(fmu_instance *inst, const char *fn, unsigned types, fmu_c_typ
 
 /* ---- set ------------------------------------------------------------------------- */
 
-/* The range of a parameter as the core's table states it, for messages. */
-static void range_text(const tribo_param_info *p, char *buf, size_t n)
-{
-    const char *lo = p->min_inclusive ? "<=" : "<", *hi = p->max_inclusive ? "<=" : "<";
-    if (p->is_integer)
-        snprintf(buf, n, "an integer with %.0f <= %s <= %.0f", p->min, p->name, p->max);
-    else if (isfinite(p->min) && isfinite(p->max))
-        snprintf(buf, n, "%g %s %s %s %g", p->min, lo, p->name, hi, p->max);
-    else if (isfinite(p->min))
-        snprintf(buf, n, "%s %s %g (finite)", p->name, p->min_inclusive ? ">=" : ">", p->min);
-    else if (isfinite(p->max))
-        snprintf(buf, n, "%s %s %g (finite)", p->name, hi, p->max);
-    else
-        snprintf(buf, n, "any finite number");
-}
-
 static int is_structural(const fmu_instance *inst, const fmu_variable *v)
 {
     return inst->fmi_version == 3 && v->causality == FMU_CAUSALITY_STRUCTURAL_PARAMETER;
@@ -210,7 +194,7 @@ static int write_parameter(fmu_instance *inst, const char *fn, const fmu_variabl
     }
     if (!(modes_settable(inst, v) & FMU_MODE_BIT(inst->mode))) {
         char range[160];
-        range_text(p, range, sizeof range);
+        tribo_param_range_text(p, range, sizeof range);
         fmu_error(inst, "%s: %s = %.17g cannot be set in state %s: %s is %s (valid range: %s)", fn,
                   v->name, value, fmu_mode_name(inst->mode), v->name, when_settable(inst, v), range);
         return 0;

@@ -59,8 +59,24 @@ void tribo_charging_sample(const tribo_charging *c, const tribo_pose *pose, doub
     sample->s_centre = tribo_arclength_at(&c->arc, tribo_contact_parameter(eps, pose));
 }
 
-/* exp(-duration / tau) and phi1(z) = (1 - e^-z) / z, z = duration / tau, recomputed
-   only when the duration or tau changed. */
+/* F_k(z) = int_0^1 v^k e^{-z v} dv, k = 1, 2: by its series where the closed form
+   cancels (small z), else closed. */
+static double moment(int k, double z)
+{
+    if (z < 0.5) {
+        double term = 1.0, sum = 0.0;
+        for (int n = 0; n < 30; n++) {
+            sum += term / (double)(n + k + 1);
+            term *= -z / (double)(n + 1);
+        }
+        return sum;
+    }
+    const double e = exp(-z);
+    return k == 1 ? (1.0 - e * (1.0 + z)) / (z * z) : (2.0 - e * (z * z + 2.0 * z + 2.0)) / (z * z * z);
+}
+
+/* exp(-duration / tau), phi1(z) = (1 - e^-z) / z and z F_k(z), z = duration / tau,
+   recomputed only when the duration or tau changed. */
 static const tribo_decay_cache *decay(tribo_decay_cache *k, double duration, double tau)
 {
     if (k->duration != duration || k->tau != tau) {
@@ -70,6 +86,8 @@ static const tribo_decay_cache *decay(tribo_decay_cache *k, double duration, dou
         k->one_minus_decay = -expm1(-z);
         k->decay = 1.0 - k->one_minus_decay;
         k->phi1 = z > 1e-8 ? k->one_minus_decay / z : 1.0 - 0.5 * z;
+        k->zf1 = z * moment(1, z);
+        k->zf2 = z * moment(2, z);
     }
     return k;
 }
@@ -91,6 +109,7 @@ void tribo_charging_saturation(tribo_charging *c, const tribo_charge_params *p, 
     }
     /* in flight the back-flow stops (c = 0 in MODEL §5b) and no work is done */
     sample->Sigma_s_begin = s0;
+    sample->Sigma_s_mid = 0.5 * (s0 + s1);
     sample->Sigma_s_end = s1;
     *Sigma_s = s1;
 }
@@ -111,19 +130,21 @@ void tribo_charging_segments(tribo_charging *c, const tribo_charge_params *p,
     if (i < 0)
         i += c->n;
 
-    /* Exact over the sample: the static model has constant coefficients (MODEL §5a);
-       the sliding one has Sigma_s(t) linear, whose solution of
-       dSigma_i = (Sigma_s - Sigma_i) / tau0 is
-       Sigma_i <- Sigma_s1 - dSigma_s phi1 + (Sigma_i - Sigma_s0) e^{-dt/tau0}. */
+    /* Exact over the sample: the static model has constant coefficients (MODEL §5a); the
+       sliding one, dSigma_i = (Sigma_s - Sigma_i) / tau0 with Sigma_s = A + B u + C u^2
+       over u in [0, 1] (MODEL §5b), is Sigma_i <- e^{-z} Sigma_i + K with
+       K = (A + B + C)(1 - e^{-z}) - (B + 2C) z F_1(z) + C z F_2(z), z = duration / tau0. */
     const tribo_decay_cache *k = decay(&c->charge_cache, sample->duration, p->tau0);
     const double d = k->decay, one_minus_d = k->one_minus_decay;
-    const double s1 = sample->Sigma_s_end, s0 = sample->Sigma_s_begin;
-    const double lag = (s1 - s0) * k->phi1;
+    const double A = sample->Sigma_s_begin;
+    const double C = 2.0 * (A - 2.0 * sample->Sigma_s_mid + sample->Sigma_s_end);
+    const double B = sample->Sigma_s_end - A - C;
+    const double K = (A + B + C) * one_minus_d - (B + 2.0 * C) * k->zf1 + C * k->zf2;
     for (long j = 0; j < count; j++) {
         if (q)
             q[i] += (1.0 - q[i]) * one_minus_d; /* MODEL §5a */
         if (sigma)
-            sigma[i] = s1 - lag + (sigma[i] - s0) * d; /* MODEL §5b */
+            sigma[i] = d * sigma[i] + K; /* MODEL §5b */
         if (++i == c->n)
             i = 0;
     }
@@ -245,9 +266,43 @@ static int inside(double e0, double em, double e1)
 /* Sigma_s over a piece of the contact from work w0 to w1 (MODEL §5b). */
 static double saturation_after(sweep *w, double S, double duration, double w0, double w1)
 {
-    tribo_contact_sample piece = {duration, 1, 0, 0, w0, w1, 0, 0};
+    tribo_contact_sample piece = {duration, 1, 0, 0, w0, w1, 0, 0, 0};
     tribo_charging_saturation(w->c, w->p, &S, &piece);
     return S;
+}
+
+/* Sigma_s at the middle and the end of a piece, from S[0] at its start (MODEL §5b):
+   dSigma_s/dtau = g - (Sigma_s - Sigma0) / tau_r with g = eta (d omega/dtau) / sqrt(Sigma0^2
+   + 2 eta omega). The relaxation is linear, so Sigma_s - Sigma0 is the start value decayed
+   plus the integral of e^{-(h - s)/tau_r} g(s); where tau_r is not stiff over the piece,
+   that integral is taken by Simpson on the five points omega already used, and is as
+   accurate as omega. Where it is stiff, the exact update for a constant work rate is taken
+   over the halves and the whole and must agree. Returns whether the piece is accepted. */
+static int saturation_piece(sweep *w, const probe_point *const pts[5], double h, double work0,
+                            double work_left, double work1, double S[3], double rtol, double atol)
+{
+    const tribo_charge_params *p = w->p;
+    const double z = h / p->tau_r;
+    const double work_mid = work0 + work_left;
+    if (z <= 1.0) {
+        /* omega at the quarter points only feeds sqrt(Sigma0^2 + 2 eta omega): trapezoids */
+        const double quarter = 0.25 * h;
+        const double works[5] = {work0, work0 + 0.5 * quarter * (pts[0]->rate + pts[1]->rate), work_mid,
+                                 work_mid + 0.5 * quarter * (pts[2]->rate + pts[3]->rate), work1};
+        double g[5];
+        for (int j = 0; j < 5; j++)
+            g[j] = p->eta * pts[j]->rate / sqrt(p->Sigma0 * p->Sigma0 + 2.0 * p->eta * works[j]);
+        const double d = exp(-0.25 * z); /* e^{-(quarter of the piece) / tau_r} */
+        const double d2 = d * d, d3 = d2 * d, d4 = d2 * d2;
+        S[1] = p->Sigma0 + (S[0] - p->Sigma0) * d2 + h / 12.0 * (d2 * g[0] + 4.0 * d * g[1] + g[2]);
+        S[2] = p->Sigma0 + (S[0] - p->Sigma0) * d4 +
+               h / 12.0 * (d4 * g[0] + 4.0 * d3 * g[1] + 2.0 * d2 * g[2] + 4.0 * d * g[3] + g[4]);
+        return 1;
+    }
+    S[1] = saturation_after(w, S[0], 0.5 * h, work0, work_mid);
+    S[2] = saturation_after(w, S[1], 0.5 * h, work_mid, work1);
+    const double S_whole = saturation_after(w, S[0], h, work0, work1);
+    return fabs(S[2] - S_whole) <= rtol * fabs(S[2]) + atol;
 }
 
 /* A piece in which each edge moves monotonically by at most a segment and Sigma_s (with
@@ -286,7 +341,9 @@ static void charge_piece(sweep *w, const probe_point *a, const probe_point *m,
             s.s_centre = 0.5 * (cell[0] + cell[1] + 1.0) * w->seg;
             s.half_width = 0.5 * (cell[1] - cell[0]) * w->seg;
             s.work_begin = s.work_end = 0.0; /* Sigma_s is given */
+            const double um = 0.5 * (u0 + u1);
             s.Sigma_s_begin = S[0] + u0 * (c1 + u0 * c2);
+            s.Sigma_s_mid = S[0] + um * (c1 + um * c2);
             s.Sigma_s_end = S[0] + u1 * (c1 + u1 * c2);
             w->status = w->sink(w->sink_ctx, &s);
             t0 = t1;
@@ -314,9 +371,8 @@ int tribo_charging_sweep(tribo_charging *c, const tribo_charge_params *p,
     while (cur.t < b && !w.status) {
         if (cur.speed > 0.0)
             trial = fmin(trial, w.seg / cur.speed);
-        double t1 = fmin(cur.t + trial, b);
-        if (b - t1 < min_piece)
-            t1 = b;
+        /* within min_piece of b, go to b: the piece then is at most trial + min_piece */
+        const double t1 = cur.t + trial >= b - min_piece ? b : cur.t + trial;
         const double h = t1 - cur.t;
         const probe_point m = probe_at(&w, cur.t + 0.5 * h, &cur);
         probe_point next = probe_at(&w, t1, &m);
@@ -336,22 +392,19 @@ int tribo_charging_sweep(tribo_charging *c, const tribo_charge_params *p,
             const double halves = left + right;
             ok = fabs(halves - whole) <= 15.0 * (rtol * fabs(halves) + atol * h);
             work_end = cur.work + halves + (halves - whole) / 15.0;
-            /* Sigma_s over the two halves against over the whole: its relaxation (tau_r)
-               must be resolved as well as the work */
-            const double work_mid = cur.work + left;
-            S[1] = saturation_after(&w, S[0], 0.5 * h, cur.work, work_mid);
-            S[2] = saturation_after(&w, S[1], 0.5 * h, work_mid, work_end);
-            const double S_whole = saturation_after(&w, S[0], h, cur.work, work_end);
-            ok = ok && fabs(S[2] - S_whole) <= rtol * fabs(S[2]) + atol;
+            const probe_point *pts[5] = {&cur, &q1, &m, &q3, &next};
+            ok = ok && saturation_piece(&w, pts, h, cur.work, left, work_end, S, rtol, atol);
         }
-        if (ok || h <= 2.0 * min_piece) {
+        /* a trial piece below min_piece is taken whatever the tests say: trial only halves,
+           so every piece advances by at least min_piece / 2 */
+        if (ok || trial <= min_piece) {
             next.work = work_end;
             charge_piece(&w, &cur, &m, &next, S);
             *Sigma_s = S[2];
             cur = next;
             trial = 2.0 * h;
         } else {
-            trial = 0.5 * h;
+            trial *= 0.5;
         }
     }
     *work = cur.work;

@@ -19,14 +19,16 @@ typedef struct tribo_contact_sample {
     double s_centre;      /* arc-length coordinate of the contact centre */
     double half_width;    /* Sc = sqrt(rho_c delta_y), MODEL §5 eq. 4 */
     double work_begin, work_end; /* omega at both ends (sliding model) */
-    /* filled by tribo_charging_saturation: Sigma_s at both ends */
-    double Sigma_s_begin, Sigma_s_end;
+    /* Sigma_s over the sample: at its start, middle and end (quadratic in time; the
+       middle is the mean of the ends where Sigma_s is taken linear) */
+    double Sigma_s_begin, Sigma_s_mid, Sigma_s_end;
 } tribo_contact_sample;
 
 /* Exponentials of the last durations seen, so that a run at a fixed step costs no
    transcendental call per step. */
 typedef struct tribo_decay_cache {
     double duration, tau, decay, one_minus_decay, phi1;
+    double zf1, zf2; /* z F_k(z), F_k(z) = int_0^1 v^k e^{-z v} dv, z = duration / tau */
 } tribo_decay_cache;
 
 typedef struct tribo_charging {
@@ -51,7 +53,7 @@ void tribo_charging_sample(const tribo_charging *c, const tribo_pose *pose, doub
                            double duration, double work_begin, double work_end,
                            tribo_contact_sample *sample);
 
-/* Advance Sigma_s over the sample (MODEL §5b) and record it at both ends in the sample. */
+/* Advance Sigma_s over the sample (MODEL §5b) and record it in the sample (linear). */
 void tribo_charging_saturation(tribo_charging *c, const tribo_charge_params *p,
                                double *Sigma_s, tribo_contact_sample *sample);
 

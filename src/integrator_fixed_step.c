@@ -8,6 +8,11 @@
  *
  * Steps lie on the grid t_base + k dt whatever times are asked for; the state at an
  * asked time between grid points is a partial step from the last one, not committed.
+ *
+ * The regularised sign is stiff within a few v_reg of V = 0: there dV/dtau has the rate
+ * lambda = nu delta_y sech^2(V / v_reg) / v_reg, and RK4 is unstable once lambda h passes
+ * 2.79. Where a step could reach that, the motion is sub-stepped (charging still once per
+ * step); elsewhere, as in all of the paper's runs, a step is one RK4 step.
  */
 #include "model.h"
 
@@ -24,15 +29,37 @@ typedef struct fixed_step {
 
 static const tribo_force_law LAW = {TRIBO_CONTACT_BY_GEOMETRY, TRIBO_NORMAL_REGULARISED, 0.0, TRIBO_TANGENT_CLAMP, 0.0};
 
-/* One step of size h from p to next; the contact over the step is returned in sample
-   (charged at the end point's contact for the whole step, as the paper does). */
-static void step(tribo_model *m, const tribo_point *p, double h, tribo_point *next,
-                 tribo_contact_sample *sample)
+/* Within this margin of RK4's real stability limit 2.79 */
+#define STABLE_LAMBDA_H 2.0
+
+/* How many RK4 sub-steps a step of size h from p needs to stay stable: the largest rate
+   the regularised sign can have during the step, for |V| as small as the step allows.
+   Uses the contact already evaluated at p (the end of the last step). */
+static int substeps_needed(const tribo_dyn_params *dp, const tribo_point *p, double h)
+{
+    if (dp->nu == 0.0)
+        return 1;
+    const double *y = p->y;
+    const tribo_contact_eval *c = &p->contact;
+    /* over the step delta_y and V move by at most their rates times h */
+    const double dy_max =
+        c->pose.h - y[TRIBO_IY] + h * (fabs(y[TRIBO_IV]) + fabs(c->pose.cx * y[TRIBO_IOMEGA]));
+    if (dy_max <= 0.0)
+        return 1;
+    const double accel = dp->Gamma + fabs(dp->F_N) + dy_max * (1.0 + dp->nu);
+    const double v_min = fmax(0.0, fabs(y[TRIBO_IV]) - accel * h) / dp->v_reg;
+    if (v_min >= 20.0) /* sech^2 < 2e-17 */
+        return 1;
+    const double sech = 1.0 / cosh(v_min);
+    const double n = ceil(dp->nu * dy_max * sech * sech / dp->v_reg * h / STABLE_LAMBDA_H);
+    return n > 1.0 ? (n < 1e6 ? (int)n : 1000000) : 1;
+}
+
+static void rk4(tribo_model *m, double *y, double h)
 {
     const tribo_dyn_params *dp = &m->dyn;
     double k1[TRIBO_NSTATE], k2[TRIBO_NSTATE], k3[TRIBO_NSTATE], k4[TRIBO_NSTATE];
     double tmp[TRIBO_NSTATE];
-    const double *y = p->y;
 
     tribo_dynamics_rhs(dp, &LAW, y, k1, NULL);
     for (int i = 0; i < TRIBO_NSTATE; i++)
@@ -44,22 +71,44 @@ static void step(tribo_model *m, const tribo_point *p, double h, tribo_point *ne
     for (int i = 0; i < TRIBO_NSTATE; i++)
         tmp[i] = y[i] + h * k3[i];
     tribo_dynamics_rhs(dp, &LAW, tmp, k4, NULL);
-
-    next->t = p->t + h;
     for (int i = 0; i < TRIBO_NSTATE; i++)
-        next->y[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
+        y[i] += h / 6.0 * (k1[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
     m->stats.rhs_evals += 4;
+}
 
-    /* Hold the stretch within the Coulomb limit (MODEL §3); in flight the limit is 0,
-       so the stretch is 0 when contact is regained. The spring energy the clamp
-       removes is dissipated by friction. */
-    tribo_contact_eval *ev = &next->contact;
-    tribo_contact_at(dp, &LAW, next->y, ev);
-    const double dx = next->y[TRIBO_IDX];
+/* Hold the stretch within the Coulomb limit (MODEL §3); in flight the limit is 0, so the
+   stretch is 0 when contact is regained. The spring energy the clamp removes is
+   dissipated by friction. Fills ev; returns the stretch before the clamp. */
+static double clamp_stretch(const tribo_dyn_params *dp, double *y, tribo_contact_eval *ev)
+{
+    tribo_contact_at(dp, &LAW, y, ev);
+    const double dx = y[TRIBO_IDX];
     const double dx_held = tribo_clamp(dx, ev->limit);
-    next->y[TRIBO_IDX] = dx_held;
-    next->y[TRIBO_IWDISS] += 0.5 * (dx * dx - dx_held * dx_held);
+    y[TRIBO_IDX] = dx_held;
+    y[TRIBO_IWDISS] += 0.5 * (dx * dx - dx_held * dx_held);
     ev->psi_t = -dx_held;
+    return dx;
+}
+
+/* One step of size h from p to next; the contact over the step is returned in sample
+   (charged at the end point's contact for the whole step, as the paper does). */
+static void step(tribo_model *m, const tribo_point *p, double h, tribo_point *next,
+                 tribo_contact_sample *sample)
+{
+    const tribo_dyn_params *dp = &m->dyn;
+    memcpy(next->y, p->y, sizeof next->y);
+    next->t = p->t + h;
+    const int n = substeps_needed(dp, p, h);
+    tribo_contact_eval *ev = &next->contact;
+    for (int k = 1; k < n; k++) {
+        rk4(m, next->y, h / n);
+        clamp_stretch(dp, next->y, ev);
+    }
+    rk4(m, next->y, h / n);
+    if (n > 1)
+        m->stats.substeps += n - 1;
+
+    const double dx = clamp_stretch(dp, next->y, ev);
     next->slipping = ev->in_contact && fabs(dx) >= ev->limit && (ev->limit > 0.0 || ev->vs != 0.0);
 
     next->contact_time = p->contact_time + (ev->in_contact ? h : 0.0);

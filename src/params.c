@@ -116,7 +116,7 @@ void tribo_param_write(tribo_scene *scene, const tribo_param_info *p, double val
     }
 }
 
-static void describe_range(const tribo_param_info *p, char *buf, size_t n)
+void tribo_param_range_text(const tribo_param_info *p, char *buf, size_t n)
 {
     if (p->is_integer) {
         snprintf(buf, n, "an integer with %.0f <= %s <= %.0f", p->min, p->name, p->max);
@@ -147,7 +147,7 @@ tribo_status tribo_param_check(const tribo_param_info *p, double v, char *msg, s
         return TRIBO_OK;
     if (msg && msg_size) {
         char range[128];
-        describe_range(p, range, sizeof range);
+        tribo_param_range_text(p, range, sizeof range);
         snprintf(msg, msg_size, "%s = %.17g is invalid: the valid range is %s", p->name, v,
                  range);
     }

@@ -104,7 +104,7 @@ size_t tribo_state_size(const tribo_model *m)
     size_t n_params;
     tribo_param_table(&n_params);
     return header_size() + n_params * sizeof(double) + 3 * sizeof(double) /* F_T, F_N, t_out */
-           + 5 * sizeof(int64_t)                                            /* stats */
+           + 6 * sizeof(int64_t)                                            /* stats */
            + POINT_DOUBLES * sizeof(double) + POINT_INTS * sizeof(int64_t) +
            charge_count(m) * sizeof(double) + m->integrator->state_size(m);
 }
@@ -131,6 +131,7 @@ tribo_status tribo_state_save(const tribo_model *m, void *buffer, size_t size)
     put_i(&w, s->rhs_evals);
     put_i(&w, s->events);
     put_i(&w, s->restarts);
+    put_i(&w, s->substeps);
     put_i(&w, s->assumption_warnings);
     put_point(&w, &m->committed);
     if (m->has_charging && m->charging.q)
@@ -177,6 +178,7 @@ tribo_status tribo_state_load(tribo_model *m, const void *buffer, size_t size)
     stats.rhs_evals = get_i(&r);
     stats.events = get_i(&r);
     stats.restarts = get_i(&r);
+    stats.substeps = get_i(&r);
     stats.assumption_warnings = get_i(&r);
     tribo_point committed;
     get_point(&r, &committed);

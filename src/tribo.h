@@ -118,6 +118,8 @@ const tribo_param_info *tribo_param_find(const char *name);
 /* Read / write a parameter of a scene through its table entry. */
 double tribo_param_read(const tribo_scene *scene, const tribo_param_info *p);
 void tribo_param_write(tribo_scene *scene, const tribo_param_info *p, double value);
+/* The valid range of `p` in words, e.g. "0 < epsilon <= 1" (for messages). */
+void tribo_param_range_text(const tribo_param_info *p, char *buf, size_t n);
 /* TRIBO_OK if `value` is valid for `p`; otherwise TRIBO_ERR_INVALID_ARGUMENT and a
    message naming the parameter, the value and the valid range. */
 tribo_status tribo_param_check(const tribo_param_info *p, double value, char *msg, size_t msg_size);
@@ -204,6 +206,7 @@ typedef struct tribo_stats {
     long long rhs_evals;      /* right-hand-side evaluations                       */
     long long events;         /* switches of the force law located (CVODE)          */
     long long restarts;       /* integrator restarts (events, tunables, inputs)     */
+    long long substeps;       /* extra sub-steps the fixed step took to stay stable */
     long long assumption_warnings; /* contact steps outside the model's assumptions */
 } tribo_stats;
 void tribo_get_stats(const tribo_model *model, tribo_stats *stats);

@@ -81,7 +81,11 @@ Test(cvode, energy_balance_tightens_with_rtol, .timeout = 60)
 }
 
 /* The fixed step converges to CVODE on a regular (non-tumbling) case as its step shrinks.
-   Low friction: the particle slides and rocks, no normal lock, so v_reg plays no part. */
+   Low friction: the particle slides and rocks, no normal lock, so v_reg plays no part.
+   Below ~1e-7 the fixed step's error is set by where each contact kink falls on its step
+   grid, so it does not fall monotonically (measured at tau = 20: 1.1e-7 at dt = 4e-3,
+   6.9e-8 at 1e-3, 3.1e-9 at 2.5e-4, 8.7e-9 at 6.25e-5): the test holds it to converging
+   over the range, to the 1e-8 level. */
 static double state_distance(tribo_model *a, tribo_model *b)
 {
     const tribo_quantity q[] = {TRIBO_Q_X, TRIBO_Q_Y, TRIBO_Q_PHI, TRIBO_Q_U, TRIBO_Q_V, TRIBO_Q_OMEGA};
@@ -98,20 +102,19 @@ Test(cvode, fixed_step_converges_to_cvode, .timeout = 60)
     ref_scene.charge_model = TRIBO_CHARGE_NONE;
     tribo_model *ref = make(&ref_scene);
     cr_assert_eq(tribo_advance(ref, 20.0), TRIBO_OK);
-    const double dts[] = {4e-3, 1e-3, 2.5e-4};
-    double previous = INFINITY;
+    const double dts[] = {1.6e-2, 4e-3, 2.5e-4};
+    double d[3];
     for (int i = 0; i < 3; i++) {
         tribo_scene s = ref_scene;
         s.integrator = TRIBO_INTEGRATOR_FIXED_STEP;
         s.dt = dts[i];
         tribo_model *m = make(&s);
         cr_assert_eq(tribo_advance(m, 20.0), TRIBO_OK);
-        const double d = state_distance(m, ref);
-        cr_expect(d < previous / 2, "dt = %g: distance %.3g after %.3g", dts[i], d, previous);
-        previous = d;
+        d[i] = state_distance(m, ref);
         tribo_free(m);
     }
-    cr_expect(previous < 1e-6, "dt = 2.5e-4: %.3g from CVODE", previous);
+    cr_expect(d[0] > 10 * d[2] && d[1] > 10 * d[2], "distances %.3g, %.3g, %.3g", d[0], d[1], d[2]);
+    cr_expect(d[2] < 1e-8, "dt = 2.5e-4: %.3g from CVODE", d[2]);
     tribo_free(ref);
 }
 
