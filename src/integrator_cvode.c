@@ -531,7 +531,7 @@ static tribo_status sweep_charges(cvode_integrator *c, double a, double b, int c
 
 /* The point at time t (with y there) in the current mode. */
 static void fill_point(cvode_integrator *c, tribo_point *p, double t, const double *y,
-                       const tribo_point *from)
+                       const tribo_point *from, int commit)
 {
     p->t = t;
     memcpy(p->y, y, sizeof p->y);
@@ -545,7 +545,7 @@ static void fill_point(cvode_integrator *c, tribo_point *p, double t, const doub
         p->contact.in_contact = 0;
     }
     p->slipping = touching(&c->mode) && c->mode.tangent == TRIBO_TANGENT_SLIP;
-    p->contact_time = from->contact_time + (touching(&c->mode) ? t - from->t : 0.0);
+    tribo_account_interval(c->m, from, p, commit);
 }
 
 /* Commit the open step: its charges, its end point, and the event that ends it. */
@@ -560,7 +560,7 @@ static tribo_status close_step(cvode_integrator *c)
     if (st != TRIBO_OK)
         return st;
     c->y_end[TRIBO_IWORK] = work;
-    fill_point(c, &next, c->t_end, c->y_end, &m->committed);
+    fill_point(c, &next, c->t_end, c->y_end, &m->committed, 1);
     m->committed = next;
     c->open = 0;
 
@@ -589,7 +589,7 @@ static tribo_status close_step(cvode_integrator *c)
     st = restart_at(c, t, y, &md);
     if (st != TRIBO_OK)
         return st;
-    fill_point(c, &m->committed, t, y, &m->committed);
+    fill_point(c, &m->committed, t, y, &m->committed, 1);
     return TRIBO_OK;
 }
 
@@ -604,7 +604,7 @@ static void restart(tribo_model *m)
     c->events_in_a_row = 0;
     c->last_event_t = -INFINITY;
     if (restart_at(c, m->committed.t, y, &md) == TRIBO_OK)
-        fill_point(c, &m->committed, m->committed.t, y, &m->committed);
+        fill_point(c, &m->committed, m->committed.t, y, &m->committed, 1);
 }
 
 static tribo_status advance(tribo_model *m, double t)
@@ -639,7 +639,7 @@ static tribo_status advance(tribo_model *m, double t)
     dense(c, t, y);
     y[TRIBO_IWORK] = m->committed.y[TRIBO_IWORK];
     m->out.Sigma_s = m->committed.Sigma_s;
-    fill_point(c, &m->out, t, y, &m->committed);
+    fill_point(c, &m->out, t, y, &m->committed, 0);
     return sweep_charges(c, m->committed.t, t, 0, &m->out.y[TRIBO_IWORK], &m->out.Sigma_s);
 }
 

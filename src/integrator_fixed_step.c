@@ -93,7 +93,7 @@ static double clamp_stretch(const tribo_dyn_params *dp, double *y, tribo_contact
 /* One step of size h from p to next; the contact over the step is returned in sample
    (charged at the end point's contact for the whole step, as the paper does). */
 static void step(tribo_model *m, const tribo_point *p, double h, tribo_point *next,
-                 tribo_contact_sample *sample)
+                 tribo_contact_sample *sample, int commit)
 {
     const tribo_dyn_params *dp = &m->dyn;
     memcpy(next->y, p->y, sizeof next->y);
@@ -111,7 +111,7 @@ static void step(tribo_model *m, const tribo_point *p, double h, tribo_point *ne
     const double dx = clamp_stretch(dp, next->y, ev);
     next->slipping = ev->in_contact && fabs(dx) >= ev->limit && (ev->limit > 0.0 || ev->vs != 0.0);
 
-    next->contact_time = p->contact_time + (ev->in_contact ? h : 0.0);
+    tribo_account_interval(m, p, next, commit);
     next->Sigma_s = p->Sigma_s;
     if (m->has_charging) {
         tribo_charging_sample(&m->charging, &ev->pose, ev->delta_y, h, p->y[TRIBO_IWORK],
@@ -154,7 +154,7 @@ static tribo_status advance(tribo_model *m, double t)
     tribo_point next;
 
     while (f->k < target) {
-        step(m, &m->committed, dt, &next, &sample);
+        step(m, &m->committed, dt, &next, &sample, 1);
         f->k++;
         next.t = f->t_base + (double)f->k * dt; /* no drift over millions of steps */
         m->committed = next;
@@ -171,7 +171,7 @@ static tribo_status advance(tribo_model *m, double t)
         m->out.t = t;
         return TRIBO_OK;
     }
-    step(m, &m->committed, h, &m->out, &sample);
+    step(m, &m->committed, h, &m->out, &sample, 0);
     m->out.t = t;
     return m->has_charging ? tribo_pending_push(m, &sample) : TRIBO_OK;
 }

@@ -63,6 +63,44 @@ void tribo_initial_point(const tribo_model *m, tribo_point *p)
     p->Sigma_s = s->Sigma0;
     static const tribo_force_law law = {TRIBO_CONTACT_BY_GEOMETRY, TRIBO_NORMAL_REGULARISED, 0, TRIBO_TANGENT_CLAMP, 0};
     tribo_contact_at(&m->dyn, &law, p->y, &p->contact);
+    p->motion.mode = TRIBO_MODE_FLIGHT;
+}
+
+/* Warnings past this many are counted but not logged one by one. */
+#define LOGGED_VIOLATIONS 10
+
+void tribo_account_interval(tribo_model *m, const tribo_point *from, tribo_point *to, int commit)
+{
+    const double h = to->t - from->t;
+    const int in_contact = to->contact.in_contact;
+    to->contact_time = from->contact_time + (in_contact ? h : 0.0);
+    to->motion = from->motion;
+    if (!(h > 0.0))
+        return;
+    if (m->motion_decay_h != h) {
+        m->motion_decay_h = h;
+        m->motion_decay = exp(-h / TRIBO_MOTION_WINDOW);
+    }
+    tribo_motion_update(&to->motion, h, m->motion_decay, in_contact,
+                        to->y[TRIBO_IPHI] - from->y[TRIBO_IPHI], to->y[TRIBO_IX] - from->y[TRIBO_IX]);
+
+    const double rho_c = tribo_contact_curvature_radius(m->dyn.eps2, to->contact.pose.h);
+    const int deep = in_contact && tribo_indentation_too_deep(to->contact.delta_y, m->dyn.eps, rho_c);
+    if (deep && !from->motion.outside_assumptions && commit) {
+        const long long n = ++m->stats.assumption_warnings;
+        if (m->log && n <= LOGGED_VIOLATIONS) {
+            char msg[512];
+            snprintf(msg, sizeof msg,
+                     "t = %.9g: the contact is outside the model's assumptions: delta_y = %.4g "
+                     "exceeds %.2g x min(epsilon = %g, rho_c = %.4g); the linear contact law "
+                     "and the contact width are not meaningful there (counted in "
+                     "assumption_warnings%s)",
+                     to->t, to->contact.delta_y, TRIBO_INDENTATION_LIMIT, m->dyn.eps, rho_c,
+                     n == LOGGED_VIOLATIONS ? "; further ones are counted, not logged" : "");
+            m->log(m->log_user, 1, msg);
+        }
+    }
+    to->motion.outside_assumptions = deep;
 }
 
 tribo_status tribo_pending_push(tribo_model *m, const tribo_contact_sample *sample)
@@ -288,6 +326,14 @@ double tribo_get(tribo_model *m, tribo_quantity which)
     case TRIBO_Q_CONTACT_TIME: return p->contact_time;
     case TRIBO_Q_CONTACT_FRACTION: return p->t > 0.0 ? p->contact_time / p->t : 0.0;
     case TRIBO_Q_TURNS: return fabs(p->y[TRIBO_IPHI] - m->scene.phi0) / (2.0 * M_PI);
+    case TRIBO_Q_CONTACT_MODE: return (double)p->motion.mode;
+    case TRIBO_Q_FRACTION_FLIGHT:
+    case TRIBO_Q_FRACTION_SLIDING:
+    case TRIBO_Q_FRACTION_ROLLING:
+    case TRIBO_Q_FRACTION_TUMBLING:
+    case TRIBO_Q_FRACTION_BOUNCING:
+        return p->t > 0.0 ? p->motion.mode_time[which - TRIBO_Q_FRACTION_FLIGHT] / p->t : 0.0;
+    case TRIBO_Q_ASSUMPTION_WARNINGS: return (double)m->stats.assumption_warnings;
     case TRIBO_Q_COUNT: break;
     }
     return NAN;
@@ -299,7 +345,8 @@ const char *tribo_quantity_name(tribo_quantity q)
         "time", "X", "Y", "phi", "U", "V", "Omega", "delta_y", "delta_x", "in_contact",
         "slipping", "Psi_N", "Psi_T", "Q_static", "Q_sliding", "Sigma_s", "omega_work",
         "energy", "work_dissipated", "work_external", "contact_time", "contact_fraction",
-        "turns",
+        "turns", "contact_mode", "fraction_flight", "fraction_sliding", "fraction_rolling",
+        "fraction_tumbling", "fraction_bouncing", "assumption_warnings",
     };
     return (unsigned)q < TRIBO_Q_COUNT ? names[q] : NULL;
 }

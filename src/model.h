@@ -5,6 +5,7 @@
 #include "charging.h"
 #include "dynamics.h"
 #include "integrator.h"
+#include "motion.h"
 #include "tribo.h"
 
 /* The state of the particle at one time. */
@@ -15,6 +16,7 @@ typedef struct tribo_point {
     double Sigma_s;           /* dynamic saturation density (MODEL §5b) */
     tribo_contact_eval contact; /* contact and forces at this point */
     int slipping;
+    tribo_motion motion;      /* contact-mode history and assumption check */
 } tribo_point;
 
 struct tribo_model {
@@ -38,6 +40,7 @@ struct tribo_model {
     void *integrator_data;
 
     tribo_stats stats;
+    double motion_decay_h, motion_decay; /* exp(-h / TRIBO_MOTION_WINDOW) for the last h */
     tribo_log_fn log;
     void *log_user;
     char error[512];
@@ -49,6 +52,11 @@ tribo_status tribo_fail(tribo_model *m, tribo_status status, const char *fmt, ..
 
 /* The initial point of the scene (MODEL §7 by default). */
 void tribo_initial_point(const tribo_model *m, tribo_point *p);
+
+/* Book-keeping of an interval of the motion from `from` to `to` (whose y and contact are
+   set): the contact time, the contact-mode history and the check of the contact model's
+   assumptions. commit: the interval is committed (count and log a new violation). */
+void tribo_account_interval(tribo_model *m, const tribo_point *from, tribo_point *to, int commit);
 
 /* Queue a charge update between the committed point and the output point. */
 tribo_status tribo_pending_push(tribo_model *m, const tribo_contact_sample *sample);

@@ -54,8 +54,8 @@ static int64_t get_i(reader *r)
 
 /* Fields of a point, in order; the contact evaluation is stored with it because some
    integrators (modes of the force law) cannot recompute it from y alone. */
-#define POINT_DOUBLES (1 + TRIBO_NSTATE + 2 + 10)
-#define POINT_INTS 2
+#define POINT_DOUBLES (1 + TRIBO_NSTATE + 2 + 10 + 3 + TRIBO_MODE_COUNT)
+#define POINT_INTS 4
 
 static void put_point(writer *w, const tribo_point *p)
 {
@@ -71,6 +71,14 @@ static void put_point(writer *w, const tribo_point *p)
         put_d(w, cd[i]);
     put_i(w, c->in_contact);
     put_i(w, p->slipping);
+    const tribo_motion *mo = &p->motion;
+    put_d(w, mo->contact);
+    put_d(w, mo->spin);
+    put_d(w, mo->speed);
+    for (int i = 0; i < TRIBO_MODE_COUNT; i++)
+        put_d(w, mo->mode_time[i]);
+    put_i(w, mo->mode);
+    put_i(w, mo->outside_assumptions);
 }
 
 static void get_point(reader *r, tribo_point *p)
@@ -88,6 +96,14 @@ static void get_point(reader *r, tribo_point *p)
         *cd[i] = get_d(r);
     c->in_contact = (int)get_i(r);
     p->slipping = (int)get_i(r);
+    tribo_motion *mo = &p->motion;
+    mo->contact = get_d(r);
+    mo->spin = get_d(r);
+    mo->speed = get_d(r);
+    for (int i = 0; i < TRIBO_MODE_COUNT; i++)
+        mo->mode_time[i] = get_d(r);
+    mo->mode = (int)get_i(r);
+    mo->outside_assumptions = (int)get_i(r);
 }
 
 static size_t header_size(void) { return sizeof MAGIC + 2 * sizeof(int64_t); }

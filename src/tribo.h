@@ -181,6 +181,16 @@ typedef enum tribo_quantity {
     TRIBO_Q_CONTACT_TIME,                    /* time spent in contact so far            */
     TRIBO_Q_CONTACT_FRACTION,                /* contact time / time                     */
     TRIBO_Q_TURNS,                           /* revolutions made, |phi - phi0| / 2 pi   */
+    TRIBO_Q_CONTACT_MODE,                    /* 0 flight, 1 sliding (quasi-fixed orientation,
+                                                with rocking), 2 rolling, 3 tumbling,
+                                                4 bouncing: over the last ~20 time units  */
+    TRIBO_Q_FRACTION_FLIGHT,                 /* fraction of the time so far in each mode */
+    TRIBO_Q_FRACTION_SLIDING,
+    TRIBO_Q_FRACTION_ROLLING,
+    TRIBO_Q_FRACTION_TUMBLING,
+    TRIBO_Q_FRACTION_BOUNCING,
+    TRIBO_Q_ASSUMPTION_WARNINGS,             /* times the contact went outside the model's
+                                                assumptions (delta_y > 0.1 min(eps, rho_c)) */
     TRIBO_Q_COUNT
 } tribo_quantity;
 

@@ -1,0 +1,48 @@
+/* motion.h: the contact mode of the motion, in the paper's terms, and the checks of the
+   contact model's assumptions along the run. */
+#ifndef TRIBO_MOTION_H
+#define TRIBO_MOTION_H
+
+/* The modes the paper tells apart. Continuous contact: SLIDING (quasi-fixed orientation,
+   sliding with rocking) or ROLLING (the orientation turns with the travel); intermittent
+   contact: BOUNCING (flights, no turning over) or TUMBLING (turning over with flights);
+   FLIGHT when the particle has not touched the plate within the window. */
+typedef enum tribo_contact_mode {
+    TRIBO_MODE_FLIGHT = 0,
+    TRIBO_MODE_SLIDING = 1,
+    TRIBO_MODE_ROLLING = 2,
+    TRIBO_MODE_TUMBLING = 3,
+    TRIBO_MODE_BOUNCING = 4,
+    TRIBO_MODE_COUNT
+} tribo_contact_mode;
+
+/* The recent history the classification needs: averages over the last ~window time
+   units (exponentially weighted), and the time spent in each mode so far. */
+typedef struct tribo_motion {
+    double contact;   /* average of the contact indicator           */
+    double spin;      /* average dphi/dtau                          */
+    double speed;     /* average dX/dtau (for users of the history)  */
+    int mode;         /* tribo_contact_mode at the end of the last update */
+    double mode_time[TRIBO_MODE_COUNT];
+    int outside_assumptions; /* the contact was outside them at the last update */
+} tribo_motion;
+
+/* Window of the averages: long enough to span the flights between the paper's bounces
+   (tens of time units) so that bouncing is not taken for flight. */
+#define TRIBO_MOTION_WINDOW 20.0
+
+/* The contact model (line contact of a rigid curvature against a linear spring) assumes a
+   small indentation: delta_y <= this fraction of both the semi-minor axis (epsilon) and
+   the radius of curvature at the contact (rho_c). Beyond it the contact width
+   Sc = sqrt(rho_c delta_y) exceeds ~0.3 rho_c and the law is not meaningful. */
+#define TRIBO_INDENTATION_LIMIT 0.1
+
+/* Update the history over an interval of length h ending at a state with the given
+   contact, over which phi and X moved by dphi and dX. decay = exp(-h / window). */
+void tribo_motion_update(tribo_motion *m, double h, double decay, int in_contact, double dphi,
+                         double dX);
+
+/* Whether a contact is outside the model's assumptions (TRIBO_INDENTATION_LIMIT). */
+int tribo_indentation_too_deep(double delta_y, double epsilon, double rho_c);
+
+#endif
