@@ -245,6 +245,11 @@ static double crossing(sweep *w, probe_point a, const probe_point *m, probe_poin
     return 0.5 * (a.t + b.t);
 }
 
+/* How many segment boundaries an edge may cross within one piece: each crossing is
+   located on its own, so a piece may span several; fewer pieces, fewer probes (measured:
+   8 halves the cost of a rolling disc against 1, with Q equal to 1e-10). */
+#define SEGMENTS_PER_PIECE 8
+
 /* A boundary crossing inside a piece: when, and which edge's segment index moves how. */
 typedef struct cut {
     double t;
@@ -311,14 +316,14 @@ static int saturation_piece(sweep *w, const probe_point *const pts[5], double h,
 static void charge_piece(sweep *w, const probe_point *a, const probe_point *m,
                          const probe_point *b, const double S[3])
 {
-    cut cuts[8];
+    cut cuts[2 * SEGMENTS_PER_PIECE + 2];
     int n = 0;
     double cell[2] = {floor(a->lo / w->seg), floor(a->hi / w->seg)};
     for (int edge = 0; edge < 2; edge++) {
         const double e0 = edge_of(a, edge), e1 = edge_of(b, edge);
         const int step = e1 > e0 ? 1 : -1;
         const double lo = fmin(e0, e1), hi = fmax(e0, e1);
-        for (double k = floor(lo / w->seg) + 1; k * w->seg < hi && n < 8; k++) {
+        for (double k = floor(lo / w->seg) + 1; k * w->seg < hi && n < 2 * SEGMENTS_PER_PIECE + 2; k++) {
             const cut c = {crossing(w, *a, m, *b, edge, k * w->seg), edge, step};
             cuts[n++] = c;
         }
@@ -370,13 +375,14 @@ int tribo_charging_sweep(tribo_charging *c, const tribo_charge_params *p,
     double trial = b - a;
     while (cur.t < b && !w.status) {
         if (cur.speed > 0.0)
-            trial = fmin(trial, w.seg / cur.speed);
+            trial = fmin(trial, SEGMENTS_PER_PIECE * w.seg / cur.speed);
         /* within min_piece of b, go to b: the piece then is at most trial + min_piece */
         const double t1 = cur.t + trial >= b - min_piece ? b : cur.t + trial;
         const double h = t1 - cur.t;
         const probe_point m = probe_at(&w, cur.t + 0.5 * h, &cur);
         probe_point next = probe_at(&w, t1, &m);
-        int ok = fabs(next.lo - cur.lo) <= w.seg && fabs(next.hi - cur.hi) <= w.seg &&
+        const double reach = SEGMENTS_PER_PIECE * w.seg;
+        int ok = fabs(next.lo - cur.lo) <= reach && fabs(next.hi - cur.hi) <= reach &&
                  inside(cur.lo, m.lo, next.lo) && inside(cur.hi, m.hi, next.hi);
         double work_end = cur.work, S[3] = {*Sigma_s, *Sigma_s, *Sigma_s};
         if (ok && c->with_sliding) {
