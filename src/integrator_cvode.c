@@ -182,9 +182,44 @@ static void normal_at_rest(const tribo_dyn_params *p, double dy, tribo_force_law
     }
 }
 
+/* d2h/dphi2 at the pose of y, by central difference (h'' = -dcx/dphi). */
+static double h_curvature(const tribo_dyn_params *p, double phi)
+{
+    const double d = 1e-4;
+    tribo_pose a, b, g;
+    tribo_pose_at(p->eps2, phi + d, &a);
+    tribo_pose_at(p->eps2, phi - d, &b);
+    tribo_pose_at(p->eps2, phi, &g);
+    return (a.h - 2.0 * g.h + b.h) / (d * d);
+}
+
+/* When the stretch sits on the limit and the first derivatives tie (sigma vs =
+   d(limit)/dtau, as for a particle set down at rest: everything 0), whether sticking
+   would still leave the limit: second derivatives under the stick law,
+   sigma dvs/dtau against d2(limit)/dtau2. Returns the slip direction, or 0 to stick. */
+static double slip_at_second_order(tribo_model *m, const double *y, const tribo_force_law *law)
+{
+    const tribo_dyn_params *p = &m->dyn;
+    tribo_force_law stick = *law;
+    stick.tangent = TRIBO_TANGENT_STICK;
+    double f[TRIBO_NSTATE];
+    tribo_contact_eval ev;
+    tribo_dynamics_rhs(p, &stick, y, f, &ev);
+    const double Om = y[TRIBO_IOMEGA], h2 = h_curvature(p, y[TRIBO_IPHI]);
+    /* vs = U + h Omega; dh/dphi = -cx */
+    const double dvs = f[TRIBO_IU] + ev.pose.h * f[TRIBO_IOMEGA] - ev.pose.cx * Om * Om;
+    /* limit = mu (1 - nu s) delta_y in a sign mode (0 rate in lock); delta_y' = -cx Om - V */
+    const double ddy2 = h2 * Om * Om - ev.pose.cx * f[TRIBO_IOMEGA] - f[TRIBO_IV];
+    const double factor = law->normal == TRIBO_NORMAL_LOCK ? 0.0 : 1.0 - p->nu * law->normal_sign;
+    const double dlimit2 = factor > 0.0 ? p->mu * factor * ddy2 : 0.0;
+    const double sigma = dvs > 0.0 ? 1.0 : -1.0;
+    return sigma * dvs > dlimit2 ? sigma : 0.0;
+}
+
 /* Stick or slip for a stretch checked against the limit of the (new) normal mode:
    a stretch beyond the limit is clamped to it (the spring energy released is dissipated);
-   at the limit the contact slips if the stretch would leave it, sigma vs > d(limit)/dtau. */
+   at the limit the contact slips if the stretch would leave it, sigma vs > d(limit)/dtau,
+   to second order where the first ties. */
 static void tangent_from_state(tribo_model *m, double *y, tribo_force_law *law)
 {
     tribo_contact_eval ev;
@@ -194,12 +229,28 @@ static void tangent_from_state(tribo_model *m, double *y, tribo_force_law *law)
     const double dx = y[TRIBO_IDX], L = ev.limit;
     if (fabs(dx) < L * (1.0 - 1e-12))
         return;
-    const double sigma = dx > 0.0 ? 1.0 : dx < 0.0 ? -1.0 : (ev.vs >= 0.0 ? 1.0 : -1.0);
+    double sigma = dx > 0.0 ? 1.0 : dx < 0.0 ? -1.0 : (ev.vs >= 0.0 ? 1.0 : -1.0);
     y[TRIBO_IDX] = sigma * L;
-    if (sigma * ev.vs > ev.limit_rate) {
-        law->tangent = TRIBO_TANGENT_SLIP;
-        law->slip_sign = sigma;
+    if (sigma * ev.vs == ev.limit_rate && dx == 0.0 && L == 0.0) {
+        sigma = slip_at_second_order(m, y, law);
+        if (sigma == 0.0)
+            return;
+    } else if (!(sigma * ev.vs > ev.limit_rate)) {
+        return;
     }
+    law->tangent = TRIBO_TANGENT_SLIP;
+    law->slip_sign = sigma;
+}
+
+/* Whether a particle touching the plate at rest (delta_y = 0 and d(delta_y)/dtau = 0) is
+   pressed into it: d2(delta_y)/dtau2 > 0 in flight, i.e. the net normal force pulls it
+   down against the rate at which rotation lifts the lowest point, h''(phi) Omega^2.
+   Without this, a particle set down on the plate would start in flight, and the contact
+   root, zero at the start and a small step later, would never see it sink in. */
+static int pressed_in(const tribo_dyn_params *p, const double *y)
+{
+    const double Om = y[TRIBO_IOMEGA];
+    return h_curvature(p, y[TRIBO_IPHI]) * Om * Om + (p->g_n - p->F_N) > 0.0;
 }
 
 /* The mode after an event (fired: the roots found) or, with fired = NULL, the mode a
@@ -218,7 +269,9 @@ static mode next_mode(tribo_model *m, const mode *old, double *y, const int *fir
     if (fired && fired[ROOT_CONTACT])
         md.contact = touching(old) ? TRIBO_CONTACT_OFF : TRIBO_CONTACT_ON;
     else if (!fired)
-        md.contact = dy > 0.0 || (dy == 0.0 && ddy > 0.0) ? TRIBO_CONTACT_ON : TRIBO_CONTACT_OFF;
+        md.contact = dy > 0.0 || (dy == 0.0 && (ddy > 0.0 || (ddy == 0.0 && pressed_in(p, y))))
+                         ? TRIBO_CONTACT_ON
+                         : TRIBO_CONTACT_OFF;
     const int onset = touching(&md) && (!touching(old) || !fired);
     if (fired && fired[ROOT_CONTACT])
         y[TRIBO_IY] = g.h;
@@ -426,6 +479,7 @@ static tribo_status fail_at(cvode_integrator *c, double t, const double *y, cons
 }
 
 static void capture_interpolant(cvode_integrator *c);
+static void find_grazing_switch(cvode_integrator *c, double t_start);
 
 /* Take one CVODE step from the end of the last one; it becomes the open step. */
 static tribo_status take_step(cvode_integrator *c)
@@ -448,6 +502,8 @@ static tribo_status take_step(cvode_integrator *c)
     if (c->ends_at_root)
         CVodeGetRootInfo(c->mem, c->roots);
     capture_interpolant(c);
+    if (!c->ends_at_root)
+        find_grazing_switch(c, c->m->committed.t);
     if (!c->replaying)
         c->m->stats.steps++;
     return TRIBO_OK;
@@ -461,6 +517,66 @@ static void dense(cvode_integrator *c, double t, double *y)
         for (int k = c->taylor_order - 1; k >= 0; k--)
             v = v * u + c->taylor[k][i];
         y[i] = v;
+    }
+}
+
+/* CVODE sees a switch only where a root function has changed sign between the ends of a
+   step. A switch function can dip past zero and back within one step: in stick under
+   normal lock the undamped tangential oscillation brings the stretch to the (constant)
+   Coulomb limit almost tangentially, and a dip of 1e-6 went unseen. So each step is also
+   sampled inside on the dense output; the first sample past a switch (beyond the rounding
+   of that function's values in the step) is bisected to the crossing, and the step ends
+   there as if CVODE had found it. */
+#define GRAZING_SAMPLES 8
+
+static void switch_functions(cvode_integrator *c, double t, double *g)
+{
+    double y[TRIBO_NSTATE];
+    dense(c, t, y);
+    N_Vector v = c->dky;
+    memcpy(N_VGetArrayPointer(v), y, sizeof y);
+    roots(t, v, g, c);
+}
+
+static void find_grazing_switch(cvode_integrator *c, double t_start)
+{
+    int dir[N_ROOTS];
+    root_directions(&c->mode, &c->m->dyn, dir);
+    double g[GRAZING_SAMPLES + 1][N_ROOTS], scale[N_ROOTS] = {0};
+    const double h = c->t_end - t_start;
+    if (!(h > 0.0))
+        return;
+    for (int j = 0; j <= GRAZING_SAMPLES; j++) {
+        switch_functions(c, t_start + h * j / GRAZING_SAMPLES, g[j]);
+        for (int i = 0; i < N_ROOTS; i++)
+            scale[i] = fmax(scale[i], fabs(g[j][i]));
+    }
+    for (int j = 1; j < GRAZING_SAMPLES; j++) {
+        int found = -1;
+        for (int i = 0; i < N_ROOTS && found < 0; i++) {
+            const double noise = 1e-12 + 1e-9 * scale[i];
+            if (dir[i] != 0 && dir[i] * g[0][i] <= noise && dir[i] * g[j][i] > noise)
+                found = i;
+        }
+        if (found < 0)
+            continue;
+        /* bisect between the last sample before the switch and the first past it */
+        double a = t_start + h * (j - 1) / GRAZING_SAMPLES, b = t_start + h * j / GRAZING_SAMPLES;
+        for (int it = 0; it < 60 && b - a > 1e-15 * (1.0 + fabs(b)); it++) {
+            const double mid = 0.5 * (a + b);
+            double gm[N_ROOTS];
+            switch_functions(c, mid, gm);
+            if (dir[found] * gm[found] > 0.0)
+                b = mid;
+            else
+                a = mid;
+        }
+        c->t_end = b;
+        dense(c, b, c->y_end);
+        c->ends_at_root = 1;
+        for (int i = 0; i < N_ROOTS; i++)
+            c->roots[i] = i == found ? dir[i] : 0;
+        return;
     }
 }
 
@@ -546,8 +662,10 @@ static void fill_point(cvode_integrator *c, tribo_point *p, double t, const doub
     if (touching(&c->mode)) {
         /* the mode decides contact, also where rounding makes delta_y = -1e-17 */
         p->contact.in_contact = 1;
+        /* in slip the stretch is held at the limit (MODEL §3); CVODE's integrated stretch
+           follows it only to the tolerances */
         if (c->mode.tangent == TRIBO_TANGENT_SLIP)
-            p->contact.psi_t = -c->mode.slip_sign * p->contact.limit;
+            p->y[TRIBO_IDX] = c->mode.slip_sign * p->contact.limit;
     } else {
         p->contact.in_contact = 0;
     }

@@ -1,0 +1,40 @@
+/* The stability matrix of issue 5 (matrix.c): every case with every integrator finishes,
+   stays finite, keeps 0 <= Q_static <= 1 non-decreasing, holds the stretch within the
+   Coulomb limit, does not sink into the plate in flight, balances its energy (MODEL §6)
+   and stays within the stated CPU bound. */
+#include <criterion/criterion.h>
+#include <criterion/parameterized.h>
+
+#include "matrix.h"
+
+typedef struct run {
+    int case_index, integrator;
+} run;
+
+ParameterizedTestParameters(stability, matrix)
+{
+    static run runs[256];
+    int n = 0;
+    for (int c = 0; c < N_STABILITY_CASES; c++)
+        for (int i = 0; i < N_STABILITY_INTEGRATORS; i++)
+            runs[n++] = (run){c, STABILITY_INTEGRATORS[i]};
+    return cr_make_param_array(run, runs, (size_t)n);
+}
+
+ParameterizedTest(run *r, stability, matrix, .timeout = 60)
+{
+    const stability_case *c = &STABILITY_CASES[r->case_index];
+    const char *integ = stability_integrator_name(r->integrator);
+    stability_result res;
+    stability_run(c, r->integrator, 50.0, 0.5, &res);
+    cr_assert(res.finished, "%s, %s: stopped: %s", c->name, integ, res.error);
+    cr_expect(res.all_finite, "%s, %s: a quantity went NaN or infinite", c->name, integ);
+    cr_expect(res.charge_ok, "%s, %s: Q_static left [0, 1] or decreased", c->name, integ);
+    cr_expect(res.coulomb_ok, "%s, %s: the stretch left the Coulomb limit", c->name, integ);
+    cr_expect(res.contact_ok, "%s, %s: indented while in flight", c->name, integ);
+    cr_expect(res.max_residual <= STABILITY_RESIDUAL_BOUND * res.energy_scale,
+              "%s, %s: energy residual %.3g, scale %.3g", c->name, integ, res.max_residual,
+              res.energy_scale);
+    cr_expect(res.cpu_seconds <= STABILITY_CPU_BOUND, "%s, %s: %.2f s CPU", c->name, integ,
+              res.cpu_seconds);
+}
