@@ -76,8 +76,10 @@ fmu_instance *fmu_instantiate(int fmi_version, const char *fn, const char *name,
     inst->fmi_version = fmi_version;
     if (logger)
         inst->logger = *logger;
+    /* errors and warnings (e.g. a contact outside the model's assumptions) reach the
+       importer without debug logging; loggingOn adds the calls and the core's notes */
     for (int c = 0; c < FMU_LOG_CATEGORY_COUNT; c++)
-        inst->log_enabled[c] = logging_on || c == FMU_LOG_ERROR;
+        inst->log_enabled[c] = logging_on || c == FMU_LOG_ERROR || c == FMU_LOG_WARNING;
     fmu_restore_start_values(inst);
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s(instanceName = \"%s\", loggingOn = %d)", fn, name,
             logging_on != 0);
