@@ -225,3 +225,23 @@ Test(cvode, modes_are_visited_and_counted)
     cr_expect(flight > 0 && lock > 0 && slip > 0 && stick > 0,
               "flight %d, lock %d, slip %d, stick %d samples", flight, lock, slip, stick);
 }
+
+/* Never a silent failure: an input that would take CVODE forever (a spin of 1e12 rad per
+   time unit needs steps of 2e-13 to see the lowest point swing) stops with an error that
+   gives the time and the state, and leaves the instance resettable. */
+Test(cvode, too_much_work_stops_with_the_time_and_state, .timeout = 30)
+{
+    tribo_scene s = cvode_scene(1e-8);
+    s.Omega0 = 1e12;
+    s.gap0 = 0.5;
+    s.charge_model = TRIBO_CHARGE_NONE;
+    tribo_model *m = make(&s);
+    cr_assert_eq(tribo_advance(m, 1.0), TRIBO_ERR_INTEGRATOR);
+    const char *msg = tribo_last_error(m);
+    cr_expect(strstr(msg, "too much work") && strstr(msg, "t = ") && strstr(msg, "Omega = ") &&
+                  strstr(msg, "mode: flight"),
+              "%s", msg);
+    tribo_reset(m);
+    cr_expect_eq(tribo_get(m, TRIBO_Q_TIME), 0.0);
+    tribo_free(m);
+}
