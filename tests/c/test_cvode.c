@@ -4,15 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "tribo.h"
+#include "support.h"
 
-static tribo_model *make(const tribo_scene *s)
-{
-    char err[512];
-    tribo_model *m = tribo_create(s, err, sizeof err);
-    cr_assert(m, "%s", err);
-    return m;
-}
 
 static tribo_scene cvode_scene(double rtol)
 {
@@ -86,14 +79,6 @@ Test(cvode, energy_balance_tightens_with_rtol, .timeout = 60)
    grid, so it does not fall monotonically (measured at tau = 20: 1.1e-7 at dt = 4e-3,
    6.9e-8 at 1e-3, 3.1e-9 at 2.5e-4, 8.7e-9 at 6.25e-5): the test holds it to converging
    over the range, to the 1e-8 level. */
-static double state_distance(tribo_model *a, tribo_model *b)
-{
-    const tribo_quantity q[] = {TRIBO_Q_X, TRIBO_Q_Y, TRIBO_Q_PHI, TRIBO_Q_U, TRIBO_Q_V, TRIBO_Q_OMEGA};
-    double d = 0.0;
-    for (int i = 0; i < 6; i++)
-        d = fmax(d, fabs(tribo_get(a, q[i]) - tribo_get(b, q[i])));
-    return d;
-}
 
 Test(cvode, fixed_step_converges_to_cvode, .timeout = 60)
 {

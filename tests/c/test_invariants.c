@@ -3,15 +3,8 @@
 #include <math.h>
 
 #include "geometry.h"
-#include "tribo.h"
+#include "support.h"
 
-static tribo_model *make(const tribo_scene *s)
-{
-    char err[256];
-    tribo_model *m = tribo_create(s, err, sizeof err);
-    cr_assert(m, "%s", err);
-    return m;
-}
 
 static tribo_scene paper(double mu, double nu, double dt)
 {

@@ -4,24 +4,9 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "tribo.h"
+#include "support.h"
 
-static tribo_model *make(const tribo_scene *s)
-{
-    char err[512];
-    tribo_model *m = tribo_create(s, err, sizeof err);
-    cr_assert(m, "%s", err);
-    return m;
-}
 
-static double distance(tribo_model *a, tribo_model *b)
-{
-    const tribo_quantity q[] = {TRIBO_Q_X, TRIBO_Q_Y, TRIBO_Q_PHI, TRIBO_Q_U, TRIBO_Q_V, TRIBO_Q_OMEGA};
-    double d = 0.0;
-    for (int i = 0; i < 6; i++)
-        d = fmax(d, fabs(tribo_get(a, q[i]) - tribo_get(b, q[i])));
-    return d;
-}
 
 /* The fixed step's regularised sign is stiff in normal lock (rate nu delta_y / v_reg):
    a soft contact (Gamma = 0.5) hit hard with nu = 1 once blew RK4 up at the paper's
@@ -44,7 +29,7 @@ Test(regressions, fixed_step_stable_in_a_stiff_normal_lock, .timeout = 60)
     tribo_stats st;
     tribo_get_stats(fixed, &st);
     cr_expect(st.substeps > 0, "the stiff lock was sub-stepped");
-    cr_expect(distance(fixed, cvode) < 1e-3, "distance %.3g", distance(fixed, cvode));
+    cr_expect(state_distance(fixed, cvode) < 1e-3, "distance %.3g", state_distance(fixed, cvode));
     cr_expect(isfinite(tribo_get(fixed, TRIBO_Q_ENERGY)));
     tribo_free(fixed);
     tribo_free(cvode);
@@ -76,7 +61,7 @@ Test(regressions, particle_set_down_at_rest)
     cr_assert_eq(tribo_advance(fixed, 20.0), TRIBO_OK);
     /* the fixed step's regularised lock creeps at |V| < 2 v_reg (measured 2.5e-6 here);
        the broken start was 30% off in X */
-    cr_expect(distance(fixed, cvode) < 2.0 * s.v_reg * 20.0, "distance %.3g", distance(fixed, cvode));
+    cr_expect(state_distance(fixed, cvode) < 2.0 * s.v_reg * 20.0, "distance %.3g", state_distance(fixed, cvode));
     cr_expect(fabs(tribo_get(fixed, TRIBO_Q_STATIC) - tribo_get(cvode, TRIBO_Q_STATIC)) < 1e-4,
               "Q_static %g vs %g", tribo_get(fixed, TRIBO_Q_STATIC), tribo_get(cvode, TRIBO_Q_STATIC));
     tribo_free(fixed);

@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "tribo.h"
+#include "support.h"
 
 /* Every test here runs under each integrator. */
 static const int INTEGRATORS[] = {TRIBO_INTEGRATOR_FIXED_STEP, TRIBO_INTEGRATOR_CVODE,
@@ -24,13 +24,6 @@ static tribo_scene scene_with(int integrator)
 }
 #define scene() scene_with(INTEGRATORS[integ])
 
-static tribo_model *make(const tribo_scene *s)
-{
-    char err[256];
-    tribo_model *m = tribo_create(s, err, sizeof err);
-    cr_assert(m, "%s", err);
-    return m;
-}
 
 /* Every quantity and both segment arrays, bit for bit. */
 static void expect_same(tribo_model *a, tribo_model *b, const char *what)
