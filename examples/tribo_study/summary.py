@@ -1,0 +1,116 @@
+"""What a run's time series is summarised into: one row of numbers.
+
+Definitions (used in the tables, the figures and the docs):
+
+* bounce amplitude: the upper envelope of the centre height Y, taken as the maximum of
+  the recorded Y over a centred sliding window of ENVELOPE_WIDTH time units
+  (`upper_envelope`). The paper plots the upper envelope of Y; the window is wide enough
+  to span a bounce or a turn of the particle (tens of time units) and short against the
+  run. Y is recorded every `record_interval` (1 time unit), which resolves a ballistic
+  apex to ~1e-4 (Gamma cos(beta) (1/2)^2 / 2).
+* charges: Q_static and Q_sliding at REPORT_FRACTIONS of the horizon (1000, 2000, ...,
+  5000 for the paper's tau = 5000).
+* contact modes: the FMU's fractions of time in each mode over the whole run, and the
+  same fractions after the warm-up (the FMU classifies over a ~20-unit exponential
+  window, so the first WARMUP units read as "bouncing" while that window fills up). The
+  after-warm-up fractions are exact differences of the FMU's cumulative mode times:
+  (f(T) T - f(tw) tw) / (T - tw), with tw the first recorded time >= WARMUP.
+* delta_y_max: the largest recorded indentation. The contact law assumes it small
+  (the FMU counts excursions beyond 0.1 min(epsilon, rho_c) in assumption_warnings).
+* turned over: the orientation has at some recorded time moved by at least
+  TURNED_OVER revolutions from its start (|phi - phi0| >= pi: onto the other side).
+"""
+
+import math
+
+import numpy as np
+import pandas as pd
+
+ENVELOPE_WIDTH = 50.0
+WARMUP = 60.0  # three classification windows of the FMU (TRIBO_MOTION_WINDOW = 20)
+TURNED_OVER = 0.5
+REPORT_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 1.0)
+MODES = ("flight", "sliding", "rolling", "tumbling", "bouncing")  # contact_mode 0..4
+
+
+def report_times(t_end: float) -> list[float]:
+    """The times at which the charges are reported: 1000, ..., 5000 for t_end = 5000."""
+    return [round(t_end * f, 9) for f in REPORT_FRACTIONS]
+
+
+def time_label(t: float) -> str:
+    return f"t{t:g}"
+
+
+def upper_envelope(y: np.ndarray, samples_per_window: int) -> np.ndarray:
+    """Maximum of y over a centred window of `samples_per_window` samples (odd: the
+    sample itself and (n-1)/2 on each side), shortened at the ends."""
+    half = max(0, samples_per_window // 2)
+    padded = np.concatenate([np.full(half, -np.inf), np.asarray(y, float), np.full(half, -np.inf)])
+    return np.lib.stride_tricks.sliding_window_view(padded, 2 * half + 1).max(axis=1)
+
+
+def bounce_envelope(series: pd.DataFrame, width: float = ENVELOPE_WIDTH) -> np.ndarray:
+    """The bounce amplitude at every recorded time (see the module's definition)."""
+    tau = series["tau"].to_numpy()
+    interval = (tau[-1] - tau[0]) / max(1, len(tau) - 1)
+    return upper_envelope(series["Y"].to_numpy(), int(round(width / interval)) | 1)
+
+
+def fractions_after(series: pd.DataFrame, t_from: float) -> dict[str, float]:
+    """Fraction of the time after t_from spent in each mode (NaN if the run is shorter)."""
+    tau = series["tau"].to_numpy()
+    i = int(np.searchsorted(tau, t_from - 1e-9))
+    if i >= len(tau) - 1:
+        return {m: math.nan for m in MODES}
+    t0, t1 = tau[i], tau[-1]
+    out = {}
+    for m in MODES:
+        f = series[f"fraction_{m}"].to_numpy()
+        # a difference of two cumulative times: clip the rounding below 0 (e.g. -1e-17 for
+        # a mode seen only during the warm-up)
+        out[m] = max(0.0, (f[-1] * t1 - f[i] * t0) / (t1 - t0))
+    return out
+
+
+def summary_columns(t_end: float) -> list[str]:
+    """The names of `summarize`'s row, in its order (a results file's header needs them
+    before the first run has finished)."""
+    charges = [f"Q_{model}_{time_label(t)}" for model in ("static", "sliding")
+               for t in report_times(t_end)]
+    return (charges + ["contact_fraction", "turns", "turns_max", "turned_over", "contact_mode_end"]
+            + [f"fraction_{m}" for m in MODES] + [f"fraction_{m}_after_warmup" for m in MODES]
+            + ["assumption_warnings", "delta_y_max", "Y_max", "bounce_amplitude_end",
+               "bounce_amplitude_mean"])
+
+
+def summarize(series: pd.DataFrame, t_end: float) -> dict:
+    """The summary row of a run (column name -> number)."""
+    tau = series["tau"].to_numpy()
+    last = series.iloc[-1]
+    row = {}
+    for model in ("static", "sliding"):
+        q = series[f"Q_{model}"].to_numpy()
+        for t in report_times(t_end):
+            row[f"Q_{model}_{time_label(t)}"] = float(np.interp(t, tau, q))
+    turns_max = float(series["turns"].max())
+    row.update(
+        contact_fraction=float(last["contact_fraction"]),
+        turns=float(last["turns"]),
+        turns_max=turns_max,
+        turned_over=int(turns_max >= TURNED_OVER),
+        contact_mode_end=int(last["contact_mode"]),
+    )
+    for m in MODES:
+        row[f"fraction_{m}"] = float(last[f"fraction_{m}"])
+    for m, f in fractions_after(series, WARMUP).items():
+        row[f"fraction_{m}_after_warmup"] = float(f)
+    envelope = bounce_envelope(series)
+    row.update(
+        assumption_warnings=int(last["assumption_warnings"]),
+        delta_y_max=float(series["delta_y"].max()),  # at the recorded times
+        Y_max=float(series["Y"].max()),
+        bounce_amplitude_end=float(envelope[-1]),
+        bounce_amplitude_mean=float(envelope[tau >= WARMUP].mean()) if tau[-1] >= WARMUP else math.nan,
+    )
+    return row

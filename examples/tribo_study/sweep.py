@@ -1,0 +1,107 @@
+"""A sweep: many runs, each recorded as it finishes, resumable.
+
+`run_sweep` keys every run (specs.run_key), skips the runs whose rows are already in the
+results file (and whose time series are on disk, if series are kept), runs the rest on
+the executor, and appends each finished run's row to the file at once. Interrupt it at
+any point and call it again with the same runs: only the unfinished ones run. When the file
+holds exactly the sweep's runs, all finished, it is put in the sweep's order (a file
+shared by several sweeps keeps the order its rows came in).
+"""
+
+import os
+from dataclasses import dataclass, field
+
+import pandas as pd
+from tqdm.auto import tqdm
+
+from .fmu_run import FmuImage, run_fmu
+from .results import KEY, ResultsFile
+from .specs import RunSpec, run_key
+from .summary import summary_columns
+
+RUN_COLUMNS = ["t_end", "record_interval", "fmu_sha256"]
+TIMING_COLUMNS = ["cpu_s", "wall_s"]  # differ from one execution of a run to the next
+
+
+@dataclass
+class SweepReport:
+    keys: list[str]  # of every run of the sweep, in its order
+    results: pd.DataFrame  # the rows of the sweep's finished runs, in the sweep's order
+    executed: int = 0  # runs executed by this call
+    skipped: int = 0  # runs found finished in the results file
+    failed: list = field(default_factory=list)  # (spec, exception) of runs that raised
+
+    @property
+    def complete(self) -> bool:
+        return len(self.results) == len(self.keys)
+
+
+def sweep_columns(specs: list[RunSpec]) -> list[str]:
+    names = list(specs[0].params)
+    t_ends = {s.t_end for s in specs}
+    if any(list(s.params) != names for s in specs) or len(t_ends) != 1:
+        raise ValueError("the runs of one sweep must set the same parameters and share t_end")
+    return [KEY] + names + RUN_COLUMNS + summary_columns(specs[0].t_end) + TIMING_COLUMNS
+
+
+def run_sweep(specs: list[RunSpec], image: FmuImage, results_path: str, executor, *,
+              resume: bool = True, series_dir: str | None = None, max_runs: int | None = None,
+              progress: bool = True, desc: str = "runs", run=run_fmu) -> SweepReport:
+    """Run `specs` (skipping finished ones if `resume`), appending a row per finished run
+    to `results_path` and, if `series_dir` is given, writing each run's time series to
+    <series_dir>/<key>.csv. `max_runs` caps the runs this call executes (the rest stay
+    to be done). `run(image, spec)` -> RunResult is the function the executor runs."""
+    keys = [run_key(s, image.sha256) for s in specs]
+    unique = list(dict.fromkeys(keys))
+    spec_of = dict(zip(keys, specs))
+    results = ResultsFile(results_path, sweep_columns(specs), fresh=not resume)
+    if series_dir:
+        os.makedirs(series_dir, exist_ok=True)
+
+    def finished(key):
+        return series_dir is None or os.path.exists(series_path(series_dir, key))
+
+    done = {k for k in results.finished_keys() if finished(k)}
+    todo = [k for k in unique if k not in done]
+    report = SweepReport(keys=unique, results=pd.DataFrame(), skipped=len(unique) - len(todo))
+    if max_runs is not None:
+        todo = todo[:max_runs]
+
+    with tqdm(total=len(todo), desc=desc, unit="run", disable=not progress or not todo,
+              dynamic_ncols=True) as bar:
+        for i, outcome in executor.run(run, image, [spec_of[k] for k in todo]):
+            key, spec = todo[i], spec_of[todo[i]]
+            bar.update()
+            if isinstance(outcome, BaseException):
+                report.failed.append((spec, outcome))
+                bar.write(f"run {key} failed: {outcome}")
+                continue
+            if series_dir:  # first the series, so that a row in the file implies its series
+                write_series(outcome.series, series_path(series_dir, key))
+            row = {KEY: key, **spec.params, "t_end": spec.t_end,
+                   "record_interval": spec.record_interval, "fmu_sha256": image.sha256,
+                   **outcome.row}
+            results.append(row)
+            report.executed += 1
+
+    table = results.read()
+    finished_keys = [k for k in unique if k in set(table[KEY]) and finished(k)]
+    if set(table[KEY]) == set(unique) and len(finished_keys) == len(unique):
+        results.rewrite_in_order(unique)  # the file is this sweep's, and it is complete
+        table = results.read()
+    report.results = table.set_index(KEY).loc[finished_keys].reset_index()
+    return report
+
+
+def series_path(series_dir: str, key: str) -> str:
+    return os.path.join(series_dir, f"{key}.csv")
+
+
+def write_series(series: pd.DataFrame, path: str) -> None:
+    tmp = path + ".tmp"
+    series.to_csv(tmp, index=False, float_format="%.10g")
+    os.replace(tmp, path)
+
+
+def read_series(series_dir: str, key: str) -> pd.DataFrame:
+    return pd.read_csv(series_path(series_dir, key))

@@ -1,0 +1,100 @@
+"""One FMU run as the study makes it (examples/tribo_study/fmu_run.py and summary.py):
+the recorded series and the summary row agree with each other and with the FMU."""
+
+import numpy as np
+import pytest
+
+from study_support import image_of, short_spec
+from tribo_study.fmu_run import RECORDED, run_fmu
+from tribo_study.summary import (MODES, WARMUP, bounce_envelope, report_times, summary_columns,
+                                 upper_envelope)
+
+
+@pytest.fixture(scope="module")
+def tumbling_run(fmu_file):
+    """The disc at low friction: tumbling and bouncing after the warm-up (a mix of modes)."""
+    return run_fmu(image_of(fmu_file), short_spec(1.0, "low", t_end=400.0))
+
+
+def test_series_is_recorded_at_every_interval(tumbling_run):
+    s = tumbling_run.series
+    assert list(s.columns) == ["tau"] + RECORDED
+    assert np.array_equal(s["tau"].to_numpy(), np.arange(401.0))
+    assert s["Q_static"].is_monotonic_increasing  # MODEL section 6: Q_static never decreases
+
+
+def test_summary_row_has_its_columns_in_order(tumbling_run):
+    assert list(tumbling_run.row) == summary_columns(400.0) + ["cpu_s", "wall_s"]
+    assert report_times(5000.0) == [1000.0, 2000.0, 3000.0, 4000.0, 5000.0]
+    s = tumbling_run.series.set_index("tau")
+    assert tumbling_run.row["Q_static_t400"] == s.loc[400.0, "Q_static"]
+    assert tumbling_run.row["Q_sliding_t160"] == s.loc[160.0, "Q_sliding"]
+    assert tumbling_run.row["cpu_s"] > 0 and tumbling_run.row["wall_s"] > 0
+
+
+def test_mode_fractions_sum_to_one(tumbling_run):
+    row = tumbling_run.row
+    assert sum(row[f"fraction_{m}"] for m in MODES) == pytest.approx(1.0, abs=1e-9)
+    assert sum(row[f"fraction_{m}_after_warmup"] for m in MODES) == pytest.approx(1.0, abs=1e-9)
+    # the case mixes modes, so the check above is not 1 = 1 + 0 + 0 ...
+    assert row["fraction_tumbling_after_warmup"] > 0.1 and row["fraction_bouncing_after_warmup"] > 0.1
+
+
+def test_mode_fractions_agree_with_the_sampled_mode(tumbling_run):
+    """The after-warm-up fractions (from the FMU's cumulative mode times) against the share
+    of recorded times in each contact_mode: equal up to the sampling (a few switches)."""
+    s = tumbling_run.series
+    after = s[s["tau"] > WARMUP]
+    for i, m in enumerate(MODES):
+        sampled = float((after["contact_mode"] == i).mean())
+        assert tumbling_run.row[f"fraction_{m}_after_warmup"] == pytest.approx(sampled, abs=0.02), m
+
+
+def test_contact_statistics_are_consistent(tumbling_run):
+    row, s = tumbling_run.row, tumbling_run.series
+    assert 0 < row["contact_fraction"] < 1
+    assert row["contact_fraction"] == pytest.approx(s["in_contact"].mean(), abs=0.02)
+    # flight (no contact within the window) is part of the time out of contact
+    assert row["fraction_flight"] <= 1 - row["contact_fraction"] + 1e-9
+    assert row["turns"] == s["turns"].iloc[-1] and row["turns_max"] >= row["turns"]
+    assert row["turned_over"] == int(row["turns_max"] >= 0.5) == 1
+
+
+def test_bounce_envelope_bounds_y(tumbling_run):
+    s = tumbling_run.series
+    y, env = s["Y"].to_numpy(), bounce_envelope(s)
+    assert np.all(env >= y)
+    # it is the maximum over the centred 51-sample window (50 time units at interval 1)
+    for i in (0, 10, 200, len(y) - 1):
+        assert env[i] == y[max(0, i - 25): i + 26].max()
+    assert tumbling_run.row["Y_max"] == env.max() == y.max()
+    assert tumbling_run.row["bounce_amplitude_end"] == env[-1]
+    assert env.max() > env.min()  # the disc bounces: the envelope is not flat
+
+
+def test_upper_envelope_on_a_known_signal():
+    y = np.array([0.0, 3.0, 1.0, 0.0, 0.0, 2.0, 0.0])
+    assert upper_envelope(y, 3).tolist() == [3.0, 3.0, 3.0, 1.0, 2.0, 2.0, 2.0]
+    assert upper_envelope(y, 1).tolist() == y.tolist()
+
+
+def test_fmi2_and_fmi3_give_the_same_run(fmu_file):
+    spec = short_spec(0.6, "high", t_end=50.0)
+    a, b = run_fmu(image_of(fmu_file, 2), spec), run_fmu(image_of(fmu_file, 3), spec)
+    assert a.series.equals(b.series)
+    assert {k: v for k, v in a.row.items() if k not in ("cpu_s", "wall_s")} == \
+           {k: v for k, v in b.row.items() if k not in ("cpu_s", "wall_s")}
+
+
+def test_a_parameter_changes_the_run(fmu_file):
+    """(So that equal results elsewhere mean something: the spec reaches the FMU.)"""
+    image = image_of(fmu_file)
+    a = run_fmu(image, short_spec(0.6, "high", t_end=20.0))
+    b = run_fmu(image, short_spec(0.6, "high", t_end=20.0, eta=0.5))
+    assert a.row["Q_static_t20"] == b.row["Q_static_t20"]  # eta acts on the sliding model only
+    assert a.row["Q_sliding_t20"] != b.row["Q_sliding_t20"]
+
+
+def test_an_unknown_parameter_is_refused(fmu_file):
+    with pytest.raises(KeyError, match="not a parameter"):
+        run_fmu(image_of(fmu_file), short_spec(0.6, "high", t_end=5.0, roundness=0.5))
