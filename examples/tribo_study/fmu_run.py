@@ -16,9 +16,14 @@ from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
-from fmpy import extract, read_model_description
-from fmpy.fmi2 import FMU2Slave
+from ctypes import byref, c_void_p
+
+from fmpy import calloc, extract, free, read_model_description
+from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
+                       fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
+from fmpy.fmi1 import FMICallException
 from fmpy.fmi3 import FMU3Slave
+from fmpy.logging import addLoggerProxy
 
 from .specs import RunSpec
 from .summary import MODES, summarize
@@ -31,6 +36,25 @@ RECORDED = ["X", "Y", "phi", "U", "V", "Omega", "delta_y", "in_contact", "Q_stat
 _REAL_TYPES = ("Real", "Float64", "Float32")
 _SETTERS = {"Real": "setReal", "Integer": "setInteger",  # FMI 2.0
             "Float64": "setFloat64", "Int32": "setInt32", "UInt64": "setUInt64"}  # FMI 3.0
+
+
+# The FMU's log messages (warnings reach the importer even without debug logging) are
+# kept per run instead of printed: the study counts the warnings (assumption_warnings) and
+# quotes the errors when a run fails. fmpy's FMI 2.0 logger proxy (which formats the
+# printf-style messages) calls one process-wide Python callback, the last one registered,
+# so there is one, alive for the process, and it finds the run's list of messages by the
+# instance's componentEnvironment. A Dask worker runs one run at a time per thread.
+_fmi2_sinks: dict[int, list] = {}
+
+
+def _fmi2_dispatch(environment, instance_name, status, category, message):
+    sink = _fmi2_sinks.get(environment)
+    if sink is not None:
+        sink.append((status, message.decode(errors="replace")))
+
+
+_FMI2_LOGGER = fmi2CallbackLoggerTYPE(_fmi2_dispatch)
+_ERROR = 3  # fmi2Error / fmi3Error; 4 is fatal
 
 
 @dataclass(frozen=True)
@@ -97,10 +121,13 @@ def _simulate(unzipdir: str, spec: RunSpec) -> pd.DataFrame:
     refs = [variables[name].valueReference for name in RECORDED]
     get = slave.getReal if fmi2 else slave.getFloat64
     data = np.empty((len(times), len(RECORDED)))
-    slave.instantiate()
+    messages = []  # (status, message) as the FMU logged them
+    callbacks = _instantiate(slave, fmi2, messages)  # noqa: F841 (alive while the instance is)
+    stage = "setting the parameters"
     try:
         for name, value in spec.params.items():
             _set_parameter(slave, variables, name, value)
+        stage = "initialization"
         if fmi2:
             slave.setupExperiment(startTime=0.0, stopTime=spec.t_end)
             slave.enterInitializationMode()
@@ -109,18 +136,38 @@ def _simulate(unzipdir: str, spec: RunSpec) -> pd.DataFrame:
         slave.exitInitializationMode()
         data[0] = get(refs)
         for k in range(1, len(times)):
-            try:
-                slave.doStep(times[k - 1], times[k] - times[k - 1])
-            except Exception as e:
-                raise RuntimeError(f"the FMU failed in the step to tau = {times[k]} "
-                                   f"with {spec.params}: {e}") from e
+            stage = f"the step to tau = {times[k]:g}"
+            slave.doStep(times[k - 1], times[k] - times[k - 1])
             data[k] = get(refs)
         slave.terminate()
+    except FMICallException as e:
+        errors = [m for status, m in messages if status >= _ERROR]
+        raise RuntimeError(f"the FMU failed in {stage} with {spec.params}: {e}; "
+                           f"it logged: {errors}") from e
     finally:
         slave.freeInstance()
+        _fmi2_sinks.pop(id(messages), None)
     series = pd.DataFrame(data, columns=RECORDED)
     series.insert(0, "tau", times)
     return series
+
+
+def _instantiate(slave, fmi2: bool, messages: list):
+    """Instantiate with a logger that appends (status, message) to `messages`; returns what
+    must stay alive as long as the instance."""
+    if not fmi2:
+        slave.instantiate(logMessage=lambda env, status, category, message:
+                          messages.append((status, message.decode(errors="replace"))))
+        return None
+    callbacks = fmi2CallbackFunctions()
+    callbacks.logger = _FMI2_LOGGER
+    callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+    callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+    callbacks.componentEnvironment = c_void_p(id(messages))
+    _fmi2_sinks[id(messages)] = messages
+    addLoggerProxy(byref(callbacks))
+    slave.instantiate(callbacks=callbacks)
+    return callbacks
 
 
 def _set_parameter(slave, variables, name, value):

@@ -98,3 +98,17 @@ def test_a_parameter_changes_the_run(fmu_file):
 def test_an_unknown_parameter_is_refused(fmu_file):
     with pytest.raises(KeyError, match="not a parameter"):
         run_fmu(image_of(fmu_file), short_spec(0.6, "high", t_end=5.0, roundness=0.5))
+
+
+def test_fmu_messages_are_kept_not_printed(fmu_file, capfd):
+    """The FMU's warnings (deep indentation at nu = 1) are counted, not printed per run."""
+    r = run_fmu(image_of(fmu_file), short_spec(0.5, "high", t_end=100.0))
+    assert r.row["assumption_warnings"] > 0
+    out, err = capfd.readouterr()
+    assert "assumption" not in out + err
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_a_refused_value_fails_with_the_fmus_reason(fmu_file, version):
+    with pytest.raises(RuntimeError, match=r"setting the parameters.*it logged: \[.*rtol"):
+        run_fmu(image_of(fmu_file, version), short_spec(0.6, "high", t_end=5.0, rtol=-1.0))
