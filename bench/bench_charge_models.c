@@ -49,6 +49,7 @@ int main(int argc, char **argv)
         for (int c = 0; c < 4; c++) {
             tribo_scene scene;
             tribo_scene_defaults(&scene); /* the paper's low-friction case at eps = 0.5 */
+            scene.integrator = TRIBO_INTEGRATOR_FIXED_STEP; /* at the paper's dt = 8e-5 */
             scene.charge_model = c;
             char err[256];
             tribo_model *m = tribo_create(&scene, err, sizeof err);

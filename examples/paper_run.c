@@ -72,9 +72,10 @@ int main(int argc, char **argv)
         return 2;
     }
     printf("# epsilon = %g, mu = %g, nu = %g, Gamma = %g, beta = %g deg, tau0 = %g, "
-           "charge_model = %d, integrator = %d, dt = %g\n",
+           "charge_model = %d, integrator = %d (%s)\n",
            scene.epsilon, scene.mu, scene.nu, scene.Gamma, scene.beta, scene.tau0,
-           scene.charge_model, scene.integrator, scene.dt);
+           scene.charge_model, scene.integrator,
+           scene.integrator == TRIBO_INTEGRATOR_FIXED_STEP ? "fixed step" : "CVODE");
     printf("%10s %12s %12s %12s %12s %10s %8s\n", "tau", "Q_static", "Q_sliding", "X", "Y",
            "contact", "turns");
     const clock_t start = clock();

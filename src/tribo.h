@@ -88,8 +88,9 @@ typedef struct tribo_scene {
     double atol;      /* CVODE absolute tolerance */
 } tribo_scene;
 
-/* Fill a scene with the paper's low-friction case (MODEL §7) at epsilon = 0.5,
-   both charge models, the fixed-step integrator at dt = 8e-5. */
+/* Fill a scene with the paper's low-friction case (MODEL §7) at epsilon = 0.5, both
+   charge models, CVODE at rtol = 1e-9, atol = 1e-11 (the fixed step's dt = 8e-5, the
+   paper's, is set for when integrator = TRIBO_INTEGRATOR_FIXED_STEP is chosen). */
 void tribo_scene_defaults(tribo_scene *scene);
 
 /* ---- parameter descriptions: names, ranges, validation ------------------------- */

@@ -126,6 +126,7 @@ Test(forces, integrator_holds_the_coulomb_limit_and_resets_the_stretch)
     s.Omega0 = 4.0;
     s.drop_speed = 0.05;
     s.charge_model = TRIBO_CHARGE_NONE;
+    s.integrator = TRIBO_INTEGRATOR_FIXED_STEP;
     s.dt = 1e-3;
     char err[256];
     tribo_model *m = tribo_create(&s, err, sizeof err);

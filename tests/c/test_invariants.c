@@ -12,6 +12,7 @@ static tribo_scene paper(double mu, double nu, double dt)
     tribo_scene_defaults(&s); /* MODEL §7 at eps = 0.5 */
     s.mu = mu;
     s.nu = nu;
+    s.integrator = TRIBO_INTEGRATOR_FIXED_STEP;
     s.dt = dt;
     s.charge_model = TRIBO_CHARGE_NONE;
     return s;

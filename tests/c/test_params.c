@@ -17,6 +17,7 @@ Test(params, defaults_are_valid_and_are_the_papers)
     cr_expect_eq(s.beta, 45.0);
     cr_expect_eq(s.n_segments, 2000);
     cr_expect_eq(s.dt, 8e-5);
+    cr_expect_eq(s.integrator, TRIBO_INTEGRATOR_CVODE);
     cr_expect_eq(s.drop_speed, 0.025);
     cr_expect_eq(s.tau_r, s.tau0);
 }

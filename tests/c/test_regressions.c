@@ -19,6 +19,7 @@ Test(regressions, fixed_step_stable_in_a_stiff_normal_lock, .timeout = 60)
     s.drop_speed = 1.0;
     s.nu = 1.0;
     s.charge_model = TRIBO_CHARGE_NONE;
+    s.integrator = TRIBO_INTEGRATOR_FIXED_STEP;
     tribo_model *fixed = make(&s);
     s.integrator = TRIBO_INTEGRATOR_CVODE;
     s.rtol = 1e-10;
@@ -45,6 +46,7 @@ Test(regressions, particle_set_down_at_rest)
     tribo_scene_defaults(&s);
     s.drop_speed = 0.0;
     s.n_segments = 400;
+    s.integrator = TRIBO_INTEGRATOR_FIXED_STEP;
     tribo_model *fixed = make(&s);
     s.integrator = TRIBO_INTEGRATOR_CVODE;
     s.rtol = 1e-10;
