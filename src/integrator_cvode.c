@@ -14,9 +14,13 @@
  * At each switch the new mode is set, the resets of MODEL §3 applied (delta_x = 0 on a new
  * contact, the stretch held within the new limit), and CVODE restarted there.
  *
+ * The modes, their switch functions and what happens at a switch are force_modes.c's;
+ * this file drives CVODE through them. A switch function that dips past zero and back
+ * within one step is caught on the dense output too (find_grazing_switch).
+ *
  * Charging does not limit the step: both charge models are swept along each step from
- * CVODE's dense output, in sub-intervals short enough that the contact centre and edges
- * move by a fraction of a segment (MODEL §5).
+ * CVODE's dense output, cut where the contact's edges cross segment boundaries, so that
+ * each segment's contact time is exact to the tolerances (charging.c, MODEL §5).
  *
  * Like the fixed step, the committed integration does not depend on the times asked
  * for: steps are taken in CV_ONE_STEP mode, charges are committed one whole step at a
@@ -27,6 +31,7 @@
 #include "model.h"
 
 #include "contact.h"
+#include "force_modes.h"
 
 #include <cvode/cvode.h>
 #include <math.h>
@@ -38,7 +43,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
-enum { ROOT_CONTACT, ROOT_NORMAL_A, ROOT_NORMAL_B, ROOT_TANGENT_A, ROOT_TANGENT_B, N_ROOTS };
+#define N_ROOTS TRIBO_N_SWITCHES
 
 /* A restart every so many steps bounds the replay a state load costs. */
 #define STEPS_PER_RESTART 2000
@@ -47,11 +52,7 @@ enum { ROOT_CONTACT, ROOT_NORMAL_A, ROOT_NORMAL_B, ROOT_TANGENT_A, ROOT_TANGENT_
 #define MAX_EVENTS_IN_A_ROW 100000
 #define MAX_STEPS_PER_TIME_UNIT 1e6
 
-/* A mode is a force law: flight (contact OFF), or contact (ON) with the normal SIGN or
-   LOCK and the tangent STICK or SLIP. */
-typedef tribo_force_law mode;
-
-static int touching(const mode *md) { return md->contact == TRIBO_CONTACT_ON; }
+typedef tribo_force_law mode; /* see force_modes.h */
 
 typedef struct cvode_integrator {
     tribo_model *m;
@@ -93,7 +94,13 @@ typedef struct cvode_integrator {
 
 /* ---- the mode's right-hand side and root functions ---------------------------------- */
 
-static const mode FLIGHT = {TRIBO_CONTACT_OFF, TRIBO_NORMAL_SIGN, -1.0, TRIBO_TANGENT_STICK, 0.0};
+static int roots(sunrealtype t, N_Vector y, sunrealtype *g, void *user)
+{
+    (void)t;
+    cvode_integrator *c = user;
+    tribo_switch_functions(&c->m->dyn, &c->mode, N_VGetArrayPointer(y), g);
+    return 0;
+}
 
 static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *user)
 {
@@ -104,241 +111,6 @@ static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *user)
     if (!c->replaying)
         c->m->stats.rhs_evals++;
     return 0;
-}
-
-/* The normal lock holds while Psi_N* = Gamma cos(beta) - F_N lies in the band of normal
-   forces the set-valued sign allows (MODEL §3), max(0, dy(1 - nu)) <= Psi_N* <= dy(1 + nu). */
-static double lock_lower(const tribo_dyn_params *p, double dy)
-{
-    return fmax(0.0, dy * (1.0 - p->nu));
-}
-
-static int roots(sunrealtype t, N_Vector yv, sunrealtype *g, void *user)
-{
-    (void)t;
-    cvode_integrator *c = user;
-    const tribo_dyn_params *p = &c->m->dyn;
-    const double *y = N_VGetArrayPointer(yv);
-    tribo_contact_eval ev;
-    for (int i = 0; i < N_ROOTS; i++)
-        g[i] = 1.0;
-    tribo_pose_at(p->eps2, y[TRIBO_IPHI], &ev.pose);
-    g[ROOT_CONTACT] = ev.pose.h - y[TRIBO_IY];
-    if (!touching(&c->mode))
-        return 0;
-    const tribo_force_law *law = &c->mode;
-    /* the contact as the mode sees it, even where delta_y has just gone negative */
-    tribo_contact_at(p, law, y, &ev);
-    const double dy = ev.pose.h - y[TRIBO_IY];
-    if (law->normal == TRIBO_NORMAL_LOCK) {
-        const double psi_star = p->g_n - p->F_N;
-        g[ROOT_NORMAL_A] = psi_star - lock_lower(p, dy);
-        g[ROOT_NORMAL_B] = dy * (1.0 + p->nu) - psi_star;
-    } else if (p->nu > 0.0) {
-        g[ROOT_NORMAL_A] = y[TRIBO_IV];
-    }
-    if (law->tangent == TRIBO_TANGENT_STICK) {
-        g[ROOT_TANGENT_A] = ev.limit - y[TRIBO_IDX];
-        g[ROOT_TANGENT_B] = ev.limit + y[TRIBO_IDX];
-    } else {
-        g[ROOT_TANGENT_A] = law->slip_sign * ev.vs - ev.limit_rate;
-    }
-    return 0;
-}
-
-/* Crossing directions that mean a switch in each mode (others are not switches). */
-static void root_directions(const mode *md, const tribo_dyn_params *p, int *dir)
-{
-    for (int i = 0; i < N_ROOTS; i++)
-        dir[i] = 0;
-    if (!touching(md)) {
-        dir[ROOT_CONTACT] = +1;
-        return;
-    }
-    dir[ROOT_CONTACT] = -1;
-    if (md->normal == TRIBO_NORMAL_LOCK) {
-        dir[ROOT_NORMAL_A] = dir[ROOT_NORMAL_B] = -1;
-    } else if (p->nu > 0.0) {
-        dir[ROOT_NORMAL_A] = md->normal_sign < 0 ? +1 : -1; /* V reaches 0 */
-    }
-    dir[ROOT_TANGENT_A] = -1;
-    if (md->tangent == TRIBO_TANGENT_STICK)
-        dir[ROOT_TANGENT_B] = -1;
-}
-
-/* ---- switching modes (MODEL §3) -------------------------------------------------------- */
-
-/* The normal mode of a contact whose V is exactly 0: normal lock if the needed force is
-   within the band, otherwise the sign the net normal force gives V. */
-static void normal_at_rest(const tribo_dyn_params *p, double dy, tribo_force_law *law)
-{
-    const double psi_star = p->g_n - p->F_N;
-    if (p->nu > 0.0 && psi_star >= lock_lower(p, dy) && psi_star <= dy * (1.0 + p->nu)) {
-        law->normal = TRIBO_NORMAL_LOCK;
-        law->normal_sign = 0.0;
-    } else {
-        law->normal = TRIBO_NORMAL_SIGN;
-        law->normal_sign = psi_star < lock_lower(p, dy) ? +1.0 : -1.0;
-    }
-}
-
-/* d2h/dphi2 at the pose of y, by central difference (h'' = -dcx/dphi). */
-static double h_curvature(const tribo_dyn_params *p, double phi)
-{
-    const double d = 1e-4;
-    tribo_pose a, b, g;
-    tribo_pose_at(p->eps2, phi + d, &a);
-    tribo_pose_at(p->eps2, phi - d, &b);
-    tribo_pose_at(p->eps2, phi, &g);
-    return (a.h - 2.0 * g.h + b.h) / (d * d);
-}
-
-/* When the stretch sits on the limit and the first derivatives tie (sigma vs =
-   d(limit)/dtau, as for a particle set down at rest: everything 0), whether sticking
-   would still leave the limit: second derivatives under the stick law,
-   sigma dvs/dtau against d2(limit)/dtau2. Returns the slip direction, or 0 to stick. */
-static double slip_at_second_order(tribo_model *m, const double *y, const tribo_force_law *law)
-{
-    const tribo_dyn_params *p = &m->dyn;
-    tribo_force_law stick = *law;
-    stick.tangent = TRIBO_TANGENT_STICK;
-    double f[TRIBO_NSTATE];
-    tribo_contact_eval ev;
-    tribo_dynamics_rhs(p, &stick, y, f, &ev);
-    const double Om = y[TRIBO_IOMEGA], h2 = h_curvature(p, y[TRIBO_IPHI]);
-    /* vs = U + h Omega; dh/dphi = -cx */
-    const double dvs = f[TRIBO_IU] + ev.pose.h * f[TRIBO_IOMEGA] - ev.pose.cx * Om * Om;
-    /* limit = mu (1 - nu s) delta_y in a sign mode (0 rate in lock); delta_y' = -cx Om - V */
-    const double ddy2 = h2 * Om * Om - ev.pose.cx * f[TRIBO_IOMEGA] - f[TRIBO_IV];
-    const double factor = law->normal == TRIBO_NORMAL_LOCK ? 0.0 : 1.0 - p->nu * law->normal_sign;
-    const double dlimit2 = factor > 0.0 ? p->mu * factor * ddy2 : 0.0;
-    const double sigma = dvs > 0.0 ? 1.0 : -1.0;
-    return sigma * dvs > dlimit2 ? sigma : 0.0;
-}
-
-/* Stick or slip for a stretch checked against the limit of the (new) normal mode:
-   a stretch beyond the limit is clamped to it (the spring energy released is dissipated);
-   at the limit the contact slips if the stretch would leave it, sigma vs > d(limit)/dtau,
-   to second order where the first ties. */
-static void tangent_from_state(tribo_model *m, double *y, tribo_force_law *law)
-{
-    tribo_contact_eval ev;
-    law->tangent = TRIBO_TANGENT_STICK;
-    law->slip_sign = 0.0;
-    tribo_contact_at(&m->dyn, law, y, &ev);
-    const double dx = y[TRIBO_IDX], L = ev.limit;
-    if (fabs(dx) < L * (1.0 - 1e-12))
-        return;
-    double sigma = dx > 0.0 ? 1.0 : dx < 0.0 ? -1.0 : (ev.vs >= 0.0 ? 1.0 : -1.0);
-    y[TRIBO_IDX] = sigma * L;
-    if (sigma * ev.vs == ev.limit_rate && dx == 0.0 && L == 0.0) {
-        sigma = slip_at_second_order(m, y, law);
-        if (sigma == 0.0)
-            return;
-    } else if (!(sigma * ev.vs > ev.limit_rate)) {
-        return;
-    }
-    law->tangent = TRIBO_TANGENT_SLIP;
-    law->slip_sign = sigma;
-}
-
-/* Whether a particle touching the plate at rest (delta_y = 0 and d(delta_y)/dtau = 0) is
-   pressed into it: d2(delta_y)/dtau2 > 0 in flight, i.e. the net normal force pulls it
-   down against the rate at which rotation lifts the lowest point, h''(phi) Omega^2.
-   Without this, a particle set down on the plate would start in flight, and the contact
-   root, zero at the start and a small step later, would never see it sink in. */
-static int pressed_in(const tribo_dyn_params *p, const double *y)
-{
-    const double Om = y[TRIBO_IOMEGA];
-    return h_curvature(p, y[TRIBO_IPHI]) * Om * Om + (p->g_n - p->F_N) > 0.0;
-}
-
-/* The mode after an event (fired: the roots found) or, with fired = NULL, the mode a
-   state is in when the integration (re)starts there. Adjusts y to put the switched
-   boundary exactly on it (Y = h, V = 0, delta_x = +-limit), so that CVODE's root
-   functions start at 0 and look at the direction the motion takes. */
-static mode next_mode(tribo_model *m, const mode *old, double *y, const int *fired)
-{
-    const tribo_dyn_params *p = &m->dyn;
-    mode md = *old;
-    tribo_pose g;
-    tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
-    const double dy = g.h - y[TRIBO_IY];
-    const double ddy = -g.cx * y[TRIBO_IOMEGA] - y[TRIBO_IV];
-
-    if (fired && fired[ROOT_CONTACT])
-        md.contact = touching(old) ? TRIBO_CONTACT_OFF : TRIBO_CONTACT_ON;
-    else if (!fired)
-        md.contact = dy > 0.0 || (dy == 0.0 && (ddy > 0.0 || (ddy == 0.0 && pressed_in(p, y))))
-                         ? TRIBO_CONTACT_ON
-                         : TRIBO_CONTACT_OFF;
-    const int onset = touching(&md) && (!touching(old) || !fired);
-    if (fired && fired[ROOT_CONTACT])
-        y[TRIBO_IY] = g.h;
-
-    if (!touching(&md)) {
-        md = FLIGHT;
-        /* MODEL §3: the stretch is 0 when contact is regained; at lift-off it is already
-           within a vanishing limit */
-        y[TRIBO_IDX] = 0.0;
-        return md;
-    }
-    if (onset && fired)
-        y[TRIBO_IDX] = 0.0;
-
-    /* normal */
-    const double dy_now = g.h - y[TRIBO_IY];
-    if (p->nu == 0.0) {
-        md.normal = TRIBO_NORMAL_SIGN; /* the sign does not matter */
-        md.normal_sign = -1.0;
-    } else if (onset) {
-        const double V = y[TRIBO_IV];
-        if (V != 0.0) {
-            md.normal = TRIBO_NORMAL_SIGN;
-            md.normal_sign = V < 0.0 ? -1.0 : 1.0;
-        } else {
-            normal_at_rest(p, dy_now, &md);
-        }
-    } else if (fired && (fired[ROOT_NORMAL_A] || fired[ROOT_NORMAL_B])) {
-        if (old->normal == TRIBO_NORMAL_LOCK) {
-            md.normal = TRIBO_NORMAL_SIGN;
-            md.normal_sign = fired[ROOT_NORMAL_A] ? +1.0 : -1.0;
-        } else {
-            y[TRIBO_IV] = 0.0;
-            normal_at_rest(p, dy_now, &md);
-        }
-    }
-
-    /* tangential */
-    const int tangent_event = fired && !onset && (fired[ROOT_TANGENT_A] || fired[ROOT_TANGENT_B]) &&
-                              !fired[ROOT_NORMAL_A] && !fired[ROOT_NORMAL_B];
-    if (tangent_event && old->tangent == TRIBO_TANGENT_STICK) {
-        tribo_contact_eval ev;
-        md.tangent = TRIBO_TANGENT_SLIP;
-        md.slip_sign = fired[ROOT_TANGENT_A] ? +1.0 : -1.0;
-        tribo_contact_at(p, &md, y, &ev);
-        y[TRIBO_IDX] = md.slip_sign * ev.limit;
-    } else if (tangent_event) {
-        tribo_contact_eval ev;
-        tribo_contact_at(p, &md, y, &ev);
-        y[TRIBO_IDX] = md.slip_sign * ev.limit;
-        md.tangent = TRIBO_TANGENT_STICK;
-        md.slip_sign = 0.0;
-    } else {
-        tangent_from_state(m, y, &md);
-    }
-    return md;
-}
-
-/* next_mode, with the energy its adjustments of the state take out (a stretch clamped
-   or reset, V set to 0 at a normal lock, Y put on the plate) booked as dissipated work,
-   so that the energy balance of MODEL §6 holds across events. */
-static mode switch_mode(tribo_model *m, const mode *old, double *y, const int *fired)
-{
-    const double before = tribo_energy(&m->dyn, y);
-    const mode md = next_mode(m, old, y, fired);
-    y[TRIBO_IWDISS] += before - tribo_energy(&m->dyn, y);
-    return md;
 }
 
 /* ---- CVODE set-up -------------------------------------------------------------------------- */
@@ -362,7 +134,7 @@ static tribo_status restart_at(cvode_integrator *c, double t, const double *y, c
     c->open = 0;
     memcpy(N_VGetArrayPointer(c->y), y, TRIBO_NSTATE * sizeof(double));
     int dir[N_ROOTS];
-    root_directions(md, &m->dyn, dir);
+    tribo_switch_directions(&m->dyn, md, dir);
     /* a rotating particle in flight must not swing its lowest point through the plate and
        back within one step unseen: 0.2 rad per step at most */
     const double spin = fabs(y[TRIBO_IOMEGA]);
@@ -462,12 +234,12 @@ static void describe_state(const cvode_integrator *c, const double *y, char *buf
              "X = %.9g, Y = %.9g, phi = %.9g, U = %.9g, V = %.9g, Omega = %.9g, delta_x = %.9g; "
              "mode: %s%s%s",
              y[TRIBO_IX], y[TRIBO_IY], y[TRIBO_IPHI], y[TRIBO_IU], y[TRIBO_IV], y[TRIBO_IOMEGA],
-             y[TRIBO_IDX], touching(md) ? "contact, " : "flight",
-             !touching(md) ? ""
+             y[TRIBO_IDX], tribo_touching(md) ? "contact, " : "flight",
+             !tribo_touching(md) ? ""
              : md->normal == TRIBO_NORMAL_LOCK ? "normal lock, "
              : md->normal_sign > 0 ? "moving out, "
                                        : "moving in, ",
-             !touching(md) ? "" : md->tangent == TRIBO_TANGENT_STICK ? "stick" : "slip");
+             !tribo_touching(md) ? "" : md->tangent == TRIBO_TANGENT_STICK ? "stick" : "slip");
 }
 
 static tribo_status fail_at(cvode_integrator *c, double t, const double *y, const char *why)
@@ -533,15 +305,13 @@ static void switch_functions(cvode_integrator *c, double t, double *g)
 {
     double y[TRIBO_NSTATE];
     dense(c, t, y);
-    N_Vector v = c->dky;
-    memcpy(N_VGetArrayPointer(v), y, sizeof y);
-    roots(t, v, g, c);
+    tribo_switch_functions(&c->m->dyn, &c->mode, y, g);
 }
 
 static void find_grazing_switch(cvode_integrator *c, double t_start)
 {
     int dir[N_ROOTS];
-    root_directions(&c->mode, &c->m->dyn, dir);
+    tribo_switch_directions(&c->m->dyn, &c->mode, dir);
     double g[GRAZING_SAMPLES + 1][N_ROOTS], scale[N_ROOTS] = {0};
     const double h = c->t_end - t_start;
     if (!(h > 0.0))
@@ -642,7 +412,7 @@ static tribo_status sweep_charges(cvode_integrator *c, double a, double b, int c
                                   double *work, double *Sigma_s)
 {
     tribo_model *m = c->m;
-    if (!m->has_charging || !touching(&c->mode) || !(b > a))
+    if (!m->has_charging || !tribo_touching(&c->mode) || !(b > a))
         return TRIBO_OK;
     const tribo_contact_probe pr = {probe, c};
     sink_target target = {m, commit};
@@ -659,7 +429,7 @@ static void fill_point(cvode_integrator *c, tribo_point *p, double t, const doub
     p->t = t;
     memcpy(p->y, y, sizeof p->y);
     tribo_contact_at(&c->m->dyn, &c->mode, y, &p->contact);
-    if (touching(&c->mode)) {
+    if (tribo_touching(&c->mode)) {
         /* the mode decides contact, also where rounding makes delta_y = -1e-17 */
         p->contact.in_contact = 1;
         /* in slip the stretch is held at the limit (MODEL §3); CVODE's integrated stretch
@@ -669,7 +439,7 @@ static void fill_point(cvode_integrator *c, tribo_point *p, double t, const doub
     } else {
         p->contact.in_contact = 0;
     }
-    p->slipping = touching(&c->mode) && c->mode.tangent == TRIBO_TANGENT_SLIP;
+    p->slipping = tribo_touching(&c->mode) && c->mode.tangent == TRIBO_TANGENT_SLIP;
     tribo_account_interval(c->m, from, p, commit);
 }
 
@@ -709,7 +479,7 @@ static tribo_status close_step(cvode_integrator *c)
         return fail_at(c, t, c->y_end, "too many events in a row without a regular step");
     double y[TRIBO_NSTATE];
     memcpy(y, c->y_end, sizeof y);
-    const mode md = switch_mode(m, &c->mode, y, c->roots);
+    const mode md = tribo_mode_after(&m->dyn, &c->mode, y, c->roots);
     m->stats.events++;
     st = restart_at(c, t, y, &md);
     if (st != TRIBO_OK)
@@ -724,7 +494,7 @@ static void restart(tribo_model *m)
     double y[TRIBO_NSTATE];
     memcpy(y, m->committed.y, sizeof y);
     /* the mode follows from the state alone */
-    mode md = switch_mode(m, &FLIGHT, y, NULL);
+    mode md = tribo_mode_after(&m->dyn, &TRIBO_FLIGHT, y, NULL);
     c->events_at_instant = 0;
     c->events_in_a_row = 0;
     c->last_event_t = -INFINITY;
@@ -796,7 +566,7 @@ static void state_save(const tribo_model *m, unsigned char *b)
     memcpy(s.y_restart, c->y_restart, sizeof s.y_restart);
     s.steps_since_restart = c->steps_since_restart;
     s.open = c->open;
-    s.contact = touching(&c->mode);
+    s.contact = tribo_touching(&c->mode);
     s.normal = c->mode.normal;
     s.tangent = c->mode.tangent;
     s.normal_sign = c->mode.normal_sign;

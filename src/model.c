@@ -82,7 +82,7 @@ void tribo_account_interval(tribo_model *m, const tribo_point *from, tribo_point
         m->motion_decay = exp(-h / TRIBO_MOTION_WINDOW);
     }
     tribo_motion_update(&to->motion, h, m->motion_decay, in_contact,
-                        to->y[TRIBO_IPHI] - from->y[TRIBO_IPHI], to->y[TRIBO_IX] - from->y[TRIBO_IX]);
+                        to->y[TRIBO_IPHI] - from->y[TRIBO_IPHI]);
 
     const double rho_c = tribo_contact_curvature_radius(m->dyn.eps2, to->contact.pose.h);
     const int deep = in_contact && tribo_indentation_too_deep(to->contact.delta_y, m->dyn.eps, rho_c);

@@ -12,15 +12,13 @@
    what matters for charging is that new surface comes round to the plate. */
 #define TURNING_ANGLE (M_PI / 4.0)
 
-void tribo_motion_update(tribo_motion *m, double h, double decay, int in_contact, double dphi,
-                         double dX)
+void tribo_motion_update(tribo_motion *m, double h, double decay, int in_contact, double dphi)
 {
     if (!(h > 0.0))
         return;
     const double w = 1.0 - decay;
     m->contact = decay * m->contact + w * (in_contact ? 1.0 : 0.0);
     m->spin = decay * m->spin + w * dphi / h;
-    m->speed = decay * m->speed + w * dX / h;
 
     const int turning = fabs(m->spin) * TRIBO_MOTION_WINDOW > TURNING_ANGLE;
     if (!in_contact && m->contact < NO_CONTACT)

@@ -21,7 +21,6 @@ typedef enum tribo_contact_mode {
 typedef struct tribo_motion {
     double contact;   /* average of the contact indicator           */
     double spin;      /* average dphi/dtau                          */
-    double speed;     /* average dX/dtau (for users of the history)  */
     int mode;         /* tribo_contact_mode at the end of the last update */
     double mode_time[TRIBO_MODE_COUNT];
     int outside_assumptions; /* the contact was outside them at the last update */
@@ -38,9 +37,8 @@ typedef struct tribo_motion {
 #define TRIBO_INDENTATION_LIMIT 0.1
 
 /* Update the history over an interval of length h ending at a state with the given
-   contact, over which phi and X moved by dphi and dX. decay = exp(-h / window). */
-void tribo_motion_update(tribo_motion *m, double h, double decay, int in_contact, double dphi,
-                         double dX);
+   contact, over which phi moved by dphi. decay = exp(-h / window). */
+void tribo_motion_update(tribo_motion *m, double h, double decay, int in_contact, double dphi);
 
 /* Whether a contact is outside the model's assumptions (TRIBO_INDENTATION_LIMIT). */
 int tribo_indentation_too_deep(double delta_y, double epsilon, double rho_c);

@@ -54,7 +54,7 @@ static int64_t get_i(reader *r)
 
 /* Fields of a point, in order; the contact evaluation is stored with it because some
    integrators (modes of the force law) cannot recompute it from y alone. */
-#define POINT_DOUBLES (1 + TRIBO_NSTATE + 2 + 10 + 3 + TRIBO_MODE_COUNT)
+#define POINT_DOUBLES (1 + TRIBO_NSTATE + 2 + 10 + 2 + TRIBO_MODE_COUNT)
 #define POINT_INTS 4
 
 static void put_point(writer *w, const tribo_point *p)
@@ -74,7 +74,6 @@ static void put_point(writer *w, const tribo_point *p)
     const tribo_motion *mo = &p->motion;
     put_d(w, mo->contact);
     put_d(w, mo->spin);
-    put_d(w, mo->speed);
     for (int i = 0; i < TRIBO_MODE_COUNT; i++)
         put_d(w, mo->mode_time[i]);
     put_i(w, mo->mode);
@@ -99,7 +98,6 @@ static void get_point(reader *r, tribo_point *p)
     tribo_motion *mo = &p->motion;
     mo->contact = get_d(r);
     mo->spin = get_d(r);
-    mo->speed = get_d(r);
     for (int i = 0; i < TRIBO_MODE_COUNT; i++)
         mo->mode_time[i] = get_d(r);
     mo->mode = (int)get_i(r);

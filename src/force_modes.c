@@ -1,0 +1,236 @@
+/* force_modes.c: the modes of the force law and the switches between them (MODEL §3). */
+#include "force_modes.h"
+
+#include <math.h>
+
+const tribo_force_law TRIBO_FLIGHT = {TRIBO_CONTACT_OFF, TRIBO_NORMAL_SIGN, -1.0, TRIBO_TANGENT_STICK,
+                                     0.0};
+
+/* The normal lock holds while Psi_N* = Gamma cos(beta) - F_N lies in the band of normal
+   forces the set-valued sign allows (MODEL §3), max(0, dy(1 - nu)) <= Psi_N* <= dy(1 + nu). */
+static double lock_lower(const tribo_dyn_params *p, double dy)
+{
+    return fmax(0.0, dy * (1.0 - p->nu));
+}
+
+void tribo_switch_functions(const tribo_dyn_params *p, const tribo_force_law *law, const double *y,
+                            double *g)
+{
+    tribo_contact_eval ev;
+    for (int i = 0; i < TRIBO_N_SWITCHES; i++)
+        g[i] = 1.0;
+    tribo_pose_at(p->eps2, y[TRIBO_IPHI], &ev.pose);
+    g[TRIBO_SWITCH_CONTACT] = ev.pose.h - y[TRIBO_IY];
+    if (!tribo_touching(law))
+        return;
+    /* the contact as the mode sees it, even where delta_y has just gone negative */
+    tribo_contact_at(p, law, y, &ev);
+    const double dy = ev.pose.h - y[TRIBO_IY];
+    if (law->normal == TRIBO_NORMAL_LOCK) {
+        const double psi_star = p->g_n - p->F_N;
+        g[TRIBO_SWITCH_NORMAL_A] = psi_star - lock_lower(p, dy);
+        g[TRIBO_SWITCH_NORMAL_B] = dy * (1.0 + p->nu) - psi_star;
+    } else if (p->nu > 0.0) {
+        g[TRIBO_SWITCH_NORMAL_A] = y[TRIBO_IV];
+    }
+    if (law->tangent == TRIBO_TANGENT_STICK) {
+        g[TRIBO_SWITCH_TANGENT_A] = ev.limit - y[TRIBO_IDX];
+        g[TRIBO_SWITCH_TANGENT_B] = ev.limit + y[TRIBO_IDX];
+    } else {
+        g[TRIBO_SWITCH_TANGENT_A] = law->slip_sign * ev.vs - ev.limit_rate;
+    }
+}
+
+/* Crossing directions that mean a switch in each mode (others are not switches). */
+void tribo_switch_directions(const tribo_dyn_params *p, const tribo_force_law *md, int *dir)
+{
+    for (int i = 0; i < TRIBO_N_SWITCHES; i++)
+        dir[i] = 0;
+    if (!tribo_touching(md)) {
+        dir[TRIBO_SWITCH_CONTACT] = +1;
+        return;
+    }
+    dir[TRIBO_SWITCH_CONTACT] = -1;
+    if (md->normal == TRIBO_NORMAL_LOCK) {
+        dir[TRIBO_SWITCH_NORMAL_A] = dir[TRIBO_SWITCH_NORMAL_B] = -1;
+    } else if (p->nu > 0.0) {
+        dir[TRIBO_SWITCH_NORMAL_A] = md->normal_sign < 0 ? +1 : -1; /* V reaches 0 */
+    }
+    dir[TRIBO_SWITCH_TANGENT_A] = -1;
+    if (md->tangent == TRIBO_TANGENT_STICK)
+        dir[TRIBO_SWITCH_TANGENT_B] = -1;
+}
+
+/* The normal mode of a contact whose V is exactly 0: normal lock if the needed force is
+   within the band, otherwise the sign the net normal force gives V. */
+static void normal_at_rest(const tribo_dyn_params *p, double dy, tribo_force_law *law)
+{
+    const double psi_star = p->g_n - p->F_N;
+    if (p->nu > 0.0 && psi_star >= lock_lower(p, dy) && psi_star <= dy * (1.0 + p->nu)) {
+        law->normal = TRIBO_NORMAL_LOCK;
+        law->normal_sign = 0.0;
+    } else {
+        law->normal = TRIBO_NORMAL_SIGN;
+        law->normal_sign = psi_star < lock_lower(p, dy) ? +1.0 : -1.0;
+    }
+}
+
+/* d2h/dphi2 at the pose of y, by central difference (h'' = -dcx/dphi). */
+static double h_curvature(const tribo_dyn_params *p, double phi)
+{
+    const double d = 1e-4;
+    tribo_pose a, b, g;
+    tribo_pose_at(p->eps2, phi + d, &a);
+    tribo_pose_at(p->eps2, phi - d, &b);
+    tribo_pose_at(p->eps2, phi, &g);
+    return (a.h - 2.0 * g.h + b.h) / (d * d);
+}
+
+/* When the stretch sits on the limit and the first derivatives tie (sigma vs =
+   d(limit)/dtau, as for a particle set down at rest: everything 0), whether sticking
+   would still leave the limit: second derivatives under the stick law,
+   sigma dvs/dtau against d2(limit)/dtau2. Returns the slip direction, or 0 to stick. */
+static double slip_at_second_order(const tribo_dyn_params *p, const double *y,
+                                   const tribo_force_law *law)
+{
+    tribo_force_law stick = *law;
+    stick.tangent = TRIBO_TANGENT_STICK;
+    double f[TRIBO_NSTATE];
+    tribo_contact_eval ev;
+    tribo_dynamics_rhs(p, &stick, y, f, &ev);
+    const double Om = y[TRIBO_IOMEGA], h2 = h_curvature(p, y[TRIBO_IPHI]);
+    /* vs = U + h Omega; dh/dphi = -cx */
+    const double dvs = f[TRIBO_IU] + ev.pose.h * f[TRIBO_IOMEGA] - ev.pose.cx * Om * Om;
+    /* limit = mu (1 - nu s) delta_y in a sign mode (0 rate in lock); delta_y' = -cx Om - V */
+    const double ddy2 = h2 * Om * Om - ev.pose.cx * f[TRIBO_IOMEGA] - f[TRIBO_IV];
+    const double factor = law->normal == TRIBO_NORMAL_LOCK ? 0.0 : 1.0 - p->nu * law->normal_sign;
+    const double dlimit2 = factor > 0.0 ? p->mu * factor * ddy2 : 0.0;
+    const double sigma = dvs > 0.0 ? 1.0 : -1.0;
+    return sigma * dvs > dlimit2 ? sigma : 0.0;
+}
+
+/* Stick or slip for a stretch checked against the limit of the (new) normal mode:
+   a stretch beyond the limit is clamped to it (the spring energy released is dissipated);
+   at the limit the contact slips if the stretch would leave it, sigma vs > d(limit)/dtau,
+   to second order where the first ties. */
+static void tangent_from_state(const tribo_dyn_params *p, double *y, tribo_force_law *law)
+{
+    tribo_contact_eval ev;
+    law->tangent = TRIBO_TANGENT_STICK;
+    law->slip_sign = 0.0;
+    tribo_contact_at(p, law, y, &ev);
+    const double dx = y[TRIBO_IDX], L = ev.limit;
+    if (fabs(dx) < L * (1.0 - 1e-12))
+        return;
+    double sigma = dx > 0.0 ? 1.0 : dx < 0.0 ? -1.0 : (ev.vs >= 0.0 ? 1.0 : -1.0);
+    y[TRIBO_IDX] = sigma * L;
+    if (sigma * ev.vs == ev.limit_rate && dx == 0.0 && L == 0.0) {
+        sigma = slip_at_second_order(p, y, law);
+        if (sigma == 0.0)
+            return;
+    } else if (!(sigma * ev.vs > ev.limit_rate)) {
+        return;
+    }
+    law->tangent = TRIBO_TANGENT_SLIP;
+    law->slip_sign = sigma;
+}
+
+/* Whether a particle touching the plate at rest (delta_y = 0 and d(delta_y)/dtau = 0) is
+   pressed into it: d2(delta_y)/dtau2 > 0 in flight, i.e. the net normal force pulls it
+   down against the rate at which rotation lifts the lowest point, h''(phi) Omega^2.
+   Without this, a particle set down on the plate would start in flight, and the contact
+   root, zero at the start and a small step later, would never see it sink in. */
+static int pressed_in(const tribo_dyn_params *p, const double *y)
+{
+    const double Om = y[TRIBO_IOMEGA];
+    return h_curvature(p, y[TRIBO_IPHI]) * Om * Om + (p->g_n - p->F_N) > 0.0;
+}
+
+/* The mode after an event (fired: the roots found) or, with fired = NULL, the mode a
+   state is in when the integration (re)starts there. Adjusts y to put the switched
+   boundary exactly on it (Y = h, V = 0, delta_x = +-limit), so that CVODE's root
+   functions start at 0 and look at the direction the motion takes. */
+static tribo_force_law next_mode(const tribo_dyn_params *p, const tribo_force_law *old, double *y,
+                                 const int *fired)
+{
+    tribo_force_law md = *old;
+    tribo_pose g;
+    tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
+    const double dy = g.h - y[TRIBO_IY];
+    const double ddy = -g.cx * y[TRIBO_IOMEGA] - y[TRIBO_IV];
+
+    if (fired && fired[TRIBO_SWITCH_CONTACT])
+        md.contact = tribo_touching(old) ? TRIBO_CONTACT_OFF : TRIBO_CONTACT_ON;
+    else if (!fired)
+        md.contact = dy > 0.0 || (dy == 0.0 && (ddy > 0.0 || (ddy == 0.0 && pressed_in(p, y))))
+                         ? TRIBO_CONTACT_ON
+                         : TRIBO_CONTACT_OFF;
+    const int onset = tribo_touching(&md) && (!tribo_touching(old) || !fired);
+    if (fired && fired[TRIBO_SWITCH_CONTACT])
+        y[TRIBO_IY] = g.h;
+
+    if (!tribo_touching(&md)) {
+        md = TRIBO_FLIGHT;
+        /* MODEL §3: the stretch is 0 when contact is regained; at lift-off it is already
+           within a vanishing limit */
+        y[TRIBO_IDX] = 0.0;
+        return md;
+    }
+    if (onset && fired)
+        y[TRIBO_IDX] = 0.0;
+
+    /* normal */
+    const double dy_now = g.h - y[TRIBO_IY];
+    if (p->nu == 0.0) {
+        md.normal = TRIBO_NORMAL_SIGN; /* the sign does not matter */
+        md.normal_sign = -1.0;
+    } else if (onset) {
+        const double V = y[TRIBO_IV];
+        if (V != 0.0) {
+            md.normal = TRIBO_NORMAL_SIGN;
+            md.normal_sign = V < 0.0 ? -1.0 : 1.0;
+        } else {
+            normal_at_rest(p, dy_now, &md);
+        }
+    } else if (fired && (fired[TRIBO_SWITCH_NORMAL_A] || fired[TRIBO_SWITCH_NORMAL_B])) {
+        if (old->normal == TRIBO_NORMAL_LOCK) {
+            md.normal = TRIBO_NORMAL_SIGN;
+            md.normal_sign = fired[TRIBO_SWITCH_NORMAL_A] ? +1.0 : -1.0;
+        } else {
+            y[TRIBO_IV] = 0.0;
+            normal_at_rest(p, dy_now, &md);
+        }
+    }
+
+    /* tangential */
+    const int tangent_event = fired && !onset && (fired[TRIBO_SWITCH_TANGENT_A] || fired[TRIBO_SWITCH_TANGENT_B]) &&
+                              !fired[TRIBO_SWITCH_NORMAL_A] && !fired[TRIBO_SWITCH_NORMAL_B];
+    if (tangent_event && old->tangent == TRIBO_TANGENT_STICK) {
+        tribo_contact_eval ev;
+        md.tangent = TRIBO_TANGENT_SLIP;
+        md.slip_sign = fired[TRIBO_SWITCH_TANGENT_A] ? +1.0 : -1.0;
+        tribo_contact_at(p, &md, y, &ev);
+        y[TRIBO_IDX] = md.slip_sign * ev.limit;
+    } else if (tangent_event) {
+        tribo_contact_eval ev;
+        tribo_contact_at(p, &md, y, &ev);
+        y[TRIBO_IDX] = md.slip_sign * ev.limit;
+        md.tangent = TRIBO_TANGENT_STICK;
+        md.slip_sign = 0.0;
+    } else {
+        tangent_from_state(p, y, &md);
+    }
+    return md;
+}
+
+tribo_force_law tribo_mode_after(const tribo_dyn_params *p, const tribo_force_law *old, double *y,
+                                 const int *fired)
+{
+    /* the energy the adjustments of the state take out (a stretch clamped or reset, V set
+       to 0 at a normal lock, Y put on the plate) is booked as dissipated work, so that the
+       energy balance of MODEL §6 holds across switches */
+    const double before = tribo_energy(p, y);
+    const tribo_force_law md = next_mode(p, old, y, fired);
+    y[TRIBO_IWDISS] += before - tribo_energy(p, y);
+    return md;
+}
