@@ -84,7 +84,9 @@ void tribo_account_interval(tribo_model *m, const tribo_point *from, tribo_point
     tribo_motion_update(&to->motion, h, m->motion_decay, in_contact,
                         to->y[TRIBO_IPHI] - from->y[TRIBO_IPHI]);
 
-    const double rho_c = tribo_contact_curvature_radius(m->dyn.eps2, to->contact.pose.h);
+    /* rho_c only where there is a contact: this runs on every step */
+    const double rho_c =
+        in_contact ? tribo_contact_curvature_radius(m->dyn.eps2, to->contact.pose.h) : 0.0;
     const int deep = in_contact && tribo_indentation_too_deep(to->contact.delta_y, m->dyn.eps, rho_c);
     if (deep && !from->motion.outside_assumptions && commit) {
         const long long n = ++m->stats.assumption_warnings;
