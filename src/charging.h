@@ -1,74 +1,83 @@
-/* charging.h: the two charge models over the particle's boundary segments (MODEL §5). */
+/* charging.h: an instance's charge models over the particle's boundary segments
+   (docs/model.md §5): which segments touch the plate and for how long, and the calls of
+   each selected model's rate law (charge_model.h) over them. */
 #ifndef TRIBO_CHARGING_H
 #define TRIBO_CHARGING_H
 
+#include "charge_model.h"
 #include "geometry.h"
 
-/* Charging parameters (tunable between steps). */
-typedef struct tribo_charge_params {
-    double tau0, tau_r, Sigma0, eta;
-} tribo_charge_params;
-
 /* The contact held over an interval of the motion: which arc of the boundary touches
-   the plate and for how long. Both models are exact given these (MODEL §5): the static
-   one is linear with constant coefficients, the sliding one is taken with Sigma_s
-   linear over the interval. */
+   the plate and for how long, and what drives the charge there (the global states of
+   every model at the interval's start, middle and end, at the models' offsets). */
 typedef struct tribo_contact_sample {
     double duration;
     int in_contact;
-    double s_centre;      /* arc-length coordinate of the contact centre */
-    double half_width;    /* Sc = sqrt(rho_c delta_y), MODEL §5 eq. 4 */
-    double work_begin, work_end; /* omega at both ends (sliding model) */
-    /* Sigma_s over the sample: at its start, middle and end (quadratic in time; the
-       middle is the mean of the ends where Sigma_s is taken linear) */
-    double Sigma_s_begin, Sigma_s_mid, Sigma_s_end;
+    double s_centre;   /* arc-length coordinate of the contact centre                 */
+    double half_width; /* Sc = sqrt(rho_c delta_y), §5 (paper eq. 4)                   */
+    double globals_begin[TRIBO_CHARGE_MAX_GLOBALS];
+    double globals_mid[TRIBO_CHARGE_MAX_GLOBALS];
+    double globals_end[TRIBO_CHARGE_MAX_GLOBALS];
 } tribo_contact_sample;
 
-/* Exponentials of the last durations seen, so that a run at a fixed step costs no
-   transcendental call per step. */
-typedef struct tribo_decay_cache {
-    double duration, tau, decay, one_minus_decay, phi1;
-    double zf1, zf2; /* z F_k(z), F_k(z) = int_0^1 v^k e^{-z v} dv, z = duration / tau */
-} tribo_decay_cache;
+/* One model of an instance's set. */
+typedef struct tribo_charge_slot {
+    const tribo_charge_model *model;
+    int selected;
+    int globals_at;     /* its global states in a point's charge_globals */
+    int quadratures_at; /* its quadratures after the motion in a point's y */
+    double *segments;   /* committed values (NULL when not selected) */
+    double *segments_out; /* a copy with the pending updates applied, made when read */
+    void *cache;
+} tribo_charge_slot;
 
 typedef struct tribo_charging {
-    int with_static, with_sliding;
-    int n;                    /* segments */
+    int n_models;
+    tribo_charge_slot slot[TRIBO_CHARGE_MAX_MODELS];
+    int n_globals, n_quadratures; /* over the whole set, selected or not */
+    int any_selected;
+    /* the boundary cut into n segments of equal arc length (only with a model selected) */
+    int n;
     double segments_per_length; /* n / perimeter */
     tribo_arclength arc;
-    double *q;                /* static q_i = sigma_i / sigma_0 (NULL without the model)   */
-    double *sigma;            /* sliding Sigma_i (NULL without the model)                  */
-    tribo_decay_cache charge_cache, relax_cache;
 } tribo_charging;
 
-/* Allocate for the models wanted; returns 0, or -1 if out of memory. */
-int tribo_charging_init(tribo_charging *c, double eps, int n, int with_static, int with_sliding);
+/* Which arrays a sample charges. */
+typedef enum { TRIBO_CHARGE_COMMITTED, TRIBO_CHARGE_OUTPUT_COPY } tribo_charge_target;
+
+/* Set up the models[0..n_models) (selected by bit i of `selection`) over n segments of
+   the ellipse of roundness eps. Returns 0, -1 if out of memory, or -2 if the set does not
+   fit a point (TRIBO_CHARGE_MAX_*). */
+int tribo_charging_init(tribo_charging *c, const tribo_charge_model *const *models, int n_models,
+                        unsigned selection, double eps, int n);
 void tribo_charging_free(tribo_charging *c);
-/* All segment charges to 0 (MODEL §7). */
+/* All segment charges to 0 (§7) and the caches emptied. */
 void tribo_charging_reset(tribo_charging *c);
+/* Every model's global states at the start of a run. */
+void tribo_charging_start(const tribo_charging *c, const tribo_scene *s, double *globals);
 
-/* Describe the contact at orientation pose with indentation delta_y held for
-   `duration` (the segments under [s_c - Sc, s_c + Sc] charge, MODEL §5). */
-void tribo_charging_sample(const tribo_charging *c, const tribo_pose *pose, double delta_y,
-                           double duration, double work_begin, double work_end,
-                           tribo_contact_sample *sample);
+/* The rates of every quadrature in contact (0 for models not selected). */
+void tribo_charging_quadrature_rates(const tribo_charging *c, const tribo_contact_kinematics *k,
+                                     double *rates);
 
-/* Advance Sigma_s over the sample (MODEL §5b) and record it in the sample (linear). */
-void tribo_charging_saturation(tribo_charging *c, const tribo_charge_params *p,
-                               double *Sigma_s, tribo_contact_sample *sample);
+/* The sample of one fixed step of length h that ends with the contact (pose, delta_y):
+   the step is charged at its end point's contact, as the paper does. Advances the globals
+   from g0 to g1 given the quadratures q0 -> q1 at the step's ends. */
+void tribo_charging_step(tribo_charging *c, const tribo_scene *s, const tribo_pose *pose,
+                         double delta_y, double h, const double *q0, const double *q1,
+                         const double *g0, double *g1, tribo_contact_sample *sample);
 
-/* Charge the segments in contact over the sample (MODEL §5a, §5b). q / sigma may be the
-   committed arrays or a copy; a NULL array is skipped. */
-void tribo_charging_segments(tribo_charging *c, const tribo_charge_params *p,
-                             const tribo_contact_sample *sample, double *q, double *sigma);
+/* Charge the segments under a sample (the overlap of [s_c - Sc, s_c + Sc], §5) with each
+   selected model, in the committed arrays or in the output copies. */
+void tribo_charging_apply(tribo_charging *c, const tribo_scene *s, const tribo_contact_sample *sample,
+                          tribo_charge_target target);
 
-/* The contact along an interval of the motion, as an integrator with dense output sees it:
-   at time t, the arc-length coordinate of the contact centre (in [0, perimeter)), the
-   half-width Sc, the rate of frictional work d omega / dtau (0 if not wanted), and the
-   speed of the centre along the boundary. */
+/* The contact along an interval of the motion, as an integrator with dense output sees it
+   at time t: the arc-length coordinate of the contact centre, the half-width Sc, the speed
+   of the centre along the boundary, and the kinematics the quadratures' rates need. */
 typedef struct tribo_contact_probe {
-    void (*at)(void *ctx, double t, double *s_centre, double *half_width, double *work_rate,
-               double *centre_speed);
+    void (*at)(void *ctx, double t, double *s_centre, double *half_width, double *centre_speed,
+               tribo_contact_kinematics *k);
     void *ctx;
 } tribo_contact_probe;
 
@@ -76,18 +85,14 @@ typedef struct tribo_contact_probe {
 typedef int (*tribo_sample_sink)(void *ctx, const tribo_contact_sample *sample);
 
 /* Sweep a contact that lasts over [a, b]: cut it where an edge of the contact crosses a
-   segment boundary (located on the probe to ~1e-10 of the interval), so that every
-   sample holds a fixed set of segments and the charge models are exact given the probe
-   (MODEL §5). With the sliding model, omega is integrated along the way (adaptive
-   Simpson to rtol of the work and atol per unit time) and Sigma_s follows it. Advances
-   *work and *Sigma_s; each sample goes to the sink. Returns 0, or the sink's non-zero
-   value. */
-int tribo_charging_sweep(tribo_charging *c, const tribo_charge_params *p,
-                         const tribo_contact_probe *probe, double a, double b, double rtol,
-                         double atol, double *work, double *Sigma_s, tribo_sample_sink sink,
-                         void *sink_ctx);
-
-/* Mean of an array of n values. */
-double tribo_charging_mean(const double *v, int n);
+   segment boundary (located on the probe to ~1e-10 of the interval), so that every sample
+   holds a fixed set of segments and the charge models are exact given the probe (§5). The
+   quadratures are integrated along the way (adaptive Simpson to rtol of their increment
+   and atol per unit time) and the global states follow them. Advances quadratures[] and
+   globals[] (the whole set's); each sample goes to the sink. Returns 0, or the sink's
+   non-zero value. */
+int tribo_charging_sweep(tribo_charging *c, const tribo_scene *s, const tribo_contact_probe *probe,
+                         double a, double b, double rtol, double atol, double *quadratures,
+                         double *globals, tribo_sample_sink sink, void *sink_ctx);
 
 #endif

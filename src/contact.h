@@ -37,12 +37,4 @@ static inline double tribo_clamp(double dx, double limit)
     return dx > limit ? limit : (dx < -limit ? -limit : dx);
 }
 
-/* Rate of the frictional work per unit contact area (MODEL §5b, paper eq. 11):
-   d omega / dtau = mu delta_y |vs| / (2 Sc) with Sc = sqrt(rho_c delta_y),
-   i.e. mu |vs| sqrt(delta_y / rho_c) / 2. */
-static inline double tribo_work_rate(double mu, double vs, double delta_y, double rho_c)
-{
-    return 0.5 * mu * fabs(vs) * sqrt(delta_y / rho_c);
-}
-
 #endif

@@ -80,7 +80,6 @@ void tribo_dynamics_rhs(const tribo_dyn_params *p, const tribo_force_law *law, c
     if (!ev->in_contact) {
         dydt[TRIBO_IDX] = 0.0;
         dydt[TRIBO_IWDISS] = 0.0;
-        dydt[TRIBO_IWORK] = 0.0;
         return;
     }
     /* MODEL §3: the stretch follows the slip velocity of the contact point; in slip it
@@ -92,12 +91,6 @@ void tribo_dynamics_rhs(const tribo_dyn_params *p, const tribo_force_law *law, c
        + external power, so the contact dissipates -Psi_T vs - dx ddx + (dy - Psi_N)(V + cx Om). */
     dydt[TRIBO_IWDISS] = -ev->psi_t * ev->vs - y[TRIBO_IDX] * ddx +
                          (ev->delta_y - ev->psi_n) * (V + ev->pose.cx * Om);
-    if (p->work_per_area) {
-        const double rho_c = tribo_contact_curvature_radius(p->eps2, ev->pose.h);
-        dydt[TRIBO_IWORK] = tribo_work_rate(p->mu, ev->vs, ev->delta_y, rho_c);
-    } else {
-        dydt[TRIBO_IWORK] = 0.0;
-    }
 }
 
 double tribo_energy(const tribo_dyn_params *p, const double *y)

@@ -1,9 +1,10 @@
 /* dynamics.h: rigid-body motion of the particle (MODEL §4) as a first-order system,
-   with the quadratures the outputs need (dissipated and external work, MODEL §6, and
-   the frictional work per unit area of the sliding charge model, MODEL §5b). */
+   with the quadratures of the energy balance (dissipated and external work, MODEL §6).
+   The charge models' quadratures follow the motion in the state vector (charging.h). */
 #ifndef TRIBO_DYNAMICS_H
 #define TRIBO_DYNAMICS_H
 
+#include "charge_model.h"
 #include "geometry.h"
 
 /* Components of the state vector. */
@@ -17,9 +18,11 @@ enum {
     TRIBO_IDX,     /* delta_x: tangential spring stretch                      */
     TRIBO_IWDISS,  /* work dissipated by the contact forces                   */
     TRIBO_IWEXT,   /* work done by the external forces F_T_ext, F_N_ext        */
-    TRIBO_IWORK,   /* omega: cumulative frictional work per unit contact area */
-    TRIBO_NSTATE
+    TRIBO_NMOTION  /* the charge models' quadratures follow, from here          */
 };
+
+/* Room for the motion and every registered charge model's quadratures. */
+#define TRIBO_NSTATE_MAX (TRIBO_NMOTION + TRIBO_CHARGE_MAX_QUADRATURES)
 
 /* Everything the right-hand side needs, derived once from the scene. */
 typedef struct tribo_dyn_params {
@@ -29,7 +32,6 @@ typedef struct tribo_dyn_params {
     double inv_inertia;  /* 4 / (1 + eps^2): m (a^2 + b^2) / 4, MODEL §4 */
     double v_reg;
     double F_T, F_N;     /* external force (inputs) */
-    int work_per_area;   /* integrate omega in the state (sliding model, fixed step) */
 } tribo_dyn_params;
 
 /* How the set-valued parts of the force law are resolved (MODEL §3). The fixed-step
@@ -64,7 +66,8 @@ typedef struct tribo_contact_eval {
     double limit_rate; /* d(mu Psi_N)/dtau within the current normal mode (0 in lock) */
 } tribo_contact_eval;
 
-/* dy/dtau at state y under the force law; fills ev (may be NULL). */
+/* dy/dtau of the motion (the first TRIBO_NMOTION components) at state y under the force
+   law; fills ev (may be NULL). */
 void tribo_dynamics_rhs(const tribo_dyn_params *p, const tribo_force_law *law, const double *y,
                         double *dydt, tribo_contact_eval *ev);
 

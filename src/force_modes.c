@@ -95,7 +95,7 @@ static double slip_at_second_order(const tribo_dyn_params *p, const double *y,
 {
     tribo_force_law stick = *law;
     stick.tangent = TRIBO_TANGENT_STICK;
-    double f[TRIBO_NSTATE];
+    double f[TRIBO_NMOTION];
     tribo_contact_eval ev;
     tribo_dynamics_rhs(p, &stick, y, f, &ev);
     const double Om = y[TRIBO_IOMEGA], h2 = h_curvature(p, y[TRIBO_IPHI]);

@@ -1,26 +1,113 @@
-/* integrator.h: what an integrator provides to the instance (internal to the core). */
+/*
+ * integrator.h: the contract between an instance and its integrator (internal to the core).
+ *
+ * An integrator advances the motion and commits points (states of the particle at one
+ * time) in an order of its own, independent of the times it is asked for; between the
+ * last committed point and the asked time it sets an output point that is not committed.
+ * It does so only through the services below: it never writes the instance's fields.
+ * Every hook returns a status; a failure carries its reason (tribo_fail) to the caller.
+ */
 #ifndef TRIBO_INTEGRATOR_H
 #define TRIBO_INTEGRATOR_H
 
 #include <stddef.h>
 
+#include "charging.h"
+#include "dynamics.h"
+#include "motion.h"
 #include "tribo.h"
 
+/* The state of the particle at one time. */
+typedef struct tribo_point {
+    double t;
+    double y[TRIBO_NSTATE_MAX];  /* the motion, then the charge models' quadratures */
+    double contact_time;         /* time spent in contact so far */
+    double charge_globals[TRIBO_CHARGE_MAX_GLOBALS]; /* the charge models' global states */
+    tribo_contact_eval contact;  /* contact and forces at this point */
+    int slipping;
+    tribo_motion motion;         /* motion-class history and assumption check */
+} tribo_point;
+
 typedef struct tribo_integrator_ops {
-    const char *name;
-    /* Allocate the integrator's data for the instance (m->integrator_data). */
-    tribo_status (*create)(tribo_model *m);
-    void (*destroy)(tribo_model *m);
-    /* The committed point was set from outside (reset, state load, a tunable or an
-       input changed): start afresh from it. */
-    void (*restart)(tribo_model *m);
-    /* Commit the motion up to t, then set m->out (and m->pending) to the state at t. */
-    tribo_status (*advance)(tribo_model *m, double t);
+    /* Allocate the integrator's data for the instance. */
+    tribo_status (*create)(tribo_model *m, void **data);
+    void (*destroy)(void *data);
+    /* The committed point was set from outside (reset, a tunable or an input changed):
+       start afresh from it (and commit it again, evaluated under the integrator's law). */
+    tribo_status (*restart)(tribo_model *m, void *data);
+    /* Commit the motion up to t, then set the output point at t. */
+    tribo_status (*advance)(tribo_model *m, void *data, double t);
     /* The integrator's own state, as plain bytes. */
-    size_t (*state_size)(const tribo_model *m);
-    void (*state_save)(const tribo_model *m, unsigned char *buffer);
-    tribo_status (*state_load)(tribo_model *m, const unsigned char *buffer);
+    size_t (*state_size)(const void *data);
+    void (*state_save)(const void *data, unsigned char *buffer);
+    tribo_status (*state_load)(tribo_model *m, void *data, const unsigned char *buffer);
 } tribo_integrator_ops;
+
+/* The integrator of a kind (tribo_integrator_kind), or NULL for an unknown kind. */
+const tribo_integrator_ops *tribo_integrator_of_kind(int kind);
+
+/* ---- services: what an integrator reads ----------------------------------------------- */
+
+const tribo_dyn_params *tribo_dynamics(const tribo_model *m);
+const tribo_point *tribo_committed(const tribo_model *m);
+/* Components of y in use: the motion and the charge models' quadratures. */
+int tribo_state_length(const tribo_model *m);
+/* Whether any charge model is selected. */
+int tribo_charging_on(const tribo_model *m);
+
+/* ---- services: what an integrator writes ------------------------------------------------ */
+
+/* Commit p (its charges are committed separately, by tribo_charge_*). */
+void tribo_commit(tribo_model *m, const tribo_point *p);
+/* The output point is about to be set: forget the charge updates queued for the last one. */
+void tribo_output_begin(tribo_model *m);
+/* Set the output point (its charge updates queued with TRIBO_CHARGE_PENDING). */
+void tribo_output_set(tribo_model *m, const tribo_point *p);
+
+/* Book-keeping of an interval of the motion from `from` to `to` (whose y and contact are
+   set): the contact time, the motion-class history and the check of the contact model's
+   assumptions. commit: the interval is committed (count and log a new violation). */
+void tribo_book_interval(tribo_model *m, const tribo_point *from, tribo_point *to, int commit);
+
+typedef enum tribo_counter {
+    TRIBO_COUNT_STEPS,     /* integrator steps taken                        */
+    TRIBO_COUNT_RHS_EVALS, /* right-hand-side evaluations                   */
+    TRIBO_COUNT_EVENTS,    /* switches of the force law located             */
+    TRIBO_COUNT_RESTARTS,  /* integrator restarts                           */
+    TRIBO_COUNT_SUBSTEPS   /* extra sub-steps the fixed step took           */
+} tribo_counter;
+void tribo_count(tribo_model *m, tribo_counter which, long long n);
+
+/* A warning of the integrator, to the instance's logger. */
+void tribo_warn(tribo_model *m, const char *message);
+/* Record the reason for a failure; returns status. */
+tribo_status tribo_fail(tribo_model *m, tribo_status status, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+/* ---- services: charging ----------------------------------------------------------------- */
+
+/* Where a charge update goes: into the committed charges, or queued for the output point. */
+typedef enum { TRIBO_CHARGE_COMMIT, TRIBO_CHARGE_PENDING } tribo_charge_destination;
+
+/* The rates of the charge models' quadratures at a contact evaluation (for an integrator
+   that integrates them with the motion; 0 in flight). */
+void tribo_quadrature_rates(const tribo_model *m, const tribo_contact_eval *ev, double *rates);
+
+/* A step of length h from `from` to `to` (whose y and contact are set) charged at its end
+   point's contact: advances to's charge globals and fills the sample. */
+void tribo_charge_step(tribo_model *m, const tribo_point *from, tribo_point *to, double h,
+                       tribo_contact_sample *sample);
+/* Charge the segments under a sample. */
+tribo_status tribo_charge_sample(tribo_model *m, const tribo_contact_sample *sample,
+                                 tribo_charge_destination where);
+
+/* The contact at state y as the sweep sees it (tribo_contact_probe). */
+void tribo_probe_contact(const tribo_model *m, const double *y, double *s_centre,
+                         double *half_width, double *centre_speed, tribo_contact_kinematics *k);
+/* Sweep a contact over [a, b] seen through the probe (tribo_charging_sweep), to the
+   scene's rtol / atol, advancing p's quadratures and charge globals. */
+tribo_status tribo_charge_sweep(tribo_model *m, const tribo_contact_probe *probe, double a,
+                                double b, tribo_point *p, tribo_charge_destination where);
 
 extern const tribo_integrator_ops tribo_fixed_step_ops;
 extern const tribo_integrator_ops tribo_cvode_ops;

@@ -28,7 +28,7 @@
  * The state can be saved because CVODE is deterministic: the bytes hold the point where
  * CVODE was last restarted and the number of steps since, which a load replays.
  */
-#include "model.h"
+#include "integrator.h"
 
 #include "contact.h"
 #include "force_modes.h"
@@ -56,6 +56,8 @@ typedef tribo_force_law mode; /* see force_modes.h */
 
 typedef struct cvode_integrator {
     tribo_model *m;
+    const tribo_dyn_params *dyn; /* the instance's, kept up to date by it */
+    int n;                       /* components of y: the motion and the quadratures */
     SUNContext ctx;
     void *mem;
     N_Vector y, dky, abstol;
@@ -67,7 +69,7 @@ typedef struct cvode_integrator {
 
     /* where CVODE was last (re)started, and the steps taken since */
     double t_restart;
-    double y_restart[TRIBO_NSTATE];
+    double y_restart[TRIBO_NSTATE_MAX];
     long long steps_since_restart;
 
     /* CVODE's interpolant over its last step, as a Taylor polynomial about t_n:
@@ -75,12 +77,12 @@ typedef struct cvode_integrator {
        evaluated without N_Vector calls, since the charging sweep probes it often) */
     double taylor_t;
     int taylor_order;
-    double taylor[13][TRIBO_NSTATE];
+    double taylor[13][TRIBO_NSTATE_MAX];
 
     /* the open step: from m->committed.t to t_end, not yet committed */
     int open;
     double t_end;
-    double y_end[TRIBO_NSTATE];
+    double y_end[TRIBO_NSTATE_MAX];
     int ends_at_root;
     int roots[N_ROOTS];
 
@@ -98,7 +100,7 @@ static int roots(sunrealtype t, N_Vector y, sunrealtype *g, void *user)
 {
     (void)t;
     cvode_integrator *c = user;
-    tribo_switch_functions(&c->m->dyn, &c->mode, N_VGetArrayPointer(y), g);
+    tribo_switch_functions(c->dyn, &c->mode, N_VGetArrayPointer(y), g);
     return 0;
 }
 
@@ -106,10 +108,14 @@ static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *user)
 {
     (void)t;
     cvode_integrator *c = user;
-    tribo_dynamics_rhs(&c->m->dyn, &c->mode, N_VGetArrayPointer(y),
-                       N_VGetArrayPointer(ydot), NULL);
+    double *dydt = N_VGetArrayPointer(ydot);
+    tribo_dynamics_rhs(c->dyn, &c->mode, N_VGetArrayPointer(y), dydt, NULL);
+    /* the charge models' quadratures are integrated by the charging sweep, so that they
+       do not steer the steps: here they are constant */
+    for (int i = TRIBO_NMOTION; i < c->n; i++)
+        dydt[i] = 0.0;
     if (!c->replaying)
-        c->m->stats.rhs_evals++;
+        tribo_count(c->m, TRIBO_COUNT_RHS_EVALS, 1);
     return 0;
 }
 
@@ -119,8 +125,8 @@ static void error_handler(int code, const char *module, const char *function, ch
 {
     cvode_integrator *c = user;
     snprintf(c->message, sizeof c->message, "%s %s (%d): %s", module, function, code, msg);
-    if (c->m->log && code == CV_WARNING)
-        c->m->log(c->m->log_user, 1, c->message);
+    if (code == CV_WARNING)
+        tribo_warn(c->m, c->message);
 }
 
 /* (Re)start CVODE at (t, y) in mode md. */
@@ -132,9 +138,9 @@ static tribo_status restart_at(cvode_integrator *c, double t, const double *y, c
     memcpy(c->y_restart, y, sizeof c->y_restart);
     c->steps_since_restart = 0;
     c->open = 0;
-    memcpy(N_VGetArrayPointer(c->y), y, TRIBO_NSTATE * sizeof(double));
+    memcpy(N_VGetArrayPointer(c->y), y, (size_t)c->n * sizeof(double));
     int dir[N_ROOTS];
-    tribo_switch_directions(&m->dyn, md, dir);
+    tribo_switch_directions(c->dyn, md, dir);
     /* a rotating particle in flight must not swing its lowest point through the plate and
        back within one step unseen: 0.2 rad per step at most */
     const double spin = fabs(y[TRIBO_IOMEGA]);
@@ -144,13 +150,13 @@ static tribo_status restart_at(cvode_integrator *c, double t, const double *y, c
         return tribo_fail(m, TRIBO_ERR_INTEGRATOR, "CVODE restart failed at t = %.17g: %s", t,
                           c->message);
     if (!c->replaying)
-        m->stats.restarts++;
+        tribo_count(m, TRIBO_COUNT_RESTARTS, 1);
     return TRIBO_OK;
 }
 
-static void destroy(tribo_model *m)
+static void destroy(void *data)
 {
-    cvode_integrator *c = m->integrator_data;
+    cvode_integrator *c = data;
     if (!c)
         return;
     CVodeFree(&c->mem);
@@ -169,37 +175,41 @@ static void destroy(tribo_model *m)
     if (c->ctx)
         SUNContext_Free(&c->ctx);
     free(c);
-    m->integrator_data = NULL;
 }
 
-static tribo_status create(tribo_model *m)
+static tribo_status create(tribo_model *m, void **data)
 {
     cvode_integrator *c = calloc(1, sizeof *c);
     if (!c)
         return TRIBO_ERR_MEMORY;
-    m->integrator_data = c;
+    *data = c;
     c->m = m;
-    const int bdf = m->scene.integrator == TRIBO_INTEGRATOR_CVODE_BDF;
+    c->dyn = tribo_dynamics(m);
+    c->n = tribo_state_length(m);
+    const tribo_scene *scene = tribo_get_scene(m);
+    const int bdf = scene->integrator == TRIBO_INTEGRATOR_CVODE_BDF;
     /* one SUNDIALS context per instance: nothing is shared between instances */
     if (SUNContext_Create(NULL, &c->ctx) != 0)
         goto fail;
-    c->y = N_VNew_Serial(TRIBO_NSTATE, c->ctx);
-    c->dky = N_VNew_Serial(TRIBO_NSTATE, c->ctx);
-    c->abstol = N_VNew_Serial(TRIBO_NSTATE, c->ctx);
+    c->y = N_VNew_Serial(c->n, c->ctx);
+    c->dky = N_VNew_Serial(c->n, c->ctx);
+    c->abstol = N_VNew_Serial(c->n, c->ctx);
     c->mem = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, c->ctx);
     if (!c->y || !c->dky || !c->abstol || !c->mem)
         goto fail;
     N_VConst(0.0, c->y);
-    /* omega belongs to the sliding charge model, which is integrated along the charging
-       sweep and must not steer the step: a huge absolute tolerance takes its (constant)
-       component out of the error norm. The dissipated and external work are the
-       mechanics' own book-keeping (smooth within a mode) and are held to the tolerances
+    /* The charge models' quadratures are integrated along the charging sweep and must not
+       steer the step: a huge absolute tolerance takes their (constant) components out of
+       the error norm. The vector keeps them whichever models are selected, so that the
+       motion does not depend on the selection. The dissipated and external work are the
+       mechanics' own book-keeping (smooth within a phase) and are held to the tolerances
        like the motion, so that the energy balance of MODEL §6 is. */
-    N_VConst(m->scene.atol, c->abstol);
-    N_VGetArrayPointer(c->abstol)[TRIBO_IWORK] = 1e30;
+    N_VConst(scene->atol, c->abstol);
+    for (int i = TRIBO_NMOTION; i < c->n; i++)
+        N_VGetArrayPointer(c->abstol)[i] = 1e30;
     if (CVodeSetErrHandlerFn(c->mem, error_handler, c) != CV_SUCCESS ||
         CVodeInit(c->mem, rhs, 0.0, c->y) != CV_SUCCESS ||
-        CVodeSVtolerances(c->mem, m->scene.rtol, c->abstol) != CV_SUCCESS ||
+        CVodeSVtolerances(c->mem, scene->rtol, c->abstol) != CV_SUCCESS ||
         CVodeSetUserData(c->mem, c) != CV_SUCCESS ||
         CVodeRootInit(c->mem, N_ROOTS, roots) != CV_SUCCESS ||
         CVodeSetNoInactiveRootWarn(c->mem) != CV_SUCCESS ||
@@ -207,7 +217,7 @@ static tribo_status create(tribo_model *m)
         goto fail;
     if (bdf) {
         /* Newton with a dense difference-quotient Jacobian: 10 states */
-        c->jac = SUNDenseMatrix(TRIBO_NSTATE, TRIBO_NSTATE, c->ctx);
+        c->jac = SUNDenseMatrix(c->n, c->n, c->ctx);
         c->ls = c->jac ? SUNLinSol_Dense(c->y, c->jac, c->ctx) : NULL;
         if (!c->ls || CVodeSetLinearSolver(c->mem, c->ls, c->jac) != CV_SUCCESS)
             goto fail;
@@ -221,7 +231,8 @@ static tribo_status create(tribo_model *m)
 fail:
     tribo_fail(m, TRIBO_ERR_MEMORY, "cannot set up CVODE: %s",
                c->message[0] ? c->message : "out of memory");
-    destroy(m);
+    destroy(c);
+    *data = NULL;
     return TRIBO_ERR_MEMORY;
 }
 
@@ -275,16 +286,16 @@ static tribo_status take_step(cvode_integrator *c)
         CVodeGetRootInfo(c->mem, c->roots);
     capture_interpolant(c);
     if (!c->ends_at_root)
-        find_grazing_switch(c, c->m->committed.t);
+        find_grazing_switch(c, tribo_committed(c->m)->t);
     if (!c->replaying)
-        c->m->stats.steps++;
+        tribo_count(c->m, TRIBO_COUNT_STEPS, 1);
     return TRIBO_OK;
 }
 
 static void dense(cvode_integrator *c, double t, double *y)
 {
     const double u = t - c->taylor_t;
-    for (int i = 0; i < TRIBO_NSTATE; i++) {
+    for (int i = 0; i < c->n; i++) {
         double v = c->taylor[c->taylor_order][i];
         for (int k = c->taylor_order - 1; k >= 0; k--)
             v = v * u + c->taylor[k][i];
@@ -303,15 +314,15 @@ static void dense(cvode_integrator *c, double t, double *y)
 
 static void switch_functions(cvode_integrator *c, double t, double *g)
 {
-    double y[TRIBO_NSTATE];
+    double y[TRIBO_NSTATE_MAX];
     dense(c, t, y);
-    tribo_switch_functions(&c->m->dyn, &c->mode, y, g);
+    tribo_switch_functions(c->dyn, &c->mode, y, g);
 }
 
 static void find_grazing_switch(cvode_integrator *c, double t_start)
 {
     int dir[N_ROOTS];
-    tribo_switch_directions(&c->m->dyn, &c->mode, dir);
+    tribo_switch_directions(c->dyn, &c->mode, dir);
     double g[GRAZING_SAMPLES + 1][N_ROOTS], scale[N_ROOTS] = {0};
     const double h = c->t_end - t_start;
     if (!(h > 0.0))
@@ -360,77 +371,42 @@ static void capture_interpolant(cvode_integrator *c)
         if (k > 0)
             factorial *= k;
         const double *d = N_VGetArrayPointer(c->dky);
-        for (int i = 0; i < TRIBO_NSTATE; i++)
+        for (int i = 0; i < c->n; i++)
             c->taylor[k][i] = d[i] / factorial;
     }
     c->taylor_order = k - 1;
 }
 
 /* The probe of the charging sweep: the contact at time t of the open step (MODEL §5). */
-static void probe(void *ctx, double t, double *s_centre, double *half_width, double *work_rate,
-                  double *centre_speed)
+static void probe(void *ctx, double t, double *s_centre, double *half_width, double *centre_speed,
+                  tribo_contact_kinematics *k)
 {
     cvode_integrator *c = ctx;
-    const tribo_model *m = c->m;
-    double y[TRIBO_NSTATE];
+    double y[TRIBO_NSTATE_MAX];
     dense(c, t, y);
-    const double eps = m->dyn.eps;
-    tribo_pose g;
-    tribo_pose_at(m->dyn.eps2, y[TRIBO_IPHI], &g);
-    const double t_c = tribo_contact_parameter(eps, &g);
-    const double rho_c = tribo_contact_curvature_radius(m->dyn.eps2, g.h);
-    /* in a contact mode the contact exists even where rounding gives delta_y <= 0 */
-    const double dy = fmax(0.0, g.h - y[TRIBO_IY]);
-    *s_centre = tribo_arclength_at(&m->charging.arc, t_c);
-    *half_width = sqrt(rho_c * dy);
-    *work_rate = m->charging.with_sliding
-                     ? tribo_work_rate(m->dyn.mu, y[TRIBO_IU] + g.h * y[TRIBO_IOMEGA], dy, rho_c)
-                     : 0.0;
-    /* ds_c/dtau = |boundary speed| |dt_c/dphi| |Omega|, dt_c/dphi = -eps / h^2 */
-    *centre_speed = tribo_boundary_speed(m->dyn.eps2, t_c) * eps / (g.h * g.h) * fabs(y[TRIBO_IOMEGA]);
+    tribo_probe_contact(c->m, y, s_centre, half_width, centre_speed, k);
 }
 
-typedef struct sink_target {
-    tribo_model *m;
-    int commit;
-} sink_target;
-
-static int sink(void *ctx, const tribo_contact_sample *sample)
+/* Charge over [a, b] inside the open step, advancing p's quadratures and charge globals:
+   committed, or queued for the output point. */
+static tribo_status sweep_charges(cvode_integrator *c, double a, double b, tribo_point *p,
+                                  tribo_charge_destination where)
 {
-    sink_target *s = ctx;
-    tribo_model *m = s->m;
-    if (s->commit) {
-        tribo_charging_segments(&m->charging, &m->charge, sample, m->charging.q, m->charging.sigma);
-        return 0;
-    }
-    return tribo_pending_push(m, sample) != TRIBO_OK;
-}
-
-/* Charge over [a, b] inside the open step, advancing omega and Sigma_s: commit to the
-   committed charges, or queue for the output point. */
-static tribo_status sweep_charges(cvode_integrator *c, double a, double b, int commit,
-                                  double *work, double *Sigma_s)
-{
-    tribo_model *m = c->m;
-    if (!m->has_charging || !tribo_touching(&c->mode) || !(b > a))
+    if (!tribo_touching(&c->mode) || !(b > a))
         return TRIBO_OK;
     const tribo_contact_probe pr = {probe, c};
-    sink_target target = {m, commit};
-    if (tribo_charging_sweep(&m->charging, &m->charge, &pr, a, b, m->scene.rtol, m->scene.atol, work, Sigma_s,
-                             sink, &target) != 0)
-        return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
-    return TRIBO_OK;
+    return tribo_charge_sweep(c->m, &pr, a, b, p, where);
 }
 
-/* The point at time t (with y there) in the current mode. */
+/* The point at time t (with y there) in the current phase. */
 static void fill_point(cvode_integrator *c, tribo_point *p, double t, const double *y,
                        const tribo_point *from, int commit)
 {
     p->t = t;
     memcpy(p->y, y, sizeof p->y);
-    tribo_contact_at(&c->m->dyn, &c->mode, y, &p->contact);
+    tribo_contact_at(c->dyn, &c->mode, y, &p->contact);
     if (tribo_touching(&c->mode)) {
-        /* the mode decides contact, also where rounding makes delta_y = -1e-17 */
+        /* the phase decides contact, also where rounding makes delta_y = -1e-17 */
         p->contact.in_contact = 1;
         /* in slip the stretch is held at the limit (MODEL §3); CVODE's integrated stretch
            follows it only to the tolerances */
@@ -440,23 +416,34 @@ static void fill_point(cvode_integrator *c, tribo_point *p, double t, const doub
         p->contact.in_contact = 0;
     }
     p->slipping = tribo_touching(&c->mode) && c->mode.tangent == TRIBO_TANGENT_SLIP;
-    tribo_account_interval(c->m, from, p, commit);
+    tribo_book_interval(c->m, from, p, commit);
+}
+
+/* The committed point again, at y after an event or a restart (no time passes). */
+static void commit_again(cvode_integrator *c, double t, const double *y)
+{
+    const tribo_point *committed = tribo_committed(c->m);
+    tribo_point p = *committed;
+    fill_point(c, &p, t, y, committed, 1);
+    tribo_commit(c->m, &p);
 }
 
 /* Commit the open step: its charges, its end point, and the event that ends it. */
 static tribo_status close_step(cvode_integrator *c)
 {
     tribo_model *m = c->m;
+    const tribo_point *committed = tribo_committed(m);
+    const size_t quadratures = (size_t)(c->n - TRIBO_NMOTION) * sizeof(double);
     tribo_point next;
-    next.Sigma_s = m->committed.Sigma_s;
-    /* omega is the sweep's, not CVODE's (it holds it constant) */
-    double work = m->committed.y[TRIBO_IWORK];
-    tribo_status st = sweep_charges(c, m->committed.t, c->t_end, 1, &work, &next.Sigma_s);
+    memcpy(next.charge_globals, committed->charge_globals, sizeof next.charge_globals);
+    /* the quadratures are the sweep's, not CVODE's (it holds them constant) */
+    memcpy(next.y + TRIBO_NMOTION, committed->y + TRIBO_NMOTION, quadratures);
+    tribo_status st = sweep_charges(c, committed->t, c->t_end, &next, TRIBO_CHARGE_COMMIT);
     if (st != TRIBO_OK)
         return st;
-    c->y_end[TRIBO_IWORK] = work;
-    fill_point(c, &next, c->t_end, c->y_end, &m->committed, 1);
-    m->committed = next;
+    memcpy(c->y_end + TRIBO_NMOTION, next.y + TRIBO_NMOTION, quadratures);
+    fill_point(c, &next, c->t_end, c->y_end, committed, 1);
+    tribo_commit(m, &next);
     c->open = 0;
 
     if (!c->ends_at_root) {
@@ -466,7 +453,7 @@ static tribo_status close_step(cvode_integrator *c)
         return TRIBO_OK;
     }
 
-    /* an event: new mode, resets, restart */
+    /* an event: new phase, resets, restart */
     const double t = c->t_end;
     if (fabs(t - c->last_event_t) <= 1e-12 * fmax(1.0, fabs(t)))
         c->events_at_instant++;
@@ -477,35 +464,38 @@ static tribo_status close_step(cvode_integrator *c)
         return fail_at(c, t, c->y_end, "event cascade: the force law keeps switching at one instant");
     if (++c->events_in_a_row > MAX_EVENTS_IN_A_ROW)
         return fail_at(c, t, c->y_end, "too many events in a row without a regular step");
-    double y[TRIBO_NSTATE];
+    double y[TRIBO_NSTATE_MAX];
     memcpy(y, c->y_end, sizeof y);
-    const mode md = tribo_mode_after(&m->dyn, &c->mode, y, c->roots);
-    m->stats.events++;
+    const mode md = tribo_mode_after(c->dyn, &c->mode, y, c->roots);
+    tribo_count(m, TRIBO_COUNT_EVENTS, 1);
     st = restart_at(c, t, y, &md);
     if (st != TRIBO_OK)
         return st;
-    fill_point(c, &m->committed, t, y, &m->committed, 1);
+    commit_again(c, t, y);
     return TRIBO_OK;
 }
 
-static void restart(tribo_model *m)
+static tribo_status restart(tribo_model *m, void *data)
 {
-    cvode_integrator *c = m->integrator_data;
-    double y[TRIBO_NSTATE];
-    memcpy(y, m->committed.y, sizeof y);
-    /* the mode follows from the state alone */
-    mode md = tribo_mode_after(&m->dyn, &TRIBO_FLIGHT, y, NULL);
+    cvode_integrator *c = data;
+    const tribo_point *committed = tribo_committed(m);
+    double y[TRIBO_NSTATE_MAX];
+    memcpy(y, committed->y, sizeof y);
+    /* the phase follows from the state alone */
+    mode md = tribo_mode_after(c->dyn, &TRIBO_FLIGHT, y, NULL);
     c->events_at_instant = 0;
     c->events_in_a_row = 0;
     c->last_event_t = -INFINITY;
-    if (restart_at(c, m->committed.t, y, &md) == TRIBO_OK)
-        fill_point(c, &m->committed, m->committed.t, y, &m->committed, 1);
+    const tribo_status st = restart_at(c, committed->t, y, &md);
+    if (st == TRIBO_OK)
+        commit_again(c, committed->t, y);
+    return st;
 }
 
-static tribo_status advance(tribo_model *m, double t)
+static tribo_status advance(tribo_model *m, void *data, double t)
 {
-    cvode_integrator *c = m->integrator_data;
-    const double t_start = m->committed.t;
+    cvode_integrator *c = data;
+    const double t_start = tribo_committed(m)->t;
     const double max_steps = 1e5 + MAX_STEPS_PER_TIME_UNIT * fmax(0.0, t - t_start);
     long long steps = 0;
     tribo_status st;
@@ -514,35 +504,41 @@ static tribo_status advance(tribo_model *m, double t)
             break;
         if (c->open && (st = close_step(c)) != TRIBO_OK)
             return st;
-        if (t <= m->committed.t)
+        if (t <= tribo_committed(m)->t)
             break;
         if (++steps > max_steps)
-            return fail_at(c, m->committed.t, m->committed.y,
+            return fail_at(c, tribo_committed(m)->t, tribo_committed(m)->y,
                            "too much work: more than 1e6 steps per time unit");
         if ((st = take_step(c)) != TRIBO_OK)
             return st;
     }
 
     /* the state at t, from the open step's dense output */
-    tribo_pending_clear(m);
-    if (!c->open || t <= m->committed.t) {
-        m->out = m->committed;
-        m->out.t = t;
+    tribo_output_begin(m);
+    const tribo_point *committed = tribo_committed(m);
+    tribo_point out;
+    if (!c->open || t <= committed->t) {
+        out = *committed;
+        out.t = t;
+        tribo_output_set(m, &out);
         return TRIBO_OK;
     }
-    double y[TRIBO_NSTATE];
+    double y[TRIBO_NSTATE_MAX];
     dense(c, t, y);
-    y[TRIBO_IWORK] = m->committed.y[TRIBO_IWORK];
-    m->out.Sigma_s = m->committed.Sigma_s;
-    fill_point(c, &m->out, t, y, &m->committed, 0);
-    return sweep_charges(c, m->committed.t, t, 0, &m->out.y[TRIBO_IWORK], &m->out.Sigma_s);
+    memcpy(y + TRIBO_NMOTION, committed->y + TRIBO_NMOTION,
+           (size_t)(c->n - TRIBO_NMOTION) * sizeof(double));
+    memcpy(out.charge_globals, committed->charge_globals, sizeof out.charge_globals);
+    fill_point(c, &out, t, y, committed, 0);
+    st = sweep_charges(c, committed->t, t, &out, TRIBO_CHARGE_PENDING);
+    tribo_output_set(m, &out);
+    return st;
 }
 
 /* ---- state ------------------------------------------------------------------------------------ */
 
 typedef struct saved {
     double t_restart;
-    double y_restart[TRIBO_NSTATE];
+    double y_restart[TRIBO_NSTATE_MAX];
     long long steps_since_restart;
     long long open;
     long long contact, normal, tangent;
@@ -551,15 +547,15 @@ typedef struct saved {
     long long events_at_instant, events_in_a_row;
 } saved;
 
-static size_t state_size(const tribo_model *m)
+static size_t state_size(const void *data)
 {
-    (void)m;
+    (void)data;
     return sizeof(saved);
 }
 
-static void state_save(const tribo_model *m, unsigned char *b)
+static void state_save(const void *data, unsigned char *b)
 {
-    const cvode_integrator *c = m->integrator_data;
+    const cvode_integrator *c = data;
     saved s;
     memset(&s, 0, sizeof s);
     s.t_restart = c->t_restart;
@@ -577,12 +573,12 @@ static void state_save(const tribo_model *m, unsigned char *b)
     memcpy(b, &s, sizeof s);
 }
 
-static tribo_status state_load(tribo_model *m, const unsigned char *b)
+static tribo_status state_load(tribo_model *m, void *data, const unsigned char *b)
 {
-    cvode_integrator *c = m->integrator_data;
+    cvode_integrator *c = data;
     saved s;
     memcpy(&s, b, sizeof s);
-    if (!isfinite(s.t_restart) || s.steps_since_restart < 0 || s.t_restart > m->committed.t ||
+    if (!isfinite(s.t_restart) || s.steps_since_restart < 0 || s.t_restart > tribo_committed(m)->t ||
         (s.normal != TRIBO_NORMAL_SIGN && s.normal != TRIBO_NORMAL_LOCK) ||
         (s.tangent != TRIBO_TANGENT_STICK && s.tangent != TRIBO_TANGENT_SLIP))
         return tribo_fail(m, TRIBO_ERR_STATE, "CVODE state is corrupt");
@@ -608,5 +604,5 @@ static tribo_status state_load(tribo_model *m, const unsigned char *b)
 }
 
 const tribo_integrator_ops tribo_cvode_ops = {
-    "CVODE", create, destroy, restart, advance, state_size, state_save, state_load,
+    create, destroy, restart, advance, state_size, state_save, state_load,
 };

@@ -14,7 +14,7 @@
  * 2.79. Where a step could reach that, the motion is sub-stepped (charging still once per
  * step); elsewhere, as in all of the paper's runs, a step is one RK4 step.
  */
-#include "model.h"
+#include "integrator.h"
 
 #include "contact.h"
 
@@ -55,25 +55,33 @@ static int substeps_needed(const tribo_dyn_params *dp, const tribo_point *p, dou
     return n > 1.0 ? (n < 1e6 ? (int)n : 1000000) : 1;
 }
 
+/* dy/dtau: the motion, and the charge models' quadratures integrated with it. */
+static void rhs(const tribo_model *m, const double *y, double *dydt)
+{
+    tribo_contact_eval ev;
+    tribo_dynamics_rhs(tribo_dynamics(m), &LAW, y, dydt, &ev);
+    tribo_quadrature_rates(m, &ev, dydt + TRIBO_NMOTION);
+}
+
 static void rk4(tribo_model *m, double *y, double h)
 {
-    const tribo_dyn_params *dp = &m->dyn;
-    double k1[TRIBO_NSTATE], k2[TRIBO_NSTATE], k3[TRIBO_NSTATE], k4[TRIBO_NSTATE];
-    double tmp[TRIBO_NSTATE];
+    const int n = tribo_state_length(m);
+    double k1[TRIBO_NSTATE_MAX], k2[TRIBO_NSTATE_MAX], k3[TRIBO_NSTATE_MAX], k4[TRIBO_NSTATE_MAX];
+    double tmp[TRIBO_NSTATE_MAX];
 
-    tribo_dynamics_rhs(dp, &LAW, y, k1, NULL);
-    for (int i = 0; i < TRIBO_NSTATE; i++)
+    rhs(m, y, k1);
+    for (int i = 0; i < n; i++)
         tmp[i] = y[i] + 0.5 * h * k1[i];
-    tribo_dynamics_rhs(dp, &LAW, tmp, k2, NULL);
-    for (int i = 0; i < TRIBO_NSTATE; i++)
+    rhs(m, tmp, k2);
+    for (int i = 0; i < n; i++)
         tmp[i] = y[i] + 0.5 * h * k2[i];
-    tribo_dynamics_rhs(dp, &LAW, tmp, k3, NULL);
-    for (int i = 0; i < TRIBO_NSTATE; i++)
+    rhs(m, tmp, k3);
+    for (int i = 0; i < n; i++)
         tmp[i] = y[i] + h * k3[i];
-    tribo_dynamics_rhs(dp, &LAW, tmp, k4, NULL);
-    for (int i = 0; i < TRIBO_NSTATE; i++)
+    rhs(m, tmp, k4);
+    for (int i = 0; i < n; i++)
         y[i] += h / 6.0 * (k1[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
-    m->stats.rhs_evals += 4;
+    tribo_count(m, TRIBO_COUNT_RHS_EVALS, 4);
 }
 
 /* Hold the stretch within the Coulomb limit (MODEL §3); in flight the limit is 0, so the
@@ -95,7 +103,7 @@ static double clamp_stretch(const tribo_dyn_params *dp, double *y, tribo_contact
 static void step(tribo_model *m, const tribo_point *p, double h, tribo_point *next,
                  tribo_contact_sample *sample, int commit)
 {
-    const tribo_dyn_params *dp = &m->dyn;
+    const tribo_dyn_params *dp = tribo_dynamics(m);
     memcpy(next->y, p->y, sizeof next->y);
     next->t = p->t + h;
     const int n = substeps_needed(dp, p, h);
@@ -106,47 +114,39 @@ static void step(tribo_model *m, const tribo_point *p, double h, tribo_point *ne
     }
     rk4(m, next->y, h / n);
     if (n > 1)
-        m->stats.substeps += n - 1;
+        tribo_count(m, TRIBO_COUNT_SUBSTEPS, n - 1);
 
     const double dx = clamp_stretch(dp, next->y, ev);
     next->slipping = ev->in_contact && fabs(dx) >= ev->limit && (ev->limit > 0.0 || ev->vs != 0.0);
 
-    tribo_account_interval(m, p, next, commit);
-    next->Sigma_s = p->Sigma_s;
-    if (m->has_charging) {
-        tribo_charging_sample(&m->charging, &ev->pose, ev->delta_y, h, p->y[TRIBO_IWORK],
-                              next->y[TRIBO_IWORK], sample);
-        if (m->charging.with_sliding)
-            tribo_charging_saturation(&m->charging, &m->charge, &next->Sigma_s, sample);
-    }
+    tribo_book_interval(m, p, next, commit);
+    tribo_charge_step(m, p, next, h, sample);
 }
 
-static tribo_status create(tribo_model *m)
+static tribo_status create(tribo_model *m, void **data)
 {
-    fixed_step *f = calloc(1, sizeof *f);
-    if (!f)
-        return TRIBO_ERR_MEMORY;
-    m->integrator_data = f;
+    (void)m;
+    return (*data = calloc(1, sizeof(fixed_step))) ? TRIBO_OK : TRIBO_ERR_MEMORY;
+}
+
+static void destroy(void *data) { free(data); }
+
+static tribo_status restart(tribo_model *m, void *data)
+{
+    fixed_step *f = data;
+    tribo_point p = *tribo_committed(m);
+    f->t_base = p.t;
+    f->k = 0;
+    /* the contact under this integrator's law (substeps_needed reads it) */
+    tribo_contact_at(tribo_dynamics(m), &LAW, p.y, &p.contact);
+    tribo_commit(m, &p);
     return TRIBO_OK;
 }
 
-static void destroy(tribo_model *m)
+static tribo_status advance(tribo_model *m, void *data, double t)
 {
-    free(m->integrator_data);
-    m->integrator_data = NULL;
-}
-
-static void restart(tribo_model *m)
-{
-    fixed_step *f = m->integrator_data;
-    f->t_base = m->committed.t;
-    f->k = 0;
-}
-
-static tribo_status advance(tribo_model *m, double t)
-{
-    fixed_step *f = m->integrator_data;
-    const double dt = m->scene.dt;
+    fixed_step *f = data;
+    const double dt = tribo_get_scene(m)->dt;
     /* a time that is a grid point up to rounding counts as that grid point */
     const double slack = 1e-9;
     const long long target = (long long)floor((t - f->t_base) / dt + slack);
@@ -154,44 +154,46 @@ static tribo_status advance(tribo_model *m, double t)
     tribo_point next;
 
     while (f->k < target) {
-        step(m, &m->committed, dt, &next, &sample, 1);
+        step(m, tribo_committed(m), dt, &next, &sample, 1);
         f->k++;
         next.t = f->t_base + (double)f->k * dt; /* no drift over millions of steps */
-        m->committed = next;
-        if (m->has_charging)
-            tribo_charging_segments(&m->charging, &m->charge, &sample, m->charging.q,
-                                    m->charging.sigma);
-        m->stats.steps++;
+        tribo_commit(m, &next);
+        tribo_charge_sample(m, &sample, TRIBO_CHARGE_COMMIT);
+        tribo_count(m, TRIBO_COUNT_STEPS, 1);
     }
 
-    tribo_pending_clear(m);
-    const double h = t - m->committed.t;
+    tribo_output_begin(m);
+    const tribo_point *committed = tribo_committed(m);
+    const double h = t - committed->t;
+    tribo_point out;
     if (h <= slack * dt) {
-        m->out = m->committed;
-        m->out.t = t;
+        out = *committed;
+        out.t = t;
+        tribo_output_set(m, &out);
         return TRIBO_OK;
     }
-    step(m, &m->committed, h, &m->out, &sample, 0);
-    m->out.t = t;
-    return m->has_charging ? tribo_pending_push(m, &sample) : TRIBO_OK;
+    step(m, committed, h, &out, &sample, 0);
+    out.t = t;
+    tribo_output_set(m, &out);
+    return tribo_charge_sample(m, &sample, TRIBO_CHARGE_PENDING);
 }
 
-static size_t state_size(const tribo_model *m)
+static size_t state_size(const void *data)
 {
-    (void)m;
+    (void)data;
     return sizeof(double) + sizeof(long long);
 }
 
-static void state_save(const tribo_model *m, unsigned char *b)
+static void state_save(const void *data, unsigned char *b)
 {
-    const fixed_step *f = m->integrator_data;
+    const fixed_step *f = data;
     memcpy(b, &f->t_base, sizeof f->t_base);
     memcpy(b + sizeof f->t_base, &f->k, sizeof f->k);
 }
 
-static tribo_status state_load(tribo_model *m, const unsigned char *b)
+static tribo_status state_load(tribo_model *m, void *data, const unsigned char *b)
 {
-    fixed_step *f = m->integrator_data;
+    fixed_step *f = data;
     memcpy(&f->t_base, b, sizeof f->t_base);
     memcpy(&f->k, b + sizeof f->t_base, sizeof f->k);
     if (!isfinite(f->t_base) || f->k < 0)
@@ -200,5 +202,5 @@ static tribo_status state_load(tribo_model *m, const unsigned char *b)
 }
 
 const tribo_integrator_ops tribo_fixed_step_ops = {
-    "fixed-step RK4", create, destroy, restart, advance, state_size, state_save, state_load,
+    create, destroy, restart, advance, state_size, state_save, state_load,
 };

@@ -1,4 +1,5 @@
-/* model.c: life cycle of an instance, its parameters and inputs, and what can be read. */
+/* model.c: life cycle of an instance, its parameters and inputs, what can be read, and the
+   services its integrator works through (integrator.h). */
 #include "model.h"
 
 #include <math.h>
@@ -16,9 +17,14 @@ tribo_status tribo_fail(tribo_model *m, tribo_status status, const char *fmt, ..
     return status;
 }
 
-static const tribo_integrator_ops *integrator_for(int kind)
+const tribo_integrator_ops *tribo_integrator_of_kind(int kind)
 {
-    return kind == TRIBO_INTEGRATOR_FIXED_STEP ? &tribo_fixed_step_ops : &tribo_cvode_ops;
+    switch (kind) {
+    case TRIBO_INTEGRATOR_FIXED_STEP: return &tribo_fixed_step_ops;
+    case TRIBO_INTEGRATOR_CVODE:
+    case TRIBO_INTEGRATOR_CVODE_BDF: return &tribo_cvode_ops;
+    }
+    return NULL;
 }
 
 void tribo_derive_params(tribo_model *m)
@@ -35,17 +41,11 @@ void tribo_derive_params(tribo_model *m)
     d->g_n = s->Gamma * cos(beta);
     d->inv_inertia = 4.0 / (1.0 + d->eps2); /* MODEL §4 */
     d->v_reg = s->v_reg;
-    /* the fixed step integrates omega with the motion; CVODE integrates it along its
-       charging sweep, so that it does not steer the steps */
-    d->work_per_area = (s->charge_model & TRIBO_CHARGE_SLIDING) != 0 &&
-                       s->integrator == TRIBO_INTEGRATOR_FIXED_STEP;
-    m->charge.tau0 = s->tau0;
-    m->charge.tau_r = s->tau_r;
-    m->charge.Sigma0 = s->Sigma0;
-    m->charge.eta = s->eta;
 }
 
-void tribo_initial_point(const tribo_model *m, tribo_point *p)
+/* The initial point of the scene (MODEL §7 by default); its contact is evaluated by the
+   integrator's restart, under the integrator's own force law. */
+static void initial_point(const tribo_model *m, tribo_point *p)
 {
     const tribo_scene *s = &m->scene;
     const double beta = s->beta * (M_PI / 180.0);
@@ -60,16 +60,48 @@ void tribo_initial_point(const tribo_model *m, tribo_point *p)
     p->y[TRIBO_IU] = s->drop_speed * sin(beta);
     p->y[TRIBO_IV] = -s->drop_speed * cos(beta);
     p->y[TRIBO_IOMEGA] = s->Omega0;
-    p->Sigma_s = s->Sigma0;
-    static const tribo_force_law law = {TRIBO_CONTACT_BY_GEOMETRY, TRIBO_NORMAL_REGULARISED, 0, TRIBO_TANGENT_CLAMP, 0};
-    tribo_contact_at(&m->dyn, &law, p->y, &p->contact);
+    tribo_charging_start(&m->charging, s, p->charge_globals);
     p->motion.mode = TRIBO_MODE_FLIGHT;
+}
+
+/* ---- services for the integrators ------------------------------------------------------ */
+
+const tribo_dyn_params *tribo_dynamics(const tribo_model *m) { return &m->dyn; }
+const tribo_point *tribo_committed(const tribo_model *m) { return &m->committed; }
+int tribo_state_length(const tribo_model *m) { return m->n_state; }
+int tribo_charging_on(const tribo_model *m) { return m->charging.any_selected; }
+
+static void pending_clear(tribo_model *m)
+{
+    m->n_pending = 0;
+    m->charges_out_valid = 0;
+}
+
+void tribo_commit(tribo_model *m, const tribo_point *p) { m->committed = *p; }
+void tribo_output_begin(tribo_model *m) { pending_clear(m); }
+void tribo_output_set(tribo_model *m, const tribo_point *p) { m->out = *p; }
+
+void tribo_count(tribo_model *m, tribo_counter which, long long n)
+{
+    switch (which) {
+    case TRIBO_COUNT_STEPS: m->stats.steps += n; break;
+    case TRIBO_COUNT_RHS_EVALS: m->stats.rhs_evals += n; break;
+    case TRIBO_COUNT_EVENTS: m->stats.events += n; break;
+    case TRIBO_COUNT_RESTARTS: m->stats.restarts += n; break;
+    case TRIBO_COUNT_SUBSTEPS: m->stats.substeps += n; break;
+    }
+}
+
+void tribo_warn(tribo_model *m, const char *message)
+{
+    if (m->log)
+        m->log(m->log_user, 1, message);
 }
 
 /* Warnings past this many are counted but not logged one by one. */
 #define LOGGED_VIOLATIONS 10
 
-void tribo_account_interval(tribo_model *m, const tribo_point *from, tribo_point *to, int commit)
+void tribo_book_interval(tribo_model *m, const tribo_point *from, tribo_point *to, int commit)
 {
     const double h = to->t - from->t;
     const int in_contact = to->contact.in_contact;
@@ -105,7 +137,9 @@ void tribo_account_interval(tribo_model *m, const tribo_point *from, tribo_point
     to->motion.outside_assumptions = deep;
 }
 
-tribo_status tribo_pending_push(tribo_model *m, const tribo_contact_sample *sample)
+/* ---- charging services ------------------------------------------------------------------- */
+
+static tribo_status pending_push(tribo_model *m, const tribo_contact_sample *sample)
 {
     if (m->n_pending == m->cap_pending) {
         const size_t cap = m->cap_pending ? 2 * m->cap_pending : 8;
@@ -120,69 +154,218 @@ tribo_status tribo_pending_push(tribo_model *m, const tribo_contact_sample *samp
     return TRIBO_OK;
 }
 
-void tribo_pending_clear(tribo_model *m)
+tribo_status tribo_charge_sample(tribo_model *m, const tribo_contact_sample *sample,
+                                 tribo_charge_destination where)
 {
-    m->n_pending = 0;
-    m->charges_out_valid = 0;
+    if (!m->charging.any_selected)
+        return TRIBO_OK;
+    if (where == TRIBO_CHARGE_PENDING)
+        return pending_push(m, sample);
+    tribo_charging_apply(&m->charging, &m->scene, sample, TRIBO_CHARGE_COMMITTED);
+    return TRIBO_OK;
 }
 
-/* Apply the pending charge updates to arrays q / sigma (either may be NULL). */
-static void apply_pending(tribo_model *m, double *q, double *sigma)
+void tribo_quadrature_rates(const tribo_model *m, const tribo_contact_eval *ev, double *rates)
+{
+    if (!ev->in_contact) {
+        for (int k = 0; k < m->charging.n_quadratures; k++)
+            rates[k] = 0.0;
+        return;
+    }
+    const tribo_contact_kinematics k = {
+        m->dyn.mu, ev->delta_y, ev->vs, tribo_contact_curvature_radius(m->dyn.eps2, ev->pose.h)};
+    tribo_charging_quadrature_rates(&m->charging, &k, rates);
+}
+
+void tribo_charge_step(tribo_model *m, const tribo_point *from, tribo_point *to, double h,
+                       tribo_contact_sample *sample)
+{
+    if (!m->charging.any_selected) {
+        memcpy(to->charge_globals, from->charge_globals, sizeof to->charge_globals);
+        return;
+    }
+    tribo_charging_step(&m->charging, &m->scene, &to->contact.pose, to->contact.delta_y, h,
+                        from->y + TRIBO_NMOTION, to->y + TRIBO_NMOTION, from->charge_globals,
+                        to->charge_globals, sample);
+}
+
+void tribo_probe_contact(const tribo_model *m, const double *y, double *s_centre,
+                         double *half_width, double *centre_speed, tribo_contact_kinematics *k)
+{
+    const double eps = m->dyn.eps, eps2 = m->dyn.eps2;
+    tribo_pose g;
+    tribo_pose_at(eps2, y[TRIBO_IPHI], &g);
+    const double t_c = tribo_contact_parameter(eps, &g);
+    const double rho_c = tribo_contact_curvature_radius(eps2, g.h);
+    /* in a contact phase the contact exists even where rounding gives delta_y <= 0 */
+    const double dy = fmax(0.0, g.h - y[TRIBO_IY]);
+    *s_centre = tribo_arclength_at(&m->charging.arc, t_c);
+    *half_width = sqrt(rho_c * dy);
+    /* ds_c/dtau = |boundary speed| |dt_c/dphi| |Omega|, dt_c/dphi = -eps / h^2 */
+    *centre_speed = tribo_boundary_speed(eps2, t_c) * eps / (g.h * g.h) * fabs(y[TRIBO_IOMEGA]);
+    k->mu = m->dyn.mu;
+    k->delta_y = dy;
+    k->vs = y[TRIBO_IU] + g.h * y[TRIBO_IOMEGA];
+    k->rho_c = rho_c;
+}
+
+typedef struct sink_target {
+    tribo_model *m;
+    tribo_charge_destination where;
+} sink_target;
+
+static int sink(void *ctx, const tribo_contact_sample *sample)
+{
+    sink_target *s = ctx;
+    return tribo_charge_sample(s->m, sample, s->where) != TRIBO_OK;
+}
+
+tribo_status tribo_charge_sweep(tribo_model *m, const tribo_contact_probe *probe, double a,
+                                double b, tribo_point *p, tribo_charge_destination where)
+{
+    if (!m->charging.any_selected)
+        return TRIBO_OK;
+    sink_target target = {m, where};
+    if (tribo_charging_sweep(&m->charging, &m->scene, probe, a, b, m->scene.rtol, m->scene.atol,
+                             p->y + TRIBO_NMOTION, p->charge_globals, sink, &target) != 0)
+        return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
+    return TRIBO_OK;
+}
+
+/* ---- the output point's charges ------------------------------------------------------------ */
+
+/* The committed charges with the pending updates applied: the committed arrays themselves
+   when nothing is pending, else the copies. Returns 0 if out of memory. */
+static int charges_out(tribo_model *m)
+{
+    tribo_charging *c = &m->charging;
+    if (m->n_pending == 0 || m->charges_out_valid)
+        return 1;
+    const size_t bytes = (size_t)c->n * sizeof(double);
+    for (int i = 0; i < c->n_models; i++) {
+        tribo_charge_slot *slot = &c->slot[i];
+        if (!slot->segments)
+            continue;
+        if (!slot->segments_out && !(slot->segments_out = malloc(bytes)))
+            return 0;
+        memcpy(slot->segments_out, slot->segments, bytes);
+    }
+    for (size_t i = 0; i < m->n_pending; i++)
+        tribo_charging_apply(c, &m->scene, &m->pending[i], TRIBO_CHARGE_OUTPUT_COPY);
+    m->charges_out_valid = 1;
+    return 1;
+}
+
+tribo_charge_view tribo_charge_view_of(tribo_model *m, int index)
+{
+    const tribo_charge_slot *slot = &m->charging.slot[index];
+    tribo_charge_view v = {&m->scene, NULL, m->charging.n,
+                           m->out.charge_globals + slot->globals_at,
+                           m->out.y + TRIBO_NMOTION + slot->quadratures_at};
+    if (slot->segments && charges_out(m))
+        v.segments = m->n_pending ? slot->segments_out : slot->segments;
+    return v;
+}
+
+/* Apply the pending charge updates to the committed charges and make the output point the
+   committed one (before a tunable or an input changes there). */
+static void commit_output(tribo_model *m)
 {
     for (size_t i = 0; i < m->n_pending; i++)
-        tribo_charging_segments(&m->charging, &m->charge, &m->pending[i], q, sigma);
-}
-
-void tribo_commit_output(tribo_model *m)
-{
-    if (m->has_charging)
-        apply_pending(m, m->charging.q, m->charging.sigma);
+        tribo_charging_apply(&m->charging, &m->scene, &m->pending[i], TRIBO_CHARGE_COMMITTED);
     m->committed = m->out;
-    tribo_pending_clear(m);
+    pending_clear(m);
 }
 
 /* Start the integrator afresh from the committed point, which is also the output now. */
-static void restart_here(tribo_model *m)
+static tribo_status restart_here(tribo_model *m)
 {
-    m->integrator->restart(m);
+    const tribo_status st = m->integrator->restart(m, m->integrator_data);
     m->out = m->committed;
-    tribo_pending_clear(m);
+    pending_clear(m);
+    return st;
+}
+
+/* ---- life cycle -------------------------------------------------------------------------------- */
+
+static void report(char *err, size_t err_size, const char *msg)
+{
+    if (err && err_size)
+        snprintf(err, err_size, "%s", msg);
+}
+
+tribo_model *tribo_create_with_charge_models(const tribo_scene *scene,
+                                             const tribo_charge_model *const *models,
+                                             int n_models, char *err, size_t err_size)
+{
+    char msg[512];
+    if (!scene) {
+        report(err, err_size, "scene is NULL");
+        return NULL;
+    }
+    /* charge_model selects among this set's models */
+    tribo_scene checked = *scene;
+    checked.charge_model = 0;
+    if (tribo_scene_validate(&checked, msg, sizeof msg) != TRIBO_OK) {
+        report(err, err_size, msg);
+        return NULL;
+    }
+    const int max_selection = (1 << n_models) - 1;
+    if (scene->charge_model < 0 || scene->charge_model > max_selection) {
+        snprintf(msg, sizeof msg,
+                 "charge_model = %d is invalid: the valid range is an integer with 0 <= "
+                 "charge_model <= %d",
+                 scene->charge_model, max_selection);
+        report(err, err_size, msg);
+        return NULL;
+    }
+    const tribo_integrator_ops *integrator = tribo_integrator_of_kind(scene->integrator);
+    if (!integrator) {
+        snprintf(msg, sizeof msg, "integrator = %d is not a known integrator", scene->integrator);
+        report(err, err_size, msg);
+        return NULL;
+    }
+    tribo_model *m = calloc(1, sizeof *m);
+    if (!m) {
+        report(err, err_size, "out of memory");
+        return NULL;
+    }
+    m->scene = *scene;
+    tribo_derive_params(m);
+    const int st = tribo_charging_init(&m->charging, models, n_models,
+                                       (unsigned)scene->charge_model, scene->epsilon,
+                                       scene->n_segments);
+    if (st != 0) {
+        snprintf(msg, sizeof msg,
+                 st == -1 ? "out of memory (n_segments = %d)"
+                          : "the charge models need more global states or quadratures than a "
+                            "point holds (n_segments = %d)",
+                 scene->n_segments);
+        report(err, err_size, msg);
+        tribo_free(m);
+        return NULL;
+    }
+    m->n_state = TRIBO_NMOTION + m->charging.n_quadratures;
+    m->integrator = integrator;
+    if (integrator->create(m, &m->integrator_data) != TRIBO_OK || tribo_reset(m) != TRIBO_OK) {
+        report(err, err_size, m->error[0] ? m->error : "out of memory");
+        tribo_free(m);
+        return NULL;
+    }
+    return m;
 }
 
 tribo_model *tribo_create(const tribo_scene *scene, char *err, size_t err_size)
 {
-    char msg[512];
-    if (tribo_scene_validate(scene, msg, sizeof msg) != TRIBO_OK) {
-        if (err && err_size)
-            snprintf(err, err_size, "%s", msg);
-        return NULL;
+    if (scene) {
+        char msg[512];
+        if (tribo_scene_validate(scene, msg, sizeof msg) != TRIBO_OK) {
+            report(err, err_size, msg);
+            return NULL;
+        }
     }
-    tribo_model *m = calloc(1, sizeof *m);
-    if (!m)
-        goto oom;
-    m->scene = *scene;
-    tribo_derive_params(m);
-    m->has_charging = scene->charge_model != TRIBO_CHARGE_NONE;
-    /* Without a charge model no segment table is built, and no segment is touched. */
-    if (m->has_charging &&
-        tribo_charging_init(&m->charging, scene->epsilon, scene->n_segments,
-                            (scene->charge_model & TRIBO_CHARGE_STATIC) != 0,
-                            (scene->charge_model & TRIBO_CHARGE_SLIDING) != 0) != 0)
-        goto oom;
-    m->integrator = integrator_for(scene->integrator);
-    if (m->integrator->create(m) != TRIBO_OK) {
-        if (err && err_size)
-            snprintf(err, err_size, "%s", m->error[0] ? m->error : "out of memory");
-        tribo_free(m);
-        return NULL;
-    }
-    tribo_reset(m);
-    return m;
-oom:
-    if (err && err_size)
-        snprintf(err, err_size, "out of memory (n_segments = %d)", scene->n_segments);
-    tribo_free(m);
-    return NULL;
+    return tribo_create_with_charge_models(scene, TRIBO_CHARGE_MODELS, TRIBO_SEGMENTS_COUNT, err,
+                                           err_size);
 }
 
 void tribo_free(tribo_model *m)
@@ -190,12 +373,9 @@ void tribo_free(tribo_model *m)
     if (!m)
         return;
     if (m->integrator && m->integrator_data)
-        m->integrator->destroy(m);
-    if (m->has_charging)
-        tribo_charging_free(&m->charging);
+        m->integrator->destroy(m->integrator_data);
+    tribo_charging_free(&m->charging);
     free(m->pending);
-    free(m->q_out);
-    free(m->sigma_out);
     free(m);
 }
 
@@ -205,14 +385,13 @@ void tribo_set_logger(tribo_model *m, tribo_log_fn fn, void *user)
     m->log_user = user;
 }
 
-void tribo_reset(tribo_model *m)
+tribo_status tribo_reset(tribo_model *m)
 {
-    tribo_initial_point(m, &m->committed);
-    if (m->has_charging)
-        tribo_charging_reset(&m->charging);
+    initial_point(m, &m->committed);
+    tribo_charging_reset(&m->charging);
     memset(&m->stats, 0, sizeof m->stats);
     m->error[0] = '\0';
-    restart_here(m);
+    return restart_here(m);
 }
 
 tribo_status tribo_advance(tribo_model *m, double t)
@@ -221,7 +400,7 @@ tribo_status tribo_advance(tribo_model *m, double t)
         return tribo_fail(m, TRIBO_ERR_TIME,
                           "cannot advance to t = %.17g: the instance is at t = %.17g", t,
                           m->out.t);
-    return m->integrator->advance(m, t);
+    return m->integrator->advance(m, m->integrator_data, t);
 }
 
 tribo_status tribo_set_param(tribo_model *m, const char *name, double value)
@@ -239,25 +418,34 @@ tribo_status tribo_set_param(tribo_model *m, const char *name, double value)
                           "%s cannot change during a run (it is %s); create a new instance",
                           p->name,
                           p->variability == TRIBO_PARAM_STRUCTURAL ? "structural" : "fixed");
-    tribo_commit_output(m);
+    commit_output(m);
     tribo_param_write(&m->scene, p, value);
     tribo_derive_params(m);
-    restart_here(m);
-    return TRIBO_OK;
+    return restart_here(m);
+}
+
+tribo_status tribo_set_inputs(tribo_model *m, const double values[TRIBO_INPUT_COUNT])
+{
+    const char *const names[TRIBO_INPUT_COUNT] = {
+#define TRIBO_INPUT(id, name, ...) [TRIBO_INPUT_##id] = name,
+#include "quantities.def"
+    };
+    for (int i = 0; i < TRIBO_INPUT_COUNT; i++)
+        if (!isfinite(values[i]))
+            return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT, "%s = %g is invalid: it must be finite",
+                              names[i], values[i]);
+    if (values[TRIBO_INPUT_F_T] == m->dyn.F_T && values[TRIBO_INPUT_F_N] == m->dyn.F_N)
+        return TRIBO_OK;
+    commit_output(m);
+    m->dyn.F_T = values[TRIBO_INPUT_F_T];
+    m->dyn.F_N = values[TRIBO_INPUT_F_N];
+    return restart_here(m);
 }
 
 tribo_status tribo_set_external_force(tribo_model *m, double F_T, double F_N)
 {
-    if (!isfinite(F_T) || !isfinite(F_N))
-        return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT,
-                          "external force (F_T_ext = %g, F_N_ext = %g) must be finite", F_T, F_N);
-    if (F_T == m->dyn.F_T && F_N == m->dyn.F_N)
-        return TRIBO_OK;
-    tribo_commit_output(m);
-    m->dyn.F_T = F_T;
-    m->dyn.F_N = F_N;
-    restart_here(m);
-    return TRIBO_OK;
+    const double values[TRIBO_INPUT_COUNT] = {[TRIBO_INPUT_F_T] = F_T, [TRIBO_INPUT_F_N] = F_N};
+    return tribo_set_inputs(m, values);
 }
 
 const tribo_scene *tribo_get_scene(const tribo_model *m) { return &m->scene; }
@@ -266,76 +454,17 @@ const char *tribo_last_error(const tribo_model *m) { return m->error; }
 
 void tribo_get_stats(const tribo_model *m, tribo_stats *s) { *s = m->stats; }
 
-/* The committed charges with the pending updates applied: the committed arrays
-   themselves when nothing is pending, else scratch copies. */
-static tribo_status charges_out(tribo_model *m, const double **q, const double **sigma)
-{
-    tribo_charging *c = &m->charging;
-    if (m->n_pending == 0) {
-        *q = c->q;
-        *sigma = c->sigma;
-        return TRIBO_OK;
-    }
-    if (!m->charges_out_valid) {
-        const size_t bytes = (size_t)c->n * sizeof(double);
-        if (c->q && !m->q_out && !(m->q_out = malloc(bytes)))
-            return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
-        if (c->sigma && !m->sigma_out && !(m->sigma_out = malloc(bytes)))
-            return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
-        if (c->q)
-            memcpy(m->q_out, c->q, bytes);
-        if (c->sigma)
-            memcpy(m->sigma_out, c->sigma, bytes);
-        apply_pending(m, c->q ? m->q_out : NULL, c->sigma ? m->sigma_out : NULL);
-        m->charges_out_valid = 1;
-    }
-    *q = c->q ? m->q_out : NULL;
-    *sigma = c->sigma ? m->sigma_out : NULL;
-    return TRIBO_OK;
-}
+/* ---- what can be read ------------------------------------------------------------------------ */
 
 double tribo_get(tribo_model *m, tribo_quantity which)
 {
     const tribo_point *p = &m->out;
-    const double *q = NULL, *sigma = NULL;
     switch (which) {
-    case TRIBO_Q_TIME: return p->t;
-    case TRIBO_Q_X: return p->y[TRIBO_IX];
-    case TRIBO_Q_Y: return p->y[TRIBO_IY];
-    case TRIBO_Q_PHI: return p->y[TRIBO_IPHI];
-    case TRIBO_Q_U: return p->y[TRIBO_IU];
-    case TRIBO_Q_V: return p->y[TRIBO_IV];
-    case TRIBO_Q_OMEGA: return p->y[TRIBO_IOMEGA];
-    case TRIBO_Q_DELTA_Y: return p->contact.delta_y;
-    case TRIBO_Q_DELTA_X: return p->y[TRIBO_IDX];
-    case TRIBO_Q_IN_CONTACT: return p->contact.in_contact ? 1.0 : 0.0;
-    case TRIBO_Q_SLIPPING: return p->slipping ? 1.0 : 0.0;
-    case TRIBO_Q_PSI_N: return p->contact.psi_n;
-    case TRIBO_Q_PSI_T: return p->contact.psi_t;
-    case TRIBO_Q_STATIC:
-        if (!m->has_charging || !m->charging.q || charges_out(m, &q, &sigma) != TRIBO_OK)
-            return 0.0;
-        return tribo_charging_mean(q, m->charging.n); /* MODEL §5a */
-    case TRIBO_Q_SLIDING:
-        if (!m->has_charging || !m->charging.sigma || charges_out(m, &q, &sigma) != TRIBO_OK)
-            return 0.0;
-        return tribo_charging_mean(sigma, m->charging.n) / m->scene.Sigma0; /* MODEL §5b */
-    case TRIBO_Q_SIGMA_S: return p->Sigma_s;
-    case TRIBO_Q_OMEGA_WORK: return p->y[TRIBO_IWORK];
-    case TRIBO_Q_ENERGY: return tribo_energy(&m->dyn, p->y);
-    case TRIBO_Q_WORK_DISSIPATED: return p->y[TRIBO_IWDISS];
-    case TRIBO_Q_WORK_EXTERNAL: return p->y[TRIBO_IWEXT];
-    case TRIBO_Q_CONTACT_TIME: return p->contact_time;
-    case TRIBO_Q_CONTACT_FRACTION: return p->t > 0.0 ? p->contact_time / p->t : 0.0;
-    case TRIBO_Q_TURNS: return fabs(p->y[TRIBO_IPHI] - m->scene.phi0) / (2.0 * M_PI);
-    case TRIBO_Q_CONTACT_MODE: return (double)p->motion.mode;
-    case TRIBO_Q_FRACTION_FLIGHT:
-    case TRIBO_Q_FRACTION_SLIDING:
-    case TRIBO_Q_FRACTION_ROLLING:
-    case TRIBO_Q_FRACTION_TUMBLING:
-    case TRIBO_Q_FRACTION_BOUNCING:
-        return p->t > 0.0 ? p->motion.mode_time[which - TRIBO_Q_FRACTION_FLIGHT] / p->t : 0.0;
-    case TRIBO_Q_ASSUMPTION_WARNINGS: return (double)m->stats.assumption_warnings;
+#define TRIBO_TIME(id, name, vr, unit, description, value) \
+    case TRIBO_Q_##id: return (value);
+#define TRIBO_OUTPUT(id, name, vr, unit, description, value) \
+    case TRIBO_Q_##id: return (value);
+#include "quantities.def"
     case TRIBO_Q_COUNT: break;
     }
     return NAN;
@@ -344,11 +473,9 @@ double tribo_get(tribo_model *m, tribo_quantity which)
 const char *tribo_quantity_name(tribo_quantity q)
 {
     static const char *const names[TRIBO_Q_COUNT] = {
-        "time", "X", "Y", "phi", "U", "V", "Omega", "delta_y", "delta_x", "in_contact",
-        "slipping", "Psi_N", "Psi_T", "Q_static", "Q_sliding", "Sigma_s", "omega_work",
-        "energy", "work_dissipated", "work_external", "contact_time", "contact_fraction",
-        "turns", "contact_mode", "fraction_flight", "fraction_sliding", "fraction_rolling",
-        "fraction_tumbling", "fraction_bouncing", "assumption_warnings",
+#define TRIBO_TIME(id, name, ...) [TRIBO_Q_##id] = name,
+#define TRIBO_OUTPUT(id, name, ...) [TRIBO_Q_##id] = name,
+#include "quantities.def"
     };
     return (unsigned)q < TRIBO_Q_COUNT ? names[q] : NULL;
 }
@@ -356,24 +483,19 @@ const char *tribo_quantity_name(tribo_quantity q)
 tribo_status tribo_get_segment_charges(tribo_model *m, tribo_segment_charge which, double *out,
                                        size_t n)
 {
-    const int want_static = which == TRIBO_SEGMENTS_STATIC;
-    if (!m->has_charging || (want_static ? !m->charging.q : !m->charging.sigma))
+    if ((unsigned)which >= (unsigned)m->charging.n_models || !m->charging.slot[which].segments)
         return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT,
                           "the scene does not include the %s charge model (charge_model = %d)",
-                          want_static ? "static" : "sliding", m->scene.charge_model);
+                          (unsigned)which < (unsigned)m->charging.n_models
+                              ? m->charging.slot[which].model->name
+                              : "requested",
+                          m->scene.charge_model);
     if (n != (size_t)m->charging.n)
         return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT,
-                          "segment array of %zu values given, n_segments = %d", n,
-                          m->charging.n);
-    const double *q, *sigma;
-    tribo_status st = charges_out(m, &q, &sigma);
-    if (st != TRIBO_OK)
-        return st;
-    if (want_static) {
-        memcpy(out, q, n * sizeof *out);
-    } else {
-        for (size_t i = 0; i < n; i++)
-            out[i] = sigma[i] / m->scene.Sigma0;
-    }
+                          "segment array of %zu values given, n_segments = %d", n, m->charging.n);
+    const tribo_charge_view v = tribo_charge_view_of(m, which);
+    if (!v.segments)
+        return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
+    m->charging.slot[which].model->segment_values(&m->scene, v.globals, v.segments, out, v.n);
     return TRIBO_OK;
 }

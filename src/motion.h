@@ -40,6 +40,12 @@ typedef struct tribo_motion {
    contact, over which phi moved by dphi. decay = exp(-h / window). */
 void tribo_motion_update(tribo_motion *m, double h, double decay, int in_contact, double dphi);
 
+/* The fraction of the time t so far spent in a mode. */
+static inline double tribo_motion_fraction(const tribo_motion *m, tribo_contact_mode mode, double t)
+{
+    return t > 0.0 ? m->mode_time[mode] / t : 0.0;
+}
+
 /* Whether a contact is outside the model's assumptions (TRIBO_INDENTATION_LIMIT). */
 int tribo_indentation_too_deep(double delta_y, double epsilon, double rho_c);
 

@@ -42,12 +42,12 @@ typedef enum tribo_status {
     TRIBO_ERR_MEMORY
 } tribo_status;
 
-/* ---- the scene: every parameter of MODEL §1, the initial state, the choices ----- */
+/* ---- the scene: every parameter of the table (quantities.def) ------------------- */
 
 typedef enum tribo_charge_models {
     TRIBO_CHARGE_NONE = 0,
-    TRIBO_CHARGE_STATIC = 1,  /* MODEL §5a */
-    TRIBO_CHARGE_SLIDING = 2, /* MODEL §5b */
+    TRIBO_CHARGE_STATIC = 1,  /* docs/model.md §5a */
+    TRIBO_CHARGE_SLIDING = 2, /* docs/model.md §5b */
     TRIBO_CHARGE_BOTH = 3
 } tribo_charge_models;
 
@@ -57,40 +57,22 @@ typedef enum tribo_integrator_kind {
     TRIBO_INTEGRATOR_CVODE_BDF = 2   /* the same with BDF (for stiff scenes)        */
 } tribo_integrator_kind;
 
+#define TRIBO_CTYPE_REAL double
+#define TRIBO_CTYPE_INTEGER int
+#define TRIBO_CTYPE_COUNT int
+
+/* Every parameter of the model, the initial state and the choices, one field per row of
+   quantities.def (its description, unit, range and default are there; angles such as
+   beta are in the unit the table gives). Everything is dimensionless (docs/model.md). */
 typedef struct tribo_scene {
-    /* MODEL §1 */
-    double epsilon;  /* roundness ratio b/a, 0 < epsilon <= 1                        */
-    double mu;       /* Coulomb friction coefficient                                  */
-    double nu;       /* normal dissipation coefficient                                */
-    double Gamma;    /* gravity / stiffness ratio mg/(ka)                             */
-    double beta;     /* plate tilt, in DEGREES (0 <= beta < 90)                       */
-    double tau0;     /* charging time constant                                        */
-    double Sigma0;   /* static saturation charge density                              */
-    double eta;      /* fraction of frictional work that raises the saturation density */
-    double tau_r;    /* relaxation time of the elevated saturation density            */
-    int n_segments;  /* boundary segments of equal arc length                         */
-    double v_reg;    /* velocity scale of the regularised sign (fixed step, MODEL §3) */
-
-    /* Initial state (defaults: the paper's drop, MODEL §7). The centre starts at
-       Y = h(phi0) + gap0; the velocity is drop_speed straight down in the external
-       frame, i.e. U = drop_speed sin(beta), V = -drop_speed cos(beta). */
-    double X0;
-    double gap0;       /* height of the lowest point above the plate, >= 0 */
-    double phi0;       /* orientation of the long axis, rad */
-    double drop_speed; /* >= 0 */
-    double Omega0;     /* initial spin, rad per time unit */
-
-    /* Choices */
-    int charge_model; /* tribo_charge_models */
-    int integrator;   /* tribo_integrator_kind */
-    double dt;        /* step of the fixed-step integrator */
-    double rtol;      /* CVODE relative tolerance */
-    double atol;      /* CVODE absolute tolerance */
+#define TRIBO_PARAMETER(name, type, ...) TRIBO_CTYPE_##type name;
+#include "quantities.def"
 } tribo_scene;
 
-/* Fill a scene with the paper's low-friction case (MODEL §7) at epsilon = 0.5, both
-   charge models, CVODE at rtol = 1e-9, atol = 1e-11 (the fixed step's dt = 8e-5, the
-   paper's, is set for when integrator = TRIBO_INTEGRATOR_FIXED_STEP is chosen). */
+/* Fill a scene with the table's defaults: the paper's low-friction case (docs/model.md §7)
+   at epsilon = 0.5, both charge models, CVODE at rtol = 1e-9, atol = 1e-11 (the fixed
+   step's dt = 8e-5, the paper's, is set for when integrator = TRIBO_INTEGRATOR_FIXED_STEP
+   is chosen). */
 void tribo_scene_defaults(tribo_scene *scene);
 
 /* ---- parameter descriptions: names, ranges, validation ------------------------- */
@@ -101,14 +83,22 @@ typedef enum tribo_param_variability {
     TRIBO_PARAM_TUNABLE     /* may change between advances (tribo_set_param)              */
 } tribo_param_variability;
 
+typedef enum tribo_param_type {
+    TRIBO_TYPE_REAL,    /* double */
+    TRIBO_TYPE_INTEGER, /* int */
+    TRIBO_TYPE_COUNT    /* int that sizes the segment arrays */
+} tribo_param_type;
+
 typedef struct tribo_param_info {
-    const char *name;        /* MODEL §1's name column (also the FMI variable name) */
+    const char *name;        /* the scene's field (also the FMI variable name) */
     const char *description;
     const char *unit;        /* "1" where dimensionless */
+    unsigned vr;             /* the FMUs' value reference */
     size_t offset;           /* offset of the field in tribo_scene */
-    int is_integer;          /* field is an int rather than a double */
+    tribo_param_type type;
     double min, max;         /* valid range; +-INFINITY where open-ended */
     int min_inclusive, max_inclusive;
+    double start;            /* the default */
     tribo_param_variability variability;
 } tribo_param_info;
 
@@ -126,6 +116,9 @@ void tribo_param_range_text(const tribo_param_info *p, char *buf, size_t n);
 tribo_status tribo_param_check(const tribo_param_info *p, double value, char *msg, size_t msg_size);
 /* Check every parameter of a scene; the first failure is reported as above. */
 tribo_status tribo_scene_validate(const tribo_scene *scene, char *msg, size_t msg_size);
+/* The first structural parameter in which two scenes differ, or NULL if they have the
+   same structure (an instance of one can load the other's state). */
+const tribo_param_info *tribo_scene_structure_differs(const tribo_scene *a, const tribo_scene *b);
 
 /* ---- the instance --------------------------------------------------------------- */
 
@@ -141,8 +134,9 @@ tribo_model *tribo_create(const tribo_scene *scene, char *err, size_t err_size);
 void tribo_free(tribo_model *model);
 void tribo_set_logger(tribo_model *model, tribo_log_fn fn, void *user);
 
-/* Back to time 0 and the scene's initial state (tunables keep their current values). */
-void tribo_reset(tribo_model *model);
+/* Back to time 0 and the scene's initial state (tunables keep their current values).
+   Fails (TRIBO_ERR_INTEGRATOR) if the integrator cannot start there. */
+tribo_status tribo_reset(tribo_model *model);
 
 /* Advance to time t >= the current time. The committed integration is independent
    of the times asked for: advancing in n calls to t1 < ... < tn gives bit-identical
@@ -153,8 +147,15 @@ tribo_status tribo_advance(tribo_model *model, double t);
    current time on. Structural and fixed parameters are rejected. */
 tribo_status tribo_set_param(tribo_model *model, const char *name, double value);
 
-/* External tangential / normal force (MODEL §3), held constant from the current
-   time on. */
+/* The inputs (quantities.def: the external force along and normal to the plate,
+   docs/model.md §3), held constant from the current time on. */
+typedef enum tribo_input {
+#define TRIBO_INPUT(id, ...) TRIBO_INPUT_##id,
+#include "quantities.def"
+    TRIBO_INPUT_COUNT
+} tribo_input;
+tribo_status tribo_set_inputs(tribo_model *model, const double values[TRIBO_INPUT_COUNT]);
+/* The same for the two components of the external force. */
 tribo_status tribo_set_external_force(tribo_model *model, double F_T, double F_N);
 
 /* The scene the instance runs (including the current tunable values). */
@@ -166,32 +167,9 @@ const char *tribo_last_error(const tribo_model *model);
 /* ---- what can be read ------------------------------------------------------------ */
 
 typedef enum tribo_quantity {
-    TRIBO_Q_TIME,
-    TRIBO_Q_X, TRIBO_Q_Y, TRIBO_Q_PHI,       /* centre position, orientation (MODEL §2) */
-    TRIBO_Q_U, TRIBO_Q_V, TRIBO_Q_OMEGA,     /* velocities                              */
-    TRIBO_Q_DELTA_Y, TRIBO_Q_DELTA_X,        /* indentation, tangential spring stretch  */
-    TRIBO_Q_IN_CONTACT, TRIBO_Q_SLIPPING,    /* 1 or 0                                  */
-    TRIBO_Q_PSI_N, TRIBO_Q_PSI_T,            /* contact forces (MODEL §3)               */
-    TRIBO_Q_STATIC,                          /* Q_static (MODEL §5a)                    */
-    TRIBO_Q_SLIDING,                         /* Q_sliding (MODEL §5b)                   */
-    TRIBO_Q_SIGMA_S,                         /* dynamic saturation density Sigma_s      */
-    TRIBO_Q_OMEGA_WORK,                      /* cumulative frictional work per area     */
-    TRIBO_Q_ENERGY,                          /* mechanical energy E (MODEL §6)          */
-    TRIBO_Q_WORK_DISSIPATED,                 /* work dissipated by the contact so far   */
-    TRIBO_Q_WORK_EXTERNAL,                   /* work done by F_T_ext, F_N_ext so far    */
-    TRIBO_Q_CONTACT_TIME,                    /* time spent in contact so far            */
-    TRIBO_Q_CONTACT_FRACTION,                /* contact time / time                     */
-    TRIBO_Q_TURNS,                           /* revolutions made, |phi - phi0| / 2 pi   */
-    TRIBO_Q_CONTACT_MODE,                    /* 0 flight, 1 sliding (quasi-fixed orientation,
-                                                with rocking), 2 rolling, 3 tumbling,
-                                                4 bouncing: over the last ~20 time units  */
-    TRIBO_Q_FRACTION_FLIGHT,                 /* fraction of the time so far in each mode */
-    TRIBO_Q_FRACTION_SLIDING,
-    TRIBO_Q_FRACTION_ROLLING,
-    TRIBO_Q_FRACTION_TUMBLING,
-    TRIBO_Q_FRACTION_BOUNCING,
-    TRIBO_Q_ASSUMPTION_WARNINGS,             /* times the contact went outside the model's
-                                                assumptions (delta_y > 0.1 min(eps, rho_c)) */
+#define TRIBO_TIME(id, ...) TRIBO_Q_##id,
+#define TRIBO_OUTPUT(id, ...) TRIBO_Q_##id,
+#include "quantities.def"
     TRIBO_Q_COUNT
 } tribo_quantity;
 
@@ -201,9 +179,11 @@ double tribo_get(tribo_model *model, tribo_quantity q);
 /* Name of a quantity, e.g. "Q_static" (the FMI output names). */
 const char *tribo_quantity_name(tribo_quantity q);
 
+/* The per-segment arrays, one per charge model, in the order of the registry. */
 typedef enum tribo_segment_charge {
-    TRIBO_SEGMENTS_STATIC,  /* q_i = sigma_i / sigma_0              (MODEL §5a) */
-    TRIBO_SEGMENTS_SLIDING  /* Sigma_i / Sigma_0, mean = Q_sliding  (MODEL §5b) */
+#define TRIBO_SEGMENTS(id, ...) TRIBO_SEGMENTS_##id,
+#include "quantities.def"
+    TRIBO_SEGMENTS_COUNT
 } tribo_segment_charge;
 
 /* Copy the per-segment charge densities (n = n_segments values) at the current time.

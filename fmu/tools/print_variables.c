@@ -90,7 +90,7 @@ static void print_variable(const fmu_variable *v, const tribo_scene *defaults)
         print_number(p->max);
         fputs(", \"core_variability\": ", stdout);
         print_string(variability_of_param(p->variability));
-        printf(", \"core_is_integer\": %s", p->is_integer ? "true" : "false");
+        printf(", \"core_is_integer\": %s", p->type != TRIBO_TYPE_REAL ? "true" : "false");
     }
     if (v->maps_to == FMU_MAPS_TO_QUANTITY) {
         fputs(", \"core_name\": ", stdout);

@@ -3,16 +3,41 @@
 #include <criterion/criterion.h>
 #include <math.h>
 
+#include "charge_models.h"
 #include "charging.h"
 
+/* The registry's models (static, sliding), both selected. */
 static tribo_charging make(double eps, int n)
 {
     tribo_charging c;
-    cr_assert_eq(tribo_charging_init(&c, eps, n, 1, 1), 0);
+    cr_assert_eq(tribo_charging_init(&c, TRIBO_CHARGE_MODELS, TRIBO_SEGMENTS_COUNT,
+                                     TRIBO_CHARGE_BOTH, eps, n), 0);
     return c;
 }
 
-static const tribo_charge_params PARAMS = {1.0, 1.0, 0.01, 0.1}; /* tau0, tau_r, Sigma0, eta */
+/* tau0 = tau_r = 1, Sigma0 = 0.01, eta = 0.1 */
+static tribo_scene params(void)
+{
+    tribo_scene s;
+    tribo_scene_defaults(&s);
+    return s;
+}
+
+static double *static_q(tribo_charging *c) { return c->slot[TRIBO_SEGMENTS_STATIC].segments; }
+static double *sliding_sigma(tribo_charging *c) { return c->slot[TRIBO_SEGMENTS_SLIDING].segments; }
+
+/* A sample of the given duration over [s_c - half, s_c + half], with the sliding model's
+   Sigma_s at the start, middle and end. */
+static tribo_contact_sample sample(const tribo_charging *c, double duration, double s_c,
+                                   double half, double S0, double Sm, double S1)
+{
+    tribo_contact_sample s = {duration, 1, s_c, half, {0}, {0}, {0}};
+    const int at = c->slot[TRIBO_SEGMENTS_SLIDING].globals_at;
+    s.globals_begin[at] = S0;
+    s.globals_mid[at] = Sm;
+    s.globals_end[at] = S1;
+    return s;
+}
 
 /* A contact held still over segment 5, charged in pieces of various lengths: both models
    are exact, q = 1 - e^{-T/tau0} (MODEL §5a) and, with Sigma_s held, Sigma_i =
@@ -20,16 +45,18 @@ static const tribo_charge_params PARAMS = {1.0, 1.0, 0.01, 0.1}; /* tau0, tau_r,
 Test(charging, exact_for_a_held_contact)
 {
     tribo_charging c = make(0.5, 100);
+    const tribo_scene P = params();
     const double seg = c.arc.perimeter / 100, S = 0.013;
     double T = 0.0;
     for (int k = 1; k <= 50; k++) {
-        tribo_contact_sample s = {0.01 * k, 1, 5.5 * seg, 0.2 * seg, 0, 0, S, S, S};
-        tribo_charging_segments(&c, &PARAMS, &s, c.q, c.sigma);
+        const tribo_contact_sample s = sample(&c, 0.01 * k, 5.5 * seg, 0.2 * seg, S, S, S);
+        tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMITTED);
         T += s.duration;
     }
-    cr_expect_float_eq(c.q[5], 1.0 - exp(-T / PARAMS.tau0), 1e-14);
-    cr_expect_float_eq(c.sigma[5], S * (1.0 - exp(-T / PARAMS.tau0)), 1e-15);
-    cr_expect(c.q[4] == 0.0 && c.q[6] == 0.0 && c.sigma[4] == 0.0);
+    const double *q = static_q(&c), *sigma = sliding_sigma(&c);
+    cr_expect_float_eq(q[5], 1.0 - exp(-T / P.tau0), 1e-14);
+    cr_expect_float_eq(sigma[5], S * (1.0 - exp(-T / P.tau0)), 1e-15);
+    cr_expect(q[4] == 0.0 && q[6] == 0.0 && sigma[4] == 0.0);
     tribo_charging_free(&c);
 }
 
@@ -40,11 +67,13 @@ Test(charging, sliding_update_exact_for_quadratic_saturation)
     const double durations[] = {1e-3, 0.3, 5.0};
     for (int k = 0; k < 3; k++) {
         tribo_charging c = make(0.5, 100);
+        const tribo_scene P = params();
         const double seg = c.arc.perimeter / 100, d = durations[k];
         const double S0 = 0.010, Sm = 0.0123, S1 = 0.0117;
-        c.sigma[7] = 0.004;
-        tribo_contact_sample s = {d, 1, 7.5 * seg, 0.1 * seg, 0, 0, S0, Sm, S1};
-        tribo_charging_segments(&c, &PARAMS, &s, NULL, c.sigma);
+        double *sigma = sliding_sigma(&c);
+        sigma[7] = 0.004;
+        const tribo_contact_sample s = sample(&c, d, 7.5 * seg, 0.1 * seg, S0, Sm, S1);
+        tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMITTED);
         /* reference: Sigma_s(u) = A + B u + C u^2 through the three values */
         const double C = 2 * (S0 - 2 * Sm + S1), B = S1 - S0 - C;
         double y = 0.004;
@@ -58,7 +87,7 @@ Test(charging, sliding_update_exact_for_quadratic_saturation)
                          k3 = (fh - (y + 0.5 * h * k2)), k4 = (f1 - (y + h * k3));
             y += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
         }
-        cr_expect(fabs(c.sigma[7] - y) < 1e-15, "duration %g: %.17g vs %.17g", d, c.sigma[7], y);
+        cr_expect(fabs(sigma[7] - y) < 1e-15, "duration %g: %.17g vs %.17g", d, sigma[7], y);
         tribo_charging_free(&c);
     }
 }
@@ -68,14 +97,16 @@ Test(charging, sliding_update_exact_for_quadratic_saturation)
 Test(charging, segment_under_a_point_contact_charges)
 {
     tribo_charging c = make(0.5, 64);
+    const tribo_scene P = params();
     const double seg = c.arc.perimeter / 64;
-    tribo_contact_sample s = {1.0, 1, 10.3 * seg, 0.0, 0, 0, 0.01, 0.01, 0.01};
-    tribo_charging_segments(&c, &PARAMS, &s, c.q, NULL);
-    cr_expect(c.q[10] > 0.6 && c.q[9] == 0.0 && c.q[11] == 0.0);
+    const double *q = static_q(&c);
+    const tribo_contact_sample s = sample(&c, 1.0, 10.3 * seg, 0.0, 0.01, 0.01, 0.01);
+    tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMITTED);
+    cr_expect(q[10] > 0.6 && q[9] == 0.0 && q[11] == 0.0);
     /* and a contact across the start of the numbering reaches both ends */
-    tribo_contact_sample w = {1.0, 1, 0.1 * seg, 0.5 * seg, 0, 0, 0.01, 0.01, 0.01};
-    tribo_charging_segments(&c, &PARAMS, &w, c.q, NULL);
-    cr_expect(c.q[0] > 0.6 && c.q[63] > 0.6 && c.q[1] == 0.0);
+    const tribo_contact_sample w = sample(&c, 1.0, 0.1 * seg, 0.5 * seg, 0.01, 0.01, 0.01);
+    tribo_charging_apply(&c, &P, &w, TRIBO_CHARGE_COMMITTED);
+    cr_expect(q[0] > 0.6 && q[63] > 0.6 && q[1] == 0.0);
     tribo_charging_free(&c);
 }
 
@@ -88,26 +119,31 @@ typedef struct moving {
     double kink;            /* > 0: work rate |t - kink| instead */
 } moving;
 
-static void probe(void *ctx, double t, double *s_c, double *half, double *rate, double *speed)
+/* The work rate of the sliding model, mu |vs| sqrt(delta_y / rho_c) / 2, is `rate` for
+   mu = 2, vs = rate, delta_y = rho_c = 1. */
+static void probe(void *ctx, double t, double *s_c, double *half, double *speed,
+                  tribo_contact_kinematics *k)
 {
     const moving *mv = ctx;
     *s_c = fmod(mv->s0 + mv->speed * t, mv->perimeter);
     if (*s_c < 0)
         *s_c += mv->perimeter;
     *half = mv->half;
-    *rate = mv->kink > 0       ? 0.16 * fabs(t - mv->kink)
-            : mv->rate_end > 0 ? sqrt(fmax(0.0, mv->rate_end - t))
-                               : 0.0;
+    const double rate = mv->kink > 0       ? 0.16 * fabs(t - mv->kink)
+                        : mv->rate_end > 0 ? sqrt(fmax(0.0, mv->rate_end - t))
+                                           : 0.0;
+    *k = (tribo_contact_kinematics){2.0, 1.0, rate, 1.0};
     *speed = fabs(mv->speed);
 }
 
 static tribo_charging *target;
+static tribo_scene PARAMS;
 static long samples;
 static int apply(void *ctx, const tribo_contact_sample *s)
 {
     (void)ctx;
     samples++;
-    tribo_charging_segments(target, &PARAMS, s, target->q, target->sigma);
+    tribo_charging_apply(target, &PARAMS, s, TRIBO_CHARGE_COMMITTED);
     return 0;
 }
 
@@ -129,18 +165,21 @@ Test(charging, sweep_gives_each_segment_its_exact_contact_time)
 {
     tribo_charging c = make(0.7, 400);
     target = &c;
+    PARAMS = params();
     const double P = c.arc.perimeter, L = P / 400;
     moving mv = {0.2 * P, 0.06, 3.3 * L, P, 0.0, 0.0};
     const tribo_contact_probe pr = {probe, &mv};
     double work = 0.0, Sigma_s = 0.01;
     const double T = 25.0; /* the contact travels 1.5, 0.28 of the perimeter */
     samples = 0;
-    cr_assert_eq(tribo_charging_sweep(&c, &PARAMS, &pr, 0.0, T, 1e-8, 1e-10, &work, &Sigma_s, apply, NULL), 0);
+    cr_assert_eq(tribo_charging_sweep(&c, &PARAMS, &pr, 0.0, T, 1e-8, 1e-10, &work, &Sigma_s, apply,
+                                      NULL),
+                 0);
     double worst = 0.0;
     int touched = 0;
     for (int i = 0; i < 400; i++) {
         const double t_exact = exact_contact_time(i * L, L, &mv, T);
-        const double t_swept = -PARAMS.tau0 * log1p(-c.q[i]);
+        const double t_swept = -PARAMS.tau0 * log1p(-static_q(&c)[i]);
         worst = fmax(worst, fabs(t_swept - t_exact));
         touched += t_exact > 0;
     }
@@ -161,6 +200,7 @@ Test(charging, sweep_finishes_at_a_kinked_or_singular_end, .timeout = 30)
 {
     tribo_charging c = make(0.6, 2000);
     target = &c;
+    PARAMS = params();
     const double b = 2495.9721242660285, min_piece = 1e-13 * (1.0 + b);
     for (int k = 0; k < 400; k++) {
         const double a = k < 200 ? b - 2.0 * min_piece - k * 1.25e-14 : b - 0.0141189799588;

@@ -28,7 +28,7 @@ static void state(double *y, double eps, double phi, double depth, double U, dou
 {
     tribo_pose g;
     tribo_pose_at(eps * eps, phi, &g);
-    for (int i = 0; i < TRIBO_NSTATE; i++)
+    for (int i = 0; i < TRIBO_NSTATE_MAX; i++)
         y[i] = 0.0;
     y[TRIBO_IY] = g.h - depth;
     y[TRIBO_IPHI] = phi;
@@ -41,7 +41,7 @@ static void state(double *y, double eps, double phi, double depth, double U, dou
 Test(forces, flight_has_no_contact_force)
 {
     tribo_dyn_params p = params(0.5, 0.3, 0.2);
-    double y[TRIBO_NSTATE], dydt[TRIBO_NSTATE];
+    double y[TRIBO_NSTATE_MAX], dydt[TRIBO_NSTATE_MAX];
     tribo_contact_eval ev;
     state(y, 0.5, 0.4, -1e-3, 0.1, -0.1, 0.3, 0.05);
     tribo_dynamics_rhs(&p, &LAW, y, dydt, &ev);
@@ -58,7 +58,7 @@ Test(forces, normal_force_opposes_the_normal_velocity)
 {
     const double dy = 0.01, nu = 0.2;
     tribo_dyn_params p = params(0.5, 0.3, nu);
-    double y[TRIBO_NSTATE];
+    double y[TRIBO_NSTATE_MAX];
     tribo_contact_eval ev;
     state(y, 0.5, 0.0, dy, 0.0, -0.1, 0.0, 0.0); /* moving into the plate */
     tribo_contact_at(&p, &LAW, y, &ev);
@@ -81,7 +81,7 @@ Test(forces, stick_and_slip_branches)
 {
     const double dy = 0.01, mu = 0.3;
     tribo_dyn_params p = params(0.5, mu, 0.0);
-    double y[TRIBO_NSTATE], dydt[TRIBO_NSTATE];
+    double y[TRIBO_NSTATE_MAX], dydt[TRIBO_NSTATE_MAX];
     tribo_contact_eval ev;
     /* stick: |dx| below mu Psi_N = 3e-3 */
     state(y, 0.5, 0.3, dy, 0.02, 0.0, 0.1, 1e-3);

@@ -30,10 +30,10 @@ static int bad_values(const tribo_param_info *p, double *out)
     out[n++] = INFINITY;
     out[n++] = -INFINITY;
     if (isfinite(p->min))
-        out[n++] = p->min_inclusive ? p->min - fmax(1e-9, fabs(p->min) * 1e-9) - (p->is_integer ? 1 : 0) : p->min;
+        out[n++] = p->min_inclusive ? p->min - fmax(1e-9, fabs(p->min) * 1e-9) - (p->type != TRIBO_TYPE_REAL ? 1 : 0) : p->min;
     if (isfinite(p->max))
-        out[n++] = p->max_inclusive ? p->max + fmax(1e-9, fabs(p->max) * 1e-9) + (p->is_integer ? 1 : 0) : p->max;
-    if (p->is_integer)
+        out[n++] = p->max_inclusive ? p->max + fmax(1e-9, fabs(p->max) * 1e-9) + (p->type != TRIBO_TYPE_REAL ? 1 : 0) : p->max;
+    if (p->type != TRIBO_TYPE_REAL)
         out[n++] = p->min + 0.5;
     return n;
 }
@@ -50,10 +50,10 @@ Test(params, every_invalid_value_is_refused_with_its_message)
         for (int k = 0; k < n; k++) {
             tribo_scene s;
             tribo_scene_defaults(&s);
-            if (table[i].is_integer && !isfinite(values[k]))
+            if (table[i].type != TRIBO_TYPE_REAL && !isfinite(values[k]))
                 continue; /* an int field cannot hold them; the FMU checks doubles first */
             tribo_param_write(&s, &table[i], values[k]);
-            if (table[i].is_integer && tribo_param_read(&s, &table[i]) != values[k])
+            if (table[i].type != TRIBO_TYPE_REAL && tribo_param_read(&s, &table[i]) != values[k])
                 continue; /* 0.5 truncates in the field: checked through tribo_param_check */
             char err[256] = "";
             tribo_model *m = tribo_create(&s, err, sizeof err);

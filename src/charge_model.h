@@ -1,0 +1,97 @@
+/*
+ * charge_model.h: what a charge model is (docs/model.md §5), as the segment loop, the
+ * exact contact-time sweep and both integrators see it.
+ *
+ * A charge model has one value per boundary segment (its charge density), changed only
+ * on the segments in contact; it may have global states (the sliding model's dynamic
+ * saturation density Sigma_s) and quadratures (rates integrated along the motion: the
+ * sliding model's frictional work per unit area omega). Everything else (which segments
+ * touch, for how long, the saving and loading of states, the outputs' plumbing) is
+ * generic: charging.c, charge_sweep.c, state_io.c.
+ *
+ * To add a model: one file implementing a tribo_charge_model, and one line registering it
+ * in charge_models.c.
+ */
+#ifndef TRIBO_CHARGE_MODEL_H
+#define TRIBO_CHARGE_MODEL_H
+
+#include <stddef.h>
+
+#include "tribo.h"
+
+/* Room in a point for the global states and quadratures of every registered model. */
+#define TRIBO_CHARGE_MAX_GLOBALS 4
+#define TRIBO_CHARGE_MAX_QUADRATURES 2
+#define TRIBO_CHARGE_MAX_MODELS 4
+
+/* The contact as a quadrature's rate sees it (docs/model.md §5b). */
+typedef struct tribo_contact_kinematics {
+    double mu;      /* Coulomb friction coefficient, its current value    */
+    double delta_y; /* indentation                                         */
+    double vs;      /* slip velocity of the contact point, U + h Omega     */
+    double rho_c;   /* radius of curvature of the boundary at the contact  */
+} tribo_contact_kinematics;
+
+/* What drives the segments in contact over an interval: its duration and each global
+   state at its start, middle and end (a quadratic in time through those three). */
+typedef struct tribo_charge_forcing {
+    double duration;
+    const double *begin, *mid, *end; /* the model's own globals */
+} tribo_charge_forcing;
+
+typedef struct tribo_charge_model {
+    const char *name;  /* "static", "sliding": in messages */
+    int n_globals;     /* at most TRIBO_CHARGE_MAX_GLOBALS over all registered models */
+    int n_quadratures; /* at most TRIBO_CHARGE_MAX_QUADRATURES over all of them */
+    size_t cache_size; /* bytes of scratch the model keeps per instance (zeroed at start) */
+
+    /* The global states at the start of a run. */
+    void (*start)(const tribo_scene *s, double *globals);
+
+    /* The rate of quadrature k in contact (in flight it is 0). */
+    double (*quadrature_rate)(int k, const tribo_contact_kinematics *c);
+
+    /* The globals over one step of length h of the fixed-step integrator, from g0 to g1,
+       given the quadratures at its ends (q0, q1) and whether it ends in contact. */
+    void (*step_globals)(void *cache, const tribo_scene *s, double h, int in_contact,
+                         const double *q0, const double *q1, const double *g0, double *g1);
+
+    /* The globals over a piece of contact of length h swept from an integrator's dense
+       output: from g0 to g_mid (at h/2) and g_end, given the rates of the quadratures at
+       the quarter points (rates[k][0..4]) and the quadratures at the start, middle and
+       end. Returns 0 to have the piece halved (its globals not accurate to rtol / atol). */
+    int (*piece_globals)(void *cache, const tribo_scene *s, double h, const double (*rates)[5],
+                         const double *q_begin, const double *q_mid, const double *q_end,
+                         const double *g0, double *g_mid, double *g_end, double rtol,
+                         double atol);
+
+    /* The rate law on `count` segments in contact, from index `first` (periodic in n),
+       over an interval of fixed contact: exact given the forcing. */
+    void (*charge)(void *cache, const tribo_scene *s, const tribo_charge_forcing *f,
+                   double *segments, long first, long count, int n);
+
+    /* The per-segment values as tribo_get_segment_charges reports them. */
+    void (*segment_values)(const tribo_scene *s, const double *globals, const double *segments,
+                           double *out, int n);
+} tribo_charge_model;
+
+/* ---- exponentials for exact updates over an interval --------------------------------- */
+
+/* Exponentials of the last duration and time constant seen, so that a run at a fixed step
+   costs no transcendental call per step. A zeroed cache is empty. */
+typedef struct tribo_decay_cache {
+    double duration, tau, decay, one_minus_decay, phi1;
+    int has_moments;
+    double zf1, zf2; /* z F_k(z), F_k(z) = int_0^1 v^k e^{-z v} dv, z = duration / tau */
+} tribo_decay_cache;
+
+/* e^-z, 1 - e^-z and phi1(z) = (1 - e^-z) / z for z = duration / tau, recomputed only
+   when either changed. */
+const tribo_decay_cache *tribo_decay(tribo_decay_cache *k, double duration, double tau);
+/* The same with the moments zf1, zf2 too. */
+const tribo_decay_cache *tribo_decay_moments(tribo_decay_cache *k, double duration, double tau);
+
+/* Mean of an array of n values. */
+double tribo_mean(const double *v, int n);
+
+#endif

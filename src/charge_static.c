@@ -1,0 +1,39 @@
+/* charge_static.c: the static (capacitive) charge model, docs/model.md §5a (paper eq. 2).
+   Per segment q_i = sigma_i / sigma_0, dq_i/dtau = (1 - q_i) / tau0 in contact; no
+   global states. */
+#include "charge_models.h"
+
+#include <string.h>
+
+static void charge(void *cache, const tribo_scene *s, const tribo_charge_forcing *f,
+                   double *q, long first, long count, int n)
+{
+    /* linear with constant coefficients: exact over the interval */
+    const double one_minus_d = tribo_decay(cache, f->duration, s->tau0)->one_minus_decay;
+    long i = first;
+    for (long j = 0; j < count; j++) {
+        q[i] += (1.0 - q[i]) * one_minus_d;
+        if (++i == n)
+            i = 0;
+    }
+}
+
+static void segment_values(const tribo_scene *s, const double *globals, const double *q,
+                           double *out, int n)
+{
+    (void)s, (void)globals;
+    memcpy(out, q, (size_t)n * sizeof *out);
+}
+
+const tribo_charge_model tribo_charge_static = {
+    .name = "static",
+    .cache_size = sizeof(tribo_decay_cache),
+    .charge = charge,
+    .segment_values = segment_values,
+};
+
+double tribo_static_charge(tribo_model *m)
+{
+    const tribo_charge_view v = tribo_charge_view_of(m, TRIBO_SEGMENTS_STATIC);
+    return v.segments ? tribo_mean(v.segments, v.n) : 0.0; /* Q_static, §5a */
+}

@@ -1,0 +1,133 @@
+/* scene.c: the scene's parameters (quantities.def): defaults, valid ranges, validation. */
+#include "tribo.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#define CLOSED 1
+#define OPEN 0
+
+/* The rows of quantities.def. Upper bounds that the model leaves open are +INFINITY (any
+   finite value); the few finite caps are there to refuse input that would only exhaust
+   memory or time, and say so in their description. */
+static const tribo_param_info PARAMS[] = {
+#define TRIBO_PARAMETER(name_, type_, vr_, unit_, min_, min_end, max_, max_end, start_,   \
+                        variability_, description_)                                      \
+    {.name = #name_, .description = description_, .unit = unit_, .vr = vr_,               \
+     .offset = offsetof(tribo_scene, name_), .type = TRIBO_TYPE_##type_, .min = min_,     \
+     .max = max_, .min_inclusive = min_end, .max_inclusive = max_end, .start = start_,    \
+     .variability = TRIBO_PARAM_##variability_},
+#include "quantities.def"
+};
+
+#define N_PARAMS (sizeof PARAMS / sizeof PARAMS[0])
+
+void tribo_scene_defaults(tribo_scene *s)
+{
+    memset(s, 0, sizeof *s);
+    for (size_t i = 0; i < N_PARAMS; i++)
+        tribo_param_write(s, &PARAMS[i], PARAMS[i].start);
+}
+
+const tribo_param_info *tribo_param_table(size_t *count)
+{
+    if (count)
+        *count = N_PARAMS;
+    return PARAMS;
+}
+
+const tribo_param_info *tribo_param_find(const char *name)
+{
+    for (size_t i = 0; name && i < N_PARAMS; i++)
+        if (strcmp(PARAMS[i].name, name) == 0)
+            return &PARAMS[i];
+    return NULL;
+}
+
+double tribo_param_read(const tribo_scene *scene, const tribo_param_info *p)
+{
+    const char *base = (const char *)scene + p->offset;
+    if (p->type != TRIBO_TYPE_REAL) {
+        int v;
+        memcpy(&v, base, sizeof v);
+        return (double)v;
+    }
+    double v;
+    memcpy(&v, base, sizeof v);
+    return v;
+}
+
+void tribo_param_write(tribo_scene *scene, const tribo_param_info *p, double value)
+{
+    char *base = (char *)scene + p->offset;
+    if (p->type != TRIBO_TYPE_REAL) {
+        int v = (int)value;
+        memcpy(base, &v, sizeof v);
+    } else {
+        memcpy(base, &value, sizeof value);
+    }
+}
+
+void tribo_param_range_text(const tribo_param_info *p, char *buf, size_t n)
+{
+    if (p->type != TRIBO_TYPE_REAL) {
+        snprintf(buf, n, "an integer with %.0f <= %s <= %.0f", p->min, p->name, p->max);
+        return;
+    }
+    const int has_lo = isfinite(p->min), has_hi = isfinite(p->max);
+    if (has_lo && has_hi)
+        snprintf(buf, n, "%g %s %s %s %g", p->min, p->min_inclusive ? "<=" : "<", p->name,
+                 p->max_inclusive ? "<=" : "<", p->max);
+    else if (has_lo)
+        snprintf(buf, n, "%s %s %g (finite)", p->name, p->min_inclusive ? ">=" : ">", p->min);
+    else if (has_hi)
+        snprintf(buf, n, "%s %s %g (finite)", p->name, p->max_inclusive ? "<=" : "<", p->max);
+    else
+        snprintf(buf, n, "any finite number");
+}
+
+tribo_status tribo_param_check(const tribo_param_info *p, double v, char *msg, size_t msg_size)
+{
+    int ok = isfinite(v);
+    if (ok && p->type != TRIBO_TYPE_REAL)
+        ok = v == floor(v);
+    if (ok)
+        ok = p->min_inclusive ? v >= p->min : v > p->min;
+    if (ok)
+        ok = p->max_inclusive ? v <= p->max : v < p->max;
+    if (ok)
+        return TRIBO_OK;
+    if (msg && msg_size) {
+        char range[128];
+        tribo_param_range_text(p, range, sizeof range);
+        snprintf(msg, msg_size, "%s = %.17g is invalid: the valid range is %s", p->name, v,
+                 range);
+    }
+    return TRIBO_ERR_INVALID_ARGUMENT;
+}
+
+tribo_status tribo_scene_validate(const tribo_scene *scene, char *msg, size_t msg_size)
+{
+    if (!scene) {
+        if (msg && msg_size)
+            snprintf(msg, msg_size, "scene is NULL");
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    }
+    for (size_t i = 0; i < N_PARAMS; i++) {
+        tribo_status st = tribo_param_check(&PARAMS[i], tribo_param_read(scene, &PARAMS[i]), msg,
+                                            msg_size);
+        if (st != TRIBO_OK)
+            return st;
+    }
+    return TRIBO_OK;
+}
+
+const tribo_param_info *tribo_scene_structure_differs(const tribo_scene *a, const tribo_scene *b)
+{
+    for (size_t i = 0; i < N_PARAMS; i++)
+        if (PARAMS[i].variability == TRIBO_PARAM_STRUCTURAL &&
+            tribo_param_read(a, &PARAMS[i]) != tribo_param_read(b, &PARAMS[i]))
+            return &PARAMS[i];
+    return NULL;
+}
