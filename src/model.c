@@ -294,10 +294,11 @@ static void report(char *err, size_t err_size, const char *msg)
         snprintf(err, err_size, "%s", msg);
 }
 
-tribo_model *tribo_create_with_charge_models(const tribo_scene *scene,
-                                             const tribo_charge_model *const *models,
-                                             int n_models, char *err, size_t err_size)
+tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts *parts,
+                                     char *err, size_t err_size)
 {
+    const tribo_charge_model *const *models = parts->charge_models;
+    const int n_models = parts->n_charge_models;
     char msg[512];
     if (!scene) {
         report(err, err_size, "scene is NULL");
@@ -319,7 +320,8 @@ tribo_model *tribo_create_with_charge_models(const tribo_scene *scene,
         report(err, err_size, msg);
         return NULL;
     }
-    const tribo_integrator_ops *integrator = tribo_integrator_of_kind(scene->integrator);
+    const tribo_integrator_ops *integrator =
+        parts->integrator ? parts->integrator : tribo_integrator_of_kind(scene->integrator);
     if (!integrator) {
         snprintf(msg, sizeof msg, "integrator = %d is not a known integrator", scene->integrator);
         report(err, err_size, msg);
@@ -364,8 +366,8 @@ tribo_model *tribo_create(const tribo_scene *scene, char *err, size_t err_size)
             return NULL;
         }
     }
-    return tribo_create_with_charge_models(scene, TRIBO_CHARGE_MODELS, TRIBO_SEGMENTS_COUNT, err,
-                                           err_size);
+    const tribo_parts registry = {TRIBO_CHARGE_MODELS, TRIBO_SEGMENTS_COUNT, NULL};
+    return tribo_create_from_parts(scene, &registry, err, err_size);
 }
 
 void tribo_free(tribo_model *m)

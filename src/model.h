@@ -35,12 +35,18 @@ struct tribo_model {
     char error[512];
 };
 
-/* Make an instance whose charge models are models[0..n_models) instead of the registry
-   (charge_models.c), selected by the bits of scene->charge_model (at most 2^n_models - 1).
-   tribo_create is this with the registry. */
-tribo_model *tribo_create_with_charge_models(const tribo_scene *scene,
-                                             const tribo_charge_model *const *models,
-                                             int n_models, char *err, size_t err_size);
+/* What an instance is made of: its charge models (selected by the bits of
+   scene->charge_model, at most 2^n_charge_models - 1) and its integrator (NULL: the one of
+   scene->integrator). tribo_create uses the registry (charge_models.c) and the scene's
+   integrator; a test can plug in models or an integrator of its own. */
+typedef struct tribo_parts {
+    const tribo_charge_model *const *charge_models;
+    int n_charge_models;
+    const tribo_integrator_ops *integrator;
+} tribo_parts;
+
+tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts *parts,
+                                     char *err, size_t err_size);
 
 /* Recompute dyn from the scene (after a tunable changed). */
 void tribo_derive_params(tribo_model *m);

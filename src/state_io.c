@@ -153,17 +153,19 @@ tribo_status tribo_state_load(tribo_model *m, const void *buffer, size_t size)
     size_t n_params;
     const tribo_param_info *params = tribo_param_table(&n_params);
     for (size_t i = 0; i < n_params; i++) {
+        const tribo_param_info *p = &params[i];
         const double v = tribo_read_double(&r);
-        if (tribo_param_check(&params[i], v, m->error, sizeof m->error) != TRIBO_OK)
+        /* a structural parameter must be the instance's own (valid for its parts); the
+           others must be valid */
+        if (p->variability == TRIBO_PARAM_STRUCTURAL && v != tribo_param_read(&m->scene, p))
+            return tribo_fail(m, TRIBO_ERR_STATE,
+                              "state was saved with %s = %.17g, this instance has %s = %.17g",
+                              p->name, v, p->name, tribo_param_read(&m->scene, p));
+        if (p->variability != TRIBO_PARAM_STRUCTURAL &&
+            tribo_param_check(p, v, m->error, sizeof m->error) != TRIBO_OK)
             return TRIBO_ERR_STATE;
-        tribo_param_write(&scene, &params[i], v);
+        tribo_param_write(&scene, p, v);
     }
-    const tribo_param_info *differs = tribo_scene_structure_differs(&scene, &m->scene);
-    if (differs)
-        return tribo_fail(m, TRIBO_ERR_STATE,
-                          "state was saved with %s = %.17g, this instance has %s = %.17g",
-                          differs->name, tribo_param_read(&scene, differs), differs->name,
-                          tribo_param_read(&m->scene, differs));
     const double F_T = tribo_read_double(&r), F_N = tribo_read_double(&r),
                  t_out = tribo_read_double(&r);
     tribo_stats stats;
