@@ -82,11 +82,11 @@ static int resolve_all(fmu_instance *inst, const char *fn, unsigned types, const
 
 static int model_readable(fmu_instance *inst, const char *fn, const fmu_variable *v)
 {
-    const unsigned modes = FMU_MODE_BIT(FMU_MODE_INITIALIZATION) | FMU_MODE_BIT(FMU_MODE_STEP) |
-                           FMU_MODE_BIT(FMU_MODE_TERMINATED) | FMU_MODE_BIT(FMU_MODE_ERROR);
-    if (!(modes & FMU_MODE_BIT(inst->mode))) {
+    const unsigned modes = FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_INITIALIZATION) | FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_STEP) |
+                           FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_TERMINATED) | FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_FAILED);
+    if (!(modes & FMU_LIFECYCLE_BIT(inst->lifecycle))) {
         fmu_error(inst, "%s: %s is computed from Initialization Mode on; it cannot be read in state %s",
-                  fn, v->name, fmu_mode_name(inst->mode));
+                  fn, v->name, fmu_lifecycle_name(inst->lifecycle));
         return 0;
     }
     /* outputs in Initialization Mode reflect the parameters set so far */
@@ -168,10 +168,10 @@ static int is_structural(const fmu_instance *inst, const fmu_variable *v)
 static unsigned modes_settable(const fmu_instance *inst, const fmu_variable *v)
 {
     if (is_structural(inst, v))
-        return FMU_MODE_BIT(FMU_MODE_INSTANTIATED) | FMU_MODE_BIT(FMU_MODE_CONFIGURATION);
-    unsigned modes = FMU_MODE_BIT(FMU_MODE_INSTANTIATED) | FMU_MODE_BIT(FMU_MODE_INITIALIZATION);
+        return FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_INSTANTIATED) | FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_CONFIGURATION);
+    unsigned modes = FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_INSTANTIATED) | FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_INITIALIZATION);
     if (v->variability == FMU_VARIABILITY_TUNABLE || v->causality == FMU_CAUSALITY_INPUT)
-        modes |= FMU_MODE_BIT(FMU_MODE_STEP);
+        modes |= FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_STEP);
     return modes;
 }
 
@@ -192,14 +192,14 @@ static int write_parameter(fmu_instance *inst, const char *fn, const fmu_variabl
         fmu_error(inst, "%s: %s", fn, msg);
         return 0;
     }
-    if (!(modes_settable(inst, v) & FMU_MODE_BIT(inst->mode))) {
+    if (!(modes_settable(inst, v) & FMU_LIFECYCLE_BIT(inst->lifecycle))) {
         char range[160];
         tribo_param_range_text(p, range, sizeof range);
         fmu_error(inst, "%s: %s = %.17g cannot be set in state %s: %s is %s (valid range: %s)", fn,
-                  v->name, value, fmu_mode_name(inst->mode), v->name, when_settable(inst, v), range);
+                  v->name, value, fmu_lifecycle_name(inst->lifecycle), v->name, when_settable(inst, v), range);
         return 0;
     }
-    if (inst->mode == FMU_MODE_STEP) {
+    if (inst->lifecycle == FMU_LIFECYCLE_STEP) {
         /* the core commits the present, then runs on with the new value */
         if (tribo_set_param(inst->model, v->name, value) != TRIBO_OK) {
             fmu_error(inst, "%s: %s", fn, tribo_last_error(inst->model));
@@ -214,9 +214,9 @@ static int write_parameter(fmu_instance *inst, const char *fn, const fmu_variabl
 
 static int write_input(fmu_instance *inst, const char *fn, const fmu_variable *v, double value)
 {
-    if (!(modes_settable(inst, v) & FMU_MODE_BIT(inst->mode))) {
+    if (!(modes_settable(inst, v) & FMU_LIFECYCLE_BIT(inst->lifecycle))) {
         fmu_error(inst, "%s: %s = %.17g cannot be set in state %s", fn, v->name, value,
-                  fmu_mode_name(inst->mode));
+                  fmu_lifecycle_name(inst->lifecycle));
         return 0;
     }
     if (!isfinite(value)) {

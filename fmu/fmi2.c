@@ -7,6 +7,7 @@
 #include "fmi2Functions.h"
 
 #include "instance.h"
+#include "instantiation_token.h"
 
 #define INST(c) ((fmu_instance *)(c))
 #define STATUS(s) ((fmi2Status)(s))
@@ -58,7 +59,8 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
                                  "this FMU implements co-simulation only");
         return NULL;
     }
-    return fmu_instantiate(2, __func__, instanceName, fmuGUID, &logger, loggingOn);
+    return fmu_instantiate(2, __func__, instanceName, fmuGUID, FMU_INSTANTIATION_TOKEN, &logger,
+                           loggingOn);
 }
 
 void fmi2FreeInstance(fmi2Component c) { fmu_free(INST(c)); }

@@ -7,6 +7,7 @@
 #include "fmi3Functions.h"
 
 #include "instance.h"
+#include "instantiation_token.h"
 
 #define INST(c) ((fmu_instance *)(c))
 #define STATUS(s) ((fmi3Status)(s))
@@ -80,7 +81,8 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
                                  "providesIntermediateUpdate is false");
         return NULL;
     }
-    return fmu_instantiate(3, __func__, instanceName, instantiationToken, &logger, loggingOn);
+    return fmu_instantiate(3, __func__, instanceName, instantiationToken, FMU_INSTANTIATION_TOKEN,
+                           &logger, loggingOn);
 }
 
 fmi3Instance fmi3InstantiateScheduledExecution(fmi3String instanceName,

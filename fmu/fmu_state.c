@@ -41,7 +41,7 @@ static int64_t get_i(cursor *c) { int64_t v; get(c, &v, sizeof v); return v; }
 /* Everything but the core's state: the header, 8 fields, the inputs and the parameters. */
 static size_t fixed_size(size_t n_params)
 {
-    return HEADER_SIZE + 8 * 8 + FMU_INPUT_COUNT * 8 + n_params * 8;
+    return HEADER_SIZE + 8 * 8 + TRIBO_INPUT_COUNT * 8 + n_params * 8;
 }
 
 /* ---- save ---------------------------------------------------------------------- */
@@ -52,7 +52,7 @@ fmu_status fmu_state_get(fmu_instance *inst, const char *fn, fmu_state **state)
         return FMU_ERROR;
     if (!state)
         return fmu_error(inst, "%s: FMUState is NULL", fn);
-    if (inst->mode == FMU_MODE_ERROR)
+    if (inst->lifecycle == FMU_LIFECYCLE_FAILED)
         return fmu_error(inst, "%s: the instance failed; there is no consistent state to save", fn);
     size_t n_params;
     const tribo_param_info *params = tribo_param_table(&n_params);
@@ -72,12 +72,12 @@ fmu_status fmu_state_get(fmu_instance *inst, const char *fn, fmu_state **state)
     put_i(&c, LAYOUT_VERSION);
     put_i(&c, inst->fmi_version);
     put_i(&c, (int64_t)size);
-    put_i(&c, inst->mode);
+    put_i(&c, inst->lifecycle);
     put_d(&c, inst->start_time);
     put_d(&c, inst->stop_time);
     put_i(&c, inst->stop_time_defined);
     put_d(&c, inst->time);
-    for (int i = 0; i < FMU_INPUT_COUNT; i++)
+    for (int i = 0; i < TRIBO_INPUT_COUNT; i++)
         put_d(&c, inst->inputs[i]);
     put_i(&c, (int64_t)n_params);
     for (size_t i = 0; i < n_params; i++)
@@ -137,7 +137,7 @@ static fmu_status load_core(fmu_instance *inst, const char *fn, const tribo_scen
     if (tribo_state_load(m, bytes, size) != TRIBO_OK) {
         fmu_error(inst, "%s: the core refused the state: %s", fn, tribo_last_error(m));
         if (reuse)
-            inst->mode = FMU_MODE_ERROR; /* the core instance may be half loaded */
+            inst->lifecycle = FMU_LIFECYCLE_FAILED; /* the core instance may be half loaded */
         else
             tribo_free(m);
         return FMU_ERROR;
@@ -165,8 +165,8 @@ fmu_status fmu_state_set(fmu_instance *inst, const char *fn, const fmu_state *s)
     const double start_time = get_d(&c), stop_time = get_d(&c);
     const int64_t stop_time_defined = get_i(&c);
     const double time = get_d(&c);
-    double inputs[FMU_INPUT_COUNT];
-    for (int i = 0; i < FMU_INPUT_COUNT; i++)
+    double inputs[TRIBO_INPUT_COUNT];
+    for (int i = 0; i < TRIBO_INPUT_COUNT; i++)
         inputs[i] = get_d(&c);
     if ((size_t)get_i(&c) != n_params)
         return fmu_error(inst, "%s: the state has another set of parameters", fn);
@@ -181,10 +181,10 @@ fmu_status fmu_state_set(fmu_instance *inst, const char *fn, const fmu_state *s)
     }
     const int64_t model_outdated = get_i(&c);
     const uint64_t core_size = (uint64_t)get_i(&c);
-    if (mode < FMU_MODE_INSTANTIATED || mode > FMU_MODE_TERMINATED || !isfinite(start_time) ||
+    if (mode < FMU_LIFECYCLE_INSTANTIATED || mode > FMU_LIFECYCLE_TERMINATED || !isfinite(start_time) ||
         !isfinite(stop_time) || !isfinite(time) || !isfinite(inputs[0]) || !isfinite(inputs[1]) ||
         core_size != s->size - fixed_size(n_params) ||
-        (core_size == 0 && (mode == FMU_MODE_STEP || mode == FMU_MODE_TERMINATED)))
+        (core_size == 0 && (mode == FMU_LIFECYCLE_STEP || mode == FMU_LIFECYCLE_TERMINATED)))
         return fmu_error(inst, "%s: the state is corrupt", fn);
 
     tribo_model *model = NULL;
@@ -195,15 +195,15 @@ fmu_status fmu_state_set(fmu_instance *inst, const char *fn, const fmu_state *s)
     inst->model = model;
     inst->model_outdated = model_outdated != 0;
     inst->scene = scene;
-    for (int i = 0; i < FMU_INPUT_COUNT; i++)
+    for (int i = 0; i < TRIBO_INPUT_COUNT; i++)
         inst->inputs[i] = inputs[i];
-    inst->mode = (fmu_mode)mode;
+    inst->lifecycle = (fmu_lifecycle)mode;
     inst->start_time = start_time;
     inst->stop_time = stop_time;
     inst->stop_time_defined = stop_time_defined != 0;
     inst->time = time;
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s(): back at time %.17g in state %s", fn, time,
-            fmu_mode_name(inst->mode));
+            fmu_lifecycle_name(inst->lifecycle));
     return FMU_OK;
 }
 

@@ -48,10 +48,12 @@ typedef struct fmu_instance fmu_instance;
 
 /* A new instance in the Instantiated state, every parameter at its start value. The
    name is copied. Returns NULL (after logging why, if it can) when the name is empty,
-   the token is not this FMU's or memory runs out. With logging_on every category is
-   enabled, else logStatusError and logStatusWarning. */
+   the token is not expected_token (the binary's, generated with its modelDescription)
+   or memory runs out. With logging_on every category is enabled, else logStatusError and
+   logStatusWarning. */
 fmu_instance *fmu_instantiate(int fmi_version, const char *fn, const char *name,
-                              const char *token, const fmu_logger *logger, int logging_on);
+                              const char *token, const char *expected_token,
+                              const fmu_logger *logger, int logging_on);
 void fmu_free(fmu_instance *inst);
 /* Log why fn creates no instance (e.g. an interface type this FMU does not have). */
 void fmu_refuse_instantiation(const fmu_logger *logger, const char *fn, const char *name,

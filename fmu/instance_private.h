@@ -6,16 +6,16 @@
 
 /* The states of FMI 2.0 / 3.0 co-simulation that this FMU has. FMI 2.0 has no
    Configuration Mode; Step Mode is FMI 2.0's slaveInitialized. */
-typedef enum fmu_mode {
-    FMU_MODE_INSTANTIATED,
-    FMU_MODE_CONFIGURATION,
-    FMU_MODE_INITIALIZATION,
-    FMU_MODE_STEP,
-    FMU_MODE_TERMINATED,
-    FMU_MODE_ERROR /* the core failed: only reset, a saved FMU state or free help */
-} fmu_mode;
+typedef enum fmu_lifecycle {
+    FMU_LIFECYCLE_INSTANTIATED,
+    FMU_LIFECYCLE_CONFIGURATION,
+    FMU_LIFECYCLE_INITIALIZATION,
+    FMU_LIFECYCLE_STEP,
+    FMU_LIFECYCLE_TERMINATED,
+    FMU_LIFECYCLE_FAILED /* the core failed: only reset, a saved FMU state or free help */
+} fmu_lifecycle;
 
-#define FMU_MODE_BIT(m) (1u << (m))
+#define FMU_LIFECYCLE_BIT(m) (1u << (m))
 
 struct fmu_instance {
     int fmi_version;
@@ -23,11 +23,11 @@ struct fmu_instance {
     fmu_logger logger;
     int log_enabled[FMU_LOG_CATEGORY_COUNT];
 
-    fmu_mode mode;
+    fmu_lifecycle lifecycle;
     /* The parameters as the importer sees them; once running, also the model's scene
        (tunable changes go to both). */
     tribo_scene scene;
-    double inputs[FMU_INPUT_COUNT];
+    double inputs[TRIBO_INPUT_COUNT];
     /* The core instance: made when first needed after initialization starts, remade
        when a parameter changed since (model_outdated). */
     tribo_model *model;
@@ -48,9 +48,9 @@ int fmu_log_enabled(const fmu_instance *inst, fmu_log_category category);
 /* Route the core's own messages to the importer. */
 void fmu_core_logger(void *inst, int level, const char *message);
 
-const char *fmu_mode_name(fmu_mode mode);
-/* 1 if inst is in one of the modes (FMU_MODE_BIT mask); else logs why fn is refused. */
-int fmu_mode_allows(fmu_instance *inst, const char *fn, unsigned modes);
+const char *fmu_lifecycle_name(fmu_lifecycle state);
+/* 1 if inst is in one of the lifecycle states (FMU_LIFECYCLE_BIT mask); else logs why fn is refused. */
+int fmu_lifecycle_allows(fmu_instance *inst, const char *fn, unsigned states);
 
 /* Make the core instance from the current parameters if there is none or it is
    outdated. */

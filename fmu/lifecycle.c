@@ -6,22 +6,22 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const MODE_NAMES[] = {
-    [FMU_MODE_INSTANTIATED] = "Instantiated",
-    [FMU_MODE_CONFIGURATION] = "Configuration Mode",
-    [FMU_MODE_INITIALIZATION] = "Initialization Mode",
-    [FMU_MODE_STEP] = "Step Mode",
-    [FMU_MODE_TERMINATED] = "Terminated",
-    [FMU_MODE_ERROR] = "Error (after a failure of the core: reset the instance or restore a state)",
+static const char *const LIFECYCLE_NAMES[] = {
+    [FMU_LIFECYCLE_INSTANTIATED] = "Instantiated",
+    [FMU_LIFECYCLE_CONFIGURATION] = "Configuration Mode",
+    [FMU_LIFECYCLE_INITIALIZATION] = "Initialization Mode",
+    [FMU_LIFECYCLE_STEP] = "Step Mode",
+    [FMU_LIFECYCLE_TERMINATED] = "Terminated",
+    [FMU_LIFECYCLE_FAILED] = "Error (after a failure of the core: reset the instance or restore a state)",
 };
 
-const char *fmu_mode_name(fmu_mode mode) { return MODE_NAMES[mode]; }
+const char *fmu_lifecycle_name(fmu_lifecycle state) { return LIFECYCLE_NAMES[state]; }
 
-int fmu_mode_allows(fmu_instance *inst, const char *fn, unsigned modes)
+int fmu_lifecycle_allows(fmu_instance *inst, const char *fn, unsigned states)
 {
-    if (modes & FMU_MODE_BIT(inst->mode))
+    if (states & FMU_LIFECYCLE_BIT(inst->lifecycle))
         return 1;
-    fmu_error(inst, "%s is not allowed in state %s", fn, fmu_mode_name(inst->mode));
+    fmu_error(inst, "%s is not allowed in state %s", fn, fmu_lifecycle_name(inst->lifecycle));
     return 0;
 }
 
@@ -31,13 +31,13 @@ void fmu_restore_start_values(fmu_instance *inst)
     inst->model = NULL;
     inst->model_outdated = 0;
     tribo_scene_defaults(&inst->scene);
-    for (int i = 0; i < FMU_INPUT_COUNT; i++)
+    for (int i = 0; i < TRIBO_INPUT_COUNT; i++)
         inst->inputs[i] = 0.0;
     inst->start_time = 0.0;
     inst->stop_time = 0.0;
     inst->stop_time_defined = 0;
     inst->time = 0.0;
-    inst->mode = FMU_MODE_INSTANTIATED;
+    inst->lifecycle = FMU_LIFECYCLE_INSTANTIATED;
 }
 
 void fmu_refuse_instantiation(const fmu_logger *logger, const char *fn, const char *name,
@@ -51,13 +51,14 @@ void fmu_refuse_instantiation(const fmu_logger *logger, const char *fn, const ch
 }
 
 fmu_instance *fmu_instantiate(int fmi_version, const char *fn, const char *name,
-                              const char *token, const fmu_logger *logger, int logging_on)
+                              const char *token, const char *expected_token,
+                              const fmu_logger *logger, int logging_on)
 {
     if (!name || !*name) {
         fmu_refuse_instantiation(logger, fn, name, "the instance name is empty");
         return NULL;
     }
-    if (!token || strcmp(token, FMU_INSTANTIATION_TOKEN) != 0) {
+    if (!token || strcmp(token, expected_token) != 0) {
         fmu_refuse_instantiation(logger, fn, name,
                                  "the instantiation token (GUID) is not this FMU's: the "
                                  "modelDescription.xml does not belong to this binary");
@@ -108,7 +109,7 @@ fmu_status fmu_setup_experiment(fmu_instance *inst, const char *fn, int toleranc
                                 double tolerance, double start_time, int stop_time_defined,
                                 double stop_time)
 {
-    if (!inst || !fmu_mode_allows(inst, fn, FMU_MODE_BIT(FMU_MODE_INSTANTIATED)))
+    if (!inst || !fmu_lifecycle_allows(inst, fn, FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_INSTANTIATED)))
         return FMU_ERROR;
     if (!isfinite(start_time))
         return fmu_error(inst, "%s: startTime = %g is invalid: it must be finite", fn, start_time);
@@ -135,27 +136,27 @@ fmu_status fmu_setup_experiment(fmu_instance *inst, const char *fn, int toleranc
 
 fmu_status fmu_enter_configuration(fmu_instance *inst, const char *fn)
 {
-    if (!inst || !fmu_mode_allows(inst, fn, FMU_MODE_BIT(FMU_MODE_INSTANTIATED)))
+    if (!inst || !fmu_lifecycle_allows(inst, fn, FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_INSTANTIATED)))
         return FMU_ERROR;
-    inst->mode = FMU_MODE_CONFIGURATION;
+    inst->lifecycle = FMU_LIFECYCLE_CONFIGURATION;
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s()", fn);
     return FMU_OK;
 }
 
 fmu_status fmu_exit_configuration(fmu_instance *inst, const char *fn)
 {
-    if (!inst || !fmu_mode_allows(inst, fn, FMU_MODE_BIT(FMU_MODE_CONFIGURATION)))
+    if (!inst || !fmu_lifecycle_allows(inst, fn, FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_CONFIGURATION)))
         return FMU_ERROR;
-    inst->mode = FMU_MODE_INSTANTIATED;
+    inst->lifecycle = FMU_LIFECYCLE_INSTANTIATED;
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s()", fn);
     return FMU_OK;
 }
 
 fmu_status fmu_enter_initialization(fmu_instance *inst, const char *fn)
 {
-    if (!inst || !fmu_mode_allows(inst, fn, FMU_MODE_BIT(FMU_MODE_INSTANTIATED)))
+    if (!inst || !fmu_lifecycle_allows(inst, fn, FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_INSTANTIATED)))
         return FMU_ERROR;
-    inst->mode = FMU_MODE_INITIALIZATION;
+    inst->lifecycle = FMU_LIFECYCLE_INITIALIZATION;
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s()", fn);
     return FMU_OK;
 }
@@ -177,25 +178,24 @@ fmu_status fmu_ensure_model(fmu_instance *inst, const char *fn)
 
 fmu_status fmu_exit_initialization(fmu_instance *inst, const char *fn)
 {
-    if (!inst || !fmu_mode_allows(inst, fn, FMU_MODE_BIT(FMU_MODE_INITIALIZATION)))
+    if (!inst || !fmu_lifecycle_allows(inst, fn, FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_INITIALIZATION)))
         return FMU_ERROR;
     /* on failure the instance stays in Initialization Mode, where parameters can
        still be changed */
     if (fmu_ensure_model(inst, fn) != FMU_OK)
         return FMU_ERROR;
-    if (tribo_set_external_force(inst->model, inst->inputs[FMU_INPUT_F_T],
-                                 inst->inputs[FMU_INPUT_F_N]) != TRIBO_OK)
+    if (tribo_set_inputs(inst->model, inst->inputs) != TRIBO_OK)
         return fmu_error(inst, "%s: %s", fn, tribo_last_error(inst->model));
-    inst->mode = FMU_MODE_STEP;
+    inst->lifecycle = FMU_LIFECYCLE_STEP;
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s() at time %.17g", fn, inst->time);
     return FMU_OK;
 }
 
 fmu_status fmu_terminate(fmu_instance *inst, const char *fn)
 {
-    if (!inst || !fmu_mode_allows(inst, fn, FMU_MODE_BIT(FMU_MODE_STEP)))
+    if (!inst || !fmu_lifecycle_allows(inst, fn, FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_STEP)))
         return FMU_ERROR;
-    inst->mode = FMU_MODE_TERMINATED;
+    inst->lifecycle = FMU_LIFECYCLE_TERMINATED;
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s() at time %.17g", fn, inst->time);
     return FMU_OK;
 }

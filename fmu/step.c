@@ -13,7 +13,7 @@ fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, 
     if (!inst)
         return FMU_ERROR;
     *reached = inst->time;
-    if (!fmu_mode_allows(inst, fn, FMU_MODE_BIT(FMU_MODE_STEP)))
+    if (!fmu_lifecycle_allows(inst, fn, FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_STEP)))
         return FMU_ERROR;
     const double tolerance = rounding_tolerance(inst->time);
     if (!isfinite(current_time) || fabs(current_time - inst->time) > tolerance)
@@ -33,15 +33,14 @@ fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, 
 
     /* inputs set since the last step hold from this communication point on */
     tribo_model *m = inst->model;
-    tribo_status st = tribo_set_external_force(m, inst->inputs[FMU_INPUT_F_T],
-                                               inst->inputs[FMU_INPUT_F_N]);
+    tribo_status st = tribo_set_inputs(m, inst->inputs);
     if (st == TRIBO_OK) {
         /* the communication point may lie a rounding error before the core's time */
         const double core_end = fmax(end - inst->start_time, tribo_get(m, TRIBO_Q_TIME));
         st = tribo_advance(m, core_end);
     }
     if (st != TRIBO_OK) {
-        inst->mode = FMU_MODE_ERROR;
+        inst->lifecycle = FMU_LIFECYCLE_FAILED;
         return fmu_error(inst, "%s: the step from %.17g to %.17g failed: %s", fn, current_time, end,
                          tribo_last_error(m));
     }

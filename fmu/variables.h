@@ -1,14 +1,12 @@
 /*
- * variables.h: the FMU's variables, one table for FMI 2.0 and FMI 3.0.
+ * variables.h: the FMU's variables, one table for FMI 2.0 and FMI 3.0, made from the
+ * core's table of quantities (src/quantities.def), row for row.
  *
  * Each row says what the importer sees (value reference, name, type, causality,
- * variability) and what the row maps to in the core (a parameter of the scene, a
- * quantity of tribo_get, an external force, a segment-charge array). Parameters take
- * their description, unit, range and start value from the core's parameter table,
- * so the physics is described once, in src/params.c.
- *
- * The two modelDescription.xml files restate this table; tests/python checks that
- * they agree with it (through the tribo_fmu_variables tool, which prints it as JSON).
+ * variability, description, unit) and what it maps to in the core (a parameter of the
+ * scene, a quantity of tribo_get, an input, a segment-charge array). Parameters' ranges
+ * and start values are the core's (tribo_param_table). The modelDescription files are
+ * generated from this table at build time (tools/model_description.c).
  */
 #ifndef TRIBO_FMU_VARIABLES_H
 #define TRIBO_FMU_VARIABLES_H
@@ -49,7 +47,6 @@ typedef enum fmu_mapping {
     FMU_MAPS_TO_SEGMENTS    /* index: tribo_segment_charge, n_segments values */
 } fmu_mapping;
 
-enum { FMU_INPUT_F_T, FMU_INPUT_F_N, FMU_INPUT_COUNT };
 
 /* Which FMI versions declare a variable (arrays exist in FMI 3.0 only). */
 enum { FMU_IN_FMI2 = 1, FMU_IN_FMI3 = 2, FMU_IN_BOTH = 3 };
@@ -61,27 +58,21 @@ typedef struct fmu_variable {
     fmu_causality causality;
     fmu_variability variability;
     fmu_mapping maps_to;
-    int index;          /* see fmu_mapping; unused for the time and parameters */
+    int index;          /* see fmu_mapping; for parameters, the row in tribo_param_table */
     unsigned versions;  /* FMU_IN_* */
-    const char *description; /* NULL for parameters: the core's table has it */
-    const char *unit;        /* NULL for parameters */
+    const char *description;
+    const char *unit;
 } fmu_variable;
-
-/* Changing the table (or anything importers see in modelDescription.xml) means a new
-   token in both modelDescription files. */
-#define FMU_INSTANTIATION_TOKEN "{8c1d7f0e-5b3a-4e52-9a61-3f0e1c2b7a01}"
 
 const fmu_variable *fmu_variables(size_t *count);
 /* The row with value reference vr declared in FMI version fmi_version, or NULL. */
 const fmu_variable *fmu_variable_find(fmu_vr vr, int fmi_version);
-/* The row named name, or NULL. */
-const fmu_variable *fmu_variable_named(const char *name);
 int fmu_variable_in_version(const fmu_variable *v, int fmi_version);
 
 /* The core's entry of a parameter row (NULL for other rows). */
 const tribo_param_info *fmu_variable_param(const fmu_variable *v);
-const char *fmu_variable_description(const fmu_variable *v);
-const char *fmu_variable_unit(const fmu_variable *v);
+/* The parameter that sizes an array row (NULL for scalars). */
+const fmu_variable *fmu_variable_dimension(const fmu_variable *v);
 
 /* "Real", "Integer", "Float64", "Int32", "UInt64" */
 const char *fmu_type_name(fmu_type type, int fmi_version);

@@ -36,21 +36,21 @@ typedef struct tribo_dyn_params {
 
 /* How the set-valued parts of the force law are resolved (MODEL §3). The fixed-step
    integrator uses the regularised sign and the clamped stretch throughout; an
-   event-driven integrator selects a mode per smooth piece of the motion. */
+   event-driven integrator selects a phase per smooth piece of the motion. */
 typedef enum {
     TRIBO_CONTACT_BY_GEOMETRY, /* in contact where delta_y > 0 (fixed step)              */
-    TRIBO_CONTACT_OFF,         /* flight mode: no contact force whatever delta_y is       */
-    TRIBO_CONTACT_ON           /* contact mode: the law with max(delta_y, 0), so that the
+    TRIBO_CONTACT_OFF,         /* flight phase: no contact force whatever delta_y is       */
+    TRIBO_CONTACT_ON           /* contact phase: the law with max(delta_y, 0), so that the
                                   right-hand side is smooth up to the located switch     */
 } tribo_contact_rule;
-typedef enum { TRIBO_NORMAL_REGULARISED, TRIBO_NORMAL_SIGN, TRIBO_NORMAL_LOCK } tribo_normal_mode;
-typedef enum { TRIBO_TANGENT_CLAMP, TRIBO_TANGENT_STICK, TRIBO_TANGENT_SLIP } tribo_tangent_mode;
+typedef enum { TRIBO_NORMAL_REGULARISED, TRIBO_NORMAL_SIGN, TRIBO_NORMAL_LOCK } tribo_normal_rule;
+typedef enum { TRIBO_TANGENT_CLAMP, TRIBO_TANGENT_STICK, TRIBO_TANGENT_SLIP } tribo_tangent_rule;
 
 typedef struct tribo_force_law {
     tribo_contact_rule contact;
-    tribo_normal_mode normal;
+    tribo_normal_rule normal;
     double normal_sign;   /* s for TRIBO_NORMAL_SIGN (+1 / -1)              */
-    tribo_tangent_mode tangent;
+    tribo_tangent_rule tangent;
     double slip_sign;     /* direction of slip for TRIBO_TANGENT_SLIP (+1 / -1) */
 } tribo_force_law;
 
@@ -63,7 +63,7 @@ typedef struct tribo_contact_eval {
     double sign_v;    /* the s used in Psi_N */
     double psi_n, psi_t;
     double limit;     /* Coulomb limit mu Psi_N */
-    double limit_rate; /* d(mu Psi_N)/dtau within the current normal mode (0 in lock) */
+    double limit_rate; /* d(mu Psi_N)/dtau within the current normal rule (0 in lock) */
 } tribo_contact_eval;
 
 /* dy/dtau of the motion (the first TRIBO_NMOTION components) at state y under the force

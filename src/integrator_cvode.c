@@ -1,7 +1,7 @@
 /* integrator_cvode.c: event-driven integration with SUNDIALS CVODE.
  *
  * The force law of MODEL §3 is smooth between switches, so CVODE (Adams, or BDF)
- * integrates one mode at a time and its root finding locates every switch:
+ * integrates one phase at a time and its root finding locates every switch:
  *
  *   flight                      -> contact        at delta_y = 0 (going up)
  *   contact                     -> flight         at delta_y = 0 (going down)
@@ -11,10 +11,10 @@
  *   slip                        -> stick          when the stretch would leave the limit
  *                                                 (sigma vs falls below d(mu Psi_N)/dtau)
  *
- * At each switch the new mode is set, the resets of MODEL §3 applied (delta_x = 0 on a new
+ * At each switch the new phase is set, the resets of MODEL §3 applied (delta_x = 0 on a new
  * contact, the stretch held within the new limit), and CVODE restarted there.
  *
- * The modes, their switch functions and what happens at a switch are force_modes.c's;
+ * The phases, their switch functions and what happens at a switch are force_phases.c's;
  * this file drives CVODE through them. A switch function that dips past zero and back
  * within one step is caught on the dense output too (find_grazing_switch).
  *
@@ -31,7 +31,7 @@
 #include "integrator.h"
 
 #include "contact.h"
-#include "force_modes.h"
+#include "force_phases.h"
 
 #include <cvode/cvode.h>
 #include <math.h>
@@ -52,7 +52,7 @@
 #define MAX_EVENTS_IN_A_ROW 100000
 #define MAX_STEPS_PER_TIME_UNIT 1e6
 
-typedef tribo_force_law mode; /* see force_modes.h */
+typedef tribo_force_law phase; /* see force_phases.h */
 
 typedef struct cvode_integrator {
     tribo_model *m;
@@ -64,7 +64,7 @@ typedef struct cvode_integrator {
     SUNNonlinearSolver nls;
     SUNMatrix jac;
     SUNLinearSolver ls;
-    mode mode;
+    phase phase;
     int replaying; /* re-taking saved steps: no counting, no charging */
 
     /* where CVODE was last (re)started, and the steps taken since */
@@ -94,13 +94,13 @@ typedef struct cvode_integrator {
     char message[256]; /* CVODE's last error message */
 } cvode_integrator;
 
-/* ---- the mode's right-hand side and root functions ---------------------------------- */
+/* ---- the phase's right-hand side and root functions ---------------------------------- */
 
 static int roots(sunrealtype t, N_Vector y, sunrealtype *g, void *user)
 {
     (void)t;
     cvode_integrator *c = user;
-    tribo_switch_functions(c->dyn, &c->mode, N_VGetArrayPointer(y), g);
+    tribo_switch_functions(c->dyn, &c->phase, N_VGetArrayPointer(y), g);
     return 0;
 }
 
@@ -109,7 +109,7 @@ static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *user)
     (void)t;
     cvode_integrator *c = user;
     double *dydt = N_VGetArrayPointer(ydot);
-    tribo_dynamics_rhs(c->dyn, &c->mode, N_VGetArrayPointer(y), dydt, NULL);
+    tribo_dynamics_rhs(c->dyn, &c->phase, N_VGetArrayPointer(y), dydt, NULL);
     /* the charge models' quadratures are integrated by the charging sweep, so that they
        do not steer the steps: here they are constant */
     for (int i = TRIBO_NMOTION; i < c->n; i++)
@@ -129,18 +129,18 @@ static void error_handler(int code, const char *module, const char *function, ch
         tribo_warn(c->m, c->message);
 }
 
-/* (Re)start CVODE at (t, y) in mode md. */
-static tribo_status restart_at(cvode_integrator *c, double t, const double *y, const mode *md)
+/* (Re)start CVODE at (t, y) in phase ph. */
+static tribo_status restart_at(cvode_integrator *c, double t, const double *y, const phase *ph)
 {
     tribo_model *m = c->m;
-    c->mode = *md;
+    c->phase = *ph;
     c->t_restart = t;
     memcpy(c->y_restart, y, sizeof c->y_restart);
     c->steps_since_restart = 0;
     c->open = 0;
     memcpy(N_VGetArrayPointer(c->y), y, (size_t)c->n * sizeof(double));
     int dir[N_ROOTS];
-    tribo_switch_directions(c->dyn, md, dir);
+    tribo_switch_directions(c->dyn, ph, dir);
     /* a rotating particle in flight must not swing its lowest point through the plate and
        back within one step unseen: 0.2 rad per step at most */
     const double spin = fabs(y[TRIBO_IOMEGA]);
@@ -240,17 +240,17 @@ fail:
 
 static void describe_state(const cvode_integrator *c, const double *y, char *buf, size_t n)
 {
-    const mode *md = &c->mode;
+    const phase *ph = &c->phase;
     snprintf(buf, n,
              "X = %.9g, Y = %.9g, phi = %.9g, U = %.9g, V = %.9g, Omega = %.9g, delta_x = %.9g; "
-             "mode: %s%s%s",
+             "phase: %s%s%s",
              y[TRIBO_IX], y[TRIBO_IY], y[TRIBO_IPHI], y[TRIBO_IU], y[TRIBO_IV], y[TRIBO_IOMEGA],
-             y[TRIBO_IDX], tribo_touching(md) ? "contact, " : "flight",
-             !tribo_touching(md) ? ""
-             : md->normal == TRIBO_NORMAL_LOCK ? "normal lock, "
-             : md->normal_sign > 0 ? "moving out, "
+             y[TRIBO_IDX], tribo_touching(ph) ? "contact, " : "flight",
+             !tribo_touching(ph) ? ""
+             : ph->normal == TRIBO_NORMAL_LOCK ? "normal lock, "
+             : ph->normal_sign > 0 ? "moving out, "
                                        : "moving in, ",
-             !tribo_touching(md) ? "" : md->tangent == TRIBO_TANGENT_STICK ? "stick" : "slip");
+             !tribo_touching(ph) ? "" : ph->tangent == TRIBO_TANGENT_STICK ? "stick" : "slip");
 }
 
 static tribo_status fail_at(cvode_integrator *c, double t, const double *y, const char *why)
@@ -316,13 +316,13 @@ static void switch_functions(cvode_integrator *c, double t, double *g)
 {
     double y[TRIBO_NSTATE_MAX];
     dense(c, t, y);
-    tribo_switch_functions(c->dyn, &c->mode, y, g);
+    tribo_switch_functions(c->dyn, &c->phase, y, g);
 }
 
 static void find_grazing_switch(cvode_integrator *c, double t_start)
 {
     int dir[N_ROOTS];
-    tribo_switch_directions(c->dyn, &c->mode, dir);
+    tribo_switch_directions(c->dyn, &c->phase, dir);
     double g[GRAZING_SAMPLES + 1][N_ROOTS], scale[N_ROOTS] = {0};
     const double h = c->t_end - t_start;
     if (!(h > 0.0))
@@ -392,7 +392,7 @@ static void probe(void *ctx, double t, double *s_centre, double *half_width, dou
 static tribo_status sweep_charges(cvode_integrator *c, double a, double b, tribo_point *p,
                                   tribo_charge_destination where)
 {
-    if (!tribo_touching(&c->mode) || !(b > a))
+    if (!tribo_touching(&c->phase) || !(b > a))
         return TRIBO_OK;
     const tribo_contact_probe pr = {probe, c};
     return tribo_charge_sweep(c->m, &pr, a, b, p, where);
@@ -404,18 +404,18 @@ static void fill_point(cvode_integrator *c, tribo_point *p, double t, const doub
 {
     p->t = t;
     memcpy(p->y, y, sizeof p->y);
-    tribo_contact_at(c->dyn, &c->mode, y, &p->contact);
-    if (tribo_touching(&c->mode)) {
+    tribo_contact_at(c->dyn, &c->phase, y, &p->contact);
+    if (tribo_touching(&c->phase)) {
         /* the phase decides contact, also where rounding makes delta_y = -1e-17 */
         p->contact.in_contact = 1;
         /* in slip the stretch is held at the limit (MODEL §3); CVODE's integrated stretch
            follows it only to the tolerances */
-        if (c->mode.tangent == TRIBO_TANGENT_SLIP)
-            p->y[TRIBO_IDX] = c->mode.slip_sign * p->contact.limit;
+        if (c->phase.tangent == TRIBO_TANGENT_SLIP)
+            p->y[TRIBO_IDX] = c->phase.slip_sign * p->contact.limit;
     } else {
         p->contact.in_contact = 0;
     }
-    p->slipping = tribo_touching(&c->mode) && c->mode.tangent == TRIBO_TANGENT_SLIP;
+    p->slipping = tribo_touching(&c->phase) && c->phase.tangent == TRIBO_TANGENT_SLIP;
     tribo_book_interval(c->m, from, p, commit);
 }
 
@@ -449,7 +449,7 @@ static tribo_status close_step(cvode_integrator *c)
     if (!c->ends_at_root) {
         c->events_in_a_row = 0;
         if (c->steps_since_restart >= STEPS_PER_RESTART)
-            return restart_at(c, c->t_end, c->y_end, &c->mode);
+            return restart_at(c, c->t_end, c->y_end, &c->phase);
         return TRIBO_OK;
     }
 
@@ -466,9 +466,9 @@ static tribo_status close_step(cvode_integrator *c)
         return fail_at(c, t, c->y_end, "too many events in a row without a regular step");
     double y[TRIBO_NSTATE_MAX];
     memcpy(y, c->y_end, sizeof y);
-    const mode md = tribo_mode_after(c->dyn, &c->mode, y, c->roots);
+    const phase ph = tribo_phase_after(c->dyn, &c->phase, y, c->roots);
     tribo_count(m, TRIBO_COUNT_EVENTS, 1);
-    st = restart_at(c, t, y, &md);
+    st = restart_at(c, t, y, &ph);
     if (st != TRIBO_OK)
         return st;
     commit_again(c, t, y);
@@ -482,11 +482,11 @@ static tribo_status restart(tribo_model *m, void *data)
     double y[TRIBO_NSTATE_MAX];
     memcpy(y, committed->y, sizeof y);
     /* the phase follows from the state alone */
-    mode md = tribo_mode_after(c->dyn, &TRIBO_FLIGHT, y, NULL);
+    const phase ph = tribo_phase_after(c->dyn, &TRIBO_PHASE_FLIGHT, y, NULL);
     c->events_at_instant = 0;
     c->events_in_a_row = 0;
     c->last_event_t = -INFINITY;
-    const tribo_status st = restart_at(c, committed->t, y, &md);
+    const tribo_status st = restart_at(c, committed->t, y, &ph);
     if (st == TRIBO_OK)
         commit_again(c, committed->t, y);
     return st;
@@ -562,11 +562,11 @@ static void state_save(const void *data, unsigned char *b)
     memcpy(s.y_restart, c->y_restart, sizeof s.y_restart);
     s.steps_since_restart = c->steps_since_restart;
     s.open = c->open;
-    s.contact = tribo_touching(&c->mode);
-    s.normal = c->mode.normal;
-    s.tangent = c->mode.tangent;
-    s.normal_sign = c->mode.normal_sign;
-    s.slip_sign = c->mode.slip_sign;
+    s.contact = tribo_touching(&c->phase);
+    s.normal = c->phase.normal;
+    s.tangent = c->phase.tangent;
+    s.normal_sign = c->phase.normal_sign;
+    s.slip_sign = c->phase.slip_sign;
     s.last_event_t = c->last_event_t;
     s.events_at_instant = c->events_at_instant;
     s.events_in_a_row = c->events_in_a_row;
@@ -582,15 +582,15 @@ static tribo_status state_load(tribo_model *m, void *data, const unsigned char *
         (s.normal != TRIBO_NORMAL_SIGN && s.normal != TRIBO_NORMAL_LOCK) ||
         (s.tangent != TRIBO_TANGENT_STICK && s.tangent != TRIBO_TANGENT_SLIP))
         return tribo_fail(m, TRIBO_ERR_STATE, "CVODE state is corrupt");
-    mode md;
-    md.contact = s.contact ? TRIBO_CONTACT_ON : TRIBO_CONTACT_OFF;
-    md.normal = (tribo_normal_mode)s.normal;
-    md.tangent = (tribo_tangent_mode)s.tangent;
-    md.normal_sign = s.normal_sign;
-    md.slip_sign = s.slip_sign;
+    phase ph;
+    ph.contact = s.contact ? TRIBO_CONTACT_ON : TRIBO_CONTACT_OFF;
+    ph.normal = (tribo_normal_rule)s.normal;
+    ph.tangent = (tribo_tangent_rule)s.tangent;
+    ph.normal_sign = s.normal_sign;
+    ph.slip_sign = s.slip_sign;
     /* CVODE is deterministic: the same restart and steps give the same open step */
     c->replaying = 1;
-    tribo_status st = restart_at(c, s.t_restart, s.y_restart, &md);
+    tribo_status st = restart_at(c, s.t_restart, s.y_restart, &ph);
     for (long long k = 0; st == TRIBO_OK && k < s.steps_since_restart; k++)
         st = take_step(c);
     c->replaying = 0;

@@ -61,7 +61,7 @@ static void initial_point(const tribo_model *m, tribo_point *p)
     p->y[TRIBO_IV] = -s->drop_speed * cos(beta);
     p->y[TRIBO_IOMEGA] = s->Omega0;
     tribo_charging_start(&m->charging, s, p->charge_globals);
-    p->motion.mode = TRIBO_MODE_FLIGHT;
+    p->motion.current = TRIBO_MOTION_FLIGHT;
 }
 
 /* ---- services for the integrators ------------------------------------------------------ */

@@ -1,4 +1,4 @@
-/* motion.c: classifying the motion into the paper's contact modes. */
+/* motion.c: classifying the motion into the paper's motion classes. */
 #include "motion.h"
 
 #include <math.h>
@@ -22,12 +22,12 @@ void tribo_motion_update(tribo_motion *m, double h, double decay, int in_contact
 
     const int turning = fabs(m->spin) * TRIBO_MOTION_WINDOW > TURNING_ANGLE;
     if (!in_contact && m->contact < NO_CONTACT)
-        m->mode = TRIBO_MODE_FLIGHT;
+        m->current = TRIBO_MOTION_FLIGHT;
     else if (m->contact >= CONTINUOUS_CONTACT)
-        m->mode = turning ? TRIBO_MODE_ROLLING : TRIBO_MODE_SLIDING;
+        m->current = turning ? TRIBO_MOTION_ROLLING : TRIBO_MOTION_ROCKING;
     else
-        m->mode = turning ? TRIBO_MODE_TUMBLING : TRIBO_MODE_BOUNCING;
-    m->mode_time[m->mode] += h;
+        m->current = turning ? TRIBO_MOTION_TUMBLING : TRIBO_MOTION_BOUNCING;
+    m->class_time[m->current] += h;
 }
 
 int tribo_indentation_too_deep(double delta_y, double epsilon, double rho_c)

@@ -1,28 +1,28 @@
-/* motion.h: the contact mode of the motion, in the paper's terms, and the checks of the
+/* motion.h: the motion class of the motion, in the paper's terms, and the checks of the
    contact model's assumptions along the run. */
 #ifndef TRIBO_MOTION_H
 #define TRIBO_MOTION_H
 
-/* The modes the paper tells apart. Continuous contact: SLIDING (quasi-fixed orientation,
+/* The classes of motion the paper tells apart. Continuous contact: ROCKING (quasi-fixed orientation,
    sliding with rocking) or ROLLING (the orientation turns with the travel); intermittent
    contact: BOUNCING (flights, no turning over) or TUMBLING (turning over with flights);
    FLIGHT when the particle has not touched the plate within the window. */
-typedef enum tribo_contact_mode {
-    TRIBO_MODE_FLIGHT = 0,
-    TRIBO_MODE_SLIDING = 1,
-    TRIBO_MODE_ROLLING = 2,
-    TRIBO_MODE_TUMBLING = 3,
-    TRIBO_MODE_BOUNCING = 4,
-    TRIBO_MODE_COUNT
-} tribo_contact_mode;
+typedef enum tribo_motion_class {
+    TRIBO_MOTION_FLIGHT = 0,
+    TRIBO_MOTION_ROCKING = 1,
+    TRIBO_MOTION_ROLLING = 2,
+    TRIBO_MOTION_TUMBLING = 3,
+    TRIBO_MOTION_BOUNCING = 4,
+    TRIBO_MOTION_CLASSES
+} tribo_motion_class;
 
 /* The recent history the classification needs: averages over the last ~window time
-   units (exponentially weighted), and the time spent in each mode so far. */
+   units (exponentially weighted), and the time spent in each class so far. */
 typedef struct tribo_motion {
     double contact;   /* average of the contact indicator           */
     double spin;      /* average dphi/dtau                          */
-    int mode;         /* tribo_contact_mode at the end of the last update */
-    double mode_time[TRIBO_MODE_COUNT];
+    int current;      /* tribo_motion_class at the end of the last update */
+    double class_time[TRIBO_MOTION_CLASSES];
     int outside_assumptions; /* the contact was outside them at the last update */
 } tribo_motion;
 
@@ -40,10 +40,10 @@ typedef struct tribo_motion {
    contact, over which phi moved by dphi. decay = exp(-h / window). */
 void tribo_motion_update(tribo_motion *m, double h, double decay, int in_contact, double dphi);
 
-/* The fraction of the time t so far spent in a mode. */
-static inline double tribo_motion_fraction(const tribo_motion *m, tribo_contact_mode mode, double t)
+/* The fraction of the time t so far spent in a class. */
+static inline double tribo_motion_fraction(const tribo_motion *m, tribo_motion_class c, double t)
 {
-    return t > 0.0 ? m->mode_time[mode] / t : 0.0;
+    return t > 0.0 ? m->class_time[c] / t : 0.0;
 }
 
 /* Whether a contact is outside the model's assumptions (TRIBO_INDENTATION_LIMIT). */

@@ -27,7 +27,7 @@ enum { STATE_VERSION = 2 };
 static size_t point_size(const tribo_model *m)
 {
     const size_t doubles = 1 + (size_t)m->n_state + 1 + (size_t)m->charging.n_globals +
-                           CONTACT_DOUBLES + 2 + TRIBO_MODE_COUNT;
+                           CONTACT_DOUBLES + 2 + TRIBO_MOTION_CLASSES;
     return doubles * sizeof(double) + POINT_INTS * sizeof(int64_t);
 }
 
@@ -49,9 +49,9 @@ static void put_point(tribo_writer *w, const tribo_model *m, const tribo_point *
     const tribo_motion *mo = &p->motion;
     tribo_write_double(w, mo->contact);
     tribo_write_double(w, mo->spin);
-    for (int i = 0; i < TRIBO_MODE_COUNT; i++)
-        tribo_write_double(w, mo->mode_time[i]);
-    tribo_write_int(w, mo->mode);
+    for (int i = 0; i < TRIBO_MOTION_CLASSES; i++)
+        tribo_write_double(w, mo->class_time[i]);
+    tribo_write_int(w, mo->current);
     tribo_write_int(w, mo->outside_assumptions);
 }
 
@@ -74,9 +74,9 @@ static void get_point(tribo_reader *r, const tribo_model *m, tribo_point *p)
     tribo_motion *mo = &p->motion;
     mo->contact = tribo_read_double(r);
     mo->spin = tribo_read_double(r);
-    for (int i = 0; i < TRIBO_MODE_COUNT; i++)
-        mo->mode_time[i] = tribo_read_double(r);
-    mo->mode = (int)tribo_read_int(r);
+    for (int i = 0; i < TRIBO_MOTION_CLASSES; i++)
+        mo->class_time[i] = tribo_read_double(r);
+    mo->current = (int)tribo_read_int(r);
     mo->outside_assumptions = (int)tribo_read_int(r);
 }
 

@@ -23,7 +23,7 @@ from .tables import FRICTION_TITLES  # noqa: E402
 
 FIGURES = ["bounce_amplitude.png", "charge_vs_time.png", "charge_vs_epsilon.png",
            "contact_modes.png", "transition.png"]
-MODE_COLOURS = {"flight": "tab:gray", "sliding": "tab:blue", "rolling": "tab:green",
+MODE_COLOURS = {"flight": "tab:gray", "rocking": "tab:blue", "rolling": "tab:green",
                 "tumbling": "tab:red", "bouncing": "tab:orange"}
 
 

@@ -30,7 +30,7 @@ from .summary import MODES, summarize
 
 # The outputs recorded at every communication point (the summary and figures use them).
 RECORDED = ["X", "Y", "phi", "U", "V", "Omega", "delta_y", "in_contact", "Q_static", "Q_sliding",
-            "contact_fraction", "turns", "contact_mode"] + [f"fraction_{m}" for m in MODES] \
+            "contact_fraction", "turns", "motion_class"] + [f"fraction_{m}" for m in MODES] \
            + ["assumption_warnings"]
 
 _REAL_TYPES = ("Real", "Float64", "Float32")

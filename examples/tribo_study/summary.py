@@ -30,7 +30,7 @@ ENVELOPE_WIDTH = 50.0
 WARMUP = 60.0  # three classification windows of the FMU (TRIBO_MOTION_WINDOW = 20)
 TURNED_OVER = 0.5
 REPORT_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 1.0)
-MODES = ("flight", "sliding", "rolling", "tumbling", "bouncing")  # contact_mode 0..4
+MODES = ("flight", "rocking", "rolling", "tumbling", "bouncing")  # motion_class 0..4
 
 
 def report_times(t_end: float) -> list[float]:
@@ -78,7 +78,7 @@ def summary_columns(t_end: float) -> list[str]:
     before the first run has finished)."""
     charges = [f"Q_{model}_{time_label(t)}" for model in ("static", "sliding")
                for t in report_times(t_end)]
-    return (charges + ["contact_fraction", "turns", "turns_max", "turned_over", "contact_mode_end"]
+    return (charges + ["contact_fraction", "turns", "turns_max", "turned_over", "motion_class_end"]
             + [f"fraction_{m}" for m in MODES] + [f"fraction_{m}_after_warmup" for m in MODES]
             + ["assumption_warnings", "delta_y_max", "Y_max", "bounce_amplitude_end",
                "bounce_amplitude_mean"])
@@ -99,7 +99,7 @@ def summarize(series: pd.DataFrame, t_end: float) -> dict:
         turns=float(last["turns"]),
         turns_max=turns_max,
         turned_over=int(turns_max >= TURNED_OVER),
-        contact_mode_end=int(last["contact_mode"]),
+        motion_class_end=int(last["motion_class"]),
     )
     for m in MODES:
         row[f"fraction_{m}"] = float(last[f"fraction_{m}"])

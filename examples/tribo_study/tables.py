@@ -139,7 +139,7 @@ def write_all(result, out_dir: str, command: str) -> list[str]:
         f"the bracket's midpoint +- half its width. The ends of each final bracket are re-run "
         f"at rtol = 1e-10, atol = 1e-12.",
         f"- **Mode fractions**: fraction of the time after the warm-up (tau >= {WARMUP:g}) in each "
-        f"contact mode of the FMU's classification (`contact_mode`); the FMU's own fractions "
+        f"contact mode of the FMU's classification (`motion_class`); the FMU's own fractions "
         f"over the whole run, which count the warm-up as bouncing, are in study_runs.csv.",
         f"- **warnings**: the FMU's `assumption_warnings`, the number of times the indentation "
         f"exceeded 0.1 min(epsilon, rho_c).",

@@ -5,12 +5,11 @@ one named by the environment variable TRIBO_BUILD_DIR (e.g. build-fmu). Build fi
 (scripts/setup.sh, or cmake --build <dir>); the tests fail, not skip, without them.
 """
 
-import json
 import os
-import subprocess
 import zipfile
 
 import pytest
+from fmpy import read_model_description
 
 from tribo_fmu import BUILD_DIR
 
@@ -45,20 +44,12 @@ def fmu_dir(tmp_path_factory):
 
 
 @pytest.fixture(scope="session")
-def table():
-    """The FMU's variable table (fmu/variables.c) as the tribo_fmu_variables tool prints it."""
-    out = subprocess.run([built("fmu", "tribo_fmu_variables")], capture_output=True, text=True,
-                         check=True)
-    return json.loads(out.stdout)
-
-
-@pytest.fixture(scope="session")
 def reference_exe():
     return built("fmu", "tribo_reference_run")
 
 
 @pytest.fixture(scope="session")
-def output_names(table):
-    """The scalar outputs, in table order."""
-    return [v["name"] for v in table["variables"]
-            if v["causality_fmi2"] == "output" and v["maps_to"] == "quantity"]
+def output_names(fmu_dir):
+    """The scalar outputs, in the order of the modelDescription."""
+    md = read_model_description(fmu_dir(2), validate=False)
+    return [v.name for v in md.modelVariables if v.causality == "output"]

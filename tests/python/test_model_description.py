@@ -1,43 +1,43 @@
-"""The two modelDescription.xml files say what the variable table (fmu/variables.c) says,
-the table covers the core, and fmpy finds nothing wrong with either FMU."""
+"""The modelDescription files are generated from the core's table (src/quantities.def) at
+build time. Here: the generated ones are the reviewed ones committed in modelDescription/,
+their instantiation token is a hash of the description itself, fmpy finds nothing wrong
+with either FMU, and what they declare is what the binaries do (every declared range is
+the range the FMU accepts; the outputs are the core's quantities)."""
 
+import hashlib
 import math
 import os
-
+import re
 import xml.etree.ElementTree as ET
 
 import pytest
 from fmpy import read_model_description
 from fmpy.validation import validate_fmu
 
-from tribo_fmu import ROOT, VERSIONS
+from tribo_fmu import ERROR, OK, ROOT, VERSIONS, Slave, core_run, status_of
 
-XML = {v: os.path.join(ROOT, "modelDescription", f"fmi{v}.xml") for v in VERSIONS}
-
-
-def parsed(version):
-    return read_model_description(XML[version], validate=True)
+GOLDEN = {v: os.path.join(ROOT, "modelDescription", f"fmi{v}.xml") for v in VERSIONS}
+PLACEHOLDER = "@INSTANTIATION_TOKEN@"
+TOKEN_ATTRIBUTE = {2: "guid", 3: "instantiationToken"}
 
 
-def raw_attributes(version):
-    """Each variable's XML attributes (FMI 2.0: with those of its type element), read
-    without fmpy, which skips some (min / max of UInt64)."""
-    root = ET.parse(XML[version]).getroot()
-    attributes = {}
+def packed_text(fmu_dir, version):
+    with open(os.path.join(fmu_dir(version), "modelDescription.xml"), encoding="utf-8") as f:
+        return f.read()
+
+
+def raw_variables(fmu_dir, version):
+    """Each variable's XML attributes (FMI 2.0: with those of its type element) and type,
+    read without fmpy, which skips some (min / max of UInt64)."""
+    root = ET.fromstring(packed_text(fmu_dir, version).encode())
+    out = []
     for element in root.find("ModelVariables"):
         a = dict(element.attrib)
+        a["type"] = element[0].tag if version == 2 else element.tag
         if version == 2:
             a.update(element[0].attrib)
-        attributes[a["name"]] = a
-    return attributes
-
-
-def table_rows(table, version):
-    return [v for v in table["variables"] if v[f"type_fmi{version}"] is not None]
-
-
-def as_number(text, type_name):
-    return int(text) if type_name in ("Integer", "Int32", "UInt64") else float(text)
+        out.append(a)
+    return out
 
 
 @pytest.mark.parametrize("version", VERSIONS)
@@ -46,79 +46,83 @@ def test_fmpy_validation_finds_no_problem(fmu_file, version):
 
 
 @pytest.mark.parametrize("version", VERSIONS)
-def test_packed_description_is_the_source_file(fmu_dir, version):
-    with open(os.path.join(fmu_dir(version), "modelDescription.xml"), "rb") as packed, \
-            open(XML[version], "rb") as source:
-        assert packed.read() == source.read()
+def test_generated_description_is_the_reviewed_one(fmu_dir, version):
+    with open(GOLDEN[version], encoding="utf-8") as f:
+        golden = f.read()
+    assert packed_text(fmu_dir, version) == golden, (
+        "the table (src/quantities.def) or the generator changed the modelDescription: run "
+        "`cmake --build build --target update_model_descriptions` and review the diff")
 
 
 @pytest.mark.parametrize("version", VERSIONS)
-def test_variables_agree_with_the_table(table, version):
-    md = parsed(version)
-    declared = {v.name: v for v in md.modelVariables}
-    raw = raw_attributes(version)
-    rows = table_rows(table, version)
-    assert [v.name for v in md.modelVariables] == [r["name"] for r in rows]
-    for r in rows:
-        v = declared[r["name"]]
-        assert v.valueReference == r["vr"], r["name"]
-        assert v.type == r[f"type_fmi{version}"], r["name"]
-        assert v.causality == r[f"causality_fmi{version}"], r["name"]
-        assert v.variability == r["variability"], r["name"]
-        assert v.description == r["description"], r["name"]
-        if r["start"] is None:
-            assert v.start is None, r["name"]
-        else:
-            assert as_number(v.start, v.type) == r["start"], r["name"]
-        if v.type in ("Real", "Float64"):
-            assert v.unit == r["unit"], r["name"]
-        else:
-            # FMI has no unit attribute for integers; the core's unit for them is "1"
-            assert r["unit"] == "1", r["name"]
-        for bound in ("min", "max"):
-            expected = r.get(bound)
-            declared_bound = raw[r["name"]].get(bound)
-            if expected is None:
-                assert declared_bound is None, (r["name"], bound)
-            else:
-                assert as_number(declared_bound, v.type) == expected, (r["name"], bound)
+def test_token_is_a_hash_of_the_description(fmu_dir, version):
+    text = packed_text(fmu_dir, version)
+    token = re.search(rf'{TOKEN_ATTRIBUTE[version]}="([^"]+)"', text).group(1)
+    h = hashlib.sha256(text.replace(token, PLACEHOLDER).encode()).hexdigest()
+    assert token == "{%s-%s-%s-%s-%s}" % (h[:8], h[8:12], h[12:16], h[16:20], h[20:32])
+    # and the two descriptions, which differ, have different tokens
+    other = packed_text(fmu_dir, 5 - version)
+    assert token not in other
 
 
-def test_fmi3_arrays_are_sized_by_the_structural_parameter(table):
-    md = parsed(3)
+@pytest.mark.parametrize("version", VERSIONS)
+def test_declared_ranges_are_what_the_fmu_accepts(fmu_dir, version):
+    """Every declared min and max is accepted, the nearest value beyond it is refused (an
+    open end is declared as the nearest value inside it), and a parameter without a bound
+    accepts any finite value there."""
+    for a in raw_variables(fmu_dir, version):
+        if a["causality"] not in ("parameter", "structuralParameter"):
+            continue
+        name, is_real = a["name"], a["type"] in ("Real", "Float64")
+        for bound, outward in (("min", -math.inf), ("max", math.inf)):
+            s = Slave(fmu_dir(version), version)
+            if bound in a:
+                inside = float(a[bound]) if is_real else int(a[bound])
+                outside = math.nextafter(inside, outward) if is_real else inside + int(math.copysign(1, outward))
+                assert status_of(s.set, **{name: inside}) == OK, (name, bound, inside, s.errors())
+                if not is_real and outside < 0 and a["type"] == "UInt64":
+                    continue  # not representable
+                assert status_of(s.set, **{name: outside}) == ERROR, (name, bound, outside)
+                assert name in s.errors()[-1]
+            elif is_real:
+                assert status_of(s.set, **{name: math.copysign(1e300, outward)}) == OK, (name, bound)
+            s.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_outputs_are_the_cores_quantities(fmu_dir, reference_exe, version):
+    md = read_model_description(fmu_dir(version), validate=False)
+    scalar_outputs = [v.name for v in md.modelVariables if v.causality == "output" and not v.dimensions]
+    quantities = list(core_run(reference_exe, {}, [(0.0, [])])[0])
+    assert ["time"] + scalar_outputs == quantities
+    assert [u.variable.name for u in md.outputs] == \
+        [v.name for v in md.modelVariables if v.causality == "output"]
+    assert [u.variable.name for u in md.initialUnknowns] == [u.variable.name for u in md.outputs]
+
+
+def test_fmi3_arrays_are_sized_by_the_structural_parameter(fmu_dir):
+    md = read_model_description(fmu_dir(3), validate=True)
     by_vr = {v.valueReference: v for v in md.modelVariables}
-    arrays = [r for r in table["variables"] if r["maps_to"] == "segments"]
-    assert arrays, "the table has segment arrays"
-    for r in arrays:
-        v = by_vr[r["vr"]]
-        assert len(v.dimensions) == 1
+    arrays = [v for v in md.modelVariables if v.dimensions]
+    assert [v.name for v in arrays] == ["segment_charge_static", "segment_charge_sliding"]
+    for v in arrays:
         size = by_vr[v.dimensions[0].valueReference]
-        assert size.name == r["dimension"] == "n_segments"
         # FMI 3.0: a dimension refers to a UInt64 structural parameter (or a constant)
-        assert (size.type, size.causality) == ("UInt64", "structuralParameter")
+        assert (size.name, size.type, size.causality) == ("n_segments", "UInt64", "structuralParameter")
         assert v.shape == (int(size.start),)
-    assert all(r["type_fmi2"] is None for r in arrays), "FMI 2.0 has no arrays"
+    fmi2 = read_model_description(GOLDEN[2], validate=False)
+    assert not any(v.name.startswith("segment_charge") for v in fmi2.modelVariables)
 
 
 @pytest.mark.parametrize("version", VERSIONS)
-def test_model_structure_lists_every_output(table, version):
-    md = parsed(version)
-    outputs = [r["name"] for r in table_rows(table, version)
-               if r[f"causality_fmi{version}"] == "output"]
-    assert [u.variable.name for u in md.outputs] == outputs
-    assert [u.variable.name for u in md.initialUnknowns] == outputs
-
-
-@pytest.mark.parametrize("version", VERSIONS)
-def test_token_log_categories_units_and_experiment(table, version):
-    md = parsed(version)
-    assert md.guid == table["token"]
-    assert [(c.name, c.description) for c in md.logCategories] == \
-        [(c["name"], c["description"]) for c in table["log_categories"]]
+def test_units_log_categories_and_experiment(fmu_dir, version):
+    md = read_model_description(fmu_dir(version), validate=True)
     defined = {u.name for u in md.unitDefinitions}
-    assert {v.unit for v in md.modelVariables if v.unit} <= defined
+    assert {v.unit for v in md.modelVariables if v.unit} == defined
     deg = next(u for u in md.unitDefinitions if u.name == "deg")
     assert (deg.baseUnit.rad, deg.baseUnit.factor) == (1, math.pi / 180)
+    assert [c.name for c in md.logCategories] == \
+        ["logStatusError", "logStatusWarning", "logFmiCalls", "logCore"]
     cs = md.coSimulation
     assert cs.modelIdentifier == f"tribo_fmi{version}"
     assert cs.canHandleVariableCommunicationStepSize
@@ -126,37 +130,13 @@ def test_token_log_categories_units_and_experiment(table, version):
     e = md.defaultExperiment
     assert (e.startTime, e.stopTime) == ("0", "1000")
     # the default tolerance is the default of rtol, the parameter that sets it
-    assert float(e.tolerance) == next(r["start"] for r in table["variables"] if r["name"] == "rtol")
-    assert float(e.stepSize) > 0
+    rtol = next(v for v in md.modelVariables if v.name == "rtol")
+    assert float(e.tolerance) == float(rtol.start)
 
 
-def test_table_covers_every_core_parameter_and_quantity(table):
-    rows = table["variables"]
-    params = [r for r in rows if r["maps_to"] == "parameter"]
-    assert [r["name"] for r in params] == table["core_parameters"]
-    quantities = [r for r in rows if r["maps_to"] == "quantity"]
-    assert [r["name"] for r in quantities] == table["core_quantities"][1:]  # "time" aside
-    assert all(r["name"] == r["core_name"] for r in quantities)
-    assert [r["name"] for r in rows if r["maps_to"] == "time"] == ["time"]
-    assert [r["name"] for r in rows if r["maps_to"] == "input"] == ["F_T_ext", "F_N_ext"]
-
-
-def test_parameter_rows_follow_the_core(table):
-    for r in (r for r in table["variables"] if r["maps_to"] == "parameter"):
-        expected = "tunable" if r["core_variability"] == "tunable" else "fixed"
-        assert r["variability"] == expected, r["name"]
-        structural_in_fmi3 = r["name"] == "n_segments"  # the one that sizes arrays
-        assert r["causality_fmi3"] == ("structuralParameter" if structural_in_fmi3 else "parameter")
-        assert r["causality_fmi2"] == "parameter"
-        assert (r["type_fmi2"] == "Integer") == r["core_is_integer"], r["name"]
-
-
-def test_every_variable_is_described_with_a_unit(table):
-    for r in table["variables"]:
-        assert r["description"], r["name"]
-        assert r["unit"], r["name"]
-
-
-def test_value_references_are_unique(table):
-    vrs = [r["vr"] for r in table["variables"]]
+@pytest.mark.parametrize("version", VERSIONS)
+def test_every_variable_is_described_and_value_references_are_unique(fmu_dir, version):
+    md = read_model_description(fmu_dir(version), validate=False)
+    assert all(v.description for v in md.modelVariables)
+    vrs = [v.valueReference for v in md.modelVariables]
     assert len(vrs) == len(set(vrs))

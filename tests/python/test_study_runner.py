@@ -42,11 +42,11 @@ def test_mode_fractions_sum_to_one(tumbling_run):
 
 def test_mode_fractions_agree_with_the_sampled_mode(tumbling_run):
     """The after-warm-up fractions (from the FMU's cumulative mode times) against the share
-    of recorded times in each contact_mode: equal up to the sampling (a few switches)."""
+    of recorded times in each motion_class: equal up to the sampling (a few switches)."""
     s = tumbling_run.series
     after = s[s["tau"] > WARMUP]
     for i, m in enumerate(MODES):
-        sampled = float((after["contact_mode"] == i).mean())
+        sampled = float((after["motion_class"] == i).mean())
         assert tumbling_run.row[f"fraction_{m}_after_warmup"] == pytest.approx(sampled, abs=0.02), m
 
 

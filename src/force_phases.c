@@ -1,9 +1,9 @@
-/* force_modes.c: the modes of the force law and the switches between them (MODEL §3). */
-#include "force_modes.h"
+/* force_phases.c: the phases of the force law and the switches between them (MODEL §3). */
+#include "force_phases.h"
 
 #include <math.h>
 
-const tribo_force_law TRIBO_FLIGHT = {TRIBO_CONTACT_OFF, TRIBO_NORMAL_SIGN, -1.0, TRIBO_TANGENT_STICK,
+const tribo_force_law TRIBO_PHASE_FLIGHT = {TRIBO_CONTACT_OFF, TRIBO_NORMAL_SIGN, -1.0, TRIBO_TANGENT_STICK,
                                      0.0};
 
 /* The normal lock holds while Psi_N* = Gamma cos(beta) - F_N lies in the band of normal
@@ -23,7 +23,7 @@ void tribo_switch_functions(const tribo_dyn_params *p, const tribo_force_law *la
     g[TRIBO_SWITCH_CONTACT] = ev.pose.h - y[TRIBO_IY];
     if (!tribo_touching(law))
         return;
-    /* the contact as the mode sees it, even where delta_y has just gone negative */
+    /* the contact as the phase sees it, even where delta_y has just gone negative */
     tribo_contact_at(p, law, y, &ev);
     const double dy = ev.pose.h - y[TRIBO_IY];
     if (law->normal == TRIBO_NORMAL_LOCK) {
@@ -41,27 +41,27 @@ void tribo_switch_functions(const tribo_dyn_params *p, const tribo_force_law *la
     }
 }
 
-/* Crossing directions that mean a switch in each mode (others are not switches). */
-void tribo_switch_directions(const tribo_dyn_params *p, const tribo_force_law *md, int *dir)
+/* Crossing directions that mean a switch in each phase (others are not switches). */
+void tribo_switch_directions(const tribo_dyn_params *p, const tribo_force_law *ph, int *dir)
 {
     for (int i = 0; i < TRIBO_N_SWITCHES; i++)
         dir[i] = 0;
-    if (!tribo_touching(md)) {
+    if (!tribo_touching(ph)) {
         dir[TRIBO_SWITCH_CONTACT] = +1;
         return;
     }
     dir[TRIBO_SWITCH_CONTACT] = -1;
-    if (md->normal == TRIBO_NORMAL_LOCK) {
+    if (ph->normal == TRIBO_NORMAL_LOCK) {
         dir[TRIBO_SWITCH_NORMAL_A] = dir[TRIBO_SWITCH_NORMAL_B] = -1;
     } else if (p->nu > 0.0) {
-        dir[TRIBO_SWITCH_NORMAL_A] = md->normal_sign < 0 ? +1 : -1; /* V reaches 0 */
+        dir[TRIBO_SWITCH_NORMAL_A] = ph->normal_sign < 0 ? +1 : -1; /* V reaches 0 */
     }
     dir[TRIBO_SWITCH_TANGENT_A] = -1;
-    if (md->tangent == TRIBO_TANGENT_STICK)
+    if (ph->tangent == TRIBO_TANGENT_STICK)
         dir[TRIBO_SWITCH_TANGENT_B] = -1;
 }
 
-/* The normal mode of a contact whose V is exactly 0: normal lock if the needed force is
+/* The normal rule of a contact whose V is exactly 0: normal lock if the needed force is
    within the band, otherwise the sign the net normal force gives V. */
 static void normal_at_rest(const tribo_dyn_params *p, double dy, tribo_force_law *law)
 {
@@ -101,7 +101,7 @@ static double slip_at_second_order(const tribo_dyn_params *p, const double *y,
     const double Om = y[TRIBO_IOMEGA], h2 = h_curvature(p, y[TRIBO_IPHI]);
     /* vs = U + h Omega; dh/dphi = -cx */
     const double dvs = f[TRIBO_IU] + ev.pose.h * f[TRIBO_IOMEGA] - ev.pose.cx * Om * Om;
-    /* limit = mu (1 - nu s) delta_y in a sign mode (0 rate in lock); delta_y' = -cx Om - V */
+    /* limit = mu (1 - nu s) delta_y in a sign phase (0 rate in lock); delta_y' = -cx Om - V */
     const double ddy2 = h2 * Om * Om - ev.pose.cx * f[TRIBO_IOMEGA] - f[TRIBO_IV];
     const double factor = law->normal == TRIBO_NORMAL_LOCK ? 0.0 : 1.0 - p->nu * law->normal_sign;
     const double dlimit2 = factor > 0.0 ? p->mu * factor * ddy2 : 0.0;
@@ -109,7 +109,7 @@ static double slip_at_second_order(const tribo_dyn_params *p, const double *y,
     return sigma * dvs > dlimit2 ? sigma : 0.0;
 }
 
-/* Stick or slip for a stretch checked against the limit of the (new) normal mode:
+/* Stick or slip for a stretch checked against the limit of the (new) normal phase:
    a stretch beyond the limit is clamped to it (the spring energy released is dissipated);
    at the limit the contact slips if the stretch would leave it, sigma vs > d(limit)/dtau,
    to second order where the first ties. */
@@ -146,35 +146,35 @@ static int pressed_in(const tribo_dyn_params *p, const double *y)
     return h_curvature(p, y[TRIBO_IPHI]) * Om * Om + (p->g_n - p->F_N) > 0.0;
 }
 
-/* The mode after an event (fired: the roots found) or, with fired = NULL, the mode a
+/* The phase after an event (fired: the roots found) or, with fired = NULL, the phase a
    state is in when the integration (re)starts there. Adjusts y to put the switched
    boundary exactly on it (Y = h, V = 0, delta_x = +-limit), so that CVODE's root
    functions start at 0 and look at the direction the motion takes. */
-static tribo_force_law next_mode(const tribo_dyn_params *p, const tribo_force_law *old, double *y,
+static tribo_force_law next_phase(const tribo_dyn_params *p, const tribo_force_law *old, double *y,
                                  const int *fired)
 {
-    tribo_force_law md = *old;
+    tribo_force_law ph = *old;
     tribo_pose g;
     tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
     const double dy = g.h - y[TRIBO_IY];
     const double ddy = -g.cx * y[TRIBO_IOMEGA] - y[TRIBO_IV];
 
     if (fired && fired[TRIBO_SWITCH_CONTACT])
-        md.contact = tribo_touching(old) ? TRIBO_CONTACT_OFF : TRIBO_CONTACT_ON;
+        ph.contact = tribo_touching(old) ? TRIBO_CONTACT_OFF : TRIBO_CONTACT_ON;
     else if (!fired)
-        md.contact = dy > 0.0 || (dy == 0.0 && (ddy > 0.0 || (ddy == 0.0 && pressed_in(p, y))))
+        ph.contact = dy > 0.0 || (dy == 0.0 && (ddy > 0.0 || (ddy == 0.0 && pressed_in(p, y))))
                          ? TRIBO_CONTACT_ON
                          : TRIBO_CONTACT_OFF;
-    const int onset = tribo_touching(&md) && (!tribo_touching(old) || !fired);
+    const int onset = tribo_touching(&ph) && (!tribo_touching(old) || !fired);
     if (fired && fired[TRIBO_SWITCH_CONTACT])
         y[TRIBO_IY] = g.h;
 
-    if (!tribo_touching(&md)) {
-        md = TRIBO_FLIGHT;
+    if (!tribo_touching(&ph)) {
+        ph = TRIBO_PHASE_FLIGHT;
         /* MODEL §3: the stretch is 0 when contact is regained; at lift-off it is already
            within a vanishing limit */
         y[TRIBO_IDX] = 0.0;
-        return md;
+        return ph;
     }
     if (onset && fired)
         y[TRIBO_IDX] = 0.0;
@@ -182,23 +182,23 @@ static tribo_force_law next_mode(const tribo_dyn_params *p, const tribo_force_la
     /* normal */
     const double dy_now = g.h - y[TRIBO_IY];
     if (p->nu == 0.0) {
-        md.normal = TRIBO_NORMAL_SIGN; /* the sign does not matter */
-        md.normal_sign = -1.0;
+        ph.normal = TRIBO_NORMAL_SIGN; /* the sign does not matter */
+        ph.normal_sign = -1.0;
     } else if (onset) {
         const double V = y[TRIBO_IV];
         if (V != 0.0) {
-            md.normal = TRIBO_NORMAL_SIGN;
-            md.normal_sign = V < 0.0 ? -1.0 : 1.0;
+            ph.normal = TRIBO_NORMAL_SIGN;
+            ph.normal_sign = V < 0.0 ? -1.0 : 1.0;
         } else {
-            normal_at_rest(p, dy_now, &md);
+            normal_at_rest(p, dy_now, &ph);
         }
     } else if (fired && (fired[TRIBO_SWITCH_NORMAL_A] || fired[TRIBO_SWITCH_NORMAL_B])) {
         if (old->normal == TRIBO_NORMAL_LOCK) {
-            md.normal = TRIBO_NORMAL_SIGN;
-            md.normal_sign = fired[TRIBO_SWITCH_NORMAL_A] ? +1.0 : -1.0;
+            ph.normal = TRIBO_NORMAL_SIGN;
+            ph.normal_sign = fired[TRIBO_SWITCH_NORMAL_A] ? +1.0 : -1.0;
         } else {
             y[TRIBO_IV] = 0.0;
-            normal_at_rest(p, dy_now, &md);
+            normal_at_rest(p, dy_now, &ph);
         }
     }
 
@@ -207,30 +207,30 @@ static tribo_force_law next_mode(const tribo_dyn_params *p, const tribo_force_la
                               !fired[TRIBO_SWITCH_NORMAL_A] && !fired[TRIBO_SWITCH_NORMAL_B];
     if (tangent_event && old->tangent == TRIBO_TANGENT_STICK) {
         tribo_contact_eval ev;
-        md.tangent = TRIBO_TANGENT_SLIP;
-        md.slip_sign = fired[TRIBO_SWITCH_TANGENT_A] ? +1.0 : -1.0;
-        tribo_contact_at(p, &md, y, &ev);
-        y[TRIBO_IDX] = md.slip_sign * ev.limit;
+        ph.tangent = TRIBO_TANGENT_SLIP;
+        ph.slip_sign = fired[TRIBO_SWITCH_TANGENT_A] ? +1.0 : -1.0;
+        tribo_contact_at(p, &ph, y, &ev);
+        y[TRIBO_IDX] = ph.slip_sign * ev.limit;
     } else if (tangent_event) {
         tribo_contact_eval ev;
-        tribo_contact_at(p, &md, y, &ev);
-        y[TRIBO_IDX] = md.slip_sign * ev.limit;
-        md.tangent = TRIBO_TANGENT_STICK;
-        md.slip_sign = 0.0;
+        tribo_contact_at(p, &ph, y, &ev);
+        y[TRIBO_IDX] = ph.slip_sign * ev.limit;
+        ph.tangent = TRIBO_TANGENT_STICK;
+        ph.slip_sign = 0.0;
     } else {
-        tangent_from_state(p, y, &md);
+        tangent_from_state(p, y, &ph);
     }
-    return md;
+    return ph;
 }
 
-tribo_force_law tribo_mode_after(const tribo_dyn_params *p, const tribo_force_law *old, double *y,
+tribo_force_law tribo_phase_after(const tribo_dyn_params *p, const tribo_force_law *old, double *y,
                                  const int *fired)
 {
     /* the energy the adjustments of the state take out (a stretch clamped or reset, V set
        to 0 at a normal lock, Y put on the plate) is booked as dissipated work, so that the
        energy balance of MODEL §6 holds across switches */
     const double before = tribo_energy(p, y);
-    const tribo_force_law md = next_mode(p, old, y, fired);
+    const tribo_force_law ph = next_phase(p, old, y, fired);
     y[TRIBO_IWDISS] += before - tribo_energy(p, y);
-    return md;
+    return ph;
 }

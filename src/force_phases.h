@@ -1,0 +1,46 @@
+/* force_phases.h: the force law of MODEL §3 cut into smooth pieces (phases) and the
+   switches between them, for an event-driven integrator: which functions of the state
+   cross zero at a switch, which way, and the phase (with the resets of MODEL §3) after it. */
+#ifndef TRIBO_FORCE_MODES_H
+#define TRIBO_FORCE_MODES_H
+
+#include "dynamics.h"
+
+/* The switch functions: contact made or lost (delta_y = 0); the normal sign's V = 0, or
+   the two edges of the normal lock's band; stick -> slip at either edge of the Coulomb
+   limit, or slip -> stick. Unused ones read 1. */
+enum {
+    TRIBO_SWITCH_CONTACT,
+    TRIBO_SWITCH_NORMAL_A,
+    TRIBO_SWITCH_NORMAL_B,
+    TRIBO_SWITCH_TANGENT_A,
+    TRIBO_SWITCH_TANGENT_B,
+    TRIBO_N_SWITCHES
+};
+
+/* A phase is a force law whose set-valued parts are resolved one way: flight (contact
+   OFF), or contact (ON) with the normal SIGN or LOCK and the tangent STICK or SLIP. */
+extern const tribo_force_law TRIBO_PHASE_FLIGHT;
+
+static inline int tribo_touching(const tribo_force_law *phase)
+{
+    return phase->contact == TRIBO_CONTACT_ON;
+}
+
+/* The switch functions of the phase at state y. */
+void tribo_switch_functions(const tribo_dyn_params *p, const tribo_force_law *phase, const double *y,
+                            double *g);
+
+/* The crossing direction of each switch function that means a switch in the phase
+   (0: not a switch of this phase). */
+void tribo_switch_directions(const tribo_dyn_params *p, const tribo_force_law *phase, int *dir);
+
+/* The phase after a switch (fired: the switch functions found crossing, as CVODE's root
+   info) or, with fired = NULL, the phase a state is in when integration (re)starts there.
+   Adjusts y: applies the resets of MODEL §3, puts the switched boundary exactly on it
+   (Y = h, V = 0, delta_x = +-limit) so that switch functions start at 0 and follow the
+   motion, and books the energy the adjustments take out as dissipated work. */
+tribo_force_law tribo_phase_after(const tribo_dyn_params *p, const tribo_force_law *old, double *y,
+                                 const int *fired);
+
+#endif
