@@ -6,13 +6,15 @@
  * written by another process. Layout (native byte order, 8-byte fields):
  *
  *   "TRIBOFMU", layout version, FMI version, total size,
- *   FMI state, start time, stop time, stop time defined, time, the inputs,
+ *   lifecycle state, start time, stop time, stop time defined, time, the inputs,
  *   number of parameters, every parameter (in the core table's order),
  *   core instance outdated, size of the core's state, the core's state (tribo_state_save)
  *
  * A core state size of 0 means there was no core instance yet (before initialization).
  */
 #include "instance_private.h"
+
+#include "byte_cursor.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -26,17 +28,6 @@ struct fmu_state {
 
 static const char MAGIC[8] = {'T', 'R', 'I', 'B', 'O', 'F', 'M', 'U'};
 enum { LAYOUT_VERSION = 1, HEADER_SIZE = 8 + 3 * 8 };
-
-typedef struct cursor {
-    unsigned char *p;
-} cursor;
-
-static void put(cursor *c, const void *v, size_t n) { memcpy(c->p, v, n), c->p += n; }
-static void put_d(cursor *c, double v) { put(c, &v, sizeof v); }
-static void put_i(cursor *c, int64_t v) { put(c, &v, sizeof v); }
-static void get(cursor *c, void *v, size_t n) { memcpy(v, c->p, n), c->p += n; }
-static double get_d(cursor *c) { double v; get(c, &v, sizeof v); return v; }
-static int64_t get_i(cursor *c) { int64_t v; get(c, &v, sizeof v); return v; }
 
 /* Everything but the core's state: the header, 8 fields, the inputs and the parameters. */
 static size_t fixed_size(size_t n_params)
@@ -67,23 +58,23 @@ fmu_status fmu_state_get(fmu_instance *inst, const char *fn, fmu_state **state)
         s->size = size;
         *state = s;
     }
-    cursor c = {s->bytes};
-    put(&c, MAGIC, sizeof MAGIC);
-    put_i(&c, LAYOUT_VERSION);
-    put_i(&c, inst->fmi_version);
-    put_i(&c, (int64_t)size);
-    put_i(&c, inst->lifecycle);
-    put_d(&c, inst->start_time);
-    put_d(&c, inst->stop_time);
-    put_i(&c, inst->stop_time_defined);
-    put_d(&c, inst->time);
+    tribo_writer c = {s->bytes};
+    tribo_write_bytes(&c, MAGIC, sizeof MAGIC);
+    tribo_write_int(&c, LAYOUT_VERSION);
+    tribo_write_int(&c, inst->fmi_version);
+    tribo_write_int(&c, (int64_t)size);
+    tribo_write_int(&c, inst->lifecycle);
+    tribo_write_double(&c, inst->start_time);
+    tribo_write_double(&c, inst->stop_time);
+    tribo_write_int(&c, inst->stop_time_defined);
+    tribo_write_double(&c, inst->time);
     for (int i = 0; i < TRIBO_INPUT_COUNT; i++)
-        put_d(&c, inst->inputs[i]);
-    put_i(&c, (int64_t)n_params);
+        tribo_write_double(&c, inst->inputs[i]);
+    tribo_write_int(&c, (int64_t)n_params);
     for (size_t i = 0; i < n_params; i++)
-        put_d(&c, tribo_param_read(&inst->scene, &params[i]));
-    put_i(&c, inst->model_outdated);
-    put_i(&c, (int64_t)core_size);
+        tribo_write_double(&c, tribo_param_read(&inst->scene, &params[i]));
+    tribo_write_int(&c, inst->model_outdated);
+    tribo_write_int(&c, (int64_t)core_size);
     if (core_size && tribo_state_save(inst->model, c.p, core_size) != TRIBO_OK)
         return fmu_error(inst, "%s: %s", fn, tribo_last_error(inst->model));
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s() at time %.17g: %zu bytes", fn, inst->time, size);
@@ -97,10 +88,11 @@ static const char *header_problem(const fmu_instance *inst, const unsigned char 
 {
     if (!bytes || size < HEADER_SIZE)
         return "the state is too short";
-    cursor c = {(unsigned char *)bytes};
+    tribo_reader c = tribo_reader_of(bytes, size);
     char magic[sizeof MAGIC];
-    get(&c, magic, sizeof magic);
-    const int64_t layout = get_i(&c), fmi_version = get_i(&c), total = get_i(&c);
+    tribo_read_bytes(&c, magic, sizeof magic);
+    const int64_t layout = tribo_read_int(&c), fmi_version = tribo_read_int(&c),
+                  total = tribo_read_int(&c);
     if (memcmp(magic, MAGIC, sizeof MAGIC) != 0 || layout != LAYOUT_VERSION)
         return "the bytes are not a state of this FMU (or of another version of it)";
     if (fmi_version != inst->fmi_version)
@@ -110,24 +102,13 @@ static const char *header_problem(const fmu_instance *inst, const unsigned char 
     return NULL;
 }
 
-static int same_structure(const tribo_scene *a, const tribo_scene *b)
-{
-    size_t n;
-    const tribo_param_info *params = tribo_param_table(&n);
-    for (size_t i = 0; i < n; i++)
-        if (params[i].variability == TRIBO_PARAM_STRUCTURAL &&
-            tribo_param_read(a, &params[i]) != tribo_param_read(b, &params[i]))
-            return 0;
-    return 1;
-}
-
 /* Load the core's bytes into the present core instance when its structure fits, else
    into a new one; *model receives the instance that holds them. */
 static fmu_status load_core(fmu_instance *inst, const char *fn, const tribo_scene *scene,
                             const unsigned char *bytes, size_t size, tribo_model **model)
 {
     tribo_model *m = inst->model;
-    const int reuse = m && same_structure(tribo_get_scene(m), scene);
+    const int reuse = m && !tribo_scene_structure_differs(tribo_get_scene(m), scene);
     if (!reuse) {
         char why[512];
         if (!(m = tribo_create(scene, why, sizeof why)))
@@ -160,31 +141,31 @@ fmu_status fmu_state_set(fmu_instance *inst, const char *fn, const fmu_state *s)
     const tribo_param_info *params = tribo_param_table(&n_params);
     if (s->size < fixed_size(n_params))
         return fmu_error(inst, "%s: the state is too short", fn);
-    cursor c = {(unsigned char *)s->bytes + HEADER_SIZE};
-    const int64_t mode = get_i(&c);
-    const double start_time = get_d(&c), stop_time = get_d(&c);
-    const int64_t stop_time_defined = get_i(&c);
-    const double time = get_d(&c);
+    tribo_reader c = tribo_reader_of(s->bytes + HEADER_SIZE, s->size - HEADER_SIZE);
+    const int64_t lifecycle = tribo_read_int(&c);
+    const double start_time = tribo_read_double(&c), stop_time = tribo_read_double(&c);
+    const int64_t stop_time_defined = tribo_read_int(&c);
+    const double time = tribo_read_double(&c);
     double inputs[TRIBO_INPUT_COUNT];
     for (int i = 0; i < TRIBO_INPUT_COUNT; i++)
-        inputs[i] = get_d(&c);
-    if ((size_t)get_i(&c) != n_params)
+        inputs[i] = tribo_read_double(&c);
+    if ((size_t)tribo_read_int(&c) != n_params)
         return fmu_error(inst, "%s: the state has another set of parameters", fn);
     tribo_scene scene;
     tribo_scene_defaults(&scene);
     for (size_t i = 0; i < n_params; i++) {
-        const double v = get_d(&c);
+        const double v = tribo_read_double(&c);
         char msg[512];
         if (tribo_param_check(&params[i], v, msg, sizeof msg) != TRIBO_OK)
             return fmu_error(inst, "%s: the state is corrupt: %s", fn, msg);
         tribo_param_write(&scene, &params[i], v);
     }
-    const int64_t model_outdated = get_i(&c);
-    const uint64_t core_size = (uint64_t)get_i(&c);
-    if (mode < FMU_LIFECYCLE_INSTANTIATED || mode > FMU_LIFECYCLE_TERMINATED || !isfinite(start_time) ||
+    const int64_t model_outdated = tribo_read_int(&c);
+    const uint64_t core_size = (uint64_t)tribo_read_int(&c);
+    if (lifecycle < FMU_LIFECYCLE_INSTANTIATED || lifecycle > FMU_LIFECYCLE_TERMINATED || !isfinite(start_time) ||
         !isfinite(stop_time) || !isfinite(time) || !isfinite(inputs[0]) || !isfinite(inputs[1]) ||
         core_size != s->size - fixed_size(n_params) ||
-        (core_size == 0 && (mode == FMU_LIFECYCLE_STEP || mode == FMU_LIFECYCLE_TERMINATED)))
+        (core_size == 0 && (lifecycle == FMU_LIFECYCLE_STEP || lifecycle == FMU_LIFECYCLE_TERMINATED)))
         return fmu_error(inst, "%s: the state is corrupt", fn);
 
     tribo_model *model = NULL;
@@ -197,7 +178,7 @@ fmu_status fmu_state_set(fmu_instance *inst, const char *fn, const fmu_state *s)
     inst->scene = scene;
     for (int i = 0; i < TRIBO_INPUT_COUNT; i++)
         inst->inputs[i] = inputs[i];
-    inst->lifecycle = (fmu_lifecycle)mode;
+    inst->lifecycle = (fmu_lifecycle)lifecycle;
     inst->start_time = start_time;
     inst->stop_time = stop_time;
     inst->stop_time_defined = stop_time_defined != 0;

@@ -39,7 +39,8 @@ build() { # build <dir> <cmake args...>
   fi
   cmake --build "$ROOT/$dir"
 }
-build build -DCMAKE_BUILD_TYPE=Release
+# -Werror: a warning fails the build (CI runs this)
+build build -DCMAKE_BUILD_TYPE=Release -DTRIBO_WERROR=ON
 if [ "${TRIBO_SETUP_SANITIZE:-0}" = 1 ]; then
-  build build-sanitize -DCMAKE_BUILD_TYPE=Debug -DTRIBO_SANITIZE=ON -DTRIBO_BUILD_FMU=OFF
+  build build-sanitize -DCMAKE_BUILD_TYPE=Debug -DTRIBO_SANITIZE=ON -DTRIBO_BUILD_FMU=OFF -DTRIBO_WERROR=ON
 fi

@@ -280,7 +280,7 @@ static tribo_status take_step(cvode_integrator *c)
     c->steps_since_restart++;
     c->open = 1;
     c->t_end = t_ret;
-    memcpy(c->y_end, N_VGetArrayPointer(c->y), sizeof c->y_end);
+    memcpy(c->y_end, N_VGetArrayPointer(c->y), (size_t)c->n * sizeof(double));
     c->ends_at_root = flag == CV_ROOT_RETURN;
     if (c->ends_at_root)
         CVodeGetRootInfo(c->mem, c->roots);

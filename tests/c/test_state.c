@@ -177,7 +177,7 @@ Test(state, reset_reruns_identically)
         tribo_scene s = scene();
         tribo_model *a = make(&s), *b = make(&s);
         cr_assert_eq(tribo_advance(a, 4.0), TRIBO_OK);
-        tribo_reset(a);
+        cr_assert_eq(tribo_reset(a), TRIBO_OK);
         cr_expect_eq(tribo_get(a, TRIBO_Q_TIME), 0.0);
         cr_expect_eq(tribo_get(a, TRIBO_Q_STATIC), 0.0);
         cr_assert_eq(tribo_advance(a, 4.0), TRIBO_OK);

@@ -40,14 +40,12 @@ void stability_run(const stability_case *c, int integrator, double t_end, double
                    stability_result *r);
 
 /* The energy balance holds when the residual is within this fraction of the run's energy
-   scale (MODEL §6), a balance accumulated over thousands of steps (measured worst at the
-   default rtol = 1e-9: 7.7e-7, CVODE BDF, eps 0.02 set down on a flat plate; 3.9e-6 at
-   rtol = 1e-8; the fixed step stays below 1e-10). */
+   scale (MODEL §6), a balance accumulated over thousands of steps; docs/stability.md lists
+   each run's residual against it. */
 #define STABILITY_RESIDUAL_BOUND 1e-5
 /* Stated CPU bound per run of the test's horizon (tau = 50), on the project's 2-core
-   machine, in an optimised build (measured worst: 5.3 s, the fixed step sub-stepping a
-   soft, fast, nu = 1 impact); the report lists what each run took. Sanitizer builds run
-   several times slower and are not held to it. */
+   machine, in an optimised build; docs/stability.md lists what each run took. Sanitizer
+   builds run several times slower and are not held to it. */
 #ifdef TRIBO_SANITIZED
 #define STABILITY_CPU_BOUND INFINITY
 #else
