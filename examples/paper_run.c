@@ -13,46 +13,23 @@
 #include <string.h>
 #include <time.h>
 
+/* t_end=..., every=... set the horizon; everything else goes to the scene. */
 static int parse_args(int argc, char **argv, tribo_scene *scene, double *t_end, double *every)
 {
     for (int i = 1; i < argc; i++) {
-        char name[64];
-        const char *eq = strchr(argv[i], '=');
-        if (!eq || (size_t)(eq - argv[i]) >= sizeof name) {
-            fprintf(stderr, "expected name=value, got '%s'\n", argv[i]);
-            return -1;
-        }
-        memcpy(name, argv[i], (size_t)(eq - argv[i]));
-        name[eq - argv[i]] = '\0';
-        char *end;
-        const double value = strtod(eq + 1, &end);
-        if (*end != '\0' || end == eq + 1) {
-            fprintf(stderr, "%s: '%s' is not a number\n", name, eq + 1);
-            return -1;
-        }
-        if (strcmp(name, "t_end") == 0) {
-            *t_end = value;
-            continue;
-        }
-        if (strcmp(name, "every") == 0) {
-            *every = value;
-            continue;
-        }
-        const tribo_param_info *p = tribo_param_find(name);
-        if (!p) {
-            fprintf(stderr, "unknown parameter '%s'\n", name);
-            return -1;
-        }
         char msg[256];
-        if (tribo_param_check(p, value, msg, sizeof msg) != TRIBO_OK) {
+        if (strncmp(argv[i], "t_end=", 6) == 0 || strncmp(argv[i], "every=", 6) == 0) {
+            char *end;
+            const double value = strtod(argv[i] + 6, &end);
+            if (*end || end == argv[i] + 6 || !(value > 0.0)) {
+                fprintf(stderr, "%s: expected a number > 0\n", argv[i]);
+                return -1;
+            }
+            *(argv[i][0] == 't' ? t_end : every) = value;
+        } else if (tribo_scene_apply(scene, argv[i], msg, sizeof msg) != TRIBO_OK) {
             fprintf(stderr, "%s\n", msg);
             return -1;
         }
-        tribo_param_write(scene, p, value);
-    }
-    if (!(*t_end > 0.0) || !(*every > 0.0)) {
-        fprintf(stderr, "t_end and every must be > 0\n");
-        return -1;
     }
     return 0;
 }

@@ -65,10 +65,10 @@ typedef struct tribo_charge_model {
                          const double *g0, double *g_mid, double *g_end, double rtol,
                          double atol);
 
-    /* The rate law on `count` segments in contact, from index `first` (periodic in n),
-       over an interval of fixed contact: exact given the forcing. */
+    /* The rate law on segments[0..count), in contact over an interval: exact given the
+       forcing. */
     void (*charge)(void *cache, const tribo_scene *s, const tribo_charge_forcing *f,
-                   double *segments, long first, long count, int n);
+                   double *segments, long count);
 
     /* The per-segment values as tribo_get_segment_charges reports them. */
     void (*segment_values)(const tribo_scene *s, const double *globals, const double *segments,

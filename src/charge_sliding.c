@@ -85,7 +85,7 @@ static int piece_globals(void *c, const tribo_scene *s, double h, const double (
    Sigma_i <- e^{-z} Sigma_i + K, K = (A + B + C)(1 - e^{-z}) - (B + 2C) z F_1(z) + C z F_2(z),
    z = duration / tau0: exact over the interval. */
 static void charge(void *c, const tribo_scene *s, const tribo_charge_forcing *f, double *sigma,
-                   long first, long count, int n)
+                   long count)
 {
     const tribo_decay_cache *k = tribo_decay_moments(&((cache *)c)->charge, f->duration, s->tau0);
     const double d = k->decay, one_minus_d = k->one_minus_decay;
@@ -93,12 +93,8 @@ static void charge(void *c, const tribo_scene *s, const tribo_charge_forcing *f,
     const double C = 2.0 * (A - 2.0 * f->mid[SIGMA_S] + f->end[SIGMA_S]);
     const double B = f->end[SIGMA_S] - A - C;
     const double K = (A + B + C) * one_minus_d - (B + 2.0 * C) * k->zf1 + C * k->zf2;
-    long i = first;
-    for (long j = 0; j < count; j++) {
+    for (long i = 0; i < count; i++)
         sigma[i] = d * sigma[i] + K;
-        if (++i == n)
-            i = 0;
-    }
 }
 
 static void segment_values(const tribo_scene *s, const double *globals, const double *sigma,

@@ -5,17 +5,13 @@
 
 #include <string.h>
 
-static void charge(void *cache, const tribo_scene *s, const tribo_charge_forcing *f,
-                   double *q, long first, long count, int n)
+static void charge(void *cache, const tribo_scene *s, const tribo_charge_forcing *f, double *q,
+                   long count)
 {
     /* linear with constant coefficients: exact over the interval */
     const double one_minus_d = tribo_decay(cache, f->duration, s->tau0)->one_minus_decay;
-    long i = first;
-    for (long j = 0; j < count; j++) {
+    for (long i = 0; i < count; i++)
         q[i] += (1.0 - q[i]) * one_minus_d;
-        if (++i == n)
-            i = 0;
-    }
 }
 
 static void segment_values(const tribo_scene *s, const double *globals, const double *q,

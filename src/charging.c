@@ -133,6 +133,8 @@ void tribo_charging_apply(tribo_charging *c, const tribo_scene *s, const tribo_c
     long i = first % c->n;
     if (i < 0)
         i += c->n;
+    /* the run i .. i + count - 1, periodic: at most two contiguous slices */
+    const long head = count < c->n - i ? count : c->n - i;
     for (int k = 0; k < c->n_models; k++) {
         tribo_charge_slot *slot = &c->slot[k];
         double *values = target == TRIBO_CHARGE_COMMITTED ? slot->segments : slot->segments_out;
@@ -141,6 +143,8 @@ void tribo_charging_apply(tribo_charging *c, const tribo_scene *s, const tribo_c
         const tribo_charge_forcing f = {sample->duration, sample->globals_begin + slot->globals_at,
                                         sample->globals_mid + slot->globals_at,
                                         sample->globals_end + slot->globals_at};
-        slot->model->charge(slot->cache, s, &f, values, i, count, c->n);
+        slot->model->charge(slot->cache, s, &f, values + i, head);
+        if (count > head)
+            slot->model->charge(slot->cache, s, &f, values, count - head);
     }
 }

@@ -1,8 +1,10 @@
 /* scene.c: the scene's parameters (quantities.def): defaults, valid ranges, validation. */
 #include "tribo.h"
 
+#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #define CLOSED 1
@@ -105,6 +107,58 @@ tribo_status tribo_param_check(const tribo_param_info *p, double v, char *msg, s
                  range);
     }
     return TRIBO_ERR_INVALID_ARGUMENT;
+}
+
+tribo_status tribo_scene_set(tribo_scene *scene, const char *name, double value, char *msg,
+                             size_t msg_size)
+{
+    const tribo_param_info *p = tribo_param_find(name);
+    if (!p) {
+        if (msg && msg_size)
+            snprintf(msg, msg_size, "unknown parameter '%s'", name ? name : "(null)");
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    }
+    const tribo_status st = tribo_param_check(p, value, msg, msg_size);
+    if (st == TRIBO_OK)
+        tribo_param_write(scene, p, value);
+    return st;
+}
+
+tribo_status tribo_scene_apply(tribo_scene *scene, const char *settings, char *msg,
+                               size_t msg_size)
+{
+    const char *p = settings ? settings : "";
+    for (;;) {
+        while (isspace((unsigned char)*p))
+            p++;
+        if (!*p)
+            return TRIBO_OK;
+        const char *end = p;
+        while (*end && !isspace((unsigned char)*end))
+            end++;
+        char item[128], *value_end;
+        const char *eq = memchr(p, '=', (size_t)(end - p));
+        const size_t len = (size_t)(end - p);
+        if (!eq || len >= sizeof item) {
+            if (msg && msg_size)
+                snprintf(msg, msg_size, "expected name=value, got '%.*s'", (int)len, p);
+            return TRIBO_ERR_INVALID_ARGUMENT;
+        }
+        memcpy(item, p, len);
+        item[len] = '\0';
+        item[eq - p] = '\0';
+        const char *text = item + (eq - p) + 1;
+        const double value = strtod(text, &value_end);
+        if (value_end == text || *value_end) {
+            if (msg && msg_size)
+                snprintf(msg, msg_size, "%s: '%s' is not a number", item, text);
+            return TRIBO_ERR_INVALID_ARGUMENT;
+        }
+        const tribo_status st = tribo_scene_set(scene, item, value, msg, msg_size);
+        if (st != TRIBO_OK)
+            return st;
+        p = end;
+    }
 }
 
 tribo_status tribo_scene_validate(const tribo_scene *scene, char *msg, size_t msg_size)

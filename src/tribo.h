@@ -114,6 +114,14 @@ void tribo_param_range_text(const tribo_param_info *p, char *buf, size_t n);
 /* TRIBO_OK if `value` is valid for `p`; otherwise TRIBO_ERR_INVALID_ARGUMENT and a
    message naming the parameter, the value and the valid range. */
 tribo_status tribo_param_check(const tribo_param_info *p, double value, char *msg, size_t msg_size);
+/* Set the parameter `name` of a scene to `value` after checking it; an unknown name or
+   an invalid value is refused with a message as above. */
+tribo_status tribo_scene_set(tribo_scene *scene, const char *name, double value, char *msg,
+                             size_t msg_size);
+/* Apply settings "name=value name=value ..." (separated by white space) to a scene, each
+   with tribo_scene_set; stops at the first one refused. */
+tribo_status tribo_scene_apply(tribo_scene *scene, const char *settings, char *msg,
+                               size_t msg_size);
 /* Check every parameter of a scene; the first failure is reported as above. */
 tribo_status tribo_scene_validate(const tribo_scene *scene, char *msg, size_t msg_size);
 /* The first structural parameter in which two scenes differ, or NULL if they have the

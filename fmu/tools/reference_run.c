@@ -85,10 +85,8 @@ int main(void)
             continue;
         }
         if (strcmp(cmd, "set") == 0 && sscanf(line, "%*s %63s %lf", name, &a) == 2) {
-            const tribo_param_info *p = tribo_param_find(name);
-            if (!p || tribo_param_check(p, a, err, sizeof err) != TRIBO_OK)
-                return fail("set", p ? err : name);
-            tribo_param_write(&scene, p, a);
+            if (tribo_scene_set(&scene, name, a, err, sizeof err) != TRIBO_OK)
+                return fail("set", err);
             continue;
         }
         if (!m)

@@ -4,8 +4,20 @@
 
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdlib.h>
 
 #include "tribo.h"
+
+/* The defaults (the paper's drop) with settings "name=value ..." applied; the test fails
+   if one is refused. */
+static inline tribo_scene scene_of(const char *settings)
+{
+    tribo_scene s;
+    char err[512];
+    tribo_scene_defaults(&s);
+    cr_assert_eq(tribo_scene_apply(&s, settings, err, sizeof err), TRIBO_OK, "%s", err);
+    return s;
+}
 
 /* A new instance of the scene; the test fails with the reason if there is none. */
 static inline tribo_model *make(const tribo_scene *s)
@@ -14,6 +26,35 @@ static inline tribo_model *make(const tribo_scene *s)
     tribo_model *m = tribo_create(s, err, sizeof err);
     cr_assert(m, "%s", err);
     return m;
+}
+
+/* Advance two instances to t; the test fails with the reason if either fails. */
+static inline void advance_both(tribo_model *a, tribo_model *b, double t)
+{
+    cr_assert_eq(tribo_advance(a, t), TRIBO_OK, "%s", tribo_last_error(a));
+    cr_assert_eq(tribo_advance(b, t), TRIBO_OK, "%s", tribo_last_error(b));
+}
+
+/* The instance's whole state, saved into a new buffer of *size bytes (free it). */
+static inline unsigned char *saved_state(const tribo_model *m, size_t *size)
+{
+    *size = tribo_state_size(m);
+    unsigned char *bytes = malloc(*size);
+    cr_assert(bytes);
+    cr_assert_eq(tribo_state_save(m, bytes, *size), TRIBO_OK);
+    return bytes;
+}
+
+/* The scene run by the fixed step and by CVODE at tight tolerances (rtol 1e-10, atol
+   1e-12), for comparisons of the two. */
+static inline void make_fixed_and_cvode(tribo_scene s, tribo_model **fixed, tribo_model **cvode)
+{
+    s.integrator = TRIBO_INTEGRATOR_FIXED_STEP;
+    *fixed = make(&s);
+    s.integrator = TRIBO_INTEGRATOR_CVODE;
+    s.rtol = 1e-10;
+    s.atol = 1e-12;
+    *cvode = make(&s);
 }
 
 /* The largest difference of two instances' motion: X, Y, phi, U, V, Omega. */

@@ -140,8 +140,7 @@ Test(cvode, charging_does_not_steer_the_motion)
     tribo_model *with = make(&s);
     s.charge_model = TRIBO_CHARGE_NONE;
     tribo_model *without = make(&s);
-    cr_assert_eq(tribo_advance(with, 50.0), TRIBO_OK);
-    cr_assert_eq(tribo_advance(without, 50.0), TRIBO_OK);
+    advance_both(with, without, 50.0);
     const tribo_quantity q[] = {TRIBO_Q_X, TRIBO_Q_Y, TRIBO_Q_PHI, TRIBO_Q_U, TRIBO_Q_V,
                                 TRIBO_Q_OMEGA, TRIBO_Q_DELTA_X, TRIBO_Q_ENERGY};
     for (int i = 0; i < 8; i++)
@@ -165,8 +164,7 @@ Test(cvode, adams_and_bdf_agree)
     tribo_model *adams = make(&s);
     s.integrator = TRIBO_INTEGRATOR_CVODE_BDF;
     tribo_model *bdf = make(&s);
-    cr_assert_eq(tribo_advance(adams, 30.0), TRIBO_OK);
-    cr_assert_eq(tribo_advance(bdf, 30.0), TRIBO_OK);
+    advance_both(adams, bdf, 30.0);
     cr_expect(state_distance(adams, bdf) < 1e-6, "distance %.3g", state_distance(adams, bdf));
     cr_expect(fabs(tribo_get(adams, TRIBO_Q_STATIC) - tribo_get(bdf, TRIBO_Q_STATIC)) < 1e-5);
     tribo_free(adams);

@@ -4,6 +4,7 @@
 
 #include "contact.h"
 #include "dynamics.h"
+#include "support.h"
 #include "tribo.h"
 
 static const tribo_force_law LAW = {TRIBO_CONTACT_BY_GEOMETRY, TRIBO_NORMAL_REGULARISED, 0.0, TRIBO_TANGENT_CLAMP, 0.0};
@@ -117,17 +118,9 @@ Test(forces, clamp)
    limit whenever the contact slips, and the stretch is 0 throughout every flight. */
 Test(forces, integrator_holds_the_coulomb_limit_and_resets_the_stretch)
 {
-    tribo_scene s;
-    tribo_scene_defaults(&s);
-    s.epsilon = 0.6;
-    s.mu = 0.3;
-    s.nu = 0.3;
-    s.gap0 = 0.002;
-    s.Omega0 = 4.0;
-    s.drop_speed = 0.05;
+    tribo_scene s = scene_of("epsilon=0.6 mu=0.3 nu=0.3 gap0=0.002 Omega0=4.0 drop_speed=0.05 dt=1e-3");
     s.charge_model = TRIBO_CHARGE_NONE;
     s.integrator = TRIBO_INTEGRATOR_FIXED_STEP;
-    s.dt = 1e-3;
     char err[256];
     tribo_model *m = tribo_create(&s, err, sizeof err);
     cr_assert(m, "%s", err);

@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "support.h"
 #include "tribo.h"
 
 Test(params, defaults_are_valid_and_are_the_papers)
@@ -105,9 +106,7 @@ Test(params, the_ranges_of_model_section_1)
 
 Test(params, only_tunables_change_mid_run)
 {
-    tribo_scene s;
-    tribo_scene_defaults(&s);
-    s.n_segments = 64;
+    tribo_scene s = scene_of("n_segments=64");
     tribo_model *m = tribo_create(&s, NULL, 0);
     cr_assert(m);
     cr_assert_eq(tribo_advance(m, 1.0), TRIBO_OK);
@@ -135,9 +134,7 @@ Test(params, only_tunables_change_mid_run)
 
 Test(params, segment_charges_of_a_missing_model_are_refused)
 {
-    tribo_scene s;
-    tribo_scene_defaults(&s);
-    s.n_segments = 32;
+    tribo_scene s = scene_of("n_segments=32");
     s.charge_model = TRIBO_CHARGE_STATIC;
     tribo_model *m = tribo_create(&s, NULL, 0);
     cr_assert(m);

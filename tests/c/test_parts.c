@@ -46,15 +46,11 @@ static int piece_globals(void *cache, const tribo_scene *s, double h, const doub
 }
 
 static void charge(void *cache, const tribo_scene *s, const tribo_charge_forcing *f, double *c,
-                   long first, long count, int n)
+                   long count)
 {
     (void)cache;
-    long i = first;
-    for (long j = 0; j < count; j++) {
+    for (long i = 0; i < count; i++)
         c[i] += f->duration / s->tau0;
-        if (++i == n)
-            i = 0;
-    }
 }
 
 static void segment_values(const tribo_scene *s, const double *g, const double *c, double *out,
@@ -83,10 +79,7 @@ enum { CONSTANT = 2 };
 
 static tribo_model *make_with_constant(int integrator)
 {
-    tribo_scene s;
-    tribo_scene_defaults(&s);
-    s.epsilon = 0.3;
-    s.n_segments = 500;
+    tribo_scene s = scene_of("epsilon=0.3 n_segments=500");
     s.integrator = integrator;
     s.charge_model = 7; /* all three */
     const tribo_parts parts = {MODELS, 3, NULL};
@@ -150,8 +143,7 @@ Test(parts, test_charge_model_survives_state_save_and_load)
         cr_assert_eq(tribo_state_save(a, bytes, n), TRIBO_OK);
         cr_assert_eq(tribo_state_load(b, bytes, n), TRIBO_OK, "%s", tribo_last_error(b));
         free(bytes);
-        cr_assert_eq(tribo_advance(a, 120.0), TRIBO_OK);
-        cr_assert_eq(tribo_advance(b, 120.0), TRIBO_OK);
+        advance_both(a, b, 120.0);
         double sa, ca, qa, sb, cb, qb;
         constant_state(a, &sa, &ca, &qa);
         constant_state(b, &sb, &cb, &qb);
@@ -206,9 +198,8 @@ Test(parts, an_unknown_integrator_kind_is_refused)
 {
     cr_expect_null(tribo_integrator_of_kind(3));
     cr_expect_null(tribo_integrator_of_kind(-1));
-    tribo_scene s;
-    tribo_scene_defaults(&s);
-    s.integrator = 7;
+    tribo_scene s = scene_of("");
+    s.integrator = 7; /* past the table's range too: set directly */
     const tribo_parts parts = {TRIBO_CHARGE_MODELS, TRIBO_SEGMENTS_COUNT, NULL};
     char err[512];
     cr_expect_null(tribo_create_from_parts(&s, &parts, err, sizeof err));
@@ -217,8 +208,7 @@ Test(parts, an_unknown_integrator_kind_is_refused)
 
 Test(parts, a_selection_beyond_the_model_set_is_refused)
 {
-    tribo_scene s;
-    tribo_scene_defaults(&s);
+    tribo_scene s = scene_of("");
     s.charge_model = 4;
     const tribo_parts parts = {TRIBO_CHARGE_MODELS, TRIBO_SEGMENTS_COUNT, NULL};
     char err[512];

@@ -13,20 +13,11 @@
    dt = 8e-5 (lambda dt ~ 3e3). It now sub-steps and agrees with CVODE. */
 Test(regressions, fixed_step_stable_in_a_stiff_normal_lock, .timeout = 60)
 {
-    tribo_scene s;
-    tribo_scene_defaults(&s);
-    s.Gamma = 0.5;
-    s.drop_speed = 1.0;
-    s.nu = 1.0;
+    tribo_scene s = scene_of("Gamma=0.5 drop_speed=1.0 nu=1.0");
     s.charge_model = TRIBO_CHARGE_NONE;
-    s.integrator = TRIBO_INTEGRATOR_FIXED_STEP;
-    tribo_model *fixed = make(&s);
-    s.integrator = TRIBO_INTEGRATOR_CVODE;
-    s.rtol = 1e-10;
-    s.atol = 1e-12;
-    tribo_model *cvode = make(&s);
-    cr_assert_eq(tribo_advance(fixed, 5.0), TRIBO_OK);
-    cr_assert_eq(tribo_advance(cvode, 5.0), TRIBO_OK);
+    tribo_model *fixed, *cvode;
+    make_fixed_and_cvode(s, &fixed, &cvode);
+    advance_both(fixed, cvode, 5.0);
     tribo_stats st;
     tribo_get_stats(fixed, &st);
     cr_expect(st.substeps > 0, "the stiff lock was sub-stepped");
@@ -42,16 +33,9 @@ Test(regressions, fixed_step_stable_in_a_stiff_normal_lock, .timeout = 60)
    slip test tied at first order). It now agrees with the fixed step. */
 Test(regressions, particle_set_down_at_rest)
 {
-    tribo_scene s;
-    tribo_scene_defaults(&s);
-    s.drop_speed = 0.0;
-    s.n_segments = 400;
-    s.integrator = TRIBO_INTEGRATOR_FIXED_STEP;
-    tribo_model *fixed = make(&s);
-    s.integrator = TRIBO_INTEGRATOR_CVODE;
-    s.rtol = 1e-10;
-    s.atol = 1e-12;
-    tribo_model *cvode = make(&s);
+    tribo_scene s = scene_of("drop_speed=0.0 n_segments=400");
+    tribo_model *fixed, *cvode;
+    make_fixed_and_cvode(s, &fixed, &cvode);
     for (int k = 1; k <= 40; k++) {
         cr_assert_eq(tribo_advance(cvode, 0.5 * k), TRIBO_OK);
         cr_assert_eq(tribo_get(cvode, TRIBO_Q_IN_CONTACT), 1.0, "t = %g: left the plate", 0.5 * k);
@@ -75,11 +59,7 @@ Test(regressions, particle_set_down_at_rest)
    stretch went 1.5e-4 past the limit. Sampled finely, it never leaves it. */
 Test(regressions, grazing_stick_to_slip_is_seen)
 {
-    tribo_scene s;
-    tribo_scene_defaults(&s);
-    s.epsilon = 0.01;
-    s.mu = 10.0;
-    s.nu = 3.0;
+    tribo_scene s = scene_of("epsilon=0.01 mu=10.0 nu=3.0");
     s.charge_model = TRIBO_CHARGE_NONE;
     s.integrator = TRIBO_INTEGRATOR_CVODE;
     tribo_model *m = make(&s);
@@ -111,9 +91,7 @@ static void logger(void *user, int level, const char *msg)
 
 Test(regressions, deep_indentation_is_reported)
 {
-    tribo_scene s;
-    tribo_scene_defaults(&s);
-    s.epsilon = 0.6;
+    tribo_scene s = scene_of("epsilon=0.6");
     s.mu = s.nu = 1.0;
     s.charge_model = TRIBO_CHARGE_NONE;
     s.integrator = TRIBO_INTEGRATOR_CVODE;

@@ -13,12 +13,8 @@ static const int INTEGRATORS[] = {TRIBO_INTEGRATOR_FIXED_STEP, TRIBO_INTEGRATOR_
 
 static tribo_scene scene_with(int integrator)
 {
-    tribo_scene s;
-    tribo_scene_defaults(&s);
-    s.epsilon = 0.4;
+    tribo_scene s = scene_of("epsilon=0.4 dt=2e-4 n_segments=300");
     s.mu = s.nu = 1.0;
-    s.dt = 2e-4;
-    s.n_segments = 300;
     s.integrator = integrator;
     return s;
 }
@@ -50,9 +46,8 @@ Test(state, copy_out_and_in_continues_bit_identically)
         tribo_model *a = make(&s);
         /* off the step grid, so that the saved point carries a partial step */
         cr_assert_eq(tribo_advance(a, 3.00013), TRIBO_OK);
-        const size_t n = tribo_state_size(a);
-        unsigned char *saved = malloc(n);
-        cr_assert_eq(tribo_state_save(a, saved, n), TRIBO_OK);
+        size_t n;
+        unsigned char *saved = saved_state(a, &n);
         cr_assert_eq(tribo_advance(a, 10.0), TRIBO_OK);
 
         tribo_model *b = make(&s); /* a fresh instance */
@@ -87,14 +82,12 @@ Test(state, tunables_and_inputs_travel_with_the_state)
         cr_assert_eq(tribo_advance(a, 2.0), TRIBO_OK);
         cr_assert_eq(tribo_set_param(a, "mu", 0.3), TRIBO_OK);
         cr_assert_eq(tribo_set_external_force(a, 1e-4, -2e-4), TRIBO_OK);
-        const size_t n = tribo_state_size(a);
-        unsigned char *saved = malloc(n);
-        cr_assert_eq(tribo_state_save(a, saved, n), TRIBO_OK);
+        size_t n;
+        unsigned char *saved = saved_state(a, &n);
         tribo_model *b = make(&s);
         cr_assert_eq(tribo_state_load(b, saved, n), TRIBO_OK);
         cr_expect_eq(tribo_get_scene(b)->mu, 0.3);
-        cr_assert_eq(tribo_advance(a, 6.0), TRIBO_OK);
-        cr_assert_eq(tribo_advance(b, 6.0), TRIBO_OK);
+        advance_both(a, b, 6.0);
         expect_same(a, b, "with tunables and inputs");
         cr_expect(tribo_get(a, TRIBO_Q_WORK_EXTERNAL) != 0.0);
         free(saved);
@@ -109,9 +102,8 @@ Test(state, foreign_or_corrupt_state_is_refused)
         tribo_scene s = scene();
         tribo_model *a = make(&s);
         cr_assert_eq(tribo_advance(a, 1.0), TRIBO_OK);
-        const size_t n = tribo_state_size(a);
-        unsigned char *saved = malloc(n);
-        cr_assert_eq(tribo_state_save(a, saved, n), TRIBO_OK);
+        size_t n;
+        unsigned char *saved = saved_state(a, &n);
         cr_expect_eq(tribo_state_save(a, saved, n - 1), TRIBO_ERR_INVALID_ARGUMENT);
 
         tribo_scene other = s;
@@ -156,12 +148,10 @@ Test(state, interleaved_instances_equal_each_alone)
         s2.mu = s2.nu = 0.1;
         tribo_model *a = make(&s1), *b = make(&s2);
         for (int k = 1; k <= 40; k++) {
-            cr_assert_eq(tribo_advance(a, 0.25 * k), TRIBO_OK);
-            cr_assert_eq(tribo_advance(b, 0.25 * k), TRIBO_OK);
+            advance_both(a, b, 0.25 * k);
         }
         tribo_model *a_alone = make(&s1), *b_alone = make(&s2);
-        cr_assert_eq(tribo_advance(a_alone, 10.0), TRIBO_OK);
-        cr_assert_eq(tribo_advance(b_alone, 10.0), TRIBO_OK);
+        advance_both(a_alone, b_alone, 10.0);
         expect_same(a, a_alone, "first instance");
         expect_same(b, b_alone, "second instance");
         tribo_free(a);
@@ -180,8 +170,7 @@ Test(state, reset_reruns_identically)
         cr_assert_eq(tribo_reset(a), TRIBO_OK);
         cr_expect_eq(tribo_get(a, TRIBO_Q_TIME), 0.0);
         cr_expect_eq(tribo_get(a, TRIBO_Q_STATIC), 0.0);
-        cr_assert_eq(tribo_advance(a, 4.0), TRIBO_OK);
-        cr_assert_eq(tribo_advance(b, 4.0), TRIBO_OK);
+        advance_both(a, b, 4.0);
         expect_same(a, b, "after reset");
         tribo_free(a);
         tribo_free(b);

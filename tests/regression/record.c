@@ -101,7 +101,7 @@ int main(void)
         for (int i = 0; i < N_STABILITY_INTEGRATORS; i++) {
             tribo_scene s;
             tribo_scene_defaults(&s);
-            STABILITY_CASES[c].apply(&s);
+            tribo_scene_apply(&s, STABILITY_CASES[c].settings, NULL, 0);
             s.integrator = STABILITY_INTEGRATORS[i];
             char run[128];
             snprintf(run, sizeof run, "stability/%d/%s", c,

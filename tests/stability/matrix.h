@@ -10,7 +10,7 @@
 
 typedef struct stability_case {
     const char *name;
-    void (*apply)(tribo_scene *scene); /* from the paper's set-up (MODEL §7) */
+    const char *settings; /* from the paper's set-up (MODEL §7), for tribo_scene_apply */
 } stability_case;
 
 extern const stability_case STABILITY_CASES[];
