@@ -2,7 +2,7 @@
  *
  *   tribo_bench_charge_models [t_end=1000] [rounds=1]
  *
- * Runs the paper's case (epsilon = 0.5, mu = nu = 0.1, MODEL §7) with the fixed step
+ * Runs the paper's case (epsilon = 0.5, mu = nu = 0.1, model.md §7) with the fixed step
  * dt = 8e-5 for charge_model = none, static, sliding and both, in one process, and
  * prints steps per CPU second and each model's ratio to `none`. With rounds > 1 the
  * four runs are repeated in turn and the fastest of each kept, so that a noisy

@@ -1,4 +1,4 @@
-/* paper_run: the paper's drop (MODEL §7) through the C API, printing the charge as it
+/* paper_run: the paper's drop (model.md §7) through the C API, printing the charge as it
  * builds up and the final state.
  *
  *   tribo_paper_run [name=value ...]

@@ -1,4 +1,4 @@
-"""The paper's parameter study through the tribo FMU (MODEL.md section 7): both friction
+"""The paper's parameter study through the tribo FMU (docs/model.md section 7): both friction
 cases, a range of roundness values, both charge models; the transition roundness eps_t
 of each friction case; figures and tables.
 

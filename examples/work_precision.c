@@ -2,7 +2,7 @@
  *
  *   tribo_work_precision [quick | chaos]
  *
- * For each case of the report (the paper's set-up, MODEL §7, at a few roundness ratios
+ * For each case of the report (the paper's set-up, model.md §7, at a few roundness ratios
  * and frictions) it runs the fixed step at dt = 1e-2 ... 8e-5 and CVODE at rtol = 1e-3
  * ... 1e-10, plus a reference (CVODE, rtol 1e-12), and prints one CSV row per run: the
  * CPU time, the work, and every quantity the report measures errors on. `quick` runs a
@@ -52,7 +52,7 @@ typedef struct run_result {
 } run_result;
 
 /* One run to t_end, recording the state at the horizons and the largest energy-balance
-   residual |E + W_diss - W_ext - E(0)| (MODEL §6) at unit intervals. */
+   residual |E + W_diss - W_ext - E(0)| (model.md §6) at unit intervals. */
 static int run(const tribo_scene *s, double t_end, run_result *r)
 {
     char err[512];
@@ -102,7 +102,7 @@ static int run(const tribo_scene *s, double t_end, run_result *r)
 static int report(const report_case *c, const char *integrator, double setting, double t_end)
 {
     tribo_scene s;
-    tribo_scene_defaults(&s); /* MODEL §7 */
+    tribo_scene_defaults(&s); /* model.md §7 */
     s.epsilon = c->epsilon;
     s.mu = s.nu = c->mu;
     if (strcmp(integrator, "fixed") == 0) {

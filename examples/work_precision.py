@@ -14,7 +14,7 @@ Error measures (each converges where the motion is regular, which is why it is u
     direct measure of the integration error before any sensitivity amplifies it;
   * Q_static and Q_sliding at tau = 1000: what users of the model need, converging with
     the integration for regular runs;
-  * the energy-balance residual max |E + W_diss - W_ext - E(0)| over the run (MODEL §6):
+  * the energy-balance residual max |E + W_diss - W_ext - E(0)| over the run (model.md §6):
     needs no reference at all.
 Errors are against CVODE at rtol = 1e-12 (its own error is estimated from rtol = 1e-11).
 For chaotic motion the pointwise error grows with the horizon until it saturates; there

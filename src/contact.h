@@ -1,11 +1,11 @@
-/* contact.h: the contact force law (MODEL §3): spring-dashpot normal force and the
+/* contact.h: the contact force law (model.md §3): spring-dashpot normal force and the
    stick / slip / roll Coulomb friction of the tangential spring. */
 #ifndef TRIBO_CONTACT_H
 #define TRIBO_CONTACT_H
 
 #include <math.h>
 
-/* Indentation delta_y = h(phi) - Y if positive, else 0 (MODEL §2). */
+/* Indentation delta_y = h(phi) - Y if positive, else 0 (model.md §2). */
 static inline double tribo_indentation(double h, double Y)
 {
     const double d = h - Y;
@@ -13,14 +13,14 @@ static inline double tribo_indentation(double h, double Y)
 }
 
 /* Normal force Psi_N = delta_y (1 - nu s), clamped at >= 0 (no adhesion), where s is
-   the sign of V, or its regularisation / set-valued choice (MODEL §3). */
+   the sign of V, or its regularisation / set-valued choice (model.md §3). */
 static inline double tribo_normal_force(double delta_y, double nu, double s)
 {
     const double f = delta_y * (1.0 - nu * s);
     return f > 0.0 ? f : 0.0;
 }
 
-/* The regularised sign s = tanh(V / v_reg) of the fixed-step integrator (MODEL §3).
+/* The regularised sign s = tanh(V / v_reg) of the fixed-step integrator (model.md §3).
    A plain sgn(V) makes the normal force chatter between delta_y (1 -+ nu) at rest,
    and with it the Coulomb limit, so that high-friction runs depend on the step. */
 static inline double tribo_regularised_sign(double V, double v_reg)
@@ -29,7 +29,7 @@ static inline double tribo_regularised_sign(double V, double v_reg)
 }
 
 /* The tangential spring stretch held within the Coulomb limit |dx| <= mu Psi_N
-   (MODEL §3): in stick Psi_T = -dx, in slip Psi_T = -mu Psi_N sgn(dx) = -clamp(dx).
+   (model.md §3): in stick Psi_T = -dx, in slip Psi_T = -mu Psi_N sgn(dx) = -clamp(dx).
    Slip is entered when the stretch would exceed the limit and left by itself when
    v_s reverses and |dx| falls below it. */
 static inline double tribo_clamp(double dx, double limit)

@@ -1,4 +1,4 @@
-/* dynamics.c: equations of motion (MODEL §4) under the contact force law (MODEL §3). */
+/* dynamics.c: equations of motion (model.md §4) under the contact force law (model.md §3). */
 #include "dynamics.h"
 
 #include "contact.h"
@@ -20,13 +20,13 @@ void tribo_contact_at(const tribo_dyn_params *p, const tribo_force_law *law, con
     ev->delta_y = tribo_indentation(ev->pose.h, y[TRIBO_IY]);
     ev->in_contact = law->contact == TRIBO_CONTACT_BY_GEOMETRY ? ev->delta_y > 0.0
                                                                 : law->contact == TRIBO_CONTACT_ON;
-    ev->vs = y[TRIBO_IU] + ev->pose.h * y[TRIBO_IOMEGA]; /* MODEL §2 */
+    ev->vs = y[TRIBO_IU] + ev->pose.h * y[TRIBO_IOMEGA]; /* model.md §2 */
     if (!ev->in_contact) {
         ev->sign_v = 0.0;
         ev->psi_n = ev->psi_t = ev->limit = ev->limit_rate = 0.0;
         return;
     }
-    /* d(delta_y)/dtau = (dh/dphi) Omega - V = -cx Omega - V (MODEL §2) */
+    /* d(delta_y)/dtau = (dh/dphi) Omega - V = -cx Omega - V (model.md §2) */
     const double ddy = -ev->pose.cx * y[TRIBO_IOMEGA] - y[TRIBO_IV];
     switch (law->normal) {
     case TRIBO_NORMAL_REGULARISED:
@@ -40,7 +40,7 @@ void tribo_contact_at(const tribo_dyn_params *p, const tribo_force_law *law, con
         ev->limit_rate = limit_rate(p, ev, ddy);
         break;
     case TRIBO_NORMAL_LOCK:
-        /* V held at 0: the normal force is whatever balances the rest (MODEL §3). */
+        /* V held at 0: the normal force is whatever balances the rest (model.md §3). */
         ev->psi_n = p->g_n - p->F_N;
         ev->sign_v = p->nu > 0.0 && ev->delta_y > 0.0 ? (1.0 - ev->psi_n / ev->delta_y) / p->nu
                                                        : 0.0;
@@ -71,7 +71,7 @@ void tribo_dynamics_rhs(const tribo_dyn_params *p, const tribo_force_law *law, c
     dydt[TRIBO_IX] = U;
     dydt[TRIBO_IY] = law->normal == TRIBO_NORMAL_LOCK ? 0.0 : V;
     dydt[TRIBO_IPHI] = Om;
-    /* MODEL §4 */
+    /* model.md §4 */
     dydt[TRIBO_IU] = p->g_t + p->F_T + ev->psi_t;
     dydt[TRIBO_IV] = law->normal == TRIBO_NORMAL_LOCK ? 0.0 : -p->g_n + p->F_N + ev->psi_n;
     dydt[TRIBO_IOMEGA] = p->inv_inertia * (ev->pose.h * ev->psi_t + ev->pose.cx * ev->psi_n);
@@ -82,12 +82,12 @@ void tribo_dynamics_rhs(const tribo_dyn_params *p, const tribo_force_law *law, c
         dydt[TRIBO_IWDISS] = 0.0;
         return;
     }
-    /* MODEL §3: the stretch follows the slip velocity of the contact point; in slip it
+    /* model.md §3: the stretch follows the slip velocity of the contact point; in slip it
        is held at the limit and moves with it. */
     const double ddx =
         law->tangent == TRIBO_TANGENT_SLIP ? law->slip_sign * ev->limit_rate : ev->vs;
     dydt[TRIBO_IDX] = ddx;
-    /* Power lost from E (MODEL §6): dE/dtau = Psi_T vs + dx ddx + (Psi_N - dy)(V + cx Om)
+    /* Power lost from E (model.md §6): dE/dtau = Psi_T vs + dx ddx + (Psi_N - dy)(V + cx Om)
        + external power, so the contact dissipates -Psi_T vs - dx ddx + (dy - Psi_N)(V + cx Om). */
     dydt[TRIBO_IWDISS] = -ev->psi_t * ev->vs - y[TRIBO_IDX] * ddx +
                          (ev->delta_y - ev->psi_n) * (V + ev->pose.cx * Om);
@@ -99,7 +99,7 @@ double tribo_energy(const tribo_dyn_params *p, const double *y)
     tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
     const double dy = tribo_indentation(g.h, y[TRIBO_IY]);
     const double U = y[TRIBO_IU], V = y[TRIBO_IV], Om = y[TRIBO_IOMEGA], dx = y[TRIBO_IDX];
-    /* MODEL §6 */
+    /* model.md §6 */
     return 0.5 * (U * U + V * V) + 0.125 * (1.0 + p->eps2) * Om * Om +
            (p->g_n * y[TRIBO_IY] - p->g_t * y[TRIBO_IX]) + 0.5 * dy * dy + 0.5 * dx * dx;
 }

@@ -1,5 +1,5 @@
-/* dynamics.h: rigid-body motion of the particle (MODEL §4) as a first-order system,
-   with the quadratures of the energy balance (dissipated and external work, MODEL §6).
+/* dynamics.h: rigid-body motion of the particle (model.md §4) as a first-order system,
+   with the quadratures of the energy balance (dissipated and external work, model.md §6).
    The charge models' quadratures follow the motion in the state vector (charging.h). */
 #ifndef TRIBO_DYNAMICS_H
 #define TRIBO_DYNAMICS_H
@@ -29,12 +29,12 @@ typedef struct tribo_dyn_params {
     double eps, eps2;
     double mu, nu, Gamma;
     double g_t, g_n;     /* Gamma sin(beta), Gamma cos(beta) */
-    double inv_inertia;  /* 4 / (1 + eps^2): m (a^2 + b^2) / 4, MODEL §4 */
+    double inv_inertia;  /* 4 / (1 + eps^2): m (a^2 + b^2) / 4, model.md §4 */
     double v_reg;
     double F_T, F_N;     /* external force (inputs) */
 } tribo_dyn_params;
 
-/* How the set-valued parts of the force law are resolved (MODEL §3). The fixed-step
+/* How the set-valued parts of the force law are resolved (model.md §3). The fixed-step
    integrator uses the regularised sign and the clamped stretch throughout; an
    event-driven integrator selects a phase per smooth piece of the motion. */
 typedef enum {
@@ -75,7 +75,7 @@ void tribo_dynamics_rhs(const tribo_dyn_params *p, const tribo_force_law *law, c
 void tribo_contact_at(const tribo_dyn_params *p, const tribo_force_law *law, const double *y,
                       tribo_contact_eval *ev);
 
-/* Mechanical energy E of MODEL §6. */
+/* Mechanical energy E of model.md §6. */
 double tribo_energy(const tribo_dyn_params *p, const double *y);
 
 #endif

@@ -1,4 +1,4 @@
-/* force_phases.c: the phases of the force law and the switches between them (MODEL §3). */
+/* force_phases.c: the phases of the force law and the switches between them (model.md §3). */
 #include "force_phases.h"
 
 #include <math.h>
@@ -7,7 +7,7 @@ const tribo_force_law TRIBO_PHASE_FLIGHT = {TRIBO_CONTACT_OFF, TRIBO_NORMAL_SIGN
                                      0.0};
 
 /* The normal lock holds while Psi_N* = Gamma cos(beta) - F_N lies in the band of normal
-   forces the set-valued sign allows (MODEL §3), max(0, dy(1 - nu)) <= Psi_N* <= dy(1 + nu). */
+   forces the set-valued sign allows (model.md §3), max(0, dy(1 - nu)) <= Psi_N* <= dy(1 + nu). */
 static double lock_lower(const tribo_dyn_params *p, double dy)
 {
     return fmax(0.0, dy * (1.0 - p->nu));
@@ -171,7 +171,7 @@ static tribo_force_law next_phase(const tribo_dyn_params *p, const tribo_force_l
 
     if (!tribo_touching(&ph)) {
         ph = TRIBO_PHASE_FLIGHT;
-        /* MODEL §3: the stretch is 0 when contact is regained; at lift-off it is already
+        /* model.md §3: the stretch is 0 when contact is regained; at lift-off it is already
            within a vanishing limit */
         y[TRIBO_IDX] = 0.0;
         return ph;
@@ -228,7 +228,7 @@ tribo_force_law tribo_phase_after(const tribo_dyn_params *p, const tribo_force_l
 {
     /* the energy the adjustments of the state take out (a stretch clamped or reset, V set
        to 0 at a normal lock, Y put on the plate) is booked as dissipated work, so that the
-       energy balance of MODEL §6 holds across switches */
+       energy balance of model.md §6 holds across switches */
     const double before = tribo_energy(p, y);
     const tribo_force_law ph = next_phase(p, old, y, fired);
     y[TRIBO_IWDISS] += before - tribo_energy(p, y);

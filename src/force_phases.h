@@ -1,6 +1,6 @@
-/* force_phases.h: the force law of MODEL §3 cut into smooth pieces (phases) and the
+/* force_phases.h: the force law of model.md §3 cut into smooth pieces (phases) and the
    switches between them, for an event-driven integrator: which functions of the state
-   cross zero at a switch, which way, and the phase (with the resets of MODEL §3) after it. */
+   cross zero at a switch, which way, and the phase (with the resets of model.md §3) after it. */
 #ifndef TRIBO_FORCE_MODES_H
 #define TRIBO_FORCE_MODES_H
 
@@ -37,7 +37,7 @@ void tribo_switch_directions(const tribo_dyn_params *p, const tribo_force_law *p
 
 /* The phase after a switch (fired: the switch functions found crossing, as CVODE's root
    info) or, with fired = NULL, the phase a state is in when integration (re)starts there.
-   Adjusts y: applies the resets of MODEL §3, puts the switched boundary exactly on it
+   Adjusts y: applies the resets of model.md §3, puts the switched boundary exactly on it
    (Y = h, V = 0, delta_x = +-limit) so that switch functions start at 0 and follow the
    motion, and books the energy the adjustments take out as dissipated work. */
 tribo_force_law tribo_phase_after(const tribo_dyn_params *p, const tribo_force_law *old, double *y,

@@ -1,5 +1,5 @@
 /* geometry.c: arc length of the ellipse boundary, for cutting it into N segments of
-   equal arc length (MODEL §5). */
+   equal arc length (model.md §5). */
 #include "geometry.h"
 
 #include <stdlib.h>

@@ -1,11 +1,11 @@
-/* geometry.h: the ellipse's contact geometry (MODEL §2) and its boundary arc length (MODEL §5). */
+/* geometry.h: the ellipse's contact geometry (model.md §2) and its boundary arc length (model.md §5). */
 #ifndef TRIBO_GEOMETRY_H
 #define TRIBO_GEOMETRY_H
 
 #include <math.h>
 #include <stddef.h>
 
-/* Where the lowest point of the ellipse is, for orientation phi (MODEL §2). */
+/* Where the lowest point of the ellipse is, for orientation phi (model.md §2). */
 typedef struct tribo_pose {
     double sin_phi, cos_phi;
     double h;  /* depth of the lowest point below the centre, sqrt(Myy) */
@@ -23,7 +23,7 @@ static inline void tribo_pose_at(double eps2, double phi, tribo_pose *g)
     g->cx = -mxy / g->h;
 }
 
-/* Radius of curvature at the lowest point, rho_c = eps^2 / h^3 (MODEL §2). */
+/* Radius of curvature at the lowest point, rho_c = eps^2 / h^3 (model.md §2). */
 static inline double tribo_contact_curvature_radius(double eps2, double h)
 {
     return eps2 / (h * h * h);

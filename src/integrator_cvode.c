@@ -1,6 +1,6 @@
 /* integrator_cvode.c: event-driven integration with SUNDIALS CVODE.
  *
- * The force law of MODEL §3 is smooth between switches, so CVODE (Adams, or BDF)
+ * The force law of model.md §3 is smooth between switches, so CVODE (Adams, or BDF)
  * integrates one phase at a time and its root finding locates every switch:
  *
  *   flight                      -> contact        at delta_y = 0 (going up)
@@ -11,7 +11,7 @@
  *   slip                        -> stick          when the stretch would leave the limit
  *                                                 (sigma vs falls below d(mu Psi_N)/dtau)
  *
- * At each switch the new phase is set, the resets of MODEL §3 applied (delta_x = 0 on a new
+ * At each switch the new phase is set, the resets of model.md §3 applied (delta_x = 0 on a new
  * contact, the stretch held within the new limit), and CVODE restarted there.
  *
  * The phases, their switch functions and what happens at a switch are force_phases.c's;
@@ -20,7 +20,7 @@
  *
  * Charging does not limit the step: both charge models are swept along each step from
  * CVODE's dense output, cut where the contact's edges cross segment boundaries, so that
- * each segment's contact time is exact to the tolerances (charging.c, MODEL §5).
+ * each segment's contact time is exact to the tolerances (charging.c, model.md §5).
  *
  * Like the fixed step, the committed integration does not depend on the times asked
  * for: steps are taken in CV_ONE_STEP mode, charges are committed one whole step at a
@@ -203,7 +203,7 @@ static tribo_status create(tribo_model *m, void **data)
        the error norm. The vector keeps them whichever models are selected, so that the
        motion does not depend on the selection. The dissipated and external work are the
        mechanics' own book-keeping (smooth within a phase) and are held to the tolerances
-       like the motion, so that the energy balance of MODEL §6 is. */
+       like the motion, so that the energy balance of model.md §6 is. */
     N_VConst(scene->atol, c->abstol);
     for (int i = TRIBO_NMOTION; i < c->n; i++)
         N_VGetArrayPointer(c->abstol)[i] = 1e30;
@@ -377,7 +377,7 @@ static void capture_interpolant(cvode_integrator *c)
     c->taylor_order = k - 1;
 }
 
-/* The probe of the charging sweep: the contact at time t of the open step (MODEL §5). */
+/* The probe of the charging sweep: the contact at time t of the open step (model.md §5). */
 static void probe(void *ctx, double t, double *s_centre, double *half_width, double *centre_speed,
                   tribo_contact_kinematics *k)
 {
@@ -408,7 +408,7 @@ static void fill_point(cvode_integrator *c, tribo_point *p, double t, const doub
     if (tribo_touching(&c->phase)) {
         /* the phase decides contact, also where rounding makes delta_y = -1e-17 */
         p->contact.in_contact = 1;
-        /* in slip the stretch is held at the limit (MODEL §3); CVODE's integrated stretch
+        /* in slip the stretch is held at the limit (model.md §3); CVODE's integrated stretch
            follows it only to the tolerances */
         if (c->phase.tangent == TRIBO_TANGENT_SLIP)
             p->y[TRIBO_IDX] = c->phase.slip_sign * p->contact.limit;

@@ -1,9 +1,9 @@
-/* integrator_fixed_step.c: the paper's fixed-step integration (MODEL §7).
+/* integrator_fixed_step.c: the paper's fixed-step integration (model.md §7).
  *
  * Classical 4th-order Runge-Kutta on the first-order system of dynamics.h (not the
  * paper's Runge-Kutta-Nystrom: the tangential spring stretch is a first-order state
  * and the forces depend on the velocities, so the Nystrom form gains nothing). The
- * set-valued sign of V is regularised as tanh(V / v_reg) (MODEL §3) and the stretch is
+ * set-valued sign of V is regularised as tanh(V / v_reg) (model.md §3) and the stretch is
  * clamped to the Coulomb limit after each step.
  *
  * Steps lie on the grid t_base + k dt whatever times are asked for; the state at an
@@ -84,7 +84,7 @@ static void rk4(tribo_model *m, double *y, double h)
     tribo_count(m, TRIBO_COUNT_RHS_EVALS, 4);
 }
 
-/* Hold the stretch within the Coulomb limit (MODEL §3); in flight the limit is 0, so the
+/* Hold the stretch within the Coulomb limit (model.md §3); in flight the limit is 0, so the
    stretch is 0 when contact is regained. The spring energy the clamp removes is
    dissipated by friction. Fills ev; returns the stretch before the clamp. */
 static double clamp_stretch(const tribo_dyn_params *dp, double *y, tribo_contact_eval *ev)

@@ -39,11 +39,11 @@ void tribo_derive_params(tribo_model *m)
     d->Gamma = s->Gamma;
     d->g_t = s->Gamma * sin(beta);
     d->g_n = s->Gamma * cos(beta);
-    d->inv_inertia = 4.0 / (1.0 + d->eps2); /* MODEL §4 */
+    d->inv_inertia = 4.0 / (1.0 + d->eps2); /* model.md §4 */
     d->v_reg = s->v_reg;
 }
 
-/* The initial point of the scene (MODEL §7 by default); its contact is evaluated by the
+/* The initial point of the scene (model.md §7 by default); its contact is evaluated by the
    integrator's restart, under the integrator's own force law. */
 static void initial_point(const tribo_model *m, tribo_point *p)
 {
@@ -52,7 +52,7 @@ static void initial_point(const tribo_model *m, tribo_point *p)
     tribo_pose pose;
     tribo_pose_at(m->dyn.eps2, s->phi0, &pose);
     memset(p, 0, sizeof *p);
-    /* MODEL §7: centre at the height of first contact (plus the gap), dropped straight
+    /* model.md §7: centre at the height of first contact (plus the gap), dropped straight
        down in the external frame */
     p->y[TRIBO_IX] = s->X0;
     p->y[TRIBO_IY] = pose.h + s->gap0;

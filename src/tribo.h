@@ -4,11 +4,11 @@
  * A 2D elliptical particle (roundness ratio epsilon = b/a) on a tilted plate, with a
  * spring-dashpot normal contact, a stick/slip/roll Coulomb friction law and two
  * charge models resolved over the particle's boundary segments. The physics is the
- * contract of ../shared/MODEL.md (cited below as "MODEL §n").
+ * model of docs/model.md (cited below as "model.md §n").
  *
  * Usage:
  *   tribo_scene scene;
- *   tribo_scene_defaults(&scene);          // the paper's drop, MODEL §7
+ *   tribo_scene_defaults(&scene);          // the paper's drop, model.md §7
  *   scene.epsilon = 0.5;
  *   char err[256];
  *   tribo_model *m = tribo_create(&scene, err, sizeof err);
@@ -17,7 +17,7 @@
  *   double q = tribo_get(m, TRIBO_Q_STATIC);
  *   tribo_free(m);
  *
- * Everything is dimensionless (MODEL.md preamble). An instance owns all its memory;
+ * Everything is dimensionless (docs/model.md preamble). An instance owns all its memory;
  * the library holds no global mutable state, so instances can run side by side (not
  * one instance from two threads at once).
  */
@@ -151,7 +151,7 @@ tribo_status tribo_reset(tribo_model *model);
    results to one call to tn (with constant inputs and parameters). */
 tribo_status tribo_advance(tribo_model *model, double t);
 
-/* Change a tunable parameter (MODEL §1: mu, nu, eta, tau0, tau_r, Sigma0) from the
+/* Change a tunable parameter (model.md §1: mu, nu, eta, tau0, tau_r, Sigma0) from the
    current time on. Structural and fixed parameters are rejected. */
 tribo_status tribo_set_param(tribo_model *model, const char *name, double value);
 

@@ -9,7 +9,7 @@ Modules, one responsibility each:
     executors   where runs execute: serially here, or on Dask (local cluster or address)
     sweep       a sweep: skip finished runs, run the rest, record them as they finish
     transition  the transition roundness eps_t: coarse grid, then multi-section
-    paper       the paper's study (MODEL.md section 7): runs, eps_t, figures, tables
+    paper       the paper's study (docs/model.md section 7): runs, eps_t, figures, tables
     figures     the study's plots
     tables      the study's tables (CSV and markdown)
 

@@ -1,4 +1,4 @@
-"""The paper's study (MODEL.md section 7) through the FMU: both friction cases, a range
+"""The paper's study (docs/model.md section 7) through the FMU: both friction cases, a range
 of roundness values, both charge models, to the horizon; the transition roundness of
 each friction case; figures and tables.
 

@@ -11,7 +11,7 @@ import hashlib
 import json
 from dataclasses import dataclass, field
 
-# MODEL.md section 7 (the paper's set-up), with CVODE instead of the paper's fixed step
+# docs/model.md section 7 (the paper's set-up), with CVODE instead of the paper's fixed step
 # (50-150x faster at equal error, see docs/work_precision.md). epsilon, mu and nu are
 # set per run.
 PAPER_SETUP = {

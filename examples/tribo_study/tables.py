@@ -120,7 +120,7 @@ def write_all(result, out_dir: str, command: str) -> list[str]:
         "",
         "## Set-up",
         "",
-        f"MODEL.md section 7: Gamma = 0.001, beta = 45 deg, tau0 = tau_r = 1, Sigma0 = 0.01, "
+        f"docs/model.md section 7: Gamma = 0.001, beta = 45 deg, tau0 = tau_r = 1, Sigma0 = 0.01, "
         f"eta = 0.1, N = 2000 segments, drop speed 0.025, both charge models; mu = nu = 0.1 "
         f"(low friction) and 1.0 (high friction); epsilon in {{{', '.join(f'{e:g}' for e in s.epsilons)}}}; "
         f"tau from 0 to {s.t_end:g}, outputs recorded every {s.record_interval:g}. "

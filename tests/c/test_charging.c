@@ -1,4 +1,4 @@
-/* The charge models of MODEL §5 over the segments, and the sweep that charges a contact
+/* The charge models of model.md §5 over the segments, and the sweep that charges a contact
    moving along an interval (as CVODE's dense output describes it). */
 #include <criterion/criterion.h>
 #include <math.h>
@@ -40,8 +40,8 @@ static tribo_contact_sample sample(const tribo_charging *c, double duration, dou
 }
 
 /* A contact held still over segment 5, charged in pieces of various lengths: both models
-   are exact, q = 1 - e^{-T/tau0} (MODEL §5a) and, with Sigma_s held, Sigma_i =
-   Sigma_s (1 - e^{-T/tau0}) (MODEL §5b); its neighbours stay at 0. */
+   are exact, q = 1 - e^{-T/tau0} (model.md §5a) and, with Sigma_s held, Sigma_i =
+   Sigma_s (1 - e^{-T/tau0}) (model.md §5b); its neighbours stay at 0. */
 Test(charging, exact_for_a_held_contact)
 {
     tribo_charging c = make(0.5, 100);
@@ -92,7 +92,7 @@ Test(charging, sliding_update_exact_for_quadratic_saturation)
     }
 }
 
-/* The segment under the contact point charges however small the contact (MODEL §5:
+/* The segment under the contact point charges however small the contact (model.md §5:
    overlap, not "midpoint inside"). */
 Test(charging, segment_under_a_point_contact_charges)
 {

@@ -1,4 +1,4 @@
-/* The contact force law of MODEL §3, unit by unit and inside the fixed-step integrator. */
+/* The contact force law of model.md §3, unit by unit and inside the fixed-step integrator. */
 #include <criterion/criterion.h>
 #include <math.h>
 
@@ -68,7 +68,7 @@ Test(forces, normal_force_opposes_the_normal_velocity)
     state(y, 0.5, 0.0, dy, 0.0, +0.1, 0.0, 0.0); /* moving out */
     tribo_contact_at(&p, &LAW, y, &ev);
     cr_expect_float_eq(ev.psi_n, dy * (1 - nu), 1e-15);
-    state(y, 0.5, 0.0, dy, 0.0, 0.0, 0.0, 0.0); /* regularised sign at V = 0 (MODEL §3) */
+    state(y, 0.5, 0.0, dy, 0.0, 0.0, 0.0, 0.0); /* regularised sign at V = 0 (model.md §3) */
     tribo_contact_at(&p, &LAW, y, &ev);
     cr_expect_float_eq(ev.psi_n, dy, 1e-15);
     /* no adhesion: nu > 1 moving out gives 0, not a pull */
@@ -98,7 +98,7 @@ Test(forces, stick_and_slip_branches)
     state(y, 0.5, 0.3, dy, -0.02, 0.0, -0.1, -5e-3);
     tribo_dynamics_rhs(&p, &LAW, y, dydt, &ev);
     cr_expect_float_eq(ev.psi_t, mu * dy, 1e-15);
-    /* equations of motion (MODEL §4) */
+    /* equations of motion (model.md §4) */
     cr_expect_float_eq(dydt[TRIBO_IU], p.g_t + ev.psi_t, 1e-15);
     cr_expect_float_eq(dydt[TRIBO_IV], -p.g_n + ev.psi_n, 1e-15);
     cr_expect_float_eq(dydt[TRIBO_IOMEGA],

@@ -1,4 +1,4 @@
-/* Geometry of MODEL §2 and the equal-arc segments of MODEL §5. */
+/* Geometry of model.md §2 and the equal-arc segments of model.md §5. */
 #include <criterion/criterion.h>
 #include <math.h>
 

@@ -1,4 +1,4 @@
-/* The invariants of MODEL §6 on whole runs of the fixed-step integrator. */
+/* The invariants of model.md §6 on whole runs of the fixed-step integrator. */
 #include <criterion/criterion.h>
 #include <math.h>
 
@@ -9,7 +9,7 @@
 static tribo_scene paper(double mu, double nu, double dt)
 {
     tribo_scene s;
-    tribo_scene_defaults(&s); /* MODEL §7 at eps = 0.5 */
+    tribo_scene_defaults(&s); /* model.md §7 at eps = 0.5 */
     s.mu = mu;
     s.nu = nu;
     s.integrator = TRIBO_INTEGRATOR_FIXED_STEP;
@@ -71,7 +71,7 @@ Test(invariants, energy_balance_with_friction_work, .timeout = 120)
 }
 
 /* The same work counted independently: with nu = 0 the contact dissipates only by
-   slipping, mu Psi_N |vs| (MODEL §6), plus the spring energy a shrinking limit
+   slipping, mu Psi_N |vs| (model.md §6), plus the spring energy a shrinking limit
    releases, which is small here. A Riemann sum over the grid must agree. */
 Test(invariants, friction_work_is_mu_psi_n_slip_speed, .timeout = 60)
 {
@@ -135,7 +135,7 @@ Test(invariants, flat_plate_damped_comes_to_normal_lock, .timeout = 60)
         cr_assert_eq(tribo_advance(m, 200.0), TRIBO_OK);
         const double dy = tribo_get(m, TRIBO_Q_DELTA_Y), V = tribo_get(m, TRIBO_Q_V);
         const double G = s.Gamma;
-        /* V = 0 up to the regularisation's velocity scale (MODEL §3) */
+        /* V = 0 up to the regularisation's velocity scale (model.md §3) */
         cr_expect(fabs(V) < s.v_reg, "nu = %g: V = %g", nus[i], V);
         cr_expect(dy >= G / (1 + nus[i]) && dy <= G / (1 - nus[i]),
                   "nu = %g: delta_y = %g outside [%g, %g]", nus[i], dy, G / (1 + nus[i]),

@@ -1,4 +1,4 @@
-/* Scene validation: every parameter outside MODEL §1's range, NaN or infinite is
+/* Scene validation: every parameter outside model.md §1's range, NaN or infinite is
    refused at creation with a message naming it, its value and the valid range. */
 #include <criterion/criterion.h>
 #include <math.h>

@@ -20,7 +20,7 @@ def test_series_is_recorded_at_every_interval(tumbling_run):
     s = tumbling_run.series
     assert list(s.columns) == ["tau"] + RECORDED
     assert np.array_equal(s["tau"].to_numpy(), np.arange(401.0))
-    assert s["Q_static"].is_monotonic_increasing  # MODEL section 6: Q_static never decreases
+    assert s["Q_static"].is_monotonic_increasing  # model.md § 6: Q_static never decreases
 
 
 def test_summary_row_has_its_columns_in_order(tumbling_run):

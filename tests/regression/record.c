@@ -65,7 +65,7 @@ static void run_scene(const char *run, const tribo_scene *s, const double *times
 
 int main(void)
 {
-    /* The study grid (MODEL §7, the settings of the committed study: CVODE at rtol 1e-8,
+    /* The study grid (model.md §7, the settings of the committed study: CVODE at rtol 1e-8,
        atol 1e-10), epsilon 0.1 ... 1.0, mu = nu = 0.1 and 1.0, both charge models; CVODE
        to tau = 1000, the fixed step (dt = 8e-5) to tau = 50. */
     const double cvode_times[] = {1, 5, 10, 20, 50, 100, 200, 500, 1000};

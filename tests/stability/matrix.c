@@ -66,7 +66,7 @@ void stability_run(const stability_case *c, int integrator, double t_end, double
 {
     memset(r, 0, sizeof *r);
     tribo_scene s;
-    tribo_scene_defaults(&s); /* MODEL §7, low friction, eps = 0.5 */
+    tribo_scene_defaults(&s); /* model.md §7, low friction, eps = 0.5 */
     if (tribo_scene_apply(&s, c->settings, r->error, sizeof r->error) != TRIBO_OK)
         return;
     s.integrator = integrator;

@@ -10,7 +10,7 @@
 
 typedef struct stability_case {
     const char *name;
-    const char *settings; /* from the paper's set-up (MODEL §7), for tribo_scene_apply */
+    const char *settings; /* from the paper's set-up (model.md §7), for tribo_scene_apply */
 } stability_case;
 
 extern const stability_case STABILITY_CASES[];
@@ -25,8 +25,8 @@ typedef struct stability_result {
     int finished;              /* every advance returned TRIBO_OK */
     int all_finite;            /* no quantity NaN or infinite at any sample */
     int charge_ok;             /* 0 <= Q_static <= 1, never decreasing */
-    int coulomb_ok;            /* |delta_x| <= mu Psi_N at every sample (MODEL §3) */
-    int contact_ok;            /* no indentation while in flight (MODEL §2) */
+    int coulomb_ok;            /* |delta_x| <= mu Psi_N at every sample (model.md §3) */
+    int contact_ok;            /* no indentation while in flight (model.md §2) */
     double max_residual;       /* max |E + W_diss - W_ext - E(0)| over the samples */
     double energy_scale;       /* largest |E|, work or kinetic energy seen: the residual's scale */
     double cpu_seconds;
@@ -40,7 +40,7 @@ void stability_run(const stability_case *c, int integrator, double t_end, double
                    stability_result *r);
 
 /* The energy balance holds when the residual is within this fraction of the run's energy
-   scale (MODEL §6), a balance accumulated over thousands of steps; docs/stability.md lists
+   scale (model.md §6), a balance accumulated over thousands of steps; docs/stability.md lists
    each run's residual against it. */
 #define STABILITY_RESIDUAL_BOUND 1e-5
 /* Stated CPU bound per run of the test's horizon (tau = 50), on the project's 2-core
