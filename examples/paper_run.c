@@ -8,6 +8,7 @@
  */
 #include "tribo.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -50,7 +51,7 @@ int main(int argc, char **argv)
     }
     printf("# epsilon = %g, mu = %g, nu = %g, Gamma = %g, beta = %g deg, tau0 = %g, "
            "charge_model = %d, integrator = %d (%s)\n",
-           scene.epsilon, scene.mu, scene.nu, scene.Gamma, scene.beta, scene.tau0,
+           scene.epsilon, scene.mu, scene.nu, scene.Gamma, scene.beta * (180.0 / M_PI), scene.tau0,
            scene.charge_model, scene.integrator,
            scene.integrator == TRIBO_INTEGRATOR_FIXED_STEP ? "fixed step" : "CVODE");
     printf("%10s %12s %12s %12s %12s %10s %8s\n", "tau", "Q_static", "Q_sliding", "X", "Y",

@@ -9,7 +9,7 @@ one row per run in a CSV that pandas loads, resumable.
 
 --param NAME=VALUES, VALUES one of: a:b:n (n values from a to b, ends included),
 v1,v2,... or a single value. NAME is any parameter of the FMU (epsilon, mu, nu, Gamma,
-beta (degrees), tau0, Sigma0, eta, tau_r, n_segments, drop_speed, phi0, Omega0, ...).
+beta (rad), tau0, Sigma0, eta, tau_r, n_segments, drop_speed, phi0, Omega0, ...).
 The other parameters are the paper's set-up (docs/model.md section 7, CVODE; epsilon 0.5,
 mu = nu = 0.1) unless --base fmu (the FMU's start values). As in the paper, nu follows mu
 and tau_r follows tau0 unless they are given too (--no-tie: they don't).

@@ -1,7 +1,9 @@
 /* access.c: getting and setting variables by value reference, through the table. */
 #include "instance_private.h"
 
+#include <limits.h>
 #include <math.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
@@ -14,21 +16,28 @@ static double load(fmu_c_type t, const void *values, size_t i)
     case FMU_C_DOUBLE: return ((const double *)values)[i];
     case FMU_C_INT: return ((const int *)values)[i];
     case FMU_C_INT32: return ((const int32_t *)values)[i];
+    case FMU_C_INT64: return (double)((const int64_t *)values)[i];
     case FMU_C_UINT64: return (double)((const uint64_t *)values)[i];
+    case FMU_C_BOOL: return ((const bool *)values)[i];
     case FMU_C_NONE: break;
     }
     return NAN;
 }
 
-/* Only parameter values are stored into integer arrays, and those are validated
-   integers within their range. */
+/* Values stored into integer arrays are integers: validated parameters, flags, classes
+   and counts. A count beyond the array's type saturates (a count of 2^31 steps outside
+   the model's assumptions says as much as a larger one). */
+static double saturate(double v, double lo, double hi) { return v < lo ? lo : v > hi ? hi : v; }
+
 static void store(fmu_c_type t, void *values, size_t i, double v)
 {
     switch (t) {
     case FMU_C_DOUBLE: ((double *)values)[i] = v; break;
-    case FMU_C_INT: ((int *)values)[i] = (int)v; break;
-    case FMU_C_INT32: ((int32_t *)values)[i] = (int32_t)v; break;
-    case FMU_C_UINT64: ((uint64_t *)values)[i] = (uint64_t)v; break;
+    case FMU_C_INT: ((int *)values)[i] = (int)saturate(v, INT_MIN, INT_MAX); break;
+    case FMU_C_INT32: ((int32_t *)values)[i] = (int32_t)saturate(v, INT32_MIN, INT32_MAX); break;
+    case FMU_C_INT64: ((int64_t *)values)[i] = (int64_t)saturate(v, -0x1p63, 0x1p62); break;
+    case FMU_C_UINT64: ((uint64_t *)values)[i] = (uint64_t)saturate(v, 0, 0x1p63); break;
+    case FMU_C_BOOL: ((bool *)values)[i] = v != 0.0; break;
     case FMU_C_NONE: break;
     }
 }
@@ -209,6 +218,7 @@ static int write_parameter(fmu_instance *inst, const char *fn, const fmu_variabl
         inst->model_outdated = 1;
     }
     tribo_param_write(&inst->scene, p, value);
+    fmu_note_parameter_set(inst, p);
     return 1;
 }
 

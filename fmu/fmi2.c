@@ -90,7 +90,10 @@ fmi2Status fmi2Reset(fmi2Component c) { return STATUS(fmu_reset(INST(c), __func_
 /* ---- values ---------------------------------------------------------------------- */
 
 #define REAL_TYPES FMU_TYPE_BIT(FMU_TYPE_REAL)
-#define INTEGER_TYPES (FMU_TYPE_BIT(FMU_TYPE_INTEGER) | FMU_TYPE_BIT(FMU_TYPE_COUNT))
+/* enumerations are Integers to FMI 2.0's functions */
+#define INTEGER_TYPES \
+    (FMU_TYPE_BIT(FMU_TYPE_INTEGER) | FMU_TYPE_BIT(FMU_TYPE_COUNT) | FMU_TYPE_BIT(FMU_TYPE_ENUMERATION))
+#define BOOLEAN_TYPES FMU_TYPE_BIT(FMU_TYPE_BOOLEAN)
 
 fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                        fmi2Real value[])
@@ -107,7 +110,7 @@ fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t
 fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           fmi2Boolean value[])
 {
-    return STATUS(fmu_get(INST(c), __func__, 0, FMU_C_NONE, vr, nvr, value, nvr));
+    return STATUS(fmu_get(INST(c), __func__, BOOLEAN_TYPES, FMU_C_INT, vr, nvr, value, nvr));
 }
 
 fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
@@ -131,7 +134,7 @@ fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t
 fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           const fmi2Boolean value[])
 {
-    return STATUS(fmu_set(INST(c), __func__, 0, FMU_C_NONE, vr, nvr, value, nvr));
+    return STATUS(fmu_set(INST(c), __func__, BOOLEAN_TYPES, FMU_C_INT, vr, nvr, value, nvr));
 }
 
 fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,

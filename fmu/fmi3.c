@@ -149,13 +149,17 @@ fmi3Status fmi3Reset(fmi3Instance instance) { return STATUS(fmu_reset(INST(insta
                               nValueReferences, values, nValues));                             \
     }
 
-/* The types this FMU has variables of... */
+/* The types this FMU has variables of (FMI 3.0 accesses enumerations as Int64)... */
 GETTER(fmi3GetFloat64, fmi3Float64, FMU_TYPE_BIT(FMU_TYPE_REAL), FMU_C_DOUBLE)
 GETTER(fmi3GetInt32, fmi3Int32, FMU_TYPE_BIT(FMU_TYPE_INTEGER), FMU_C_INT32)
 GETTER(fmi3GetUInt64, fmi3UInt64, FMU_TYPE_BIT(FMU_TYPE_COUNT), FMU_C_UINT64)
+GETTER(fmi3GetInt64, fmi3Int64, FMU_TYPE_BIT(FMU_TYPE_ENUMERATION), FMU_C_INT64)
+GETTER(fmi3GetBoolean, fmi3Boolean, FMU_TYPE_BIT(FMU_TYPE_BOOLEAN), FMU_C_BOOL)
 SETTER(fmi3SetFloat64, fmi3Float64, FMU_TYPE_BIT(FMU_TYPE_REAL), FMU_C_DOUBLE)
 SETTER(fmi3SetInt32, fmi3Int32, FMU_TYPE_BIT(FMU_TYPE_INTEGER), FMU_C_INT32)
 SETTER(fmi3SetUInt64, fmi3UInt64, FMU_TYPE_BIT(FMU_TYPE_COUNT), FMU_C_UINT64)
+SETTER(fmi3SetInt64, fmi3Int64, FMU_TYPE_BIT(FMU_TYPE_ENUMERATION), FMU_C_INT64)
+SETTER(fmi3SetBoolean, fmi3Boolean, FMU_TYPE_BIT(FMU_TYPE_BOOLEAN), FMU_C_BOOL)
 
 /* ...and those it has none of: every value reference is refused with its real type. */
 GETTER(fmi3GetFloat32, fmi3Float32, 0, FMU_C_NONE)
@@ -164,8 +168,6 @@ GETTER(fmi3GetUInt8, fmi3UInt8, 0, FMU_C_NONE)
 GETTER(fmi3GetInt16, fmi3Int16, 0, FMU_C_NONE)
 GETTER(fmi3GetUInt16, fmi3UInt16, 0, FMU_C_NONE)
 GETTER(fmi3GetUInt32, fmi3UInt32, 0, FMU_C_NONE)
-GETTER(fmi3GetInt64, fmi3Int64, 0, FMU_C_NONE)
-GETTER(fmi3GetBoolean, fmi3Boolean, 0, FMU_C_NONE)
 GETTER(fmi3GetString, fmi3String, 0, FMU_C_NONE)
 SETTER(fmi3SetFloat32, fmi3Float32, 0, FMU_C_NONE)
 SETTER(fmi3SetInt8, fmi3Int8, 0, FMU_C_NONE)
@@ -173,8 +175,6 @@ SETTER(fmi3SetUInt8, fmi3UInt8, 0, FMU_C_NONE)
 SETTER(fmi3SetInt16, fmi3Int16, 0, FMU_C_NONE)
 SETTER(fmi3SetUInt16, fmi3UInt16, 0, FMU_C_NONE)
 SETTER(fmi3SetUInt32, fmi3UInt32, 0, FMU_C_NONE)
-SETTER(fmi3SetInt64, fmi3Int64, 0, FMU_C_NONE)
-SETTER(fmi3SetBoolean, fmi3Boolean, 0, FMU_C_NONE)
 SETTER(fmi3SetString, fmi3String, 0, FMU_C_NONE)
 
 fmi3Status fmi3GetBinary(fmi3Instance instance, const fmi3ValueReference valueReferences[],

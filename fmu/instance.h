@@ -89,7 +89,15 @@ fmu_status fmu_refuse(fmu_instance *inst, const char *fn, const char *reason);
 /* ---- values ---------------------------------------------------------------------- */
 
 /* The C type of the importer's value array. */
-typedef enum fmu_c_type { FMU_C_NONE, FMU_C_DOUBLE, FMU_C_INT, FMU_C_INT32, FMU_C_UINT64 } fmu_c_type;
+typedef enum fmu_c_type {
+    FMU_C_NONE,
+    FMU_C_DOUBLE,
+    FMU_C_INT,   /* also fmi2Boolean */
+    FMU_C_INT32,
+    FMU_C_INT64, /* FMI 3.0 enumerations */
+    FMU_C_UINT64,
+    FMU_C_BOOL   /* fmi3Boolean */
+} fmu_c_type;
 
 #define FMU_TYPE_BIT(t) (1u << (t))
 

@@ -33,6 +33,9 @@ struct fmu_instance {
     tribo_model *model;
     int model_outdated;
 
+    /* rtol, atol set by the importer (they win over the experiment's tolerance) */
+    int rtol_set, atol_set;
+
     double start_time;
     double stop_time;
     int stop_time_defined;
@@ -57,5 +60,7 @@ int fmu_lifecycle_allows(fmu_instance *inst, const char *fn, unsigned states);
 fmu_status fmu_ensure_model(fmu_instance *inst, const char *fn);
 /* Drop the core instance and put every variable back to its start value. */
 void fmu_restore_start_values(fmu_instance *inst);
+/* Note that the importer set parameter p (the tolerance does not override it). */
+void fmu_note_parameter_set(fmu_instance *inst, const tribo_param_info *p);
 
 #endif

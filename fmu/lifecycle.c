@@ -31,6 +31,7 @@ void fmu_restore_start_values(fmu_instance *inst)
     inst->model = NULL;
     inst->model_outdated = 0;
     tribo_scene_defaults(&inst->scene);
+    inst->rtol_set = inst->atol_set = 0;
     for (int i = 0; i < TRIBO_INPUT_COUNT; i++)
         inst->inputs[i] = 0.0;
     inst->start_time = 0.0;
@@ -105,6 +106,57 @@ fmu_status fmu_refuse(fmu_instance *inst, const char *fn, const char *reason)
     return fmu_error(inst, "%s: %s", fn, reason);
 }
 
+void fmu_note_parameter_set(fmu_instance *inst, const tribo_param_info *p)
+{
+    if (strcmp(p->name, "rtol") == 0)
+        inst->rtol_set = 1;
+    else if (strcmp(p->name, "atol") == 0)
+        inst->atol_set = 1;
+}
+
+static void set_parameter(fmu_instance *inst, const tribo_param_info *p, double value)
+{
+    if (tribo_param_read(&inst->scene, p) != value)
+        inst->model_outdated = 1;
+    tribo_param_write(&inst->scene, p, value);
+}
+
+/* The importer's tolerance is CVODE's relative tolerance, and the absolute one keeps its
+   ratio to it: atol = atol's default * tolerance / rtol's default (= tolerance / 100), so
+   that the default experiment's tolerance, rtol's default, gives the defaults bit for bit.
+   rtol or atol set by the importer wins, whenever it was set. The fixed step ignores both
+   (dt sets its accuracy). */
+static fmu_status use_tolerance(fmu_instance *inst, const char *fn, double tolerance)
+{
+    const tribo_param_info *rtol = tribo_param_find("rtol"), *atol = tribo_param_find("atol");
+    if (inst->rtol_set && inst->atol_set) {
+        fmu_log(inst, FMU_OK, FMU_LOG_CALLS,
+                "%s: tolerance = %g not used: rtol = %g and atol = %g were set explicitly", fn,
+                tolerance, inst->scene.rtol, inst->scene.atol);
+        return FMU_OK;
+    }
+    const double atol_value = atol->start * (tolerance / rtol->start);
+    char msg[512];
+    if (tribo_param_check(rtol, tolerance, msg, sizeof msg) != TRIBO_OK ||
+        tribo_param_check(atol, atol_value, msg, sizeof msg) != TRIBO_OK)
+        return fmu_error(inst,
+                         "%s: tolerance = %.17g is invalid: it sets CVODE's rtol (and atol = rtol "
+                         "/ %g): %s",
+                         fn, tolerance, rtol->start / atol->start, msg);
+    if (!inst->rtol_set)
+        set_parameter(inst, rtol, tolerance);
+    if (!inst->atol_set)
+        set_parameter(inst, atol, atol_value);
+    fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s: tolerance = %g: rtol = %g (%s), atol = %g (%s)%s",
+            fn, tolerance, inst->scene.rtol,
+            inst->rtol_set ? "set explicitly" : "the tolerance", inst->scene.atol,
+            inst->atol_set ? "set explicitly" : "from the tolerance",
+            inst->scene.integrator == TRIBO_INTEGRATOR_FIXED_STEP
+                ? "; the fixed-step integrator uses neither: dt sets its accuracy"
+                : "");
+    return FMU_OK;
+}
+
 fmu_status fmu_setup_experiment(fmu_instance *inst, const char *fn, int tolerance_defined,
                                 double tolerance, double start_time, int stop_time_defined,
                                 double stop_time)
@@ -124,14 +176,7 @@ fmu_status fmu_setup_experiment(fmu_instance *inst, const char *fn, int toleranc
     inst->stop_time = stop_time_defined ? stop_time : 0.0;
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s(startTime = %.17g, stopTime = %s%.17g)", fn,
             start_time, stop_time_defined ? "" : "(undefined) ", stop_time);
-    /* The accuracy is the FMU's own parameters' business (dt, or rtol / atol for CVODE),
-       so that a run is the same whoever imports it. */
-    if (tolerance_defined)
-        fmu_log(inst, FMU_OK, FMU_LOG_CALLS,
-                "%s: tolerance = %g noted but not used: the parameters dt (fixed step) and "
-                "rtol / atol (CVODE) set the accuracy",
-                fn, tolerance);
-    return FMU_OK;
+    return tolerance_defined ? use_tolerance(inst, fn, tolerance) : FMU_OK;
 }
 
 fmu_status fmu_enter_configuration(fmu_instance *inst, const char *fn)

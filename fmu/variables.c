@@ -1,44 +1,110 @@
 /* variables.c: the table of the FMU's variables (see variables.h). */
 #include "variables.h"
 
+#include <math.h>
+#include <string.h>
 
-/* The FMI causality and variability of each kind of row of the core's table. The
-   parameter that sizes the segment arrays (type COUNT) is an FMI 3.0 structural parameter;
-   structural and fixed parameters are fixed. */
+
+/* What each type of the core's table is in the FMUs (an ENUM(<id>) type names its
+   enumeration). The parameter that sizes the segment arrays (type COUNT) is an FMI 3.0
+   structural parameter; structural and fixed parameters are fixed. Outputs of a type
+   other than REAL change only at events: FMI calls them discrete. */
+#define TYPE_REAL FMU_TYPE_REAL
+#define TYPE_INTEGER FMU_TYPE_INTEGER
+#define TYPE_COUNT FMU_TYPE_COUNT
+#define TYPE_BOOLEAN FMU_TYPE_BOOLEAN
+#define TYPE_ENUM(enumeration) FMU_TYPE_ENUMERATION
+#define ENUMERATION_OF_REAL -1
+#define ENUMERATION_OF_INTEGER -1
+#define ENUMERATION_OF_COUNT -1
+#define ENUMERATION_OF_BOOLEAN -1
+#define ENUMERATION_OF_ENUM(enumeration) ENUMERATION_##enumeration
 #define CAUSALITY_OF_REAL FMU_CAUSALITY_PARAMETER
 #define CAUSALITY_OF_INTEGER FMU_CAUSALITY_PARAMETER
 #define CAUSALITY_OF_COUNT FMU_CAUSALITY_STRUCTURAL_PARAMETER
+#define CAUSALITY_OF_ENUM(enumeration) FMU_CAUSALITY_PARAMETER
+#define OUTPUT_VARIABILITY_OF_REAL FMU_VARIABILITY_CONTINUOUS
+#define OUTPUT_VARIABILITY_OF_BOOLEAN FMU_VARIABILITY_DISCRETE
+#define OUTPUT_VARIABILITY_OF_INTEGER FMU_VARIABILITY_DISCRETE
+#define OUTPUT_VARIABILITY_OF_ENUM(enumeration) FMU_VARIABILITY_DISCRETE
 #define VARIABILITY_OF_STRUCTURAL FMU_VARIABILITY_FIXED
 #define VARIABILITY_OF_FIXED FMU_VARIABILITY_FIXED
 #define VARIABILITY_OF_TUNABLE FMU_VARIABILITY_TUNABLE
 
-/* The index of each parameter in the core's table (tribo_param_table). */
+/* The index of each parameter in the core's table (tribo_param_table), and of each
+   enumeration in ENUMERATIONS. */
 enum {
 #define TRIBO_PARAMETER(name, ...) PARAM_##name,
 #include "quantities.def"
+};
+enum {
+#define TRIBO_ENUMERATION(id, ...) ENUMERATION_##id,
+#include "quantities.def"
+    N_ENUMERATIONS
 };
 
 /* Every row of the core's table (src/quantities.def), in its order. */
 static const fmu_variable VARIABLES[] = {
 #define TRIBO_PARAMETER(name, type, vr, unit, min, min_end, max, max_end, start, variability,     \
                         description)                                                             \
-    {vr, #name, FMU_TYPE_##type, CAUSALITY_OF_##type, VARIABILITY_OF_##variability,               \
-     FMU_MAPS_TO_PARAMETER, PARAM_##name, FMU_IN_BOTH, description, unit},
+    {vr, #name, TYPE_##type, CAUSALITY_OF_##type, VARIABILITY_OF_##variability,                  \
+     FMU_MAPS_TO_PARAMETER, PARAM_##name, FMU_IN_BOTH, description, unit, ENUMERATION_OF_##type},
 #define TRIBO_TIME(id, name, vr, unit, description, value)                                       \
     {vr, name, FMU_TYPE_REAL, FMU_CAUSALITY_INDEPENDENT, FMU_VARIABILITY_CONTINUOUS,            \
-     FMU_MAPS_TO_TIME, 0, FMU_IN_BOTH, description, unit},
+     FMU_MAPS_TO_TIME, 0, FMU_IN_BOTH, description, unit, -1},
 #define TRIBO_INPUT(id, name, vr, unit, description)                                             \
     {vr, name, FMU_TYPE_REAL, FMU_CAUSALITY_INPUT, FMU_VARIABILITY_CONTINUOUS, FMU_MAPS_TO_INPUT, \
-     TRIBO_INPUT_##id, FMU_IN_BOTH, description, unit},
-#define TRIBO_OUTPUT(id, name, vr, unit, description, value)                                     \
-    {vr, name, FMU_TYPE_REAL, FMU_CAUSALITY_OUTPUT, FMU_VARIABILITY_CONTINUOUS,                 \
-     FMU_MAPS_TO_QUANTITY, TRIBO_Q_##id, FMU_IN_BOTH, description, unit},
+     TRIBO_INPUT_##id, FMU_IN_BOTH, description, unit, -1},
+#define TRIBO_OUTPUT(id, name, type, vr, unit, description, value)                               \
+    {vr, name, TYPE_##type, FMU_CAUSALITY_OUTPUT, OUTPUT_VARIABILITY_OF_##type,                 \
+     FMU_MAPS_TO_QUANTITY, TRIBO_Q_##id, FMU_IN_BOTH, description, unit, ENUMERATION_OF_##type},
 /* arrays exist in FMI 3.0 only */
 #define TRIBO_SEGMENTS(id, name, vr, unit, description)                                          \
     {vr, name, FMU_TYPE_REAL, FMU_CAUSALITY_OUTPUT, FMU_VARIABILITY_CONTINUOUS,                 \
-     FMU_MAPS_TO_SEGMENTS, TRIBO_SEGMENTS_##id, FMU_IN_FMI3, description, unit},
+     FMU_MAPS_TO_SEGMENTS, TRIBO_SEGMENTS_##id, FMU_IN_FMI3, description, unit, -1},
 #include "quantities.def"
 };
+
+static const fmu_unit UNITS[] = {
+#define TRIBO_UNIT(name, base_unit, display_unit, display_factor, description)                   \
+    {name, base_unit, display_unit, display_factor, description},
+#include "quantities.def"
+};
+
+static const fmu_enumeration ENUMERATIONS[] = {
+#define TRIBO_ENUMERATION(id, type_name, description) [ENUMERATION_##id] = {type_name, description},
+#include "quantities.def"
+};
+
+/* The items of every enumeration, each enumeration's together and in the table's order. */
+static const int ITEM_ENUMERATION[] = {
+#define TRIBO_ENUM_ITEM(id, name, value, description) ENUMERATION_##id,
+#include "quantities.def"
+};
+static const fmu_enum_item ITEMS[] = {
+#define TRIBO_ENUM_ITEM(id, name, value, description) {name, value, description},
+#include "quantities.def"
+};
+
+#define N_ITEMS (sizeof ITEMS / sizeof ITEMS[0])
+
+const fmu_enumeration *fmu_enumerations(size_t *count)
+{
+    if (count)
+        *count = N_ENUMERATIONS;
+    return ENUMERATIONS;
+}
+
+const fmu_enum_item *fmu_enum_items(int enumeration, size_t *count)
+{
+    size_t first = 0, n = 0;
+    while (first < N_ITEMS && ITEM_ENUMERATION[first] != enumeration)
+        first++;
+    while (first + n < N_ITEMS && ITEM_ENUMERATION[first + n] == enumeration)
+        n++;
+    *count = n;
+    return n ? &ITEMS[first] : NULL;
+}
 
 #define N_VARIABLES (sizeof VARIABLES / sizeof VARIABLES[0])
 
@@ -47,6 +113,21 @@ const fmu_variable *fmu_variables(size_t *count)
     if (count)
         *count = N_VARIABLES;
     return VARIABLES;
+}
+
+const fmu_unit *fmu_units(size_t *count)
+{
+    if (count)
+        *count = sizeof UNITS / sizeof UNITS[0];
+    return UNITS;
+}
+
+const fmu_unit *fmu_unit_find(const char *name)
+{
+    for (size_t u = 0; u < sizeof UNITS / sizeof UNITS[0]; u++)
+        if (strcmp(UNITS[u].name, name) == 0)
+            return &UNITS[u];
+    return NULL;
 }
 
 int fmu_variable_in_version(const fmu_variable *v, int fmi_version)
@@ -83,6 +164,8 @@ const char *fmu_type_name(fmu_type type, int fmi_version)
     case FMU_TYPE_REAL: return fmi_version == 2 ? "Real" : "Float64";
     case FMU_TYPE_INTEGER: return fmi_version == 2 ? "Integer" : "Int32";
     case FMU_TYPE_COUNT: return fmi_version == 2 ? "Integer" : "UInt64";
+    case FMU_TYPE_BOOLEAN: return "Boolean";
+    case FMU_TYPE_ENUMERATION: return "Enumeration";
     }
     return "?";
 }
@@ -105,6 +188,7 @@ const char *fmu_variability_name(fmu_variability variability)
     switch (variability) {
     case FMU_VARIABILITY_FIXED: return "fixed";
     case FMU_VARIABILITY_TUNABLE: return "tunable";
+    case FMU_VARIABILITY_DISCRETE: return "discrete";
     case FMU_VARIABILITY_CONTINUOUS: return "continuous";
     }
     return "?";

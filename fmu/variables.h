@@ -19,9 +19,11 @@ typedef unsigned int fmu_vr;
 
 /* Version-neutral types; each FMI version names them its own way (fmu_type_name). */
 typedef enum fmu_type {
-    FMU_TYPE_REAL,    /* FMI 2.0 Real,    FMI 3.0 Float64 */
-    FMU_TYPE_INTEGER, /* FMI 2.0 Integer, FMI 3.0 Int32   */
-    FMU_TYPE_COUNT    /* FMI 2.0 Integer, FMI 3.0 UInt64: sizes arrays in FMI 3.0 */
+    FMU_TYPE_REAL,       /* FMI 2.0 Real,    FMI 3.0 Float64 */
+    FMU_TYPE_INTEGER,    /* FMI 2.0 Integer, FMI 3.0 Int32   */
+    FMU_TYPE_COUNT,      /* FMI 2.0 Integer, FMI 3.0 UInt64: sizes arrays in FMI 3.0 */
+    FMU_TYPE_BOOLEAN,    /* FMI 2.0 Boolean, FMI 3.0 Boolean */
+    FMU_TYPE_ENUMERATION /* FMI 2.0 and 3.0 Enumeration (FMI 3.0: accessed as Int64) */
 } fmu_type;
 
 typedef enum fmu_causality {
@@ -36,6 +38,7 @@ typedef enum fmu_causality {
 typedef enum fmu_variability {
     FMU_VARIABILITY_FIXED,
     FMU_VARIABILITY_TUNABLE,
+    FMU_VARIABILITY_DISCRETE, /* outputs that are not reals: they change only at events */
     FMU_VARIABILITY_CONTINUOUS
 } fmu_variability;
 
@@ -62,9 +65,37 @@ typedef struct fmu_variable {
     unsigned versions;  /* FMU_IN_* */
     const char *description;
     const char *unit;
+    int enumeration;    /* FMU_TYPE_ENUMERATION: its index in fmu_enumerations; else -1 */
 } fmu_variable;
 
+/* The units the variables name (quantities.def's TRIBO_UNIT rows). */
+typedef struct fmu_unit {
+    const char *name;
+    const char *base_unit;    /* FMI BaseUnit attributes; "" for a dimensionless unit */
+    const char *display_unit; /* NULL: displayed as itself */
+    double display_factor;    /* display value = display_factor * value */
+    const char *description;
+} fmu_unit;
+
+/* The enumeration types (TRIBO_ENUMERATION rows) and their items (TRIBO_ENUM_ITEM). */
+typedef struct fmu_enum_item {
+    const char *name;
+    int value;
+    const char *description;
+} fmu_enum_item;
+
+typedef struct fmu_enumeration {
+    const char *type_name;
+    const char *description;
+} fmu_enumeration;
+
 const fmu_variable *fmu_variables(size_t *count);
+const fmu_unit *fmu_units(size_t *count);
+/* The unit named `name`, or NULL. */
+const fmu_unit *fmu_unit_find(const char *name);
+const fmu_enumeration *fmu_enumerations(size_t *count);
+/* The items of the enumeration with index `enumeration`, in increasing value. */
+const fmu_enum_item *fmu_enum_items(int enumeration, size_t *count);
 /* The row with value reference vr declared in FMI version fmi_version, or NULL. */
 const fmu_variable *fmu_variable_find(fmu_vr vr, int fmi_version);
 int fmu_variable_in_version(const fmu_variable *v, int fmi_version);
@@ -74,7 +105,7 @@ const tribo_param_info *fmu_variable_param(const fmu_variable *v);
 /* The parameter that sizes an array row (NULL for scalars). */
 const fmu_variable *fmu_variable_dimension(const fmu_variable *v);
 
-/* "Real", "Integer", "Float64", "Int32", "UInt64" */
+/* "Real", "Integer", "Boolean", "Enumeration", "Float64", "Int32", "UInt64" */
 const char *fmu_type_name(fmu_type type, int fmi_version);
 /* "parameter", "structuralParameter" (FMI 3.0 only), "input", ... */
 const char *fmu_causality_name(fmu_causality causality, int fmi_version);

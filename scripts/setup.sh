@@ -6,7 +6,12 @@ set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 
 APT_PACKAGES=(build-essential cmake ninja-build pkg-config libsundials-dev libcriterion-dev
-              python3 python3-venv zip)
+              python3 python3-venv zip libtbb12)
+# scripts/build_fmus.sh: Windows binaries (MinGW-w64), checked under Wine, and dpkg-source
+# for the SUNDIALS source package
+if [ "${TRIBO_SETUP_WINDOWS:-0}" = 1 ]; then
+  APT_PACKAGES+=(gcc-mingw-w64-x86-64 wine64 dpkg-dev)
+fi
 missing=()
 for p in "${APT_PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -31,7 +31,7 @@ void tribo_derive_params(tribo_model *m)
 {
     const tribo_scene *s = &m->scene;
     tribo_dyn_params *d = &m->dyn;
-    const double beta = s->beta * (M_PI / 180.0);
+    const double beta = s->beta; /* rad */
     d->eps = s->epsilon;
     d->eps2 = s->epsilon * s->epsilon;
     d->mu = s->mu;
@@ -48,7 +48,7 @@ void tribo_derive_params(tribo_model *m)
 static void initial_point(const tribo_model *m, tribo_point *p)
 {
     const tribo_scene *s = &m->scene;
-    const double beta = s->beta * (M_PI / 180.0);
+    const double beta = s->beta; /* rad */
     tribo_pose pose;
     tribo_pose_at(m->dyn.eps2, s->phi0, &pose);
     memset(p, 0, sizeof *p);
@@ -464,7 +464,7 @@ double tribo_get(tribo_model *m, tribo_quantity which)
     switch (which) {
 #define TRIBO_TIME(id, name, vr, unit, description, value) \
     case TRIBO_Q_##id: return (value);
-#define TRIBO_OUTPUT(id, name, vr, unit, description, value) \
+#define TRIBO_OUTPUT(id, name, type, vr, unit, description, value) \
     case TRIBO_Q_##id: return (value);
 #include "quantities.def"
     case TRIBO_Q_COUNT: break;

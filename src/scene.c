@@ -9,6 +9,7 @@
 
 #define CLOSED 1
 #define OPEN 0
+#define TRIBO_TYPE_ENUM(enumeration) TRIBO_TYPE_ENUM
 
 /* The rows of quantities.def. Upper bounds that the model leaves open are +INFINITY (any
    finite value); the few finite caps are there to refuse input that would only exhaust

@@ -60,6 +60,7 @@ typedef enum tribo_integrator_kind {
 #define TRIBO_CTYPE_REAL double
 #define TRIBO_CTYPE_INTEGER int
 #define TRIBO_CTYPE_COUNT int
+#define TRIBO_CTYPE_ENUM(enumeration) int
 
 /* Every parameter of the model, the initial state and the choices, one field per row of
    quantities.def (its description, unit, range and default are there; angles such as
@@ -86,7 +87,8 @@ typedef enum tribo_param_variability {
 typedef enum tribo_param_type {
     TRIBO_TYPE_REAL,    /* double */
     TRIBO_TYPE_INTEGER, /* int */
-    TRIBO_TYPE_COUNT    /* int that sizes the segment arrays */
+    TRIBO_TYPE_COUNT,   /* int that sizes the segment arrays */
+    TRIBO_TYPE_ENUM     /* int naming an item of an enumeration (quantities.def) */
 } tribo_param_type;
 
 typedef struct tribo_param_info {

@@ -36,6 +36,13 @@ RECORDED = ["X", "Y", "phi", "U", "V", "Omega", "delta_y", "in_contact", "Q_stat
 _REAL_TYPES = ("Real", "Float64", "Float32")
 _SETTERS = {"Real": "setReal", "Integer": "setInteger",  # FMI 2.0
             "Float64": "setFloat64", "Int32": "setInt32", "UInt64": "setUInt64"}  # FMI 3.0
+# the getter of each type (FMI 2.0 reads enumerations as Integers, FMI 3.0 as Int64)
+_GETTERS = {2: {"Real": "getReal", "Integer": "getInteger", "Enumeration": "getInteger",
+                "Boolean": "getBoolean"},
+            3: {"Float64": "getFloat64", "Int32": "getInt32", "Enumeration": "getInt64",
+                "Boolean": "getBoolean"}}
+_SETTERS_OF_VERSION = {2: dict(_SETTERS, Enumeration="setInteger"),
+                       3: dict(_SETTERS, Enumeration="setInt64")}
 
 
 # The FMU's log messages (warnings reach the importer even without debug logging) are
@@ -118,15 +125,28 @@ def _simulate(unzipdir: str, spec: RunSpec) -> pd.DataFrame:
         guid=md.guid, unzipDirectory=unzipdir,
         modelIdentifier=md.coSimulation.modelIdentifier, instanceName="tribo_study")
     times = _communication_points(spec.t_end, spec.record_interval)
-    refs = [variables[name].valueReference for name in RECORDED]
-    get = slave.getReal if fmi2 else slave.getFloat64
+    version = 2 if fmi2 else 3
+    # the recorded outputs by type: (their columns, their value references, the getter)
+    groups = {}
+    for column, name in enumerate(RECORDED):
+        v = variables[name]
+        columns, refs, _ = groups.setdefault(v.type, ([], [], getattr(slave, _GETTERS[version][v.type])))
+        columns.append(column)
+        refs.append(v.valueReference)
+
+    def get():
+        row = np.empty(len(RECORDED))
+        for columns, refs, getter in groups.values():
+            row[columns] = getter(refs)
+        return row
+
     data = np.empty((len(times), len(RECORDED)))
     messages = []  # (status, message) as the FMU logged them
     callbacks = _instantiate(slave, fmi2, messages)  # noqa: F841 (alive while the instance is)
     stage = "setting the parameters"
     try:
         for name, value in spec.params.items():
-            _set_parameter(slave, variables, name, value)
+            _set_parameter(slave, variables, name, value, version)
         stage = "initialization"
         if fmi2:
             slave.setupExperiment(startTime=0.0, stopTime=spec.t_end)
@@ -134,11 +154,11 @@ def _simulate(unzipdir: str, spec: RunSpec) -> pd.DataFrame:
         else:
             slave.enterInitializationMode(startTime=0.0, stopTime=spec.t_end)
         slave.exitInitializationMode()
-        data[0] = get(refs)
+        data[0] = get()
         for k in range(1, len(times)):
             stage = f"the step to tau = {times[k]:g}"
             slave.doStep(times[k - 1], times[k] - times[k - 1])
-            data[k] = get(refs)
+            data[k] = get()
         slave.terminate()
     except FMICallException as e:
         errors = [m for status, m in messages if status >= _ERROR]
@@ -170,11 +190,11 @@ def _instantiate(slave, fmi2: bool, messages: list):
     return callbacks
 
 
-def _set_parameter(slave, variables, name, value):
+def _set_parameter(slave, variables, name, value, version):
     v = variables.get(name)
     if v is None or v.causality not in ("parameter", "structuralParameter"):
         raise KeyError(f"{name!r} is not a parameter of the FMU")
-    setter = getattr(slave, _SETTERS.get(v.type, ""), None)
+    setter = getattr(slave, _SETTERS_OF_VERSION[version].get(v.type, ""), None)
     if setter is None:
         raise TypeError(f"parameter {name!r} has type {v.type}, which this driver does not set")
     setter([v.valueReference], [value if v.type in _REAL_TYPES else int(value)])

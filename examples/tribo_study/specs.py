@@ -9,6 +9,7 @@ a rebuilt FMU with other behaviour is not mistaken for the old one.
 
 import hashlib
 import json
+import math
 from dataclasses import dataclass, field
 
 # docs/model.md section 7 (the paper's set-up), with CVODE instead of the paper's fixed step
@@ -16,7 +17,7 @@ from dataclasses import dataclass, field
 # set per run.
 PAPER_SETUP = {
     "Gamma": 0.001,
-    "beta": 45.0,
+    "beta": 45 * (math.pi / 180.0),  # rad
     "tau0": 1.0,
     "Sigma0": 0.01,
     "eta": 0.1,
@@ -58,14 +59,18 @@ def paper_spec(epsilon: float, friction: str, t_end: float, record_interval: flo
     return RunSpec(normalise_values(params), float(t_end), float(record_interval))
 
 
-def normalise_values(params: dict, integer_names=("n_segments", "charge_model", "integrator")) -> dict:
-    """Integers as int, everything else as a float rounded to DECIMALS places."""
+def normalise_values(params: dict, integer_names=("n_segments", "charge_model", "integrator"),
+                     exact_names=("beta", "phi0", "Omega0")) -> dict:
+    """Integers as int, angles (in rad: no decimal numbers) as they are, everything else as
+    a float rounded to DECIMALS places."""
     out = {}
     for name, value in params.items():
         if name in integer_names:
             if float(value) != int(value):
                 raise ValueError(f"{name} must be an integer, got {value}")
             out[name] = int(value)
+        elif name in exact_names:
+            out[name] = float(value)
         else:
             out[name] = round(float(value), DECIMALS)
     return out

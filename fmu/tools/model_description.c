@@ -2,7 +2,7 @@
  * model_description: writes the modelDescription.xml of the FMI 2.0 or 3.0 FMU from the
  * FMU's variable table (variables.c, made from src/quantities.def), at build time.
  *
- *   tribo_model_description <2|3> <tool version> > modelDescription.xml
+ *   tribo_model_description <2|3> <version> <source date epoch> > modelDescription.xml
  *
  * The instantiation token is written as TOKEN_PLACEHOLDER: the build replaces it with a
  * hash of the rest of the description (token.cmake), so that the token changes exactly
@@ -12,11 +12,19 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "instance.h"
 #include "variables.h"
 
 #define TOKEN_PLACEHOLDER "@INSTANTIATION_TOKEN@"
+
+#define TRIBO_AUTHOR "the tribo contributors"
+#define TRIBO_COPYRIGHT "Copyright (c) 2026 the tribo contributors"
+/* the files are in each FMU's documentation/licenses/ */
+#define TRIBO_LICENSE                                                                          \
+    "BSD-3-Clause (documentation/licenses/license.txt); the CVODE solver linked in is SUNDIALS, " \
+    "BSD-3-Clause (documentation/licenses/SUNDIALS-LICENSE)"
 
 /* ---- text ---------------------------------------------------------------------------- */
 
@@ -57,55 +65,84 @@ static void attr_number(const char *name, double v)
     printf(" %s=\"%s\"", name, buf);
 }
 
-/* ---- units ---------------------------------------------------------------------------- */
-
-/* Every unit a variable may name, with its BaseUnit attributes (NULL: none). */
-static const struct {
-    const char *name, *base;
-} UNITS[] = {
-    {"1", NULL},
-    {"deg", "rad=\"1\" factor=\"0.017453292519943295\""},
-    {"rad", "rad=\"1\""},
-};
+/* ---- units and types ------------------------------------------------------------------ */
 
 static int unit_used(const char *unit)
 {
     size_t n;
     const fmu_variable *v = fmu_variables(&n);
     for (size_t i = 0; i < n; i++)
-        if (strcmp(v[i].unit, unit) == 0)
+        if (v[i].type == FMU_TYPE_REAL && strcmp(v[i].unit, unit) == 0)
             return 1;
     return 0;
 }
 
 static int write_units(void)
 {
-    /* every unit the table names must be defined here */
-    size_t n;
+    /* every unit the table names must be defined in it */
+    size_t n, n_units;
     const fmu_variable *v = fmu_variables(&n);
-    for (size_t i = 0; i < n; i++) {
-        int known = 0;
-        for (size_t u = 0; u < sizeof UNITS / sizeof UNITS[0]; u++)
-            known |= strcmp(UNITS[u].name, v[i].unit) == 0;
-        if (!known) {
-            fprintf(stderr, "model_description: %s has the unit '%s', which UNITS does not define\n",
+    for (size_t i = 0; i < n; i++)
+        if (v[i].type == FMU_TYPE_REAL && !fmu_unit_find(v[i].unit)) {
+            fprintf(stderr, "model_description: %s has the unit '%s', which no TRIBO_UNIT row defines\n",
                     v[i].name, v[i].unit);
             return 0;
         }
-    }
+    const fmu_unit *units = fmu_units(&n_units);
     puts("  <UnitDefinitions>");
-    for (size_t u = 0; u < sizeof UNITS / sizeof UNITS[0]; u++) {
-        if (!unit_used(UNITS[u].name))
+    for (size_t u = 0; u < n_units; u++) {
+        if (!unit_used(units[u].name))
             continue;
         printf("    <Unit");
-        attr("name", UNITS[u].name);
-        if (UNITS[u].base)
-            printf(">\n      <BaseUnit %s/>\n    </Unit>\n", UNITS[u].base);
-        else
+        attr("name", units[u].name);
+        /* an empty BaseUnit: dimensionless, which a Unit without one would not say */
+        printf(">\n      <BaseUnit%s%s/>\n", *units[u].base_unit ? " " : "", units[u].base_unit);
+        if (units[u].display_unit) {
+            printf("      <DisplayUnit");
+            attr("name", units[u].display_unit);
+            attr_number("factor", units[u].display_factor);
             puts("/>");
+        }
+        puts("    </Unit>");
     }
     puts("  </UnitDefinitions>");
     return 1;
+}
+
+static int enumeration_used(int enumeration)
+{
+    size_t n;
+    const fmu_variable *v = fmu_variables(&n);
+    for (size_t i = 0; i < n; i++)
+        if (v[i].type == FMU_TYPE_ENUMERATION && v[i].enumeration == enumeration)
+            return 1;
+    return 0;
+}
+
+static void write_type_definitions(int fmi_version)
+{
+    size_t n;
+    const fmu_enumeration *types = fmu_enumerations(&n);
+    puts("  <TypeDefinitions>");
+    for (size_t e = 0; e < n; e++) {
+        if (!enumeration_used((int)e))
+            continue;
+        printf(fmi_version == 2 ? "    <SimpleType" : "    <EnumerationType");
+        attr("name", types[e].type_name);
+        attr("description", types[e].description);
+        puts(fmi_version == 2 ? ">\n      <Enumeration>" : ">");
+        size_t n_items;
+        const fmu_enum_item *items = fmu_enum_items((int)e, &n_items);
+        for (size_t k = 0; k < n_items; k++) {
+            printf(fmi_version == 2 ? "        <Item" : "      <Item");
+            attr("name", items[k].name);
+            printf(" value=\"%d\"", items[k].value);
+            attr("description", items[k].description);
+            puts("/>");
+        }
+        puts(fmi_version == 2 ? "      </Enumeration>\n    </SimpleType>" : "    </EnumerationType>");
+    }
+    puts("  </TypeDefinitions>");
 }
 
 /* ---- variables ------------------------------------------------------------------------- */
@@ -124,8 +161,14 @@ static void attr_range(const tribo_param_info *p)
 static void attr_value(const fmu_variable *v, int fmi_version)
 {
     const tribo_param_info *p = fmu_variable_param(v);
-    if (v->type == FMU_TYPE_REAL)
+    if (v->type == FMU_TYPE_REAL) {
         attr("unit", v->unit);
+        const fmu_unit *unit = fmu_unit_find(v->unit);
+        if (unit->display_unit)
+            attr("displayUnit", unit->display_unit);
+    }
+    if (v->type == FMU_TYPE_ENUMERATION)
+        attr("declaredType", fmu_enumerations(NULL)[v->enumeration].type_name);
     if (p) {
         attr_range(p);
         attr_number("start", p->start);
@@ -144,6 +187,57 @@ static void variable_head(const fmu_variable *v, int fmi_version)
     attr("variability", fmu_variability_name(v->variability));
 }
 
+/* The index (FMI 2.0: 1-based position; FMI 3.0: value reference) of a variable. */
+static unsigned long reference(const fmu_variable *v, int fmi_version)
+{
+    if (fmi_version == 3)
+        return v->vr;
+    size_t n, index = 0;
+    const fmu_variable *all = fmu_variables(&n);
+    for (size_t i = 0; i < n && &all[i] <= v; i++)
+        index += fmu_variable_in_version(&all[i], 2);
+    return index;
+}
+
+static int is_parameter(const fmu_variable *v)
+{
+    return v->causality == FMU_CAUSALITY_PARAMETER ||
+           v->causality == FMU_CAUSALITY_STRUCTURAL_PARAMETER;
+}
+
+/* The model structure. An output of a co-simulation step depends on no input directly:
+   inputs act over the next step only (setting one changes no output until then), so
+   every output declares an empty list, and importers see no algebraic loop through the
+   FMU. At initialization an output depends on the parameters (the initial state comes
+   from them), not on the inputs. */
+static void write_model_structure(int fmi_version)
+{
+    size_t n;
+    const fmu_variable *v = fmu_variables(&n);
+    const char *element[2][2] = {{"      <Unknown", "      <Unknown"}, {"    <Output", "    <InitialUnknown"}};
+    puts("  <ModelStructure>");
+    for (int section = 0; section < 2; section++) {
+        if (fmi_version == 2)
+            puts(section ? "    <InitialUnknowns>" : "    <Outputs>");
+        for (size_t i = 0; i < n; i++) {
+            if (!fmu_variable_in_version(&v[i], fmi_version) || v[i].causality != FMU_CAUSALITY_OUTPUT)
+                continue;
+            printf("%s %s=\"%lu\" dependencies=\"", element[fmi_version == 3][section],
+                   fmi_version == 2 ? "index" : "valueReference", reference(&v[i], fmi_version));
+            const char *separator = "";
+            for (size_t j = 0; section == 1 && j < n; j++)
+                if (fmu_variable_in_version(&v[j], fmi_version) && is_parameter(&v[j])) {
+                    printf("%s%lu", separator, reference(&v[j], fmi_version));
+                    separator = " ";
+                }
+            puts("\"/>");
+        }
+        if (fmi_version == 2)
+            puts(section ? "    </InitialUnknowns>" : "    </Outputs>");
+    }
+    puts("  </ModelStructure>");
+}
+
 static void write_fmi2_variables(void)
 {
     size_t n, index = 0;
@@ -159,20 +253,7 @@ static void write_fmi2_variables(void)
         puts("/>\n    </ScalarVariable>");
     }
     puts("  </ModelVariables>");
-    puts("  <ModelStructure>");
-    for (int section = 0; section < 2; section++) {
-        puts(section ? "    <InitialUnknowns>" : "    <Outputs>");
-        index = 0;
-        for (size_t i = 0; i < n; i++) {
-            if (!fmu_variable_in_version(&v[i], 2))
-                continue;
-            index++;
-            if (v[i].causality == FMU_CAUSALITY_OUTPUT)
-                printf("      <Unknown index=\"%zu\"/>\n", index);
-        }
-        puts(section ? "    </InitialUnknowns>" : "    </Outputs>");
-    }
-    puts("  </ModelStructure>");
+    write_model_structure(2);
 }
 
 static void write_fmi3_variables(void)
@@ -194,25 +275,29 @@ static void write_fmi3_variables(void)
             puts("/>");
     }
     puts("  </ModelVariables>");
-    puts("  <ModelStructure>");
-    for (int section = 0; section < 2; section++)
-        for (size_t i = 0; i < n; i++)
-            if (fmu_variable_in_version(&v[i], 3) && v[i].causality == FMU_CAUSALITY_OUTPUT)
-                printf("    <%s valueReference=\"%u\"/>\n", section ? "InitialUnknown" : "Output",
-                       v[i].vr);
-    puts("  </ModelStructure>");
+    write_model_structure(3);
 }
 
 /* ---- the description ------------------------------------------------------------------- */
 
 int main(int argc, char **argv)
 {
-    const int version = argc == 3 ? atoi(argv[1]) : 0;
-    if (version != 2 && version != 3) {
-        fputs("usage: tribo_model_description <2|3> <tool version>\n", stderr);
+    const int version = argc == 4 ? atoi(argv[1]) : 0;
+    char *end = NULL;
+    const time_t epoch = argc == 4 ? (time_t)strtoll(argv[3], &end, 10) : 0;
+    if ((version != 2 && version != 3) || !end || *end || end == argv[3]) {
+        fputs("usage: tribo_model_description <2|3> <version> <source date epoch>\n", stderr);
         return 2;
     }
     const char *tool_version = argv[2];
+    /* generationDateAndTime: the source date (SOURCE_DATE_EPOCH), so that the same sources
+       give the same description */
+    char date[32];
+    const struct tm *utc = gmtime(&epoch);
+    if (!utc || !strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", utc)) {
+        fputs("model_description: the source date epoch is out of range\n", stderr);
+        return 2;
+    }
     const tribo_param_info *rtol = tribo_param_find("rtol");
 
     puts("<?xml version=\"1.0\" encoding=\"UTF-8\"?>");
@@ -225,7 +310,12 @@ int main(int argc, char **argv)
     printf("  fmiVersion=\"%d.0\"\n  modelName=\"tribo\"\n", version);
     printf("  %s=\"" TOKEN_PLACEHOLDER "\"\n", version == 2 ? "guid" : "instantiationToken");
     puts("  description=\"A 2D elliptical particle tribocharging on a tilted plate (after Ireland 2012)\"");
-    printf("  generationTool=\"tribo %s\"\n", tool_version);
+    printf("  version=\"%s\"\n", tool_version);
+    puts("  author=\"" TRIBO_AUTHOR "\"");
+    puts("  copyright=\"" TRIBO_COPYRIGHT "\"");
+    puts("  license=\"" TRIBO_LICENSE "\"");
+    printf("  generationTool=\"tribo model_description %s\"\n", tool_version);
+    printf("  generationDateAndTime=\"%s\"\n", date);
     printf("  variableNamingConvention=\"flat\"%s>\n", version == 2 ? "\n  numberOfEventIndicators=\"0\"" : "");
     printf("  <CoSimulation\n    modelIdentifier=\"tribo_fmi%d\"\n"
            "    canHandleVariableCommunicationStepSize=\"true\"\n",
@@ -237,6 +327,7 @@ int main(int argc, char **argv)
         puts("    canGetAndSetFMUState=\"true\"\n    canSerializeFMUState=\"true\"/>");
     if (!write_units())
         return 1;
+    write_type_definitions(version);
     puts("  <LogCategories>");
     for (int c = 0; c < FMU_LOG_CATEGORY_COUNT; c++) {
         printf("    <Category");

@@ -15,7 +15,7 @@ Test(params, defaults_are_valid_and_are_the_papers)
     char msg[256] = "";
     cr_expect_eq(tribo_scene_validate(&s, msg, sizeof msg), TRIBO_OK, "%s", msg);
     cr_expect_eq(s.Gamma, 0.001);
-    cr_expect_eq(s.beta, 45.0);
+    cr_expect_eq(s.beta, 45 * (M_PI / 180.0)); /* rad: the double the degrees gave */
     cr_expect_eq(s.n_segments, 2000);
     cr_expect_eq(s.dt, 8e-5);
     cr_expect_eq(s.integrator, TRIBO_INTEGRATOR_CVODE);
@@ -88,8 +88,8 @@ Test(params, the_ranges_of_model_section_1)
         double ok, bad;
     } cases[] = {
         {"epsilon", 1.0, 0.0},   {"epsilon", 1e-3, 1.0 + 1e-12}, {"mu", 0.0, -1e-12},
-        {"nu", 0.0, -1e-12},     {"Gamma", 1e-9, 0.0},           {"beta", 0.0, 90.0},
-        {"beta", 89.999, -1e-9}, {"tau0", 1e-9, 0.0},            {"Sigma0", 1e-9, 0.0},
+        {"nu", 0.0, -1e-12},     {"Gamma", 1e-9, 0.0},           {"beta", 0.0, M_PI / 2},
+        {"beta", nextafter(M_PI / 2, 0.0), -1e-9}, {"tau0", 1e-9, 0.0},            {"Sigma0", 1e-9, 0.0},
         {"eta", 0.0, -1e-12},    {"tau_r", 1e-9, 0.0},           {"n_segments", 16, 15},
         {"v_reg", 1e-12, 0.0},   {"charge_model", 3, 4},         {"integrator", 2, 3},
         {"dt", 1e-3, 0.0},       {"gap0", 0.0, -1e-9},           {"drop_speed", 0.0, -1e-9},

@@ -35,8 +35,8 @@ INVALID_VALUES = [
     ("epsilon", 0.0, ["epsilon = 0", "0 < epsilon <= 1"]),
     ("mu", math.nan, ["mu = nan", "mu >= 0"]),
     ("Gamma", math.inf, ["Gamma = inf", "Gamma > 0"]),
-    ("beta", -math.inf, ["beta = -inf", "0 <= beta < 90"]),
-    ("beta", 90.0, ["beta = 90", "0 <= beta < 90"]),
+    ("beta", -math.inf, ["beta = -inf", "0 <= beta < 1.5708"]),  # rad
+    ("beta", math.pi / 2, ["beta = 1.5707963267948966", "0 <= beta < 1.5708"]),
     ("dt", 0.5, ["dt = 0.5", "0 < dt <= 0.1"]),
     ("n_segments", 8, ["n_segments = 8", "16 <= n_segments <= 10000000"]),
     ("charge_model", 4, ["charge_model = 4", "0 <= charge_model <= 3"]),

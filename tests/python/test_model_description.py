@@ -8,13 +8,14 @@ import hashlib
 import math
 import os
 import re
+import subprocess
 import xml.etree.ElementTree as ET
 
 import pytest
 from fmpy import read_model_description
 from fmpy.validation import validate_fmu
 
-from tribo_fmu import ERROR, OK, ROOT, VERSIONS, Slave, core_run, status_of
+from tribo_fmu import BUILD_DIR, ERROR, OK, ROOT, VERSIONS, Slave, core_run, status_of
 
 GOLDEN = {v: os.path.join(ROOT, "modelDescription", f"fmi{v}.xml") for v in VERSIONS}
 PLACEHOLDER = "@INSTANTIATION_TOKEN@"
@@ -45,13 +46,32 @@ def test_fmpy_validation_finds_no_problem(fmu_file, version):
     assert validate_fmu(fmu_file(version)) == []
 
 
+def without_date_and_token(text):
+    """The description less what changes with every commit: generationDateAndTime (the
+    source date) and so the token, which hashes it."""
+    text = re.sub(r'generationDateAndTime="[^"]*"', 'generationDateAndTime=""', text)
+    return re.sub(r'(guid|instantiationToken)="[^"]*"', r'\1=""', text)
+
+
 @pytest.mark.parametrize("version", VERSIONS)
 def test_generated_description_is_the_reviewed_one(fmu_dir, version):
     with open(GOLDEN[version], encoding="utf-8") as f:
         golden = f.read()
-    assert packed_text(fmu_dir, version) == golden, (
+    assert without_date_and_token(packed_text(fmu_dir, version)) == without_date_and_token(golden), (
         "the table (src/quantities.def) or the generator changed the modelDescription: run "
         "`cmake --build build --target update_model_descriptions` and review the diff")
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_description_is_reproducible_from_the_source_date(version):
+    """The same sources and SOURCE_DATE_EPOCH give the same bytes; the date is the epoch's."""
+    generator = os.path.join(BUILD_DIR, "fmu", "tribo_model_description")
+    runs = [subprocess.run([generator, str(version), "0.1.0", str(epoch)], capture_output=True,
+                           text=True, check=True).stdout for epoch in (1700000000, 1700000000, 1)]
+    assert runs[0] == runs[1]
+    assert 'generationDateAndTime="2023-11-14T22:13:20Z"' in runs[0]
+    assert 'generationDateAndTime="1970-01-01T00:00:01Z"' in runs[2]
+    assert without_date_and_token(runs[0]) == without_date_and_token(runs[2])
 
 
 @pytest.mark.parametrize("version", VERSIONS)
@@ -118,9 +138,24 @@ def test_fmi3_arrays_are_sized_by_the_structural_parameter(fmu_dir):
 def test_units_log_categories_and_experiment(fmu_dir, version):
     md = read_model_description(fmu_dir(version), validate=True)
     defined = {u.name for u in md.unitDefinitions}
-    assert {v.unit for v in md.modelVariables if v.unit} == defined
-    deg = next(u for u in md.unitDefinitions if u.name == "deg")
-    assert (deg.baseUnit.rad, deg.baseUnit.factor) == (1, math.pi / 180)
+    assert {v.unit for v in md.modelVariables if v.unit} == defined == {"1", "rad", "rad/tau"}
+    units = {u.name: u for u in md.unitDefinitions}
+    exponents = ("kg", "m", "s", "A", "K", "mol", "cd", "rad")
+    # every unit says what it is in SI base units: "1" is dimensionless, angles are radians
+    # (shown in degrees), and so is an angular velocity, the time being dimensionless
+    for name, rad in (("1", 0), ("rad", 1), ("rad/tau", 1)):
+        base = units[name].baseUnit
+        assert base is not None, name
+        assert [getattr(base, e) for e in exponents] == [0] * 7 + [rad], name
+        assert (base.factor, base.offset) == (1, 0), name
+    assert [(d.name, d.factor) for d in units["rad"].displayUnits] == [("deg", 180 / math.pi)]
+    assert not units["1"].displayUnits and not units["rad/tau"].displayUnits
+    by_name = {v.name: v for v in md.modelVariables}
+    for angle in ("beta", "phi0", "phi"):
+        assert (by_name[angle].unit, by_name[angle].displayUnit) == ("rad", "deg"), angle
+    for spin in ("Omega0", "Omega"):
+        assert by_name[spin].unit == "rad/tau", spin
+    assert float(by_name["beta"].start) == 45 * (math.pi / 180)
     assert [c.name for c in md.logCategories] == \
         ["logStatusError", "logStatusWarning", "logFmiCalls", "logCore"]
     cs = md.coSimulation

@@ -35,8 +35,10 @@ def fmi_functions_declared(version):
 def test_archive_layout(fmu_file, version):
     with zipfile.ZipFile(fmu_file(version)) as z:
         files = {n for n in z.namelist() if not n.endswith("/")}
-    assert files == {"modelDescription.xml",
-                     f"binaries/{PLATFORM[version]}/tribo_fmi{version}.so"}
+    assert files == {"modelDescription.xml", f"binaries/{PLATFORM[version]}/tribo_fmi{version}.so",
+                     "documentation/index.html", "documentation/licenses/license.txt",
+                     "documentation/licenses/SUNDIALS-LICENSE"} | \
+        ({"documentation/_main.html"} if version == 2 else set())
 
 
 @pytest.mark.parametrize("version", VERSIONS)
@@ -77,5 +79,6 @@ def test_fmu_is_rebuilt_from_its_sources(version):
     core_sources = sources("libtribo_core.a")
     assert "src/model.c" in core_sources
     expected = fmu_sources | core_sources | {f"fmu/fmi{version}.c", f"fmu/fmi{version}.map",
-                                             "fmu/tools/model_description.c", "fmu/token.cmake"}
+                                             "fmu/tools/model_description.c", "fmu/token.cmake",
+                                             "fmu/tools/pack_fmu.py", "docs/model.md", "LICENSE"}
     assert expected <= inputs, expected - inputs

@@ -148,7 +148,9 @@ class Slave:
 
     def _accessor(self, verb, name):
         v = self.variables[name]
-        return v, getattr(self.fmu, verb + v.type)
+        # FMI 2.0 reads enumerations as Integers, FMI 3.0 as Int64
+        kind = {"Enumeration": "Integer" if self.version == 2 else "Int64"}.get(v.type, v.type)
+        return v, getattr(self.fmu, verb + kind)
 
     def set(self, **values):
         for name, value in values.items():

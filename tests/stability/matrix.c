@@ -26,7 +26,8 @@ const stability_case STABILITY_CASES[] = {
     {"eta = 0", "eta=0.0"},
     {"eta = 10", "eta=10.0"},
     {"beta = 0", "beta=0.0"},
-    {"beta = 89", "beta=89.0"},
+    /* beta in rad: 1.5533430342749532 is 89 * (M_PI / 180.0), 89 degrees */
+    {"beta = 89", "beta=1.5533430342749532"},
     {"drop speed 0", "drop_speed=0.0"},
     {"drop speed 1", "drop_speed=1.0"},
     {"N = 16", "n_segments=16"},
@@ -35,7 +36,7 @@ const stability_case STABILITY_CASES[] = {
     {"eps 0.01, mu 10, nu 3", "epsilon=0.01 mu=10.0 nu=3.0"},
     {"Gamma 0.5, drop 1, nu 1", "Gamma=0.5 drop_speed=1.0 nu=1.0"},
     {"tau0 = tau_r = 1e-6, eta 10, N 1e5", "tau0=1e-6 tau_r=1e-6 eta=10.0 n_segments=100000"},
-    {"beta 89, mu = nu = 0, drop 1", "beta=89.0 mu=0.0 nu=0.0 drop_speed=1.0"},
+    {"beta 89, mu = nu = 0, drop 1", "beta=1.5533430342749532 mu=0.0 nu=0.0 drop_speed=1.0"},
     {"flat, at rest, nu 0, eps 0.02", "beta=0.0 drop_speed=0.0 nu=0.0 epsilon=0.02"},
 };
 const int N_STABILITY_CASES = sizeof STABILITY_CASES / sizeof STABILITY_CASES[0];

@@ -1,0 +1,82 @@
+"""The importer's tolerance (setupExperiment / enterInitializationMode) is CVODE's rtol,
+with atol in the defaults' ratio (atol = 1e-11 * tolerance / 1e-9); rtol or atol set
+explicitly wins; the FMU logs which; a tolerance outside rtol's range is refused."""
+
+import pytest
+
+from tribo_fmu import ERROR, VERSIONS, Slave, core_run, status_of
+
+SMALL = {"n_segments": 64}
+TIMES = [1.0, 5.0, 20.0]
+COMPARED = ["X", "Y", "phi", "U", "V", "Omega", "Q_static", "energy"]
+
+
+def run_with_tolerance(fmu_dir, version, tolerance, **params):
+    s = Slave(fmu_dir(version), version, logging_on=True)
+    s.set(**SMALL, **params)
+    if version == 2:
+        s.fmu.setupExperiment(tolerance=tolerance, startTime=0.0)
+        s.fmu.enterInitializationMode()
+    else:
+        s.fmu.enterInitializationMode(tolerance=tolerance, startTime=0.0)
+    s.fmu.exitInitializationMode()
+    return s
+
+
+def core(reference_exe, **params):
+    runs = core_run(reference_exe, dict(SMALL, **params), [(t, []) for t in TIMES])
+    return [{n: r[n] for n in COMPARED} for r in runs]
+
+
+def fmu_run(s):
+    return [{n: v for n, v in r.items()} for r in s.run(TIMES, COMPARED)]
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_the_tolerance_sets_rtol_and_atol(fmu_dir, reference_exe, version):
+    s = run_with_tolerance(fmu_dir, version, 1e-6)
+    assert (s.get("rtol"), s.get("atol")) == (1e-6, 1e-11 * (1e-6 / 1e-9))
+    assert any("tolerance = 1e-06: rtol = 1e-06 (the tolerance)" in m for _, _, m in s.messages)
+    assert fmu_run(s) == core(reference_exe, rtol=1e-6, atol=1e-11 * (1e-6 / 1e-9))
+    # (and the tolerance mattered)
+    assert core(reference_exe, rtol=1e-6, atol=1e-11 * (1e-6 / 1e-9)) != core(reference_exe)
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_the_default_experiments_tolerance_gives_the_defaults(fmu_dir, reference_exe, version):
+    s = run_with_tolerance(fmu_dir, version, 1e-9)
+    assert (s.get("rtol"), s.get("atol")) == (1e-9, 1e-11)
+    assert fmu_run(s) == core(reference_exe)
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_an_explicit_rtol_wins(fmu_dir, reference_exe, version):
+    s = run_with_tolerance(fmu_dir, version, 1e-6, rtol=1e-7)
+    assert (s.get("rtol"), s.get("atol")) == (1e-7, 1e-11 * (1e-6 / 1e-9))
+    assert any("rtol = 1e-07 (set explicitly)" in m for _, _, m in s.messages)
+    assert fmu_run(s) == core(reference_exe, rtol=1e-7, atol=1e-11 * (1e-6 / 1e-9))
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_explicit_rtol_and_atol_win_and_the_tolerance_is_not_used(fmu_dir, version):
+    s = run_with_tolerance(fmu_dir, version, 1e-6, rtol=1e-8, atol=1e-12)
+    assert (s.get("rtol"), s.get("atol")) == (1e-8, 1e-12)
+    assert any("tolerance = 1e-06 not used" in m for _, _, m in s.messages)
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_the_fixed_step_says_it_uses_dt(fmu_dir, version):
+    s = run_with_tolerance(fmu_dir, version, 1e-6, integrator=0)
+    assert any("dt sets its accuracy" in m for _, _, m in s.messages)
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_a_tolerance_outside_rtols_range_is_refused(fmu_dir, version):
+    s = Slave(fmu_dir(version), version)
+    if version == 2:
+        status = status_of(s.fmu.setupExperiment, tolerance=1e-20, startTime=0.0)
+    else:
+        status = status_of(s.fmu.enterInitializationMode, tolerance=1e-20, startTime=0.0)
+    assert status == ERROR
+    assert "tolerance = 9.9999999999999995e-21" in s.errors()[-1] and "1e-14 <= rtol < 1" in s.errors()[-1]
+    assert s.get("rtol") == 1e-9
