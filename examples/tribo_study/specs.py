@@ -58,7 +58,8 @@ def paper_spec(epsilon: float, friction: str, t_end: float, record_interval: flo
     return RunSpec(normalise_values(params), float(t_end), float(record_interval))
 
 
-def normalise_values(params: dict, integer_names=("n_segments", "charge_model", "integrator")) -> dict:
+def normalise_values(params: dict, integer_names=("n_segments", "charge_model", "integrator",
+                                                  "damping_point")) -> dict:
     """Integers as int, everything else as a float rounded to DECIMALS places."""
     out = {}
     for name, value in params.items():

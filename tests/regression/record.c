@@ -6,7 +6,11 @@
    At each sample time one line: run name, time (C99 hex float), "hash" and an FNV-1a hash
    of the bytes of every output and of both per-segment charge arrays. At the last sample
    of a run, also every output by name with its value in %a, so that a difference can be
-   read. */
+   read.
+
+   Every run sets damping_point = 1 (the centre dashpot, the law before model.md §3's
+   revision): the record is the regression of that option, which must keep reproducing the
+   results it had when it was the only law. */
 #include <inttypes.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -77,6 +81,7 @@ int main(void)
                 tribo_scene_defaults(&s);
                 s.epsilon = e / 10.0;
                 s.mu = s.nu = f ? 1.0 : 0.1;
+                s.damping_point = TRIBO_DAMPING_CENTRE;
                 s.charge_model = TRIBO_CHARGE_BOTH;
                 s.integrator = integrator ? TRIBO_INTEGRATOR_CVODE : TRIBO_INTEGRATOR_FIXED_STEP;
                 s.rtol = 1e-8;
@@ -102,6 +107,7 @@ int main(void)
             tribo_scene s;
             tribo_scene_defaults(&s);
             tribo_scene_apply(&s, STABILITY_CASES[c].settings, NULL, 0);
+            s.damping_point = TRIBO_DAMPING_CENTRE;
             s.integrator = STABILITY_INTEGRATORS[i];
             char run[128];
             snprintf(run, sizeof run, "stability/%d/%s", c,
