@@ -47,9 +47,16 @@ static double saturation_after(cache *k, const tribo_scene *s, double S, double 
 static void step_globals(void *c, const tribo_scene *s, double h, int in_contact,
                          const double *q0, const double *q1, const double *g0, double *g1)
 {
-    /* in flight the back-flow stops (c = 0 in §5b) */
-    g1[SIGMA_S] = in_contact && h > 0.0 ? saturation_after(c, s, g0[SIGMA_S], h, q0[WORK], q1[WORK])
-                                        : g0[SIGMA_S];
+    if (in_contact && h > 0.0) {
+        g1[SIGMA_S] = saturation_after(c, s, g0[SIGMA_S], h, q0[WORK], q1[WORK]);
+    } else if (q1[WORK] != q0[WORK]) {
+        /* a step that ends in flight after contact: it is charged as flight (no back-flow,
+           c = 0 in §5b), but the work done before lift-off still raises Sigma_s */
+        g1[SIGMA_S] = g0[SIGMA_S] + sqrt(s->Sigma0 * s->Sigma0 + 2.0 * s->eta * q1[WORK]) -
+                      sqrt(s->Sigma0 * s->Sigma0 + 2.0 * s->eta * q0[WORK]);
+    } else {
+        g1[SIGMA_S] = g0[SIGMA_S];
+    }
 }
 
 /* Sigma_s at the middle and the end of a piece. The relaxation is linear, so
