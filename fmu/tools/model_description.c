@@ -224,7 +224,7 @@ int main(int argc, char **argv)
     puts("<fmiModelDescription");
     printf("  fmiVersion=\"%d.0\"\n  modelName=\"tribo\"\n", version);
     printf("  %s=\"" TOKEN_PLACEHOLDER "\"\n", version == 2 ? "guid" : "instantiationToken");
-    puts("  description=\"A 2D elliptical particle tribocharging on a tilted plate (after Ireland 2012)\"");
+    puts("  description=\"A 2D elliptical particle tribocharging on a tilted plate (after Ireland 2012; the equations: docs/model.md of the tribo sources)\"");
     printf("  generationTool=\"tribo %s\"\n", tool_version);
     printf("  variableNamingConvention=\"flat\"%s>\n", version == 2 ? "\n  numberOfEventIndicators=\"0\"" : "");
     printf("  <CoSimulation\n    modelIdentifier=\"tribo_fmi%d\"\n"
