@@ -255,6 +255,26 @@ static int pressed_in(const tribo_dyn_params *p, const double *y)
     return h_curvature(p, y[TRIBO_IPHI]) * Om * Om + (p->g_n - p->F_N) > 0.0;
 }
 
+/* A contact point that leaves vn = 0 in a sign phase (after a vn switch, out of a lock, or
+   set down at rest) may do so slowly: at the edge of the lock's band dvn/dtau starts at 0.
+   Its switch function vn would then sit within integration error of 0 and be seen
+   crossing back at once, again and again. It starts that error's size on its side,
+   vn = s m (the energy this changes is booked with the switch). The centre dashpot's V
+   is left exactly at 0, as it always was. */
+static void leave_rest(const tribo_dyn_params *p, double *y, const tribo_force_law *law)
+{
+    if (p->damping_point != TRIBO_DAMPING_CONTACT_POINT || !tribo_touching(law) ||
+        law->normal != TRIBO_NORMAL_SIGN || p->nu == 0.0)
+        return;
+    tribo_pose g;
+    tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
+    const double spin = g.cx * y[TRIBO_IOMEGA];
+    if (y[TRIBO_IV] + spin != 0.0)
+        return;
+    const double m = 10.0 * (p->rtol * (fabs(y[TRIBO_IV]) + fabs(spin)) + p->atol);
+    y[TRIBO_IV] = -spin + law->normal_sign * m;
+}
+
 /* The phase after an event (fired: the roots found) or, with fired = NULL, the phase a
    state is in when the integration (re)starts there. Adjusts y to put the switched
    boundary exactly on it (Y = h, damped velocity 0, delta_x = +-limit), so that CVODE's root
@@ -359,6 +379,7 @@ static tribo_force_law next_phase(const tribo_dyn_params *p, const tribo_force_l
         tangent_from_state(p, y, &ph);
     }
     confirm_lock(p, y, &ph);
+    leave_rest(p, y, &ph);
     return ph;
 }
 

@@ -22,7 +22,9 @@
      Sigma_s (model.md §5b; it was lost): Sigma_s, Q_sliding, Sigma_mean and the sliding
      segment array moved in the fixed-step runs that lift off (the study grid's low
      friction, 18 of the stability cases), by at most 1.6e-7 relative (Sigma_s); nothing
-     of CVODE's runs, and no other output, moved (checked by diffing the records). */
+     of CVODE's runs, and no other output, moved (checked by diffing the records).
+   - issue 10, a contact point leaving vn = 0 in a sign phase starts vn a tolerance's size
+     on its side (force_phases.c, leave_rest): only study_contact_point/ moved. */
 #include <inttypes.h>
 #include <stdint.h>
 #include <stdio.h>
