@@ -113,8 +113,18 @@ static void normal_at_rest(const tribo_dyn_params *p, const double *y, double dy
 {
     tribo_pose g;
     tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
+    /* A contact-point lock's force depends on the tangential rule the lock itself would have
+       (the rule before may be a slip at a zero limit, the contact having been unloaded):
+       that rule decides, on a copy of the state. */
+    tribo_force_law as_locked = *law;
+    double z[TRIBO_NSTATE_MAX];
+    memcpy(z, y, sizeof z);
+    if (p->damping_point == TRIBO_DAMPING_CONTACT_POINT) {
+        as_locked.normal = TRIBO_NORMAL_LOCK;
+        tangent_from_state(p, z, &as_locked);
+    }
     double A;
-    const double psi_star = tribo_lock_force(p, law, &g, y, &A);
+    const double psi_star = tribo_lock_force(p, &as_locked, &g, z, &A);
     if (!(A > 0.0)) {
         law->normal = TRIBO_NORMAL_SIGN;
         law->normal_sign = leaving_sign(p, y, law);
@@ -173,16 +183,14 @@ static double slip_at_second_order(const tribo_dyn_params *p, const double *y,
 /* At a switch between stick and slip with the stretch on the limit: whether it leaves the
    limit, sigma vs > d(limit)/dtau (the slip phase's rate). Where the two differ by no more
    than the rounding of a located switch (1e-9 of their size, as for grazing switches), the
-   first order does not decide and the second does. */
-static int stretch_leaves_limit(const tribo_dyn_params *p, const double *y,
-                                const tribo_force_law *law, double sigma, double vs, double rate)
+   first order does not decide: the contact sticks. A stick that should slip sees the limit
+   crossed a moment later, by then decisively; deciding by the second derivatives instead
+   would need the limit's second derivative, which in a contact-point lock depends on the
+   whole motion. */
+static int stretch_leaves_limit(double sigma, double vs, double rate)
 {
     const double lead = sigma * vs - rate, noise = 1e-9 * (fabs(vs) + fabs(rate));
-    if (fabs(lead) > noise)
-        return lead > 0.0;
-    double dvs, dlimit2;
-    second_derivatives(p, y, law, &dvs, &dlimit2);
-    return sigma * dvs > dlimit2;
+    return lead > noise;
 }
 
 /* Stick or slip for a stretch checked against the limit of the (new) normal phase:
@@ -357,7 +365,7 @@ static tribo_force_law next_phase(const tribo_dyn_params *p, const tribo_force_l
                order can show the opposite by rounding, and a slip that starts with
                sigma vs < d(limit)/dtau never sees its slip -> stick switch, and does
                positive work */
-            if (!stretch_leaves_limit(p, y, &ph, ph.slip_sign, ev.vs, ev.limit_rate)) {
+            if (!stretch_leaves_limit(ph.slip_sign, ev.vs, ev.limit_rate)) {
                 /* The switch was crossed by integration error alone: on the limit, the stick
                    would see it crossed again at once. It starts that error's size inside
                    (the spring energy this takes out is booked as dissipated). */
@@ -371,7 +379,7 @@ static tribo_force_law next_phase(const tribo_dyn_params *p, const tribo_force_l
         tribo_contact_at(p, &ph, y, &ev);
         y[TRIBO_IDX] = ph.slip_sign * ev.limit;
         /* likewise, it sticks only where the stretch comes off the limit */
-        if (!stretch_leaves_limit(p, y, &ph, ph.slip_sign, ev.vs, ev.limit_rate)) {
+        if (!stretch_leaves_limit(ph.slip_sign, ev.vs, ev.limit_rate)) {
             ph.tangent = TRIBO_TANGENT_STICK;
             ph.slip_sign = 0.0;
         }

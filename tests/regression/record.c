@@ -24,7 +24,9 @@
      friction, 18 of the stability cases), by at most 1.6e-7 relative (Sigma_s); nothing
      of CVODE's runs, and no other output, moved (checked by diffing the records).
    - issue 10, a contact point leaving vn = 0 in a sign phase starts vn a tolerance's size
-     on its side (force_phases.c, leave_rest): only study_contact_point/ moved. */
+     on its side (force_phases.c, leave_rest): only study_contact_point/ moved.
+   - issue 10, a stick/slip switch that ties at first order sticks; a contact-point lock is
+     decided under the tangential rule it would have: only study_contact_point/ moved. */
 #include <inttypes.h>
 #include <stdint.h>
 #include <stdio.h>
