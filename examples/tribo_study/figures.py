@@ -58,7 +58,7 @@ def _dashpot_label(result, dashpot):
     """'' for a study of one dashpot; else which dashpot a panel shows."""
     if len(result.settings.dashpots) == 1:
         return ""
-    return f", dashpot on the {dashpot_name(dashpot)}"
+    return f"\ndashpot on the {dashpot_name(dashpot)}"
 
 
 def bounce_amplitude(result):

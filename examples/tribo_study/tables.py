@@ -48,14 +48,22 @@ MOTION_FORMATS = {"contact_fraction": ".3f", "turns": ".3g", "warnings": "d", "m
                   **{m: ".3f" for m in MODES}}
 
 
-def motion_table(runs: pd.DataFrame) -> pd.DataFrame:
-    out = runs[["friction", "epsilon", "contact_fraction", "turns"]].copy()
+def _add_motion(out: pd.DataFrame, runs: pd.DataFrame) -> pd.DataFrame:
+    """The motion's columns of a run: contact, turns, mode fractions after the warm-up,
+    warnings, indentation, height, bounce amplitude."""
+    out["contact_fraction"] = runs["contact_fraction"]
+    out["turns"] = runs["turns"]
     for m in MODES:
         out[m] = runs[f"fraction_{m}_after_warmup"]
     out["warnings"] = runs["assumption_warnings"]
     out["max delta_y / eps"] = runs["delta_y_max"] / runs["epsilon"]
     out["Y max"] = runs["Y_max"]
     out["bounce amp."] = runs["bounce_amplitude_mean"]
+    return out
+
+
+def motion_table(runs: pd.DataFrame) -> pd.DataFrame:
+    out = _add_motion(runs[["friction", "epsilon"]].copy(), runs)
     out["CPU s"] = runs["cpu_s"]
     out["wall s"] = runs["wall_s"]
     return out
@@ -74,14 +82,7 @@ def dashpot_table(result) -> pd.DataFrame:
     runs = runs.sort_values(["_f", "epsilon", "_d"], kind="stable")
     out = runs[["friction", "epsilon"]].copy()
     out["dashpot"] = runs["damping_point"].map(dashpot_name)
-    out["contact_fraction"] = runs["contact_fraction"]
-    out["turns"] = runs["turns"]
-    for m in MODES:
-        out[m] = runs[f"fraction_{m}_after_warmup"]
-    out["warnings"] = runs["assumption_warnings"]
-    out["max delta_y / eps"] = runs["delta_y_max"] / runs["epsilon"]
-    out["Y max"] = runs["Y_max"]
-    out["bounce amp."] = runs["bounce_amplitude_mean"]
+    _add_motion(out, runs)
     for model in ("static", "sliding"):
         out[f"Q_{model}"] = runs[f"Q_{model}_{time_label(s.t_end)}"]
     out["CPU s"] = runs["cpu_s"]

@@ -95,15 +95,15 @@ Test(dashpot, energy_never_increases_at_the_contact_point, .timeout = 240)
 }
 
 /* The centre dashpot does work -nu delta_y sgn(V)(V + cx Omega), positive at times while the
-   particle spins: on the same kind of run E gains 0.25 (measured, both integrators), so the
-   test above would tell the two laws apart. */
-Test(dashpot, the_centre_dashpot_can_gain_energy, .timeout = 60)
+   particle spins: on the same kind of run E gains 0.25 by tau = 20 (measured, both
+   integrators), so the test above would tell the two laws apart. */
+Test(dashpot, the_centre_dashpot_can_gain_energy, .timeout = 180)
 {
     const int integrators[] = {TRIBO_INTEGRATOR_FIXED_STEP, TRIBO_INTEGRATOR_CVODE};
     for (int i = 0; i < 2; i++) {
         const tribo_scene centre = spinning(0.3, 1.0, integrators[i], TRIBO_DAMPING_CENTRE);
         const tribo_scene point = spinning(0.3, 1.0, integrators[i], TRIBO_DAMPING_CONTACT_POINT);
-        const energy_record c = energy_of_run(&centre, 100.0), p = energy_of_run(&point, 100.0);
+        const energy_record c = energy_of_run(&centre, 20.0), p = energy_of_run(&point, 20.0);
         cr_expect(c.rise > 0.1, "integrator %d: the centre dashpot's E rose by %.3g", integrators[i],
                   c.rise);
         cr_expect(p.rise < 1e-9, "integrator %d: the contact point's E rose by %.3g", integrators[i],
