@@ -80,8 +80,8 @@ int main(int argc, char **argv)
                tribo_get(m, (tribo_quantity)q));
     tribo_stats stats;
     tribo_get_stats(m, &stats);
-    printf("\n%lld steps, %lld right-hand sides, %.2f s CPU\n", stats.steps, stats.rhs_evals,
-           cpu);
+    printf("\n%lld steps, %lld sub-steps, %lld right-hand sides, %lld events, %.2f s CPU\n",
+           stats.steps, stats.substeps, stats.rhs_evals, stats.events, cpu);
     tribo_free(m);
     return 0;
 }

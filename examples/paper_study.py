@@ -5,6 +5,7 @@ of each friction case; figures and tables.
     .venv/bin/python examples/paper_study.py                 # reduced: 6 eps, tau to 1000
     .venv/bin/python examples/paper_study.py --full          # the paper's: 10 eps, tau to 5000
     .venv/bin/python examples/paper_study.py --scheduler tcp://host:8786   # an existing Dask cluster
+    .venv/bin/python examples/paper_study.py --full --dashpots 0,1   # with the centre dashpot too
 
 Writes into --out (default out/study, or out/study-full with --full): study.md (set-up,
 definitions, eps_t, tables, run time, figures), study_runs.csv, transition_points.csv,
@@ -55,6 +56,10 @@ def parse_args(argv=None):
     resume.add_argument("--resume", dest="resume", action="store_true", default=True,
                         help="reuse the finished runs in <out>/runs (default)")
     resume.add_argument("--fresh", dest="resume", action="store_false", help="run everything again")
+    p.add_argument("--dashpots", type=lambda text: tuple(int(x) for x in text.split(",")),
+                   help="normal dashpots (damping_point values, docs/model.md section 3), the "
+                        "study's own first: 0 the contact point (default), 1 the centre; e.g. "
+                        "0,1 runs the grid with both and compares them")
     p.add_argument("--epsilons", type=floats, help="override the roundness grid, e.g. 0.2,0.6,1.0")
     p.add_argument("--t-end", type=float, help="override the horizon")
     p.add_argument("--transition-width", type=float, help="override the final width of the eps_t bracket")
@@ -68,6 +73,7 @@ def main(argv=None) -> int:
     args = parse_args(argv)
     settings = FULL if args.full else REDUCED
     overrides = {k: v for k, v in (("epsilons", args.epsilons), ("t_end", args.t_end),
+                                   ("dashpots", args.dashpots),
                                    ("transition_width", args.transition_width),
                                    ("points_per_round", args.points_per_round)) if v is not None}
     if overrides:
@@ -82,7 +88,8 @@ def main(argv=None) -> int:
                  for a in (sys.argv[1:] if argv is None else argv)]
     command = "examples/paper_study.py " + " ".join(shlex.quote(a) for a in arguments)
     print(f"study: {len(settings.epsilons)} roundness values x {len(settings.frictions)} friction "
-          f"cases to tau = {settings.t_end:g}, FMU {args.fmu}, into {out}", flush=True)
+          f"cases to tau = {settings.t_end:g}, damping_point {', '.join(map(str, settings.dashpots))}, "
+          f"FMU {args.fmu}, into {out}", flush=True)
     with executor:
         print(f"study: running on {executor.describe()}", flush=True)
         result = run_study(settings, image, out, executor, resume=args.resume,

@@ -254,7 +254,8 @@ def main() -> None:
         "# Work-precision: the paper's fixed step against CVODE\n\n"
         "Produced by `scripts/work_precision.sh` (examples/work_precision.py); every number below "
         "was measured in that run. CPU times are per run of tau = 1000 on this machine; ratios "
-        "are measured in one run.\n\n"
+        "are measured in one run. Every run has the default normal dashpot, on the contact point "
+        "(docs/model.md section 3).\n\n"
         "![work-precision](work_precision.png)\n\n![horizon](work_precision_horizon.png)\n\n" + md + "\n"
     )
     print(md)

@@ -42,7 +42,7 @@ if [ ! -f "$SUNDIALS_SRC/.version" ] || [ "$(cat "$SUNDIALS_SRC/.version")" != "
                -o APT::Sandbox::User=root)
   apt-get "${apt_options[@]}" update -qq
   (cd "$OUT/sundials" && apt-get "${apt_options[@]}" source --download-only -qq "sundials=$version")
-  dpkg-source -x "$OUT"/sundials/sundials_*.dsc "$SUNDIALS_SRC" >/dev/null
+  dpkg-source -x "$OUT/sundials"/sundials_*.dsc "$SUNDIALS_SRC" >/dev/null
   echo "$version" > "$SUNDIALS_SRC/.version"
 fi
 
@@ -73,11 +73,11 @@ make_sources() { # make_sources <fmi version> <folder>
   local v=$1 dir=$2 sun="$2/sundials"
   rm -rf "$dir"
   mkdir -p "$dir/tribo/src" "$dir/tribo/fmu" "$sun/include" "$sun/src"
-  cp "$ROOT"/src/*.c "$ROOT"/src/*.h "$ROOT/src/quantities.def" "$dir/tribo/src/"
+  cp "$ROOT/src"/*.c "$ROOT/src"/*.h "$ROOT/src/quantities.def" "$dir/tribo/src/"
   for f in variables logging lifecycle step access fmu_state "fmi$v"; do
     cp "$ROOT/fmu/$f.c" "$dir/tribo/fmu/"
   done
-  cp "$ROOT"/fmu/*.h "$ROOT/build/fmu/generated/fmi$v/instantiation_token.h" "$dir/tribo/fmu/"
+  cp "$ROOT/fmu"/*.h "$ROOT/build/fmu/generated/fmi$v/instantiation_token.h" "$dir/tribo/fmu/"
   cp "$ROOT/LICENSE" "$dir/tribo/"
   # CVODE: the sources of the objects in the static library the Windows build links (it
   # bundles the dense matrix, linear and nonlinear solvers), their private headers, the

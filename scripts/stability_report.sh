@@ -17,7 +17,8 @@ Produced by `scripts/stability_report.sh` (the same matrix as the CTest `test_st
 every number below was measured in that run, on this project's 2-core machine.
 
 Each case is the paper's set-up (model.md §7: eps = 0.5, mu = nu = 0.1, Gamma = 1e-3,
-beta = 45 deg, N = 2000, both charge models) with one parameter at the edge of its range,
+beta = 45 deg, N = 2000, both charge models, the normal dashpot on the contact point,
+model.md §3) with one parameter at the edge of its range,
 or a few edges combined, run to tau = 50 with each integrator at its defaults (fixed step
 dt = 8e-5, v_reg = 1e-6; CVODE rtol = 1e-9, atol = 1e-11) and sampled every 0.5.
 

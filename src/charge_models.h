@@ -26,6 +26,7 @@ tribo_charge_view tribo_charge_view_of(tribo_model *m, int index);
 /* The outputs the models contribute (quantities.def). */
 double tribo_static_charge(tribo_model *m);
 double tribo_sliding_charge(tribo_model *m);
+double tribo_sliding_mean_density(tribo_model *m);
 double tribo_sliding_saturation(tribo_model *m);
 double tribo_sliding_work(tribo_model *m);
 

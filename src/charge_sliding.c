@@ -1,7 +1,9 @@
 /* charge_sliding.c: the sliding (frictional-work) charge model, docs/model.md §5b (paper
    eqs. 11-13). Per segment Sigma_i, relaxing towards the dynamic saturation density
    Sigma_s in contact; Sigma_s (a global state) is raised by the frictional work per unit
-   contact area omega (a quadrature) and relaxes back to Sigma0 through contact. */
+   contact area omega (a quadrature) and relaxes back to Sigma0 through contact. Q_sliding
+   is normalised by Sigma0 at the start of the run (Sigma0,ref, a global state that never
+   changes), so that a tunable Sigma0 moves the saturation target, not the charge. */
 #include "charge_models.h"
 
 #include <math.h>
@@ -11,10 +13,14 @@ typedef struct cache {
     tribo_decay_cache relax;  /* over tau_r   */
 } cache;
 
-enum { SIGMA_S };      /* globals     */
-enum { WORK };         /* quadratures */
+enum { SIGMA_S, SIGMA0_REF }; /* globals     */
+enum { WORK };                /* quadratures */
 
-static void start(const tribo_scene *s, double *g) { g[SIGMA_S] = s->Sigma0; }
+static void start(const tribo_scene *s, double *g)
+{
+    g[SIGMA_S] = s->Sigma0;
+    g[SIGMA0_REF] = s->Sigma0; /* §5b: Sigma0,ref */
+}
 
 /* d omega / dtau = mu delta_y |vs| / (2 Sc) with Sc = sqrt(rho_c delta_y), i.e.
    mu |vs| sqrt(delta_y / rho_c) / 2 (paper eq. 11) */
@@ -41,9 +47,16 @@ static double saturation_after(cache *k, const tribo_scene *s, double S, double 
 static void step_globals(void *c, const tribo_scene *s, double h, int in_contact,
                          const double *q0, const double *q1, const double *g0, double *g1)
 {
-    /* in flight the back-flow stops (c = 0 in §5b) */
-    g1[SIGMA_S] = in_contact && h > 0.0 ? saturation_after(c, s, g0[SIGMA_S], h, q0[WORK], q1[WORK])
-                                        : g0[SIGMA_S];
+    if (in_contact && h > 0.0) {
+        g1[SIGMA_S] = saturation_after(c, s, g0[SIGMA_S], h, q0[WORK], q1[WORK]);
+    } else if (q1[WORK] != q0[WORK]) {
+        /* a step that ends in flight after contact: it is charged as flight (no back-flow,
+           c = 0 in §5b), but the work done before lift-off still raises Sigma_s */
+        g1[SIGMA_S] = g0[SIGMA_S] + sqrt(s->Sigma0 * s->Sigma0 + 2.0 * s->eta * q1[WORK]) -
+                      sqrt(s->Sigma0 * s->Sigma0 + 2.0 * s->eta * q0[WORK]);
+    } else {
+        g1[SIGMA_S] = g0[SIGMA_S];
+    }
 }
 
 /* Sigma_s at the middle and the end of a piece. The relaxation is linear, so
@@ -100,14 +113,14 @@ static void charge(void *c, const tribo_scene *s, const tribo_charge_forcing *f,
 static void segment_values(const tribo_scene *s, const double *globals, const double *sigma,
                            double *out, int n)
 {
-    (void)globals;
+    (void)s;
     for (int i = 0; i < n; i++)
-        out[i] = sigma[i] / s->Sigma0;
+        out[i] = sigma[i] / globals[SIGMA0_REF];
 }
 
 const tribo_charge_model tribo_charge_sliding = {
     .name = "sliding",
-    .n_globals = 1,
+    .n_globals = 2,
     .n_quadratures = 1,
     .cache_size = sizeof(cache),
     .start = start,
@@ -121,7 +134,14 @@ const tribo_charge_model tribo_charge_sliding = {
 double tribo_sliding_charge(tribo_model *m)
 {
     const tribo_charge_view v = tribo_charge_view_of(m, TRIBO_SEGMENTS_SLIDING);
-    return v.segments ? tribo_mean(v.segments, v.n) / v.scene->Sigma0 : 0.0; /* Q_sliding */
+    /* Q_sliding, §5b */
+    return v.segments ? tribo_mean(v.segments, v.n) / v.globals[SIGMA0_REF] : 0.0;
+}
+
+double tribo_sliding_mean_density(tribo_model *m)
+{
+    const tribo_charge_view v = tribo_charge_view_of(m, TRIBO_SEGMENTS_SLIDING);
+    return v.segments ? tribo_mean(v.segments, v.n) : 0.0; /* mean Sigma_i, §5b */
 }
 
 double tribo_sliding_saturation(tribo_model *m)

@@ -13,6 +13,46 @@ static double limit_rate(const tribo_dyn_params *p, const tribo_contact_eval *ev
     return factor > 0.0 && (ev->delta_y > 0.0 || ddy > 0.0) ? p->mu * factor * ddy : 0.0;
 }
 
+double tribo_lock_force(const tribo_dyn_params *p, const tribo_force_law *law, const tribo_pose *g,
+                        const double *y, double *A)
+{
+    if (p->damping_point == TRIBO_DAMPING_CENTRE) {
+        *A = 1.0;
+        return p->g_n - p->F_N; /* V held at 0: the normal force balances the normal load */
+    }
+    /* model.md §3: dvn/dtau = Psi_N (1 + cx^2/I) + (cx h / I) Psi_T - (Gamma cos(beta) - F_N)
+       + kappa Omega^2 = 0 */
+    const double Om = y[TRIBO_IOMEGA];
+    const double load = p->g_n - p->F_N - tribo_pose_kappa(p->eps2, g) * Om * Om;
+    const double stick_factor = 1.0 + g->cx * g->cx * p->inv_inertia;
+    const double coupling = g->cx * g->h * p->inv_inertia;
+    if (law->tangent == TRIBO_TANGENT_SLIP) {
+        *A = stick_factor - p->mu * law->slip_sign * coupling;
+        return load / *A;
+    }
+    *A = stick_factor;
+    return (load + coupling * y[TRIBO_IDX]) / stick_factor;
+}
+
+/* mu d(Psi_N*)/dtau in a normal lock that slips (the stretch is held at the limit and moves
+   with it): Psi_N* = load / A along the motion, with dOmega/dtau = Psi_N* (cx - mu sigma h) / I,
+   d(kappa Omega^2)/dtau = kappa' Omega^3 + 2 kappa Omega dOmega/dtau and
+   dA/dtau = (2 cx kappa - mu sigma (kappa h - cx^2)) Omega / I (dh/dphi = -cx, dcx/dphi = kappa). */
+static double lock_limit_rate(const tribo_dyn_params *p, const tribo_pose *g, const double *y,
+                              double sigma, double psi_star, double A)
+{
+    if (p->damping_point == TRIBO_DAMPING_CENTRE)
+        return 0.0;
+    const double Om = y[TRIBO_IOMEGA];
+    const double kappa = tribo_pose_kappa(p->eps2, g);
+    const double spin_rate = p->inv_inertia * psi_star * (g->cx - p->mu * sigma * g->h);
+    const double load_rate = -(tribo_pose_kappa_slope(g, kappa) * Om * Om * Om +
+                               2.0 * kappa * Om * spin_rate);
+    const double A_rate = p->inv_inertia *
+                          (2.0 * g->cx * kappa - p->mu * sigma * (kappa * g->h - g->cx * g->cx)) * Om;
+    return p->mu * (load_rate - psi_star * A_rate) / A;
+}
+
 void tribo_contact_at(const tribo_dyn_params *p, const tribo_force_law *law, const double *y,
                       tribo_contact_eval *ev)
 {
@@ -30,7 +70,9 @@ void tribo_contact_at(const tribo_dyn_params *p, const tribo_force_law *law, con
     const double ddy = -ev->pose.cx * y[TRIBO_IOMEGA] - y[TRIBO_IV];
     switch (law->normal) {
     case TRIBO_NORMAL_REGULARISED:
-        ev->sign_v = p->nu > 0.0 ? tribo_regularised_sign(y[TRIBO_IV], p->v_reg) : 0.0;
+        ev->sign_v = p->nu > 0.0
+                         ? tribo_regularised_sign(tribo_damped_velocity(p, &ev->pose, y), p->v_reg)
+                         : 0.0;
         ev->psi_n = tribo_normal_force(ev->delta_y, p->nu, ev->sign_v);
         ev->limit_rate = limit_rate(p, ev, ddy);
         break;
@@ -39,13 +81,17 @@ void tribo_contact_at(const tribo_dyn_params *p, const tribo_force_law *law, con
         ev->psi_n = tribo_normal_force(ev->delta_y, p->nu, ev->sign_v);
         ev->limit_rate = limit_rate(p, ev, ddy);
         break;
-    case TRIBO_NORMAL_LOCK:
-        /* V held at 0: the normal force is whatever balances the rest (model.md §3). */
-        ev->psi_n = p->g_n - p->F_N;
+    case TRIBO_NORMAL_LOCK: {
+        /* the damped velocity held at 0: the normal force is whatever holds it (model.md §3) */
+        double A;
+        ev->psi_n = tribo_lock_force(p, law, &ev->pose, y, &A);
         ev->sign_v = p->nu > 0.0 && ev->delta_y > 0.0 ? (1.0 - ev->psi_n / ev->delta_y) / p->nu
                                                        : 0.0;
-        ev->limit_rate = 0.0;
+        ev->limit_rate = law->tangent == TRIBO_TANGENT_SLIP
+                             ? lock_limit_rate(p, &ev->pose, y, law->slip_sign, ev->psi_n, A)
+                             : 0.0;
         break;
+    }
     }
     ev->limit = p->mu * ev->psi_n;
     switch (law->tangent) {
@@ -69,11 +115,16 @@ void tribo_dynamics_rhs(const tribo_dyn_params *p, const tribo_force_law *law, c
 
     const double U = y[TRIBO_IU], V = y[TRIBO_IV], Om = y[TRIBO_IOMEGA];
     dydt[TRIBO_IX] = U;
-    dydt[TRIBO_IY] = law->normal == TRIBO_NORMAL_LOCK ? 0.0 : V;
+    /* In a normal lock the held quantity does not move: Y for the centre dashpot, delta_y =
+       h(phi) - Y for the contact point's (dY/dtau = dh/dtau = -cx Omega, whatever error V
+       carries; V itself follows -cx Omega through Psi_N*). */
+    const int lock = law->normal == TRIBO_NORMAL_LOCK;
+    const int centre = p->damping_point == TRIBO_DAMPING_CENTRE;
+    dydt[TRIBO_IY] = lock ? (centre ? 0.0 : -ev->pose.cx * Om) : V;
     dydt[TRIBO_IPHI] = Om;
     /* model.md §4 */
     dydt[TRIBO_IU] = p->g_t + p->F_T + ev->psi_t;
-    dydt[TRIBO_IV] = law->normal == TRIBO_NORMAL_LOCK ? 0.0 : -p->g_n + p->F_N + ev->psi_n;
+    dydt[TRIBO_IV] = lock && centre ? 0.0 : -p->g_n + p->F_N + ev->psi_n;
     dydt[TRIBO_IOMEGA] = p->inv_inertia * (ev->pose.h * ev->psi_t + ev->pose.cx * ev->psi_n);
     dydt[TRIBO_IWEXT] = p->F_T * U + p->F_N * V;
 
@@ -87,10 +138,12 @@ void tribo_dynamics_rhs(const tribo_dyn_params *p, const tribo_force_law *law, c
     const double ddx =
         law->tangent == TRIBO_TANGENT_SLIP ? law->slip_sign * ev->limit_rate : ev->vs;
     dydt[TRIBO_IDX] = ddx;
-    /* Power lost from E (model.md §6): dE/dtau = Psi_T vs + dx ddx + (Psi_N - dy)(V + cx Om)
-       + external power, so the contact dissipates -Psi_T vs - dx ddx + (dy - Psi_N)(V + cx Om). */
-    dydt[TRIBO_IWDISS] = -ev->psi_t * ev->vs - y[TRIBO_IDX] * ddx +
-                         (ev->delta_y - ev->psi_n) * (V + ev->pose.cx * Om);
+    /* Power lost from E (model.md §6): dE/dtau = Psi_T vs + dx ddx + (Psi_N - dy) vn
+       + external power, so the contact dissipates -Psi_T vs - dx ddx + (dy - Psi_N) vn, with
+       vn = V + cx Om. A contact-point lock holds vn = 0 (its V carries only integration
+       error, which must not be booked as work). */
+    const double vn = lock && !centre ? 0.0 : V + ev->pose.cx * Om;
+    dydt[TRIBO_IWDISS] = -ev->psi_t * ev->vs - y[TRIBO_IDX] * ddx + (ev->delta_y - ev->psi_n) * vn;
 }
 
 double tribo_energy(const tribo_dyn_params *p, const double *y)

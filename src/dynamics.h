@@ -31,8 +31,20 @@ typedef struct tribo_dyn_params {
     double g_t, g_n;     /* Gamma sin(beta), Gamma cos(beta) */
     double inv_inertia;  /* 4 / (1 + eps^2): m (a^2 + b^2) / 4, model.md §4 */
     double v_reg;
+    int damping_point;   /* tribo_damping_point: the velocity the normal dashpot opposes */
+    double rtol, atol;   /* the event-driven integrator's tolerances: within them a state
+                            cannot tell which side of a switch it is on */
     double F_T, F_N;     /* external force (inputs) */
 } tribo_dyn_params;
+
+/* The normal velocity the dashpot opposes (model.md §3): the contact point's
+   vn = V + cx Omega (= -d delta_y/dtau), or the centre's V (damping_point = 1). */
+static inline double tribo_damped_velocity(const tribo_dyn_params *p, const tribo_pose *g,
+                                           const double *y)
+{
+    return p->damping_point == TRIBO_DAMPING_CENTRE ? y[TRIBO_IV]
+                                                    : y[TRIBO_IV] + g->cx * y[TRIBO_IOMEGA];
+}
 
 /* How the set-valued parts of the force law are resolved (model.md §3). The fixed-step
    integrator uses the regularised sign and the clamped stretch throughout; an
@@ -51,8 +63,17 @@ typedef struct tribo_force_law {
     tribo_normal_rule normal;
     double normal_sign;   /* s for TRIBO_NORMAL_SIGN (+1 / -1)              */
     tribo_tangent_rule tangent;
-    double slip_sign;     /* direction of slip for TRIBO_TANGENT_SLIP (+1 / -1) */
+    double slip_sign;     /* for TRIBO_TANGENT_SLIP: the sign of the stretch held at the limit
+                             (+1 / -1); the slip force opposes it (model.md §3) */
 } tribo_force_law;
+
+/* The normal force Psi_N* of the normal lock (model.md §3): the force that keeps the damped
+   velocity at 0 (dvn/dtau = 0; for the centre dashpot dV/dtau = 0), in the law's tangential
+   rule (stick: Psi_T = -delta_x; slip: Psi_T = -mu slip_sign Psi_N). *A is the factor of
+   Psi_N in dvn/dtau: 1 + cx^2/I in stick, A = 1 + cx^2/I - mu sigma cx h / I in slip (1 for
+   the centre dashpot); the lock exists only while A > 0. */
+double tribo_lock_force(const tribo_dyn_params *p, const tribo_force_law *law, const tribo_pose *g,
+                        const double *y, double *A);
 
 /* The contact as seen by one evaluation of the right-hand side. */
 typedef struct tribo_contact_eval {
@@ -60,10 +81,11 @@ typedef struct tribo_contact_eval {
     double delta_y;   /* indentation (0 in flight) */
     int in_contact;
     double vs;        /* slip velocity U + h Omega of the contact point */
-    double sign_v;    /* the s used in Psi_N */
+    double sign_v;    /* the s used in Psi_N (in a normal lock, the s that Psi_N* needs) */
     double psi_n, psi_t;
     double limit;     /* Coulomb limit mu Psi_N */
-    double limit_rate; /* d(mu Psi_N)/dtau within the current normal rule (0 in lock) */
+    double limit_rate; /* d(mu Psi_N)/dtau within the current normal and tangential rule
+                          (in a normal lock: in slip, else 0) */
 } tribo_contact_eval;
 
 /* dy/dtau of the motion (the first TRIBO_NMOTION components) at state y under the force

@@ -6,15 +6,17 @@
 
 #include "dynamics.h"
 
-/* The switch functions: contact made or lost (delta_y = 0); the normal sign's V = 0, or
-   the two edges of the normal lock's band; stick -> slip at either edge of the Coulomb
-   limit, or slip -> stick. Unused ones read 1. */
+/* The switch functions: contact made or lost (delta_y = 0); the normal sign's damped
+   velocity = 0 (vn, or V for the centre dashpot), or the two edges of the normal lock's
+   band; stick -> slip at either edge of the Coulomb limit, or slip -> stick; and the factor
+   A of a slipping normal lock reaching 0 (model.md §3). Unused ones read 1. */
 enum {
     TRIBO_SWITCH_CONTACT,
     TRIBO_SWITCH_NORMAL_A,
     TRIBO_SWITCH_NORMAL_B,
     TRIBO_SWITCH_TANGENT_A,
     TRIBO_SWITCH_TANGENT_B,
+    TRIBO_SWITCH_LOCK_FACTOR,
     TRIBO_N_SWITCHES
 };
 
@@ -38,8 +40,8 @@ void tribo_switch_directions(const tribo_dyn_params *p, const tribo_force_law *p
 /* The phase after a switch (fired: the switch functions found crossing, as CVODE's root
    info) or, with fired = NULL, the phase a state is in when integration (re)starts there.
    Adjusts y: applies the resets of model.md §3, puts the switched boundary exactly on it
-   (Y = h, V = 0, delta_x = +-limit) so that switch functions start at 0 and follow the
-   motion, and books the energy the adjustments take out as dissipated work. */
+   (Y = h, damped velocity 0, delta_x = +-limit) so that switch functions start at 0 and
+   follow the motion, and books the energy the adjustments take out as dissipated work. */
 tribo_force_law tribo_phase_after(const tribo_dyn_params *p, const tribo_force_law *old, double *y,
                                  const int *fired);
 

@@ -23,6 +23,21 @@ static inline void tribo_pose_at(double eps2, double phi, tribo_pose *g)
     g->cx = -mxy / g->h;
 }
 
+/* kappa = dcx/dphi = (cx^2 - (1 - eps^2) cos 2phi) / h (model.md §3): how fast the contact
+   point runs along the plate as the particle turns; kappa Omega^2 is the normal acceleration
+   of the contact point that rotation alone gives (h'' = -kappa). */
+static inline double tribo_pose_kappa(double eps2, const tribo_pose *g)
+{
+    const double cos_2phi = g->cos_phi * g->cos_phi - g->sin_phi * g->sin_phi;
+    return (g->cx * g->cx - (1.0 - eps2) * cos_2phi) / g->h;
+}
+
+/* dkappa/dphi = cx (3 kappa - 4 h) / h, using (1 - eps^2) sin 2phi = -2 cx h. */
+static inline double tribo_pose_kappa_slope(const tribo_pose *g, double kappa)
+{
+    return g->cx * (3.0 * kappa - 4.0 * g->h) / g->h;
+}
+
 /* Radius of curvature at the lowest point, rho_c = eps^2 / h^3 (model.md §2). */
 static inline double tribo_contact_curvature_radius(double eps2, double h)
 {

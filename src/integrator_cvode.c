@@ -5,14 +5,17 @@
  *
  *   flight                      -> contact        at delta_y = 0 (going up)
  *   contact                     -> flight         at delta_y = 0 (going down)
- *   normal sign s = -1 / +1     -> the other sign, or normal lock, at V = 0
- *   normal lock (V = 0, Y held) -> s = +1 / -1    when Psi_N* leaves [dy(1-nu), dy(1+nu)]
+ *   normal sign s = -1 / +1     -> the other sign, or normal lock, at vn = 0
+ *   normal lock (vn = 0,        -> s = +1 / -1    when Psi_N* leaves [dy(1-nu), dy(1+nu)],
+ *     delta_y held)                               or a slipping lock's A reaches 0
  *   stick                       -> slip           at |delta_x| = mu Psi_N
  *   slip                        -> stick          when the stretch would leave the limit
  *                                                 (sigma vs falls below d(mu Psi_N)/dtau)
  *
- * At each switch the new phase is set, the resets of model.md §3 applied (delta_x = 0 on a new
- * contact, the stretch held within the new limit), and CVODE restarted there.
+ * (vn = V + cx Omega is the contact point's normal velocity; with damping_point = 1 the
+ * centre's V takes its place and the lock holds Y, model.md §3.) At each switch the new
+ * phase is set, the resets of model.md §3 applied (delta_x = 0 on a new contact, the
+ * stretch held within the new limit), and CVODE restarted there.
  *
  * The phases, their switch functions and what happens at a switch are force_phases.c's;
  * this file drives CVODE through them. A switch function that dips past zero and back
@@ -65,6 +68,7 @@ typedef struct cvode_integrator {
     SUNMatrix jac;
     SUNLinearSolver ls;
     phase phase;
+    double lock_depth; /* the delta_y a contact-point normal lock holds, from its restart */
     int replaying; /* re-taking saved steps: no counting, no charging */
 
     /* where CVODE was last (re)started, and the steps taken since */
@@ -129,11 +133,36 @@ static void error_handler(int code, const char *module, const char *function, ch
         tribo_warn(c->m, c->message);
 }
 
+static int holds_depth(const cvode_integrator *c)
+{
+    return c->phase.normal == TRIBO_NORMAL_LOCK && tribo_touching(&c->phase) &&
+           c->dyn->damping_point == TRIBO_DAMPING_CONTACT_POINT;
+}
+
+/* A contact-point normal lock holds delta_y and vn = 0 (model.md §3). CVODE follows them
+   to its tolerances; over many steps that error would add up, so the points the lock
+   commits and restarts from are put back on them: Y = h(phi) - delta_y of the lock,
+   V = -cx Omega. (The centre dashpot's lock holds Y and V exactly: dY = dV = 0.) */
+static void hold_lock(const cvode_integrator *c, double *y)
+{
+    if (!holds_depth(c))
+        return;
+    tribo_pose g;
+    tribo_pose_at(c->dyn->eps2, y[TRIBO_IPHI], &g);
+    y[TRIBO_IY] = g.h - c->lock_depth;
+    y[TRIBO_IV] = -(g.cx * y[TRIBO_IOMEGA]);
+}
+
 /* (Re)start CVODE at (t, y) in phase ph. */
 static tribo_status restart_at(cvode_integrator *c, double t, const double *y, const phase *ph)
 {
     tribo_model *m = c->m;
     c->phase = *ph;
+    if (holds_depth(c)) {
+        tribo_pose g;
+        tribo_pose_at(c->dyn->eps2, y[TRIBO_IPHI], &g);
+        c->lock_depth = g.h - y[TRIBO_IY];
+    }
     c->t_restart = t;
     memcpy(c->y_restart, y, sizeof c->y_restart);
     c->steps_since_restart = 0;
@@ -281,6 +310,7 @@ static tribo_status take_step(cvode_integrator *c)
     c->open = 1;
     c->t_end = t_ret;
     memcpy(c->y_end, N_VGetArrayPointer(c->y), (size_t)c->n * sizeof(double));
+    hold_lock(c, c->y_end);
     c->ends_at_root = flag == CV_ROOT_RETURN;
     if (c->ends_at_root)
         CVodeGetRootInfo(c->mem, c->roots);
@@ -354,6 +384,7 @@ static void find_grazing_switch(cvode_integrator *c, double t_start)
         }
         c->t_end = b;
         dense(c, b, c->y_end);
+        hold_lock(c, c->y_end);
         c->ends_at_root = 1;
         for (int i = 0; i < N_ROOTS; i++)
             c->roots[i] = i == found ? dir[i] : 0;
@@ -404,7 +435,8 @@ static void fill_point(cvode_integrator *c, tribo_point *p, double t, const doub
 {
     p->t = t;
     memcpy(p->y, y, sizeof p->y);
-    tribo_contact_at(c->dyn, &c->phase, y, &p->contact);
+    hold_lock(c, p->y);
+    tribo_contact_at(c->dyn, &c->phase, p->y, &p->contact);
     if (tribo_touching(&c->phase)) {
         /* the phase decides contact, also where rounding makes delta_y = -1e-17 */
         p->contact.in_contact = 1;

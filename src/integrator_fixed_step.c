@@ -3,16 +3,22 @@
  * Classical 4th-order Runge-Kutta on the first-order system of dynamics.h (not the
  * paper's Runge-Kutta-Nystrom: the tangential spring stretch is a first-order state
  * and the forces depend on the velocities, so the Nystrom form gains nothing). The
- * set-valued sign of V is regularised as tanh(V / v_reg) (model.md §3) and the stretch is
+ * set-valued sign of the damped normal velocity (the contact point's vn = V + cx Omega, or
+ * the centre's V) is regularised as tanh(vn / v_reg) (model.md §3) and the stretch is
  * clamped to the Coulomb limit after each step.
  *
  * Steps lie on the grid t_base + k dt whatever times are asked for; the state at an
  * asked time between grid points is a partial step from the last one, not committed.
  *
- * The regularised sign is stiff within a few v_reg of V = 0: there dV/dtau has the rate
- * lambda = nu delta_y sech^2(V / v_reg) / v_reg, and RK4 is unstable once lambda h passes
- * 2.79. Where a step could reach that, the motion is sub-stepped (charging still once per
- * step); elsewhere, as in all of the paper's runs, a step is one RK4 step.
+ * The regularised sign is stiff within a few v_reg of vn = 0: there dvn/dtau has the rate
+ * lambda = nu delta_y sech^2(vn / v_reg) / v_reg times the factor of Psi_N in dvn/dtau
+ * (1 for the centre's V; for the contact point's vn at most 1 + (cx^2 + mu |cx| h) / I,
+ * model.md §3), and RK4 is unstable once lambda h passes 2.79. Where a step could reach
+ * that, the motion is sub-stepped (charging still once per step); elsewhere a step is one
+ * RK4 step.
+ *
+ * Charging follows the paper: a step is charged at its end point's contact. The frictional
+ * work of a step that ends in flight is still booked into Sigma_s (model.md §5b).
  */
 #include "integrator.h"
 
@@ -33,7 +39,7 @@ static const tribo_force_law LAW = {TRIBO_CONTACT_BY_GEOMETRY, TRIBO_NORMAL_REGU
 #define STABLE_LAMBDA_H 2.0
 
 /* How many RK4 sub-steps a step of size h from p needs to stay stable: the largest rate
-   the regularised sign can have during the step, for |V| as small as the step allows.
+   the regularised sign can have during the step, for |vn| as small as the step allows.
    Uses the contact already evaluated at p (the end of the last step). */
 static int substeps_needed(const tribo_dyn_params *dp, const tribo_point *p, double h)
 {
@@ -41,17 +47,31 @@ static int substeps_needed(const tribo_dyn_params *dp, const tribo_point *p, dou
         return 1;
     const double *y = p->y;
     const tribo_contact_eval *c = &p->contact;
-    /* over the step delta_y and V move by at most their rates times h */
+    /* over the step delta_y and vn move by at most their rates times h */
     const double dy_max =
         c->pose.h - y[TRIBO_IY] + h * (fabs(y[TRIBO_IV]) + fabs(c->pose.cx * y[TRIBO_IOMEGA]));
     if (dy_max <= 0.0)
         return 1;
-    const double accel = dp->Gamma + fabs(dp->F_N) + dy_max * (1.0 + dp->nu);
-    const double v_min = fmax(0.0, fabs(y[TRIBO_IV]) - accel * h) / dp->v_reg;
+    const double force_max = dy_max * (1.0 + dp->nu);
+    double gain = 1.0, accel, vn;
+    if (dp->damping_point == TRIBO_DAMPING_CENTRE) {
+        accel = dp->Gamma + fabs(dp->F_N) + force_max;
+        vn = y[TRIBO_IV];
+    } else {
+        /* over every orientation |cx| <= 1 - eps, h <= 1 and |kappa| <= 2 (1 - eps) / eps, so
+           over the step |cx| grows by at most h |kappa| |Omega| */
+        const double spin = fabs(y[TRIBO_IOMEGA]) + h * dp->inv_inertia * force_max * (1.0 + dp->mu);
+        const double kappa_max = 2.0 * (1.0 - dp->eps) / dp->eps;
+        const double arm = fmin(1.0 - dp->eps, fabs(c->pose.cx) + h * kappa_max * spin);
+        gain = 1.0 + dp->inv_inertia * arm * (arm + dp->mu);
+        accel = dp->Gamma + fabs(dp->F_N) + force_max * gain + kappa_max * spin * spin;
+        vn = tribo_damped_velocity(dp, &c->pose, y);
+    }
+    const double v_min = fmax(0.0, fabs(vn) - accel * h) / dp->v_reg;
     if (v_min >= 20.0) /* sech^2 < 2e-17 */
         return 1;
     const double sech = 1.0 / cosh(v_min);
-    const double n = ceil(dp->nu * dy_max * sech * sech / dp->v_reg * h / STABLE_LAMBDA_H);
+    const double n = ceil(dp->nu * dy_max * sech * sech / dp->v_reg * h / STABLE_LAMBDA_H * gain);
     return n > 1.0 ? (n < 1e6 ? (int)n : 1000000) : 1;
 }
 

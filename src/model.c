@@ -41,6 +41,9 @@ void tribo_derive_params(tribo_model *m)
     d->g_n = s->Gamma * cos(beta);
     d->inv_inertia = 4.0 / (1.0 + d->eps2); /* model.md §4 */
     d->v_reg = s->v_reg;
+    d->damping_point = s->damping_point;
+    d->rtol = s->rtol;
+    d->atol = s->atol;
 }
 
 /* The initial point of the scene (model.md §7 by default); its contact is evaluated by the

@@ -57,6 +57,12 @@ typedef enum tribo_integrator_kind {
     TRIBO_INTEGRATOR_CVODE_BDF = 2   /* the same with BDF (for stiff scenes)        */
 } tribo_integrator_kind;
 
+/* Where the normal dashpot takes its velocity (parameter damping_point, docs/model.md §3). */
+typedef enum tribo_damping_point {
+    TRIBO_DAMPING_CONTACT_POINT = 0, /* vn = V + cx Omega, the indentation rate (default)  */
+    TRIBO_DAMPING_CENTRE = 1         /* the centre's V: the paper's text read literally    */
+} tribo_damping_point;
+
 #define TRIBO_CTYPE_REAL double
 #define TRIBO_CTYPE_INTEGER int
 #define TRIBO_CTYPE_COUNT int

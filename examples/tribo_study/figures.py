@@ -1,4 +1,5 @@
-"""The study's figures (PNG), one file per quantity, low and high friction side by side.
+"""The study's figures (PNG), one file per quantity, low and high friction side by side;
+the first three with a row per normal dashpot when the study compares dashpots.
 
     bounce_amplitude.png   upper envelope of Y against tau, one line per epsilon
     charge_vs_time.png     Q_static and Q_sliding against tau, one line per epsilon
@@ -19,6 +20,7 @@ import numpy as np  # noqa: E402
 
 from .summary import ENVELOPE_WIDTH, MODES, TURNED_OVER, WARMUP, bounce_envelope, report_times, \
     time_label  # noqa: E402
+from .specs import dashpot_name  # noqa: E402
 from .tables import FRICTION_TITLES  # noqa: E402
 
 FIGURES = ["bounce_amplitude.png", "charge_vs_time.png", "charge_vs_epsilon.png",
@@ -52,34 +54,51 @@ def _panels(result, rows, sharey=False):
     return fig, axes, frictions
 
 
+def _dashpot_label(result, dashpot):
+    """'' for a study of one dashpot; else which dashpot a panel shows."""
+    if len(result.settings.dashpots) == 1:
+        return ""
+    return f"\ndashpot on the {dashpot_name(dashpot)}"
+
+
 def bounce_amplitude(result):
-    fig, axes, frictions = _panels(result, 1)
+    dashpots = result.settings.dashpots
+    fig, axes, frictions = _panels(result, len(dashpots), sharey=True)
     colours = _colours(result.settings.epsilons)
-    for j, friction in enumerate(frictions):
-        ax = axes[0][j]
-        for e in result.settings.epsilons:
-            s = result.series[(friction, e)]
-            ax.plot(s["tau"], bounce_envelope(s), color=colours[e], lw=1, label=f"eps {e:g}")
-        ax.set_yscale("log")  # from a tenth (flat, thin) to tens (skipping) of the semi-major axis
-        ax.set_title(f"bounce amplitude, {FRICTION_TITLES[friction]} friction", fontsize=10)
-        ax.set_xlabel("tau")
-        ax.set_ylabel(f"upper envelope of Y (max over {ENVELOPE_WIDTH:g})")
-        ax.grid(alpha=0.3)
+    for i, d in enumerate(dashpots):
+        for j, friction in enumerate(frictions):
+            ax = axes[i][j]
+            for e in result.settings.epsilons:
+                s = result.series_of(d, friction, e)
+                ax.plot(s["tau"], bounce_envelope(s), color=colours[e], lw=1, label=f"eps {e:g}")
+            ax.set_yscale("log")  # from a tenth (flat, thin) to tens (tumbling) of the semi-major axis
+            ax.set_title(f"bounce amplitude, {FRICTION_TITLES[friction]} friction"
+                         f"{_dashpot_label(result, d)}", fontsize=10)
+            ax.set_xlabel("tau")
+            ax.set_ylabel(f"upper envelope of Y (max over {ENVELOPE_WIDTH:g})")
+            ax.grid(alpha=0.3)
     axes[0][-1].legend(fontsize=7, ncol=2, loc="upper left", bbox_to_anchor=(1.01, 1))
     fig.tight_layout()
     return fig
 
 
+def _model_rows(result):
+    """(charge model, dashpot) for each row of the charge figures."""
+    return [(model, d) for d in result.settings.dashpots for model in ("static", "sliding")]
+
+
 def charge_vs_time(result):
-    fig, axes, frictions = _panels(result, 2)
+    rows = _model_rows(result)
+    fig, axes, frictions = _panels(result, len(rows))
     colours = _colours(result.settings.epsilons)
-    for i, model in enumerate(("static", "sliding")):
+    for i, (model, d) in enumerate(rows):
         for j, friction in enumerate(frictions):
             ax = axes[i][j]
             for e in result.settings.epsilons:
-                s = result.series[(friction, e)]
+                s = result.series_of(d, friction, e)
                 ax.plot(s["tau"], s[f"Q_{model}"], color=colours[e], lw=1, label=f"eps {e:g}")
-            ax.set_title(f"Q_{model}, {FRICTION_TITLES[friction]} friction", fontsize=10)
+            ax.set_title(f"Q_{model}, {FRICTION_TITLES[friction]} friction{_dashpot_label(result, d)}",
+                         fontsize=10)
             ax.set_xlabel("tau")
             ax.set_ylabel(f"Q_{model}")
             ax.grid(alpha=0.3)
@@ -89,18 +108,20 @@ def charge_vs_time(result):
 
 
 def charge_vs_epsilon(result):
-    fig, axes, frictions = _panels(result, 2)
+    rows = _model_rows(result)
+    fig, axes, frictions = _panels(result, len(rows))
     times = report_times(result.settings.t_end)
     cmap = plt.get_cmap("plasma")
-    for i, model in enumerate(("static", "sliding")):
+    for i, (model, d) in enumerate(rows):
         for j, friction in enumerate(frictions):
             ax = axes[i][j]
-            runs = result.runs[result.runs.friction == friction].sort_values("epsilon")
+            runs = result.runs_of(d)
+            runs = runs[runs.friction == friction].sort_values("epsilon")
             for k, t in enumerate(times):
                 ax.plot(runs["epsilon"], runs[f"Q_{model}_{time_label(t)}"], "o-",
                         color=cmap(0.85 * k / max(1, len(times) - 1)), label=f"tau = {t:g}")
-            ax.set_title(f"Q_{model} against roundness, {FRICTION_TITLES[friction]} friction",
-                         fontsize=10)
+            ax.set_title(f"Q_{model} against roundness, {FRICTION_TITLES[friction]} friction"
+                         f"{_dashpot_label(result, d)}", fontsize=10)
             ax.set_xlabel("epsilon = b/a")
             ax.set_ylabel(f"Q_{model}")
             ax.grid(alpha=0.3)

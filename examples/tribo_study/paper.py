@@ -1,6 +1,7 @@
 """The paper's study (docs/model.md section 7) through the FMU: both friction cases, a range
 of roundness values, both charge models, to the horizon; the transition roundness of
-each friction case; figures and tables.
+each friction case; figures and tables. Optionally the same grid with other normal
+dashpots (damping_point, docs/model.md section 3), side by side with the study's own.
 
 Everything a run produces goes to <out>/runs/ (results.csv: one row per run, keyed;
 series/<key>.csv: its time series), so a study that is interrupted resumes where it
@@ -35,6 +36,13 @@ class StudySettings:
     # points per round of the eps_t multi-section: a setting of the study, not of the
     # executor, so that the search (and the runs it makes) is the same wherever it runs
     points_per_round: int = 2
+    # the normal dashpots (damping_point values): the first is the study's own (eps_t,
+    # the detailed tables); the grid is run with the others too, for comparison
+    dashpots: tuple = (0,)
+
+    @property
+    def dashpot(self) -> int:
+        return self.dashpots[0]
 
 
 FULL = StudySettings(epsilons=PAPER_EPSILONS, t_end=5000.0, transition_width=0.002)
@@ -46,8 +54,10 @@ REDUCED = StudySettings(epsilons=(0.1, 0.3, 0.5, 0.7, 0.9, 1.0), t_end=1000.0,
 @dataclass
 class StudyResult:
     settings: StudySettings
-    runs: pd.DataFrame  # one row per (friction, epsilon) of the grid, with a "friction" column
-    series: dict  # (friction, epsilon) -> time series
+    # one row per (dashpot, friction, epsilon) of the grid, with "friction" and
+    # "damping_point" columns, the study's own dashpot first
+    all_runs: pd.DataFrame
+    all_series: dict  # (damping_point, friction, epsilon) -> time series
     transitions: dict  # friction -> Transition
     transition_points: pd.DataFrame  # every evaluated point of the searches
     tolerance_checks: pd.DataFrame  # the bracket ends at CHECK_TOLERANCES
@@ -58,6 +68,18 @@ class StudyResult:
     fmu_name: str = ""
     fmu_sha256: str = ""
     files: list = field(default_factory=list)
+
+    @property
+    def runs(self) -> pd.DataFrame:
+        """The grid with the study's own dashpot: one row per (friction, epsilon)."""
+        return self.runs_of(self.settings.dashpot)
+
+    def runs_of(self, dashpot: int) -> pd.DataFrame:
+        return self.all_runs[self.all_runs["damping_point"] == dashpot].reset_index(drop=True)
+
+    def series_of(self, dashpot: int, friction: str, epsilon: float) -> pd.DataFrame:
+        return self.all_series[(dashpot, friction, epsilon)]
+
 
 
 def run_study(settings: StudySettings, image, out_dir: str, executor, *, resume: bool = True,
@@ -80,28 +102,29 @@ def run_study(settings: StudySettings, image, out_dir: str, executor, *, resume:
         counts["total"].update(report.keys)
         return report.results
 
-    grid = [(f, e) for f in settings.frictions for e in settings.epsilons]
-    runs = sweep([paper_spec(e, f, settings.t_end, settings.record_interval) for f, e in grid],
-                 "study runs", fresh=not resume)
-    runs.insert(1, "friction", [f for f, _ in grid])
-    series = {(f, e): read_series(series_dir, k) for (f, e), k in zip(grid, runs["key"])}
+    def spec(e, friction, dashpot=settings.dashpot, **overrides):
+        return paper_spec(e, friction, settings.t_end, settings.record_interval,
+                          damping_point=dashpot, **overrides)
+
+    grid = [(d, f, e) for d in settings.dashpots for f in settings.frictions
+            for e in settings.epsilons]
+    runs = sweep([spec(e, f, d) for d, f, e in grid], "study runs", fresh=not resume)
+    runs.insert(1, "friction", [f for _, f, _ in grid])
+    series = {(d, f, e): read_series(series_dir, k) for (d, f, e), k in zip(grid, runs["key"])}
 
     transitions, points, checks = {}, [], []
     for friction in settings.frictions:
         def turns(epsilons, friction=friction):
-            specs = [paper_spec(e, friction, settings.t_end, settings.record_interval)
-                     for e in epsilons]
-            rows = sweep(specs, f"eps_t search, {friction} friction")
+            rows = sweep([spec(e, friction) for e in epsilons], f"eps_t search, {friction} friction")
             return [bool(v) for v in rows["turned_over"]]
 
         found = find_transition(turns, settings.epsilons, settings.transition_width,
                                 points_per_round=settings.points_per_round)
         transitions[friction] = found
-        evaluated = sweep([paper_spec(e, friction, settings.t_end, settings.record_interval)
-                           for e in sorted(found.evaluated)], "eps_t points")
+        evaluated = sweep([spec(e, friction) for e in sorted(found.evaluated)], "eps_t points")
         points.append(evaluated.assign(friction=friction,
                                        on_grid=evaluated["epsilon"].isin(found.grid)))
-        checks += _tolerance_check(found, friction, settings, sweep)
+        checks += _tolerance_check(found, friction, spec, sweep)
 
     result = StudyResult(settings, runs, series, transitions, pd.concat(points, ignore_index=True),
                          pd.DataFrame(checks), executed=counts["executed"],
@@ -114,12 +137,11 @@ def run_study(settings: StudySettings, image, out_dir: str, executor, *, resume:
     return result
 
 
-def _tolerance_check(found: Transition, friction: str, settings: StudySettings, sweep) -> list:
+def _tolerance_check(found: Transition, friction: str, spec, sweep) -> list:
     ends = [e for e in (found.lo, found.hi) if e is not None]
     if not ends:
         return []
-    specs = [paper_spec(e, friction, settings.t_end, settings.record_interval, **CHECK_TOLERANCES)
-             for e in ends]
+    specs = [spec(e, friction, **CHECK_TOLERANCES) for e in ends]
     tight = sweep(specs, f"tolerance check, {friction} friction")
     return [{"friction": friction, "epsilon": e, "turns_at_rtol_1e-8": found.evaluated[e],
              "turns_at_rtol_1e-10": bool(t), "turns_max_at_rtol_1e-10": m}

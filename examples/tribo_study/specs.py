@@ -13,8 +13,8 @@ import math
 from dataclasses import dataclass, field
 
 # docs/model.md section 7 (the paper's set-up), with CVODE instead of the paper's fixed step
-# (50-150x faster at equal error, see docs/work_precision.md). epsilon, mu and nu are
-# set per run.
+# (faster at equal error, see docs/work_precision.md), and the normal dashpot on the contact
+# point (docs/model.md section 3). epsilon, mu and nu are set per run.
 PAPER_SETUP = {
     "Gamma": 0.001,
     "beta": 45 * (math.pi / 180.0),  # rad
@@ -28,9 +28,16 @@ PAPER_SETUP = {
     "integrator": 1,  # CVODE (Adams)
     "rtol": 1e-8,
     "atol": 1e-10,
+    "damping_point": 0,
 }
 
 FRICTION_CASES = {"low": 0.1, "high": 1.0}  # mu = nu
+# damping_point: the velocity the normal dashpot opposes (docs/model.md section 3)
+DASHPOTS = {0: "contact point", 1: "centre"}
+
+
+def dashpot_name(damping_point: int) -> str:
+    return DASHPOTS.get(damping_point, f"damping_point = {damping_point}")
 
 # Parameters given as decimals (e.g. from a linspace) are rounded to this many decimal
 # places, so that 0.30000000000000004 and 0.3 are the same run.
@@ -59,7 +66,8 @@ def paper_spec(epsilon: float, friction: str, t_end: float, record_interval: flo
     return RunSpec(normalise_values(params), float(t_end), float(record_interval))
 
 
-def normalise_values(params: dict, integer_names=("n_segments", "charge_model", "integrator"),
+def normalise_values(params: dict, integer_names=("n_segments", "charge_model", "integrator",
+                                                  "damping_point"),
                      exact_names=("beta", "phi0", "Omega0")) -> dict:
     """Integers as int, angles (in rad: no decimal numbers) as they are, everything else as
     a float rounded to DECIMALS places."""

@@ -1,8 +1,8 @@
 """The study's tables: every number per run as CSV, the headline numbers as markdown.
 
-    study_runs.csv          one row per (friction, epsilon): parameters, charges at the
-                            report times, contact statistics, mode fractions, warnings,
-                            bounce amplitude, CPU and wall time of the run
+    study_runs.csv          one row per (dashpot, friction, epsilon): parameters, charges
+                            at the report times, contact statistics, mode fractions,
+                            warnings, bounce amplitude, CPU and wall time of the run
     transition_points.csv   every roundness the eps_t search evaluated
     study.md                set-up, definitions, eps_t, the tables, timing, figures
 """
@@ -13,6 +13,7 @@ import os
 import pandas as pd
 
 from .executors import available_cores
+from .specs import dashpot_name
 from .summary import ENVELOPE_WIDTH, MODES, TURNED_OVER, WARMUP, report_times, time_label
 
 FRICTION_TITLES = {"low": "low (mu = nu = 0.1)", "high": "high (mu = nu = 1.0)"}
@@ -47,17 +48,75 @@ MOTION_FORMATS = {"contact_fraction": ".3f", "turns": ".3g", "warnings": "d", "m
                   **{m: ".3f" for m in MODES}}
 
 
-def motion_table(runs: pd.DataFrame) -> pd.DataFrame:
-    out = runs[["friction", "epsilon", "contact_fraction", "turns"]].copy()
+def _add_motion(out: pd.DataFrame, runs: pd.DataFrame) -> pd.DataFrame:
+    """The motion's columns of a run: contact, turns, mode fractions after the warm-up,
+    warnings, indentation, height, bounce amplitude."""
+    out["contact_fraction"] = runs["contact_fraction"]
+    out["turns"] = runs["turns"]
     for m in MODES:
         out[m] = runs[f"fraction_{m}_after_warmup"]
     out["warnings"] = runs["assumption_warnings"]
     out["max delta_y / eps"] = runs["delta_y_max"] / runs["epsilon"]
     out["Y max"] = runs["Y_max"]
     out["bounce amp."] = runs["bounce_amplitude_mean"]
+    return out
+
+
+def motion_table(runs: pd.DataFrame) -> pd.DataFrame:
+    out = _add_motion(runs[["friction", "epsilon"]].copy(), runs)
     out["CPU s"] = runs["cpu_s"]
     out["wall s"] = runs["wall_s"]
     return out
+
+
+COMPARISON_FORMATS = {**MOTION_FORMATS, "Q_static": ".4f", "Q_sliding": ".4f"}
+
+
+def dashpot_table(result) -> pd.DataFrame:
+    """The grid with every dashpot, the dashpots of one (friction, epsilon) on adjacent rows;
+    the charges at the horizon."""
+    s = result.settings
+    runs = result.all_runs
+    runs = runs.assign(_f=runs["friction"].map({f: i for i, f in enumerate(s.frictions)}),
+                       _d=runs["damping_point"].map({d: i for i, d in enumerate(s.dashpots)}))
+    runs = runs.sort_values(["_f", "epsilon", "_d"], kind="stable")
+    out = runs[["friction", "epsilon"]].copy()
+    out["dashpot"] = runs["damping_point"].map(dashpot_name)
+    _add_motion(out, runs)
+    for model in ("static", "sliding"):
+        out[f"Q_{model}"] = runs[f"Q_{model}_{time_label(s.t_end)}"]
+    out["CPU s"] = runs["cpu_s"]
+    return out
+
+
+def above_transition_note(result) -> str:
+    """What the runs that turn over do (above eps_t, on the grid): how deep they indent,
+    how often beyond the assumptions, how high they fly, how they move."""
+    lines = []
+    for friction, t in result.transitions.items():
+        runs = result.runs
+        g = runs[(runs["friction"] == friction) & (runs["epsilon"] >= t.hi)] if t.found else runs[:0]
+        if not len(g):
+            continue
+
+        def span(values, fmt):
+            lo, hi = values.min(), values.max()
+            return format(lo, fmt) if lo == hi else f"{format(lo, fmt)} to {format(hi, fmt)}"
+
+        per_time = g["assumption_warnings"].sum() / (len(g) * result.settings.t_end)
+        lines.append(
+            f"- {FRICTION_TITLES.get(friction, friction)}, the grid's {len(g)} run(s) above eps_t "
+            f"(epsilon {span(g['epsilon'], 'g')}): largest recorded indentation "
+            f"{span(g['delta_y_max'] / g['epsilon'], '.3f')} of epsilon; assumption warnings "
+            f"{span(g['assumption_warnings'], 'd')} per run ({per_time:.2g} per unit time); "
+            f"highest centre {span(g['Y_max'], '.3g')}; contact fraction "
+            f"{span(g['contact_fraction'], '.3f')}; after the warm-up in flight "
+            f"{span(g['fraction_flight_after_warmup'], '.3f')}, tumbling "
+            f"{span(g['fraction_tumbling_after_warmup'], '.3f')}, rolling "
+            f"{span(g['fraction_rolling_after_warmup'], '.3f')}, rocking "
+            f"{span(g['fraction_rocking_after_warmup'], '.3f')}, bouncing "
+            f"{span(g['fraction_bouncing_after_warmup'], '.3f')}.")
+    return "\n".join(lines)
 
 
 def transition_table(result) -> pd.DataFrame:
@@ -102,7 +161,7 @@ def write_all(result, out_dir: str, command: str) -> list[str]:
     s = result.settings
     runs = result.runs
     study_runs = os.path.join(out_dir, "study_runs.csv")
-    runs.to_csv(study_runs, index=False)
+    result.all_runs.to_csv(study_runs, index=False)
     points = os.path.join(out_dir, "transition_points.csv")
     result.transition_points[["friction", "epsilon", "on_grid", "turns_max", "turned_over", "turns",
                               "contact_fraction", "key"]].sort_values(["friction", "epsilon"]) \
@@ -112,7 +171,13 @@ def write_all(result, out_dir: str, command: str) -> list[str]:
                                if result.transitions[f].evaluated.get(round(e, 10)))
                   for f in result.transitions}
     charges, motion = charges_table(runs, s.t_end), motion_table(runs)
-    cpu_total = runs["cpu_s"].sum()
+    cpu_total = result.all_runs["cpu_s"].sum()
+    others = [dashpot_name(d) for d in s.dashpots[1:]]
+    dashpot_text = (f"Normal dashpot on the {dashpot_name(s.dashpot)} (damping_point = {s.dashpot}, "
+                    f"docs/model.md section 3)" +
+                    (f"; the grid is run again with the dashpot on the {' and the '.join(others)} "
+                     f"(damping_point = {', '.join(str(d) for d in s.dashpots[1:])}) for the "
+                     f"comparison below; everything else is the first's." if others else "."))
     md = [
         "# The paper's study through the FMU",
         "",
@@ -124,7 +189,7 @@ def write_all(result, out_dir: str, command: str) -> list[str]:
         f"eta = 0.1, N = 2000 segments, drop speed 0.025, both charge models; mu = nu = 0.1 "
         f"(low friction) and 1.0 (high friction); epsilon in {{{', '.join(f'{e:g}' for e in s.epsilons)}}}; "
         f"tau from 0 to {s.t_end:g}, outputs recorded every {s.record_interval:g}. "
-        f"Integrator: CVODE (Adams), rtol = 1e-8, atol = 1e-10.",
+        f"Integrator: CVODE (Adams), rtol = 1e-8, atol = 1e-10. {dashpot_text}",
         "",
         "## Definitions",
         "",
@@ -163,11 +228,25 @@ def write_all(result, out_dir: str, command: str) -> list[str]:
         "## The contact model's assumptions",
         "",
         assumptions_note(runs),
+        above_transition_note(result),
         "",
+    ]
+    if len(s.dashpots) > 1:
+        md += [
+            "## The dashpots side by side",
+            "",
+            f"The grid with each dashpot, the two runs of one (friction, epsilon) on adjacent rows: "
+            f"contact fraction and turns at the end, mode fractions after the warm-up, the "
+            f"charges at tau = {s.t_end:g}, the run's CPU time.",
+            "",
+            markdown_table(dashpot_table(result), COMPARISON_FORMATS),
+            "",
+        ]
+    md += [
         "## Run time",
         "",
-        f"{result.total_runs} runs in all ({len(runs)} on the grid, the rest for eps_t and the "
-        f"tolerance check); {result.executed} executed by this invocation on {result.executor}, "
+        f"{result.total_runs} runs in all ({len(result.all_runs)} on the grid, the rest for eps_t "
+        f"and the tolerance check); {result.executed} executed by this invocation on {result.executor}, "
         f"the others reused from runs/results.csv. Wall time of this invocation: "
         f"{result.wall_s:.1f} s (from the start of the command, Dask start-up included; the "
         f"machine has {available_cores()} cores). CPU time of the grid's runs: {cpu_total:.1f} s "

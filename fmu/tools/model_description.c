@@ -309,7 +309,7 @@ int main(int argc, char **argv)
     puts("<fmiModelDescription");
     printf("  fmiVersion=\"%d.0\"\n  modelName=\"tribo\"\n", version);
     printf("  %s=\"" TOKEN_PLACEHOLDER "\"\n", version == 2 ? "guid" : "instantiationToken");
-    puts("  description=\"A 2D elliptical particle tribocharging on a tilted plate (after Ireland 2012)\"");
+    puts("  description=\"A 2D elliptical particle tribocharging on a tilted plate (after Ireland 2012; the equations: documentation/index.html)\"");
     printf("  version=\"%s\"\n", tool_version);
     puts("  author=\"" TRIBO_AUTHOR "\"");
     puts("  copyright=\"" TRIBO_COPYRIGHT "\"");

@@ -169,10 +169,11 @@ Test(charging, sweep_gives_each_segment_its_exact_contact_time)
     const double P = c.arc.perimeter, L = P / 400;
     moving mv = {0.2 * P, 0.06, 3.3 * L, P, 0.0, 0.0};
     const tribo_contact_probe pr = {probe, &mv};
-    double work = 0.0, Sigma_s = 0.01;
+    double work = 0.0, globals[TRIBO_CHARGE_MAX_GLOBALS];
+    tribo_charging_start(&c, &PARAMS, globals); /* Sigma_s = Sigma0,ref = Sigma0 */
     const double T = 25.0; /* the contact travels 1.5, 0.28 of the perimeter */
     samples = 0;
-    cr_assert_eq(tribo_charging_sweep(&c, &PARAMS, &pr, 0.0, T, 1e-8, 1e-10, &work, &Sigma_s, apply,
+    cr_assert_eq(tribo_charging_sweep(&c, &PARAMS, &pr, 0.0, T, 1e-8, 1e-10, &work, globals, apply,
                                       NULL),
                  0);
     double worst = 0.0;
@@ -208,10 +209,11 @@ Test(charging, sweep_finishes_at_a_kinked_or_singular_end, .timeout = 30)
             const double kink = b - 0.3 * (b - a) * (k < 200 ? 1.0 : 1e-8);
             moving mv = {1.0, 1e-6, 0.3, c.arc.perimeter, kind ? b : 0.0, kind ? 0.0 : kink};
             const tribo_contact_probe pr = {probe, &mv};
-            double work = 0.0, Sigma_s = 0.01;
+            double work = 0.0, globals[TRIBO_CHARGE_MAX_GLOBALS];
+            tribo_charging_start(&c, &PARAMS, globals);
             samples = 0;
             cr_assert_eq(tribo_charging_sweep(&c, &PARAMS, &pr, a, b, 1e-12, 1e-14, &work,
-                                              &Sigma_s, apply, NULL), 0);
+                                              globals, apply, NULL), 0);
             cr_assert(samples < 100000, "interval %d: %ld samples", k, samples);
             const double exact = kind ? 2.0 / 3.0 * pow(b - a, 1.5)
                                       : 0.08 * ((kink - a) * (kink - a) + (b - kink) * (b - kink));

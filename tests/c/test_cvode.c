@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "geometry.h"
 #include "support.h"
 
 
@@ -74,16 +75,17 @@ Test(cvode, energy_balance_tightens_with_rtol, .timeout = 60)
 }
 
 /* The fixed step converges to CVODE on a regular (non-tumbling) case as its step shrinks.
-   Low friction: the particle slides and rocks, no normal lock, so v_reg plays no part.
-   Below ~1e-7 the fixed step's error is set by where each contact kink falls on its step
-   grid, so it does not fall monotonically (measured at tau = 20: 1.1e-7 at dt = 4e-3,
-   6.9e-8 at 1e-3, 3.1e-9 at 2.5e-4, 8.7e-9 at 6.25e-5): the test holds it to converging
-   over the range, to the 1e-8 level. */
+   Low friction: the particle slides and rocks, no normal lock. The regularised sign still
+   differs from the set-valued one wherever vn crosses 0 (once a bounce), by an error that
+   falls with v_reg: it floors the distance at ~1e-8 at v_reg = 1e-6 and ~2e-9 at 1e-8, so
+   the test takes v_reg = 1e-9 (sub-stepped where that is stiff). Measured at tau = 20:
+   1.7e-6 at dt = 1.6e-2, 1.3e-7 at 4e-3, 6.2e-9 at 1e-3, 4.4e-10 at 2.5e-4. */
 
 Test(cvode, fixed_step_converges_to_cvode, .timeout = 60)
 {
     tribo_scene ref_scene = cvode_scene(1e-12);
     ref_scene.epsilon = 0.3;
+    ref_scene.v_reg = 1e-9;
     ref_scene.charge_model = TRIBO_CHARGE_NONE;
     tribo_model *ref = make(&ref_scene);
     cr_assert_eq(tribo_advance(ref, 20.0), TRIBO_OK);
@@ -99,16 +101,27 @@ Test(cvode, fixed_step_converges_to_cvode, .timeout = 60)
         tribo_free(m);
     }
     cr_expect(d[0] > 10 * d[2] && d[1] > 10 * d[2], "distances %.3g, %.3g, %.3g", d[0], d[1], d[2]);
-    cr_expect(d[2] < 1e-8, "dt = 2.5e-4: %.3g from CVODE", d[2]);
+    cr_expect(d[2] < 1e-9, "dt = 2.5e-4: %.3g from CVODE", d[2]);
     tribo_free(ref);
 }
 
-/* High friction: the particle comes to normal lock, which the fixed step reaches through
-   the regularised sign; as v_reg shrinks (with a step that keeps tanh(V/v_reg) stable)
-   it approaches CVODE's set-valued lock. */
+/* The contact point's normal velocity vn = V + cx Omega at an output (model.md §3). */
+static double contact_point_velocity(tribo_model *m, double eps)
+{
+    tribo_pose g;
+    tribo_pose_at(eps * eps, tribo_get(m, TRIBO_Q_PHI), &g);
+    return tribo_get(m, TRIBO_Q_V) + g.cx * tribo_get(m, TRIBO_Q_OMEGA);
+}
+
+/* High friction, rocking: the particle comes to a normal lock that holds its contact point
+   (vn = 0) while it turns, so the centre moves (V != 0). The fixed step reaches it through
+   the regularised sign; as v_reg shrinks (with a step that keeps tanh(vn/v_reg) stable) it
+   approaches CVODE's set-valued lock, at first order in v_reg (measured at tau = 10:
+   distance 1.6e-3, 1.7e-4, 1.7e-5 for v_reg = 1e-4, 1e-5, 1e-6). */
 Test(cvode, regularised_lock_converges_to_the_set_valued_one, .timeout = 120)
 {
     tribo_scene ref_scene = cvode_scene(1e-11);
+    ref_scene.epsilon = 0.3;
     ref_scene.mu = ref_scene.nu = 1.0;
     ref_scene.charge_model = TRIBO_CHARGE_NONE;
     tribo_model *ref = make(&ref_scene);
@@ -123,11 +136,14 @@ Test(cvode, regularised_lock_converges_to_the_set_valued_one, .timeout = 120)
         tribo_model *m = make(&s);
         cr_assert_eq(tribo_advance(m, 10.0), TRIBO_OK);
         const double d = state_distance(m, ref);
-        cr_expect(d < previous / 3, "v_reg = %g: distance %.3g after %.3g", v_regs[i], d, previous);
+        cr_expect(d < previous / 5, "v_reg = %g: distance %.3g after %.3g", v_regs[i], d, previous);
         previous = d;
         tribo_free(m);
     }
-    cr_expect(tribo_get(ref, TRIBO_Q_V) == 0.0, "CVODE's lock holds V = 0 exactly");
+    cr_expect(contact_point_velocity(ref, ref_scene.epsilon) == 0.0 &&
+                  tribo_get(ref, TRIBO_Q_V) != 0.0 && tribo_get(ref, TRIBO_Q_OMEGA) != 0.0,
+              "CVODE's lock holds vn = 0 exactly while the particle turns: V = %g, Omega = %g",
+              tribo_get(ref, TRIBO_Q_V), tribo_get(ref, TRIBO_Q_OMEGA));
     tribo_free(ref);
 }
 
@@ -187,7 +203,7 @@ Test(cvode, modes_are_visited_and_counted)
             const int c = tribo_get(m, TRIBO_Q_IN_CONTACT) != 0.0;
             const int slipping = tribo_get(m, TRIBO_Q_SLIPPING) != 0.0;
             flight += !c;
-            lock += c && tribo_get(m, TRIBO_Q_V) == 0.0;
+            lock += c && contact_point_velocity(m, s.epsilon) == 0.0;
             slip += c && slipping;
             stick += c && !slipping;
             if (!c)
@@ -211,12 +227,13 @@ Test(cvode, modes_are_visited_and_counted)
 
 /* Never a silent failure: an input that would take CVODE forever (a spin of 1e12 rad per
    time unit needs steps of 2e-13 to see the lowest point swing) stops with an error that
-   gives the time and the state, and leaves the instance resettable. */
+   gives the time and the state, and leaves the instance resettable. (The particle is
+   dropped from above the reach of its tips: it spins in flight.) */
 Test(cvode, too_much_work_stops_with_the_time_and_state, .timeout = 30)
 {
     tribo_scene s = cvode_scene(1e-8);
     s.Omega0 = 1e12;
-    s.gap0 = 0.5;
+    s.gap0 = 1.0;
     s.charge_model = TRIBO_CHARGE_NONE;
     tribo_model *m = make(&s);
     cr_assert_eq(tribo_advance(m, 1.0), TRIBO_ERR_INTEGRATOR);

@@ -78,6 +78,26 @@ Test(forces, normal_force_opposes_the_normal_velocity)
     cr_expect_eq(ev.psi_n, 0.0);
 }
 
+/* The dashpot takes the contact point's normal velocity vn = V + cx Omega (model.md §3): a
+   centre at rest whose contact point moves into the plate by rotation is damped as pressing
+   in; with damping_point = 1 the centre's V = 0 gives the spring alone. */
+Test(forces, the_dashpot_takes_the_contact_points_velocity)
+{
+    const double dy = 0.01, nu = 0.2, phi = 0.4;
+    tribo_dyn_params p = params(0.5, 0.3, nu);
+    double y[TRIBO_NSTATE_MAX];
+    tribo_contact_eval ev;
+    state(y, 0.5, phi, dy, 0.0, 0.0, 0.1, 0.0);
+    tribo_contact_at(&p, &LAW, y, &ev);
+    const double vn = 0.1 * ev.pose.cx;
+    cr_assert(fabs(vn) > 1e3 * p.v_reg, "vn = %g", vn);
+    cr_expect_float_eq(ev.psi_n, dy * (1.0 - nu * (vn > 0.0 ? 1.0 : -1.0)), 1e-15,
+                       "vn = %g: Psi_N = %g", vn, ev.psi_n);
+    p.damping_point = TRIBO_DAMPING_CENTRE;
+    tribo_contact_at(&p, &LAW, y, &ev);
+    cr_expect_float_eq(ev.psi_n, dy, 1e-15, "the centre's V = 0: Psi_N = %g", ev.psi_n);
+}
+
 Test(forces, stick_and_slip_branches)
 {
     const double dy = 0.01, mu = 0.3;

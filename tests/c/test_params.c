@@ -93,6 +93,7 @@ Test(params, the_ranges_of_model_section_1)
         {"eta", 0.0, -1e-12},    {"tau_r", 1e-9, 0.0},           {"n_segments", 16, 15},
         {"v_reg", 1e-12, 0.0},   {"charge_model", 3, 4},         {"integrator", 2, 3},
         {"dt", 1e-3, 0.0},       {"gap0", 0.0, -1e-9},           {"drop_speed", 0.0, -1e-9},
+        {"damping_point", 1, 2}, {"damping_point", 0, -1},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         const tribo_param_info *p = tribo_param_find(cases[i].name);
@@ -119,6 +120,7 @@ Test(params, only_tunables_change_mid_run)
     cr_expect_eq(tribo_set_param(m, "epsilon", 0.7), TRIBO_ERR_NOT_TUNABLE);
     cr_expect(strstr(tribo_last_error(m), "epsilon") != NULL);
     cr_expect_eq(tribo_set_param(m, "n_segments", 32), TRIBO_ERR_NOT_TUNABLE);
+    cr_expect_eq(tribo_set_param(m, "damping_point", 1), TRIBO_ERR_NOT_TUNABLE);
     cr_expect_eq(tribo_set_param(m, "mu", -1.0), TRIBO_ERR_INVALID_ARGUMENT);
     cr_expect(strstr(tribo_last_error(m), "mu = -1") != NULL, "%s", tribo_last_error(m));
     cr_expect_eq(tribo_set_param(m, "mu", NAN), TRIBO_ERR_INVALID_ARGUMENT);
@@ -146,4 +148,43 @@ Test(params, segment_charges_of_a_missing_model_are_refused)
     cr_expect_eq(tribo_get_segment_charges(m, TRIBO_SEGMENTS_STATIC, out, 32), TRIBO_OK);
     cr_expect_eq(tribo_get(m, TRIBO_Q_SLIDING), 0.0);
     tribo_free(m);
+}
+
+/* Sigma0 is tunable (model.md §5b): a new value changes the sliding model's saturation
+   target from then on, not the charge already on the particle. Q_sliding is normalised by
+   Sigma0 at the start (Sigma0,ref), so it does not jump when Sigma0 doubles (it halved
+   before), the absolute mean density Sigma_mean does not jump either, and Sigma_s then
+   relaxes towards the new Sigma0 through contact, the charge following it. A reset starts
+   from the new Sigma0. Both integrators. */
+Test(params, tuning_Sigma0_moves_the_target_not_the_charge)
+{
+    for (int integrator = 0; integrator < 2; integrator++) {
+        tribo_scene s = scene_of("epsilon=0.3 n_segments=400 dt=1e-3");
+        s.integrator = integrator ? TRIBO_INTEGRATOR_CVODE : TRIBO_INTEGRATOR_FIXED_STEP;
+        tribo_model *m = make(&s);
+        cr_assert_eq(tribo_advance(m, 50.0), TRIBO_OK);
+        const double Q = tribo_get(m, TRIBO_Q_SLIDING), mean = tribo_get(m, TRIBO_Q_SIGMA_MEAN);
+        cr_assert(Q > 0.1, "charged to %g", Q);
+        cr_expect_float_eq(mean, Q * s.Sigma0, 1e-15 * mean, "Sigma_mean = Q_sliding Sigma0");
+        cr_assert_eq(tribo_set_param(m, "Sigma0", 2.0 * s.Sigma0), TRIBO_OK);
+        cr_expect_eq(tribo_get(m, TRIBO_Q_SLIDING), Q, "Q_sliding jumped at the change");
+        cr_expect_eq(tribo_get(m, TRIBO_Q_SIGMA_MEAN), mean);
+        /* continuous after it: a short advance changes Q_sliding little */
+        cr_assert_eq(tribo_advance(m, 50.01), TRIBO_OK);
+        cr_expect(fabs(tribo_get(m, TRIBO_Q_SLIDING) - Q) < 0.01 * Q, "Q_sliding %g after %g",
+                  tribo_get(m, TRIBO_Q_SLIDING), Q);
+        /* the new target: Sigma_s relaxes towards 2 Sigma0 in contact, and the charge with it */
+        cr_assert_eq(tribo_advance(m, 100.0), TRIBO_OK);
+        cr_expect(tribo_get(m, TRIBO_Q_SIGMA_S) > 1.5 * s.Sigma0, "Sigma_s = %g",
+                  tribo_get(m, TRIBO_Q_SIGMA_S));
+        cr_expect(tribo_get(m, TRIBO_Q_SLIDING) > 1.2 * Q, "Q_sliding %g after %g",
+                  tribo_get(m, TRIBO_Q_SLIDING), Q);
+        cr_expect_float_eq(tribo_get(m, TRIBO_Q_SIGMA_MEAN), tribo_get(m, TRIBO_Q_SLIDING) * s.Sigma0,
+                           1e-14 * tribo_get(m, TRIBO_Q_SIGMA_MEAN), "still normalised by the start's");
+        cr_assert_eq(tribo_reset(m), TRIBO_OK);
+        cr_assert_eq(tribo_advance(m, 50.0), TRIBO_OK);
+        cr_expect_float_eq(tribo_get(m, TRIBO_Q_SIGMA_MEAN), tribo_get(m, TRIBO_Q_SLIDING) * 2.0 * s.Sigma0,
+                           1e-14 * tribo_get(m, TRIBO_Q_SIGMA_MEAN), "a reset starts from the new Sigma0");
+        tribo_free(m);
+    }
 }

@@ -41,6 +41,7 @@ INVALID_VALUES = [
     ("n_segments", 8, ["n_segments = 8", "16 <= n_segments <= 10000000"]),
     ("charge_model", 4, ["charge_model = 4", "0 <= charge_model <= 3"]),
     ("integrator", -1, ["integrator = -1", "integrator <="]),
+    ("damping_point", 2, ["damping_point = 2", "0 <= damping_point <= 1"]),
     ("F_T_ext", math.nan, ["F_T_ext = nan", "any finite number"]),
     ("F_N_ext", math.inf, ["F_N_ext = inf", "any finite number"]),
 ]

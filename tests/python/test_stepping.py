@@ -65,7 +65,8 @@ def test_tunable_change_takes_effect_from_the_next_step(fmu_dir, reference_exe, 
 
 @pytest.mark.parametrize("version", VERSIONS)
 @pytest.mark.parametrize("name, value", [("epsilon", 0.3), ("n_segments", 32), ("charge_model", 1),
-                                         ("integrator", 1), ("Gamma", 0.002), ("dt", 1e-4)])
+                                         ("integrator", 1), ("Gamma", 0.002), ("dt", 1e-4),
+                                         ("damping_point", 1)])
 def test_structural_and_fixed_parameters_are_refused_after_initialization(
         fmu_dir, output_names, version, name, value):
     s = slave(fmu_dir, version)
@@ -163,3 +164,18 @@ def test_fmi3_structural_parameter_is_refused_in_initialization_mode(fmu_dir):
     s.set(epsilon=0.4)  # a fixed parameter is fine here
     s.fmu.exitInitializationMode()
     assert s.get("epsilon") == 0.4 and s.get("n_segments") == 2000
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_a_new_Sigma0_moves_the_target_not_the_charge(fmu_dir, version):
+    """docs/model.md §5b: Q_sliding is normalised by Sigma0 at the start; Sigma_mean is the
+    absolute mean density. Doubling Sigma0 between steps changes neither at once."""
+    s = slave(fmu_dir, version, epsilon=0.3)
+    s.step_to(20.0)
+    q, mean = s.get("Q_sliding"), s.get("Sigma_mean")
+    assert q > 0.1 and mean == pytest.approx(0.01 * q, rel=1e-14)
+    s.set(Sigma0=0.02)
+    assert (s.get("Q_sliding"), s.get("Sigma_mean")) == (q, mean)
+    s.step_to(60.0)
+    assert s.get("Sigma_mean") == pytest.approx(0.01 * s.get("Q_sliding"), rel=1e-14)
+    assert s.get("Q_sliding") > 1.2 * q  # towards the new, higher target

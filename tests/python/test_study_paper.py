@@ -60,3 +60,25 @@ def test_second_invocation_reuses_every_run(tiny_study):
     again = subprocess.run(cmd + ["--serial"], capture_output=True, text=True, timeout=300)
     assert again.returncode == 0, again.stderr
     assert f"0 of {total} runs executed" in again.stdout
+
+
+def test_the_dashpots_side_by_side(fmu_file, tmp_path):
+    """--dashpots 0,1: the grid with both normal dashpots, compared in one table and in the
+    bounce and charge figures (a row per dashpot); the centre's runs are really the centre
+    law's: at high friction it holds the centre's height and indents ten times deeper."""
+    cmd = [PYTHON, os.path.join(EXAMPLES, "paper_study.py"), "--epsilons", "0.3", "--t-end", "100",
+           "--transition-width", "0.5", "--out", str(tmp_path), "--fmu", fmu_file(2), "--serial",
+           "--no-progress", "--dashpots", "0,1"]
+    done = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    runs = pd.read_csv(tmp_path / "study_runs.csv")
+    assert sorted(zip(runs["damping_point"], runs["friction"])) == [(0, "high"), (0, "low"),
+                                                                  (1, "high"), (1, "low")]
+    high = runs[runs.friction == "high"].set_index("damping_point")
+    assert high.loc[1, "delta_y_max"] > 3 * high.loc[0, "delta_y_max"]
+    md = (tmp_path / "study.md").read_text()
+    section = md.split("## The dashpots side by side", 1)[1].split("## Run time", 1)[0]
+    assert section.count("| contact point |") == 2 and section.count("| centre |") == 2
+    from matplotlib.image import imread
+    one = imread(tmp_path / "bounce_amplitude.png").shape[0]
+    assert one > 1.8 * 380  # two rows of 3.8 inches at 100 dpi
