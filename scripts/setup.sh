@@ -42,5 +42,6 @@ build() { # build <dir> <cmake args...>
 # -Werror: a warning fails the build (CI runs this)
 build build -DCMAKE_BUILD_TYPE=Release -DTRIBO_WERROR=ON
 if [ "${TRIBO_SETUP_SANITIZE:-0}" = 1 ]; then
-  build build-sanitize -DCMAKE_BUILD_TYPE=Debug -DTRIBO_SANITIZE=ON -DTRIBO_BUILD_FMU=OFF -DTRIBO_WERROR=ON
+  # with the FMUs: the fuzz suite drives them under the sanitizers too
+  build build-sanitize -DCMAKE_BUILD_TYPE=Debug -DTRIBO_SANITIZE=ON -DTRIBO_WERROR=ON
 fi

@@ -126,11 +126,9 @@ static void attr_value(const fmu_variable *v, int fmi_version)
     const tribo_param_info *p = fmu_variable_param(v);
     if (v->type == FMU_TYPE_REAL)
         attr("unit", v->unit);
-    if (p) {
+    if (p) { /* a parameter or an input */
         attr_range(p);
         attr_number("start", p->start);
-    } else if (v->causality == FMU_CAUSALITY_INPUT) {
-        attr_number("start", 0.0);
     }
     (void)fmi_version;
 }
@@ -233,8 +231,9 @@ int main(int argc, char **argv)
     if (version == 2)
         puts("    canNotUseMemoryManagementFunctions=\"true\"\n"
              "    canGetAndSetFMUstate=\"true\"\n    canSerializeFMUstate=\"true\"/>");
-    else
-        puts("    canGetAndSetFMUState=\"true\"\n    canSerializeFMUState=\"true\"/>");
+    else /* a step cut short by the work limit (work_limit) returns early where allowed */
+        puts("    canGetAndSetFMUState=\"true\"\n    canSerializeFMUState=\"true\"\n"
+             "    mightReturnEarlyFromDoStep=\"true\"/>");
     if (!write_units())
         return 1;
     puts("  <LogCategories>");

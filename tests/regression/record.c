@@ -54,7 +54,7 @@ static void run_scene(const char *run, const tribo_scene *s, const double *times
         return;
     }
     for (int k = 0; k < n_times; k++) {
-        if (tribo_advance(m, times[k]) != TRIBO_OK) {
+        if (tribo_advance_fully(m, times[k]) != TRIBO_OK) {
             printf("%s %a advance-failed %s\n", run, times[k], tribo_last_error(m));
             break;
         }
@@ -116,7 +116,7 @@ int main(void)
                 continue;
             }
             for (int k = 0; k < 100; k++) {
-                if (tribo_advance(m, times[k]) != TRIBO_OK) {
+                if (tribo_advance_fully(m, times[k]) != TRIBO_OK) {
                     printf("%s %a advance-failed %s\n", run, times[k], tribo_last_error(m));
                     break;
                 }
