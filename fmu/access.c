@@ -133,11 +133,19 @@ static int read_variable(fmu_instance *inst, const char *fn, const fmu_variable 
     case FMU_MAPS_TO_INPUT:
         store(c_type, values, k, inst->inputs[v->index]);
         return 1;
-    case FMU_MAPS_TO_QUANTITY:
+    case FMU_MAPS_TO_QUANTITY: {
         if (!model_readable(inst, fn, v))
             return 0;
-        store(c_type, values, k, tribo_get(inst->model, (tribo_quantity)v->index));
+        const double value = tribo_get(inst->model, (tribo_quantity)v->index);
+        /* after a failed step the core may hold what is not a number: never with OK */
+        if (!isfinite(value)) {
+            fmu_error(inst, "%s: %s = %g is not a finite number (the core failed: %s)", fn,
+                      v->name, value, tribo_last_error(inst->model));
+            return 0;
+        }
+        store(c_type, values, k, value);
         return 1;
+    }
     case FMU_MAPS_TO_SEGMENTS: {
         if (!model_readable(inst, fn, v))
             return 0;
@@ -155,6 +163,12 @@ static int read_variable(fmu_instance *inst, const char *fn, const fmu_variable 
             fmu_error(inst, "%s: %s: %s", fn, v->name, tribo_last_error(inst->model));
             return 0;
         }
+        for (size_t i = 0; i < n; i++)
+            if (!isfinite(out[i])) {
+                fmu_error(inst, "%s: %s[%zu] = %g is not a finite number (the core failed: %s)",
+                          fn, v->name, i, out[i], tribo_last_error(inst->model));
+                return 0;
+            }
         return 1;
     }
     }

@@ -181,7 +181,7 @@ tribo_status tribo_charge_sample(tribo_model *m, const tribo_contact_sample *sam
     if (where == TRIBO_CHARGE_PENDING)
         return pending_push(m, sample);
     const long updates = tribo_charging_apply(&m->charging, &m->scene, sample, TRIBO_CHARGE_COMMITTED);
-    m->work += (double)updates / SEGMENT_UPDATES_PER_STEP;
+    tribo_work(m, (double)updates / SEGMENT_UPDATES_PER_STEP);
     return TRIBO_OK;
 }
 
@@ -247,7 +247,7 @@ static void counted_probe(void *ctx, double t, double *s_centre, double *half_wi
                           double *centre_speed, tribo_contact_kinematics *k)
 {
     sweep_target *s = ctx;
-    s->m->work += 1.0;
+    tribo_work(s->m, 1.0);
     s->probe->at(s->probe->ctx, t, s_centre, half_width, centre_speed, k);
 }
 
