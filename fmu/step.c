@@ -5,14 +5,15 @@
 
 double fmu_rounding_tolerance(double time) { return 1e-9 * fmax(1.0, fabs(time)); }
 
-/* A step the core ended early (its work limit): the instance stays at the time reached. */
+/* A step the core ended early (tribo_stop_early, for the reason it gives): the instance
+   stays at the time reached. */
 static fmu_status ended_early(fmu_instance *inst, const char *fn, double end, int *early_return)
 {
+    const char *why = tribo_last_error(inst->model);
     if (inst->early_return_allowed) {
         *early_return = 1;
-        fmu_log(inst, FMU_OK, FMU_LOG_CALLS,
-                "%s: early return at %.17g before %.17g (work_limit = %d internal steps spent)",
-                fn, inst->time, end, inst->scene.work_limit);
+        fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s: early return at %.17g before %.17g: %s", fn,
+                inst->time, end, why);
         return FMU_OK;
     }
     /* FMI 2.0: stepFailed until terminate, reset or a restored state; FMI 3.0: Step Mode
@@ -20,11 +21,8 @@ static fmu_status ended_early(fmu_instance *inst, const char *fn, double end, in
     if (inst->fmi_version == 2)
         inst->lifecycle = FMU_LIFECYCLE_STEP_DISCARDED;
     fmu_log(inst, FMU_DISCARD, FMU_LOG_WARNING,
-            "%s: the step to %.17g ended early at %.17g (the last successful time): it spent the "
-            "work limit of one step (work_limit = %d internal steps); take shorter steps%s, or "
-            "raise work_limit",
-            fn, end, inst->time, inst->scene.work_limit,
-            inst->fmi_version == 2 ? " from a saved state" : "");
+            "%s: the step to %.17g ended early at %.17g, the last successful time: %s", fn, end,
+            inst->time, why);
     return FMU_DISCARD;
 }
 

@@ -106,7 +106,7 @@ tribo_status tribo_stop_early(tribo_model *m)
     tribo_output_set(m, &m->committed);
     return tribo_fail(m, TRIBO_INCOMPLETE,
                       "stopped early at t = %.17g: the advance spent its work limit (work_limit = "
-                      "%d internal steps); advance again to go on",
+                      "%d internal steps; take shorter steps, or raise it)",
                       m->committed.t, m->scene.work_limit);
 }
 

@@ -216,7 +216,8 @@ static const char *point_problem(const tribo_model *m, const tribo_point *p, dou
         return "contact time";
     if ((c->in_contact != 0 && c->in_contact != 1) || (p->slipping != 0 && p->slipping != 1))
         return "contact flags";
-    if (!(mo->contact >= 0.0 && mo->contact <= 1.0) || !isfinite(mo->spin) ||
+    /* an average of 0 and 1, up to its rounding */
+    if (!(mo->contact >= -1e-12 && mo->contact <= 1.0 + 1e-12) || !isfinite(mo->spin) ||
         mo->current < 0 || mo->current >= TRIBO_MOTION_CLASSES ||
         (mo->outside_assumptions != 0 && mo->outside_assumptions != 1))
         return "motion classes";
