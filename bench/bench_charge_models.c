@@ -58,7 +58,7 @@ int main(int argc, char **argv)
                 return 1;
             }
             const double t0 = cpu_seconds();
-            if (tribo_advance(m, t_end) != TRIBO_OK) {
+            if (tribo_advance_fully(m, t_end) != TRIBO_OK) {
                 fprintf(stderr, "%s\n", tribo_last_error(m));
                 return 1;
             }

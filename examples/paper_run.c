@@ -61,7 +61,7 @@ int main(int argc, char **argv)
         double t = k * every;
         if (t > t_end)
             t = t_end;
-        if (tribo_advance(m, t) != TRIBO_OK) {
+        if (tribo_advance_fully(m, t) != TRIBO_OK) {
             fprintf(stderr, "%s\n", tribo_last_error(m));
             tribo_free(m);
             return 1;

@@ -68,7 +68,7 @@ static int run(const tribo_scene *s, double t_end, run_result *r)
     r->residual = 0.0;
     const double start = cpu_seconds();
     for (double t = 1.0; t <= t_end + 1e-9; t += 1.0) {
-        if (tribo_advance(m, t) != TRIBO_OK) {
+        if (tribo_advance_fully(m, t) != TRIBO_OK) {
             fprintf(stderr, "%s\n", tribo_last_error(m));
             tribo_free(m);
             return -1;

@@ -87,12 +87,32 @@ static int resolve_all(fmu_instance *inst, const char *fn, unsigned types, const
     return 1;
 }
 
+/* One variable of a call, at values[k...]; returns 0 to stop the walk. */
+typedef int (*visit_fn)(fmu_instance *inst, const char *fn, const fmu_variable *v,
+                        fmu_c_type c_type, void *values, size_t k);
+
+/* Visit the variables of a call (resolved by resolve_all) in order, each with the index of
+   its first value. */
+static int walk(fmu_instance *inst, const char *fn, const fmu_vr vrs[], size_t nvr,
+                fmu_c_type c_type, void *values, visit_fn visit)
+{
+    size_t k = 0;
+    for (size_t i = 0; i < nvr; i++) {
+        const fmu_variable *v = fmu_variable_find(vrs[i], inst->fmi_version);
+        if (!visit(inst, fn, v, c_type, values, k))
+            return 0;
+        k += value_count(inst, v);
+    }
+    return 1;
+}
+
 /* ---- get ------------------------------------------------------------------------- */
 
 static int model_readable(fmu_instance *inst, const char *fn, const fmu_variable *v)
 {
     const unsigned modes = FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_INITIALIZATION) | FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_STEP) |
-                           FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_TERMINATED) | FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_FAILED);
+                           FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_TERMINATED) |
+                           FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_STEP_DISCARDED) | FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_FAILED);
     if (!(modes & FMU_LIFECYCLE_BIT(inst->lifecycle))) {
         fmu_error(inst, "%s: %s is computed from Initialization Mode on; it cannot be read in state %s",
                   fn, v->name, fmu_lifecycle_name(inst->lifecycle));
@@ -122,11 +142,19 @@ static int read_variable(fmu_instance *inst, const char *fn, const fmu_variable 
     case FMU_MAPS_TO_INPUT:
         store(c_type, values, k, inst->inputs[v->index]);
         return 1;
-    case FMU_MAPS_TO_QUANTITY:
+    case FMU_MAPS_TO_QUANTITY: {
         if (!model_readable(inst, fn, v))
             return 0;
-        store(c_type, values, k, tribo_get(inst->model, (tribo_quantity)v->index));
+        const double value = tribo_get(inst->model, (tribo_quantity)v->index);
+        /* after a failed step the core may hold what is not a number: never with OK */
+        if (!isfinite(value)) {
+            fmu_error(inst, "%s: %s = %g is not a finite number (the core failed: %s)", fn,
+                      v->name, value, tribo_last_error(inst->model));
+            return 0;
+        }
+        store(c_type, values, k, value);
         return 1;
+    }
     case FMU_MAPS_TO_SEGMENTS: {
         if (!model_readable(inst, fn, v))
             return 0;
@@ -144,6 +172,12 @@ static int read_variable(fmu_instance *inst, const char *fn, const fmu_variable 
             fmu_error(inst, "%s: %s: %s", fn, v->name, tribo_last_error(inst->model));
             return 0;
         }
+        for (size_t i = 0; i < n; i++)
+            if (!isfinite(out[i])) {
+                fmu_error(inst, "%s: %s[%zu] = %g is not a finite number (the core failed: %s)",
+                          fn, v->name, i, out[i], tribo_last_error(inst->model));
+                return 0;
+            }
         return 1;
     }
     }
@@ -155,19 +189,13 @@ fmu_status fmu_get(fmu_instance *inst, const char *fn, unsigned types, fmu_c_typ
 {
     if (!inst)
         return FMU_ERROR;
-    if (!resolve_all(inst, fn, types, vrs, nvr, values, nvalues))
+    if (!resolve_all(inst, fn, types, vrs, nvr, values, nvalues) ||
+        !walk(inst, fn, vrs, nvr, c_type, values, read_variable))
         return FMU_ERROR;
-    size_t k = 0;
-    for (size_t i = 0; i < nvr; i++) {
-        const fmu_variable *v = fmu_variable_find(vrs[i], inst->fmi_version);
-        if (!read_variable(inst, fn, v, c_type, values, k))
-            return FMU_ERROR;
-        k += value_count(inst, v);
-    }
     return FMU_OK;
 }
 
-/* ---- set ------------------------------------------------------------------------- */
+/* ---- set: the whole call is checked, then applied ------------------------------------- */
 
 static int is_structural(const fmu_instance *inst, const fmu_variable *v)
 {
@@ -188,14 +216,26 @@ static const char *when_settable(const fmu_instance *inst, const fmu_variable *v
 {
     if (is_structural(inst, v))
         return "a structural parameter, set in state Instantiated or in Configuration Mode";
+    if (v->causality == FMU_CAUSALITY_INPUT)
+        return "an input, set before initialization ends or between steps";
     if (v->variability == FMU_VARIABILITY_TUNABLE)
         return "a tunable parameter, set before initialization ends or between steps";
     return "a fixed parameter, set in state Instantiated or in Initialization Mode";
 }
 
-static int write_parameter(fmu_instance *inst, const char *fn, const fmu_variable *v, double value)
+/* Whether v may take the value now: settable in this state, and within its range. */
+static int check_value(fmu_instance *inst, const char *fn, const fmu_variable *v, fmu_c_type c_type,
+                       void *values, size_t k)
 {
+    const double value = load(c_type, values, k);
     const tribo_param_info *p = fmu_variable_param(v);
+    if (!p) {
+        fmu_error(inst, "%s: %s (value reference %u) is %s, computed by the FMU: it cannot be set "
+                  "(value %.17g refused)",
+                  fn, v->name, v->vr,
+                  v->maps_to == FMU_MAPS_TO_TIME ? "the independent variable" : "an output", value);
+        return 0;
+    }
     char msg[512];
     if (tribo_param_check(p, value, msg, sizeof msg) != TRIBO_OK) {
         fmu_error(inst, "%s: %s", fn, msg);
@@ -208,34 +248,34 @@ static int write_parameter(fmu_instance *inst, const char *fn, const fmu_variabl
                   v->name, value, fmu_lifecycle_name(inst->lifecycle), v->name, when_settable(inst, v), range);
         return 0;
     }
-    if (inst->lifecycle == FMU_LIFECYCLE_STEP) {
-        /* the core commits the present, then runs on with the new value */
-        if (tribo_set_param(inst->model, v->name, value) != TRIBO_OK) {
-            fmu_error(inst, "%s: %s", fn, tribo_last_error(inst->model));
-            return 0;
-        }
-    } else if (tribo_param_read(&inst->scene, p) != value) {
-        inst->model_outdated = 1;
-    }
-    tribo_param_write(&inst->scene, p, value);
-    fmu_note_parameter_set(inst, p);
     return 1;
 }
 
-static int write_input(fmu_instance *inst, const char *fn, const fmu_variable *v, double value)
+/* Apply a value check_value accepted. */
+static int apply_value(fmu_instance *inst, const char *fn, const fmu_variable *v, fmu_c_type c_type,
+                       void *values, size_t k)
 {
-    if (!(modes_settable(inst, v) & FMU_LIFECYCLE_BIT(inst->lifecycle))) {
-        fmu_error(inst, "%s: %s = %.17g cannot be set in state %s", fn, v->name, value,
-                  fmu_lifecycle_name(inst->lifecycle));
-        return 0;
+    const double value = load(c_type, values, k);
+    if (v->maps_to == FMU_MAPS_TO_INPUT) {
+        /* applied by the next step, from its communication point on */
+        inst->inputs[v->index] = value;
+    } else {
+        const tribo_param_info *p = fmu_variable_param(v);
+        if (inst->lifecycle == FMU_LIFECYCLE_STEP) {
+            /* the core commits the present, then runs on with the new value; it has checked
+               nothing the FMU did not, so a failure here is the integrator's restart */
+            if (tribo_set_param(inst->model, v->name, value) != TRIBO_OK) {
+                inst->lifecycle = FMU_LIFECYCLE_FAILED;
+                fmu_error(inst, "%s: %s", fn, tribo_last_error(inst->model));
+                return 0;
+            }
+        } else if (tribo_param_read(&inst->scene, p) != value) {
+            inst->model_outdated = 1;
+        }
+        tribo_param_write(&inst->scene, p, value);
+        fmu_note_parameter_set(inst, p);
     }
-    if (!isfinite(value)) {
-        fmu_error(inst, "%s: %s = %.17g is invalid: the valid range is any finite number", fn,
-                  v->name, value);
-        return 0;
-    }
-    /* applied by the next step, from its communication point on */
-    inst->inputs[v->index] = value;
+    fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s: %s = %.17g", fn, v->name, value);
     return 1;
 }
 
@@ -244,30 +284,11 @@ fmu_status fmu_set(fmu_instance *inst, const char *fn, unsigned types, fmu_c_typ
 {
     if (!inst)
         return FMU_ERROR;
-    if (!resolve_all(inst, fn, types, vrs, nvr, values, nvalues))
+    /* the walk's signature serves get and set alike; set only reads the values */
+    void *in = (void *)values;
+    if (!resolve_all(inst, fn, types, vrs, nvr, values, nvalues) ||
+        !walk(inst, fn, vrs, nvr, c_type, in, check_value) ||
+        !walk(inst, fn, vrs, nvr, c_type, in, apply_value))
         return FMU_ERROR;
-    size_t k = 0;
-    for (size_t i = 0; i < nvr; i++) {
-        const fmu_variable *v = fmu_variable_find(vrs[i], inst->fmi_version);
-        const double value = load(c_type, values, k);
-        int ok = 0;
-        switch (v->maps_to) {
-        case FMU_MAPS_TO_PARAMETER: ok = write_parameter(inst, fn, v, value); break;
-        case FMU_MAPS_TO_INPUT: ok = write_input(inst, fn, v, value); break;
-        case FMU_MAPS_TO_TIME:
-        case FMU_MAPS_TO_QUANTITY:
-        case FMU_MAPS_TO_SEGMENTS:
-            fmu_error(inst, "%s: %s (value reference %u) is %s, computed by the FMU: it cannot be set "
-                      "(value %.17g refused)",
-                      fn, v->name, v->vr,
-                      v->maps_to == FMU_MAPS_TO_TIME ? "the independent variable" : "an output",
-                      value);
-            break;
-        }
-        if (!ok)
-            return FMU_ERROR;
-        fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s: %s = %.17g", fn, v->name, value);
-        k += value_count(inst, v);
-    }
     return FMU_OK;
 }

@@ -289,8 +289,9 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
 {
     UNUSED(noSetFMUStatePriorToCurrentPoint); /* states cost nothing to keep */
     double reached;
+    int early_return; /* never allowed in FMI 2.0: a step that ends early is discarded */
     return STATUS(fmu_do_step(INST(c), __func__, currentCommunicationPoint,
-                              communicationStepSize, &reached));
+                              communicationStepSize, &reached, &early_return));
 }
 
 fmi2Status fmi2CancelStep(fmi2Component c)
@@ -298,7 +299,8 @@ fmi2Status fmi2CancelStep(fmi2Component c)
     return STATUS(fmu_refuse(INST(c), __func__, "fmi2DoStep never runs asynchronously"));
 }
 
-/* The status inquiries: only those that make sense for a step that always completes. */
+/* The status inquiries: those that make sense for a step that runs synchronously (after
+   fmi2Discard: the time reached, and that the FMU does not ask to terminate). */
 
 fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind s, fmi2Status *value)
 {

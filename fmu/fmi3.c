@@ -67,7 +67,6 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
 {
     UNUSED(resourcePath); /* the FMU has no resources */
     UNUSED(visible);
-    UNUSED(earlyReturnAllowed); /* the FMU never returns early */
     UNUSED(requiredIntermediateVariables), UNUSED(intermediateUpdate);
     const fmu_logger logger = logger_of(instanceEnvironment, logMessage);
     if (eventModeUsed) {
@@ -81,8 +80,11 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
                                  "providesIntermediateUpdate is false");
         return NULL;
     }
-    return fmu_instantiate(3, __func__, instanceName, instantiationToken, FMU_INSTANTIATION_TOKEN,
-                           &logger, loggingOn);
+    fmu_instance *inst = fmu_instantiate(3, __func__, instanceName, instantiationToken,
+                                         FMU_INSTANTIATION_TOKEN, &logger, loggingOn);
+    /* a step cut short by the work limit returns early if allowed, else is discarded */
+    fmu_allow_early_return(inst, earlyReturnAllowed);
+    return inst;
 }
 
 fmi3Instance fmi3InstantiateScheduledExecution(fmi3String instanceName,
@@ -488,14 +490,15 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
 {
     UNUSED(noSetFMUStatePriorToCurrentPoint); /* states cost nothing to keep */
     double reached = 0.0;
+    int early_return = 0;
     const fmu_status st = fmu_do_step(INST(instance), __func__, currentCommunicationPoint,
-                                      communicationStepSize, &reached);
+                                      communicationStepSize, &reached, &early_return);
     if (eventHandlingNeeded)
         *eventHandlingNeeded = fmi3False;
     if (terminateSimulation)
         *terminateSimulation = fmi3False;
     if (earlyReturn)
-        *earlyReturn = fmi3False;
+        *earlyReturn = early_return ? fmi3True : fmi3False;
     if (lastSuccessfulTime)
         *lastSuccessfulTime = reached;
     return STATUS(st);

@@ -10,7 +10,11 @@
  *   number of parameters, every parameter (in the core table's order),
  *   core instance outdated, size of the core's state, the core's state (tribo_state_save)
  *
- * A core state size of 0 means there was no core instance yet (before initialization).
+ * A core state size of 0 means there is no core instance to keep: none yet (before
+ * initialization), or one made for parameters changed since, which would be remade.
+ *
+ * Restoring checks every field against what an instance can hold and loads the core's
+ * state into a new core instance; the instance changes only once all of it is accepted.
  */
 #include "instance_private.h"
 
@@ -27,7 +31,7 @@ struct fmu_state {
 };
 
 static const char MAGIC[8] = {'T', 'R', 'I', 'B', 'O', 'F', 'M', 'U'};
-enum { LAYOUT_VERSION = 1, HEADER_SIZE = 8 + 3 * 8 };
+enum { LAYOUT_VERSION = 2, HEADER_SIZE = 8 + 3 * 8 };
 
 /* Everything but the core's state: the header, 8 fields, the inputs and the parameters. */
 static size_t fixed_size(size_t n_params)
@@ -47,7 +51,9 @@ fmu_status fmu_state_get(fmu_instance *inst, const char *fn, fmu_state **state)
         return fmu_error(inst, "%s: the instance failed; there is no consistent state to save", fn);
     size_t n_params;
     const tribo_param_info *params = tribo_param_table(&n_params);
-    const size_t core_size = inst->model ? tribo_state_size(inst->model) : 0;
+    /* a core instance made for parameters changed since would be remade: not worth keeping */
+    const tribo_model *core = inst->model && !inst->model_outdated ? inst->model : NULL;
+    const size_t core_size = core ? tribo_state_size(core) : 0;
     const size_t size = fixed_size(n_params) + core_size;
 
     fmu_state *s = *state;
@@ -73,9 +79,9 @@ fmu_status fmu_state_get(fmu_instance *inst, const char *fn, fmu_state **state)
     tribo_write_int(&c, (int64_t)n_params);
     for (size_t i = 0; i < n_params; i++)
         tribo_write_double(&c, tribo_param_read(&inst->scene, &params[i]));
-    tribo_write_int(&c, inst->model_outdated);
+    tribo_write_int(&c, core ? 0 : inst->model_outdated);
     tribo_write_int(&c, (int64_t)core_size);
-    if (core_size && tribo_state_save(inst->model, c.p, core_size) != TRIBO_OK)
+    if (core_size && tribo_state_save(core, c.p, core_size) != TRIBO_OK)
         return fmu_error(inst, "%s: %s", fn, tribo_last_error(inst->model));
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s() at time %.17g: %zu bytes", fn, inst->time, size);
     return FMU_OK;
@@ -102,29 +108,121 @@ static const char *header_problem(const fmu_instance *inst, const unsigned char 
     return NULL;
 }
 
-/* Load the core's bytes into the present core instance when its structure fits, else
-   into a new one; *model receives the instance that holds them. */
-static fmu_status load_core(fmu_instance *inst, const char *fn, const tribo_scene *scene,
-                            const unsigned char *bytes, size_t size, tribo_model **model)
+/* An FMU state read from bytes, not yet applied. */
+typedef struct restored {
+    int64_t lifecycle, stop_time_defined, model_outdated;
+    double start_time, stop_time, time;
+    double inputs[TRIBO_INPUT_COUNT];
+    tribo_scene scene;
+    const unsigned char *core;
+    uint64_t core_size;
+} restored;
+
+/* Whether the lifecycle state is one an instance of this FMI version saves, and whether it
+   has a core instance there. */
+static int lifecycle_valid(const fmu_instance *inst, int64_t lifecycle, int has_core)
 {
-    tribo_model *m = inst->model;
-    const int reuse = m && !tribo_scene_structure_differs(tribo_get_scene(m), scene);
-    if (!reuse) {
-        char why[512];
-        if (!(m = tribo_create(scene, why, sizeof why)))
-            return fmu_error(inst, "%s: the model cannot be created: %s", fn, why);
-        tribo_set_logger(m, fmu_core_logger, inst);
+    switch (lifecycle) {
+    case FMU_LIFECYCLE_INSTANTIATED: return !has_core;
+    case FMU_LIFECYCLE_CONFIGURATION: return !has_core && inst->fmi_version == 3;
+    case FMU_LIFECYCLE_INITIALIZATION: return 1;
+    case FMU_LIFECYCLE_STEP:
+    case FMU_LIFECYCLE_TERMINATED: return has_core;
+    case FMU_LIFECYCLE_STEP_DISCARDED: return has_core && inst->fmi_version == 2;
     }
-    if (tribo_state_load(m, bytes, size) != TRIBO_OK) {
+    return 0;
+}
+
+/* Read and check everything but the core's state; returns a reason, or NULL. */
+static const char *read_restored(const fmu_instance *inst, const fmu_state *s, restored *r,
+                                 char *msg, size_t msg_size)
+{
+    size_t n_params;
+    const tribo_param_info *params = tribo_param_table(&n_params);
+    if (s->size < fixed_size(n_params))
+        return "the state is too short";
+    tribo_reader c = tribo_reader_of(s->bytes + HEADER_SIZE, s->size - HEADER_SIZE);
+    r->lifecycle = tribo_read_int(&c);
+    r->start_time = tribo_read_double(&c);
+    r->stop_time = tribo_read_double(&c);
+    r->stop_time_defined = tribo_read_int(&c);
+    r->time = tribo_read_double(&c);
+    const tribo_param_info *inputs = tribo_input_table(NULL);
+    for (int i = 0; i < TRIBO_INPUT_COUNT; i++) {
+        r->inputs[i] = tribo_read_double(&c);
+        if (tribo_param_check(&inputs[i], r->inputs[i], msg, msg_size) != TRIBO_OK)
+            return msg;
+    }
+    if ((size_t)tribo_read_int(&c) != n_params)
+        return "the state has another set of parameters";
+    tribo_scene_defaults(&r->scene);
+    for (size_t i = 0; i < n_params; i++) {
+        const double v = tribo_read_double(&c);
+        if (tribo_param_check(&params[i], v, msg, msg_size) != TRIBO_OK)
+            return msg;
+        tribo_param_write(&r->scene, &params[i], v);
+    }
+    r->model_outdated = tribo_read_int(&c);
+    r->core_size = (uint64_t)tribo_read_int(&c);
+    r->core = c.p;
+    const int has_core = r->core_size > 0;
+    if (r->core_size != s->size - fixed_size(n_params))
+        return "the size of the core's state does not match the state's";
+    if (!lifecycle_valid(inst, r->lifecycle, has_core) ||
+        (r->model_outdated != 0 && r->model_outdated != 1) || (has_core && r->model_outdated))
+        return "the FMI state is not one this FMU saves";
+    if (!isfinite(r->start_time) || !isfinite(r->time) || !isfinite(r->stop_time) ||
+        (r->stop_time_defined != 0 && r->stop_time_defined != 1) ||
+        (r->stop_time_defined ? !(r->stop_time >= r->start_time) : r->stop_time != 0.0))
+        return "the start, stop or current time is invalid";
+    /* without a core instance the run has not started */
+    if (!has_core && r->time != r->start_time)
+        return "the time is not the start time, but there is no run";
+    return NULL;
+}
+
+/* A core instance in the saved core state, for the restored parameters; NULL after logging
+   why not. */
+static tribo_model *load_core(fmu_instance *inst, const char *fn, const restored *r)
+{
+    char why[512];
+    double t;
+    if (tribo_state_time(r->core, (size_t)r->core_size, &t) != TRIBO_OK || !isfinite(t)) {
+        fmu_error(inst, "%s: the state is corrupt: its core state is not one", fn);
+        return NULL;
+    }
+    /* the FMU's time is the start time plus the core's */
+    if (!(fabs(r->time - (r->start_time + t)) <= fmu_rounding_tolerance(r->time))) {
+        fmu_error(inst, "%s: the state is corrupt: its time %.17g is not its start time %.17g "
+                  "plus the core's time %.17g", fn, r->time, r->start_time, t);
+        return NULL;
+    }
+    tribo_model *m = tribo_create(&r->scene, why, sizeof why);
+    if (!m) {
+        fmu_error(inst, "%s: the model cannot be created: %s", fn, why);
+        return NULL;
+    }
+    if (tribo_state_load(m, r->core, (size_t)r->core_size) != TRIBO_OK) {
         fmu_error(inst, "%s: the core refused the state: %s", fn, tribo_last_error(m));
-        if (reuse)
-            inst->lifecycle = FMU_LIFECYCLE_FAILED; /* the core instance may be half loaded */
-        else
-            tribo_free(m);
-        return FMU_ERROR;
+        tribo_free(m);
+        return NULL;
     }
-    *model = m;
-    return FMU_OK;
+    /* the parameters the FMU reports are the core's */
+    const tribo_param_info *differs = NULL;
+    size_t n_params;
+    const tribo_param_info *params = tribo_param_table(&n_params);
+    for (size_t i = 0; i < n_params && !differs; i++)
+        if (tribo_param_read(&r->scene, &params[i]) != tribo_param_read(tribo_get_scene(m), &params[i]))
+            differs = &params[i];
+    if (differs) {
+        fmu_error(inst, "%s: the state is corrupt: it has %s = %.17g, its core state %.17g", fn,
+                  differs->name, tribo_param_read(&r->scene, differs),
+                  tribo_param_read(tribo_get_scene(m), differs));
+        tribo_free(m);
+        return NULL;
+    }
+    tribo_set_logger(m, fmu_core_logger, inst);
+    return m;
 }
 
 fmu_status fmu_state_set(fmu_instance *inst, const char *fn, const fmu_state *s)
@@ -136,58 +234,30 @@ fmu_status fmu_state_set(fmu_instance *inst, const char *fn, const fmu_state *s)
     const char *problem = header_problem(inst, s->bytes, s->size);
     if (problem)
         return fmu_error(inst, "%s: %s", fn, problem);
-
-    size_t n_params;
-    const tribo_param_info *params = tribo_param_table(&n_params);
-    if (s->size < fixed_size(n_params))
-        return fmu_error(inst, "%s: the state is too short", fn);
-    tribo_reader c = tribo_reader_of(s->bytes + HEADER_SIZE, s->size - HEADER_SIZE);
-    const int64_t lifecycle = tribo_read_int(&c);
-    const double start_time = tribo_read_double(&c), stop_time = tribo_read_double(&c);
-    const int64_t stop_time_defined = tribo_read_int(&c);
-    const double time = tribo_read_double(&c);
-    double inputs[TRIBO_INPUT_COUNT];
-    for (int i = 0; i < TRIBO_INPUT_COUNT; i++)
-        inputs[i] = tribo_read_double(&c);
-    if ((size_t)tribo_read_int(&c) != n_params)
-        return fmu_error(inst, "%s: the state has another set of parameters", fn);
-    tribo_scene scene;
-    tribo_scene_defaults(&scene);
-    for (size_t i = 0; i < n_params; i++) {
-        const double v = tribo_read_double(&c);
-        char msg[512];
-        if (tribo_param_check(&params[i], v, msg, sizeof msg) != TRIBO_OK)
-            return fmu_error(inst, "%s: the state is corrupt: %s", fn, msg);
-        tribo_param_write(&scene, &params[i], v);
-    }
-    const int64_t model_outdated = tribo_read_int(&c);
-    const uint64_t core_size = (uint64_t)tribo_read_int(&c);
-    if (lifecycle < FMU_LIFECYCLE_INSTANTIATED || lifecycle > FMU_LIFECYCLE_TERMINATED || !isfinite(start_time) ||
-        !isfinite(stop_time) || !isfinite(time) || !isfinite(inputs[0]) || !isfinite(inputs[1]) ||
-        core_size != s->size - fixed_size(n_params) ||
-        (core_size == 0 && (lifecycle == FMU_LIFECYCLE_STEP || lifecycle == FMU_LIFECYCLE_TERMINATED)))
-        return fmu_error(inst, "%s: the state is corrupt", fn);
-
+    restored r;
+    char msg[512];
+    if ((problem = read_restored(inst, s, &r, msg, sizeof msg)))
+        return fmu_error(inst, "%s: the state is corrupt: %s", fn, problem);
     tribo_model *model = NULL;
-    if (core_size && load_core(inst, fn, &scene, c.p, core_size, &model) != FMU_OK)
+    if (r.core_size && !(model = load_core(inst, fn, &r)))
         return FMU_ERROR;
-    if (inst->model != model)
-        tribo_free(inst->model);
+
+    /* all accepted: the instance becomes the state */
+    tribo_free(inst->model);
     inst->model = model;
-    inst->model_outdated = model_outdated != 0;
-    inst->scene = scene;
+    inst->model_outdated = r.model_outdated != 0;
+    inst->scene = r.scene;
     for (int i = 0; i < TRIBO_INPUT_COUNT; i++)
-        inst->inputs[i] = inputs[i];
-    inst->lifecycle = (fmu_lifecycle)lifecycle;
-    inst->start_time = start_time;
-    inst->stop_time = stop_time;
-    inst->stop_time_defined = stop_time_defined != 0;
-    inst->time = time;
-    fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s(): back at time %.17g in state %s", fn, time,
+        inst->inputs[i] = r.inputs[i];
+    inst->lifecycle = (fmu_lifecycle)r.lifecycle;
+    inst->start_time = r.start_time;
+    inst->stop_time = r.stop_time;
+    inst->stop_time_defined = r.stop_time_defined != 0;
+    inst->time = r.time;
+    fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s(): back at time %.17g in state %s", fn, r.time,
             fmu_lifecycle_name(inst->lifecycle));
     return FMU_OK;
 }
-
 /* ---- free, serialize, deserialize ------------------------------------------------ */
 
 fmu_status fmu_state_free(fmu_instance *inst, const char *fn, fmu_state **state)

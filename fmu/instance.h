@@ -72,10 +72,17 @@ fmu_status fmu_exit_configuration(fmu_instance *inst, const char *fn);
 fmu_status fmu_enter_initialization(fmu_instance *inst, const char *fn);
 fmu_status fmu_exit_initialization(fmu_instance *inst, const char *fn);
 
+/* FMI 3.0: the importer allows early returns (earlyReturnAllowed at instantiation). */
+void fmu_allow_early_return(fmu_instance *inst, int allowed);
+
 /* Advance from current_time (which must be the instance's time up to rounding) by
-   step > 0; *reached receives the time reached (unchanged on failure). */
+   step > 0; *reached receives the time reached (the instance's time on failure).
+   When the work limit of the core (parameter work_limit) ends the step early, the
+   instance stays at the time reached: with an early return allowed (FMI 3.0) the status
+   is FMU_OK and *early_return 1; otherwise FMU_DISCARD (FMI 2.0: the instance enters
+   stepFailed, FMI 3.0 stays in Step Mode). */
 fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, double step,
-                       double *reached);
+                       double *reached, int *early_return);
 fmu_status fmu_terminate(fmu_instance *inst, const char *fn);
 /* Back to the Instantiated state with every variable at its start value. */
 fmu_status fmu_reset(fmu_instance *inst, const char *fn);

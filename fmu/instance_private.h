@@ -5,13 +5,16 @@
 #include "instance.h"
 
 /* The states of FMI 2.0 / 3.0 co-simulation that this FMU has. FMI 2.0 has no
-   Configuration Mode; Step Mode is FMI 2.0's slaveInitialized. */
+   Configuration Mode; Step Mode is FMI 2.0's slaveInitialized (stepComplete). */
 typedef enum fmu_lifecycle {
     FMU_LIFECYCLE_INSTANTIATED,
     FMU_LIFECYCLE_CONFIGURATION,
     FMU_LIFECYCLE_INITIALIZATION,
     FMU_LIFECYCLE_STEP,
     FMU_LIFECYCLE_TERMINATED,
+    /* FMI 2.0's stepFailed: a step was discarded (it ended early); outputs and FMU states
+       can be read, and terminate, reset or a saved FMU state lead on */
+    FMU_LIFECYCLE_STEP_DISCARDED,
     FMU_LIFECYCLE_FAILED /* the core failed: only reset, a saved FMU state or free help */
 } fmu_lifecycle;
 
@@ -40,7 +43,14 @@ struct fmu_instance {
     double stop_time;
     int stop_time_defined;
     double time; /* the FMU's time: start_time + the core's time */
+
+    /* FMI 3.0: the importer allows a step to end early (earlyReturnAllowed) */
+    int early_return_allowed;
 };
+
+/* Communication points that differ by less than this around `time` are the same point
+   computed another way (t + h + h ... against t + n h). */
+double fmu_rounding_tolerance(double time);
 
 /* Log through the importer's logger if the category is enabled. */
 void fmu_log(fmu_instance *inst, fmu_status status, fmu_log_category category, const char *fmt,

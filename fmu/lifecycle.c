@@ -12,6 +12,8 @@ static const char *const LIFECYCLE_NAMES[] = {
     [FMU_LIFECYCLE_INITIALIZATION] = "Initialization Mode",
     [FMU_LIFECYCLE_STEP] = "Step Mode",
     [FMU_LIFECYCLE_TERMINATED] = "Terminated",
+    [FMU_LIFECYCLE_STEP_DISCARDED] =
+        "Step Discarded (stepFailed: the last step ended early; terminate, reset or restore a state)",
     [FMU_LIFECYCLE_FAILED] = "Error (after a failure of the core: reset the instance or restore a state)",
 };
 
@@ -98,6 +100,12 @@ void fmu_free(fmu_instance *inst)
 }
 
 double fmu_time(const fmu_instance *inst) { return inst->time; }
+
+void fmu_allow_early_return(fmu_instance *inst, int allowed)
+{
+    if (inst)
+        inst->early_return_allowed = allowed != 0;
+}
 
 fmu_status fmu_refuse(fmu_instance *inst, const char *fn, const char *reason)
 {
@@ -238,7 +246,9 @@ fmu_status fmu_exit_initialization(fmu_instance *inst, const char *fn)
 
 fmu_status fmu_terminate(fmu_instance *inst, const char *fn)
 {
-    if (!inst || !fmu_lifecycle_allows(inst, fn, FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_STEP)))
+    if (!inst || !fmu_lifecycle_allows(inst, fn,
+                                       FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_STEP) |
+                                           FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_STEP_DISCARDED)))
         return FMU_ERROR;
     inst->lifecycle = FMU_LIFECYCLE_TERMINATED;
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s() at time %.17g", fn, inst->time);

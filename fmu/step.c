@@ -3,19 +3,39 @@
 
 #include <math.h>
 
-/* Communication points that differ from the instance's time by less than this are the
-   same point computed another way (t + h + h ... against t + n h): accepted. */
-static double rounding_tolerance(double time) { return 1e-9 * fmax(1.0, fabs(time)); }
+double fmu_rounding_tolerance(double time) { return 1e-9 * fmax(1.0, fabs(time)); }
+
+/* A step the core ended early (tribo_stop_early, for the reason it gives): the instance
+   stays at the time reached. */
+static fmu_status ended_early(fmu_instance *inst, const char *fn, double end, int *early_return)
+{
+    const char *why = tribo_last_error(inst->model);
+    if (inst->early_return_allowed) {
+        *early_return = 1;
+        fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s: early return at %.17g before %.17g: %s", fn,
+                inst->time, end, why);
+        return FMU_OK;
+    }
+    /* FMI 2.0: stepFailed until terminate, reset or a restored state; FMI 3.0: Step Mode
+       goes on from the time reached */
+    if (inst->fmi_version == 2)
+        inst->lifecycle = FMU_LIFECYCLE_STEP_DISCARDED;
+    fmu_log(inst, FMU_DISCARD, FMU_LOG_WARNING,
+            "%s: the step to %.17g ended early at %.17g, the last successful time: %s", fn, end,
+            inst->time, why);
+    return FMU_DISCARD;
+}
 
 fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, double step,
-                       double *reached)
+                       double *reached, int *early_return)
 {
+    *early_return = 0;
     if (!inst)
         return FMU_ERROR;
     *reached = inst->time;
     if (!fmu_lifecycle_allows(inst, fn, FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_STEP)))
         return FMU_ERROR;
-    const double tolerance = rounding_tolerance(inst->time);
+    const double tolerance = fmu_rounding_tolerance(inst->time);
     if (!isfinite(current_time) || fabs(current_time - inst->time) > tolerance)
         return fmu_error(inst,
                          "%s: currentCommunicationPoint = %.17g is not the FMU's time %.17g "
@@ -25,7 +45,12 @@ fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, 
         return fmu_error(inst, "%s: communicationStepSize = %.17g is invalid: it must be > 0 and finite",
                          fn, step);
     const double end = current_time + step;
-    if (inst->stop_time_defined && end > inst->stop_time + rounding_tolerance(inst->stop_time))
+    if (!(end > current_time) || !isfinite(end))
+        return fmu_error(inst,
+                         "%s: communicationStepSize = %.17g is lost in the rounding of the time "
+                         "%.17g (the step would end where it starts)",
+                         fn, step, current_time);
+    if (inst->stop_time_defined && end > inst->stop_time + fmu_rounding_tolerance(inst->stop_time))
         return fmu_error(inst,
                          "%s: a step from %.17g by %.17g ends at %.17g, after the stop time %.17g "
                          "set at initialization",
@@ -39,8 +64,15 @@ fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, 
         const double core_end = fmax(end - inst->start_time, tribo_get(m, TRIBO_Q_TIME));
         st = tribo_advance(m, core_end);
     }
+    if (st == TRIBO_INCOMPLETE) {
+        inst->time = inst->start_time + tribo_get(m, TRIBO_Q_TIME);
+        *reached = inst->time;
+        return ended_early(inst, fn, end, early_return);
+    }
     if (st != TRIBO_OK) {
-        inst->lifecycle = FMU_LIFECYCLE_FAILED;
+        /* a time the core refuses changes nothing; any other failure leaves it broken */
+        if (st != TRIBO_ERR_TIME)
+            inst->lifecycle = FMU_LIFECYCLE_FAILED;
         return fmu_error(inst, "%s: the step from %.17g to %.17g failed: %s", fn, current_time, end,
                          tribo_last_error(m));
     }

@@ -52,7 +52,7 @@ static const fmu_variable VARIABLES[] = {
 #define TRIBO_TIME(id, name, vr, unit, description, value)                                       \
     {vr, name, FMU_TYPE_REAL, FMU_CAUSALITY_INDEPENDENT, FMU_VARIABILITY_CONTINUOUS,            \
      FMU_MAPS_TO_TIME, 0, FMU_IN_BOTH, description, unit, -1},
-#define TRIBO_INPUT(id, name, vr, unit, description)                                             \
+#define TRIBO_INPUT(id, name, vr, unit, min, max, description)                                   \
     {vr, name, FMU_TYPE_REAL, FMU_CAUSALITY_INPUT, FMU_VARIABILITY_CONTINUOUS, FMU_MAPS_TO_INPUT, \
      TRIBO_INPUT_##id, FMU_IN_BOTH, description, unit, -1},
 #define TRIBO_OUTPUT(id, name, type, vr, unit, description, value)                               \
@@ -145,7 +145,11 @@ const fmu_variable *fmu_variable_find(fmu_vr vr, int fmi_version)
 
 const tribo_param_info *fmu_variable_param(const fmu_variable *v)
 {
-    return v->maps_to == FMU_MAPS_TO_PARAMETER ? &tribo_param_table(NULL)[v->index] : NULL;
+    switch (v->maps_to) {
+    case FMU_MAPS_TO_PARAMETER: return &tribo_param_table(NULL)[v->index];
+    case FMU_MAPS_TO_INPUT: return &tribo_input_table(NULL)[v->index];
+    default: return NULL;
+    }
 }
 
 const fmu_variable *fmu_variable_dimension(const fmu_variable *v)

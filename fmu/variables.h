@@ -100,7 +100,8 @@ const fmu_enum_item *fmu_enum_items(int enumeration, size_t *count);
 const fmu_variable *fmu_variable_find(fmu_vr vr, int fmi_version);
 int fmu_variable_in_version(const fmu_variable *v, int fmi_version);
 
-/* The core's entry of a parameter row (NULL for other rows). */
+/* The core's entry of a parameter or an input row: its range, start value, ... (NULL for
+   other rows). */
 const tribo_param_info *fmu_variable_param(const fmu_variable *v);
 /* The parameter that sizes an array row (NULL for scalars). */
 const fmu_variable *fmu_variable_dimension(const fmu_variable *v);

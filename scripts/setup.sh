@@ -37,15 +37,32 @@ if [ ! -x "$VENV/bin/python" ] || [ "$(cat "$VENV/.requirements.sha256" 2>/dev/n
   echo "$want" > "$VENV/.requirements.sha256"
 fi
 
+configured() { # configured <dir> <cmake args...>: the build's cache holds every -DNAME=VALUE
+  local dir=$1 a kv; shift
+  local cache="$ROOT/$dir/CMakeCache.txt"
+  [ -f "$ROOT/$dir/build.ninja" ] && [ -f "$cache" ] || return 1
+  for a in "$@"; do
+    case "$a" in
+      -D*=*)
+        kv=${a#-D}
+        awk -v n="${kv%%=*}" -v v="${kv#*=}" \
+          '{ split($0, p, "="); split(p[1], q, ":") }
+           q[1] == n && substr($0, index($0, "=") + 1) == v { found = 1 }
+           END { exit !found }' "$cache" || return 1 ;;
+    esac
+  done
+}
 build() { # build <dir> <cmake args...>
   local dir=$1; shift
-  if [ ! -f "$ROOT/$dir/build.ninja" ]; then
-    cmake -S "$ROOT" -B "$ROOT/$dir" -G Ninja -DTRIBO_PYTHON="$VENV/bin/python" "$@" >/dev/null
+  local args=(-DTRIBO_PYTHON="$VENV/bin/python" "$@")
+  if ! configured "$dir" "${args[@]}"; then
+    cmake -S "$ROOT" -B "$ROOT/$dir" -G Ninja "${args[@]}" >/dev/null
   fi
   cmake --build "$ROOT/$dir"
 }
 # -Werror: a warning fails the build (CI runs this)
 build build -DCMAKE_BUILD_TYPE=Release -DTRIBO_WERROR=ON
 if [ "${TRIBO_SETUP_SANITIZE:-0}" = 1 ]; then
-  build build-sanitize -DCMAKE_BUILD_TYPE=Debug -DTRIBO_SANITIZE=ON -DTRIBO_BUILD_FMU=OFF -DTRIBO_WERROR=ON
+  # with the FMUs: the fuzz suite drives them under the sanitizers too
+  build build-sanitize -DCMAKE_BUILD_TYPE=Debug -DTRIBO_SANITIZE=ON -DTRIBO_BUILD_FMU=ON -DTRIBO_WERROR=ON
 fi

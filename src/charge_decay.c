@@ -45,10 +45,10 @@ const tribo_decay_cache *tribo_decay_moments(tribo_decay_cache *k, double durati
     return k;
 }
 
-double tribo_mean(const double *v, int n)
+double tribo_sum(const double *v, long n)
 {
     double sum = 0.0;
-    for (int i = 0; i < n; i++)
+    for (long i = 0; i < n; i++)
         sum += v[i];
-    return sum / (double)n;
+    return sum;
 }

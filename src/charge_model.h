@@ -66,13 +66,17 @@ typedef struct tribo_charge_model {
                          double atol);
 
     /* The rate law on segments[0..count), in contact over an interval: exact given the
-       forcing. */
-    void (*charge)(void *cache, const tribo_scene *s, const tribo_charge_forcing *f,
-                   double *segments, long count);
+       forcing. Returns the change of their sum (what the outputs' means follow). */
+    double (*charge)(void *cache, const tribo_scene *s, const tribo_charge_forcing *f,
+                     double *segments, long count);
 
     /* The per-segment values as tribo_get_segment_charges reports them. */
     void (*segment_values)(const tribo_scene *s, const double *globals, const double *segments,
                            double *out, int n);
+
+    /* Whether saved values (the model's globals, its n finite segment values) are ones the
+       model can produce, for a state being loaded; NULL: any finite values are. */
+    int (*valid)(const tribo_scene *s, const double *globals, const double *segments, int n);
 } tribo_charge_model;
 
 /* ---- exponentials for exact updates over an interval --------------------------------- */
@@ -91,7 +95,7 @@ const tribo_decay_cache *tribo_decay(tribo_decay_cache *k, double duration, doub
 /* The same with the moments zf1, zf2 too. */
 const tribo_decay_cache *tribo_decay_moments(tribo_decay_cache *k, double duration, double tau);
 
-/* Mean of an array of n values. */
-double tribo_mean(const double *v, int n);
+/* Sum of an array of n values. */
+double tribo_sum(const double *v, long n);
 
 #endif

@@ -14,8 +14,9 @@ extern const tribo_charge_model tribo_charge_sliding; /* §5b */
 /* A model's state at the output point of an instance. */
 typedef struct tribo_charge_view {
     const tribo_scene *scene;
-    const double *segments;    /* n values, pending updates applied; NULL if not selected */
+    int selected;
     int n;
+    double sum;                /* of its n values, pending updates included (NaN: out of memory) */
     const double *globals;     /* its global states */
     const double *quadratures; /* its quadratures   */
 } tribo_charge_view;

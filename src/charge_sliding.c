@@ -97,8 +97,8 @@ static int piece_globals(void *c, const tribo_scene *s, double h, const double (
 /* dSigma_i = (Sigma_s - Sigma_i) / tau0 with Sigma_s = A + B u + C u^2 over u in [0, 1] is
    Sigma_i <- e^{-z} Sigma_i + K, K = (A + B + C)(1 - e^{-z}) - (B + 2C) z F_1(z) + C z F_2(z),
    z = duration / tau0: exact over the interval. */
-static void charge(void *c, const tribo_scene *s, const tribo_charge_forcing *f, double *sigma,
-                   long count)
+static double charge(void *c, const tribo_scene *s, const tribo_charge_forcing *f, double *sigma,
+                     long count)
 {
     const tribo_decay_cache *k = tribo_decay_moments(&((cache *)c)->charge, f->duration, s->tau0);
     const double d = k->decay, one_minus_d = k->one_minus_decay;
@@ -106,8 +106,13 @@ static void charge(void *c, const tribo_scene *s, const tribo_charge_forcing *f,
     const double C = 2.0 * (A - 2.0 * f->mid[SIGMA_S] + f->end[SIGMA_S]);
     const double B = f->end[SIGMA_S] - A - C;
     const double K = (A + B + C) * one_minus_d - (B + 2.0 * C) * k->zf1 + C * k->zf2;
-    for (long i = 0; i < count; i++)
-        sigma[i] = d * sigma[i] + K;
+    double change = 0.0;
+    for (long i = 0; i < count; i++) {
+        const double old = sigma[i];
+        sigma[i] = d * old + K;
+        change += sigma[i] - old;
+    }
+    return change;
 }
 
 static void segment_values(const tribo_scene *s, const double *globals, const double *sigma,
@@ -116,6 +121,14 @@ static void segment_values(const tribo_scene *s, const double *globals, const do
     (void)s;
     for (int i = 0; i < n; i++)
         out[i] = sigma[i] / globals[SIGMA0_REF];
+}
+
+/* Sigma_s relaxes towards Sigma0 > 0 and work only raises it: it stays positive; the
+   normalisation Sigma0,ref is a Sigma0 */
+static int valid(const tribo_scene *s, const double *globals, const double *sigma, int n)
+{
+    (void)s, (void)sigma, (void)n;
+    return globals[SIGMA_S] > 0.0 && globals[SIGMA0_REF] > 0.0;
 }
 
 const tribo_charge_model tribo_charge_sliding = {
@@ -129,19 +142,20 @@ const tribo_charge_model tribo_charge_sliding = {
     .piece_globals = piece_globals,
     .charge = charge,
     .segment_values = segment_values,
+    .valid = valid,
 };
 
 double tribo_sliding_charge(tribo_model *m)
 {
     const tribo_charge_view v = tribo_charge_view_of(m, TRIBO_SEGMENTS_SLIDING);
     /* Q_sliding, §5b */
-    return v.segments ? tribo_mean(v.segments, v.n) / v.globals[SIGMA0_REF] : 0.0;
+    return v.selected ? v.sum / v.n / v.globals[SIGMA0_REF] : 0.0;
 }
 
 double tribo_sliding_mean_density(tribo_model *m)
 {
     const tribo_charge_view v = tribo_charge_view_of(m, TRIBO_SEGMENTS_SLIDING);
-    return v.segments ? tribo_mean(v.segments, v.n) : 0.0; /* mean Sigma_i, §5b */
+    return v.selected ? v.sum / v.n : 0.0; /* mean Sigma_i, §5b */
 }
 
 double tribo_sliding_saturation(tribo_model *m)

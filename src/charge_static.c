@@ -5,13 +5,18 @@
 
 #include <string.h>
 
-static void charge(void *cache, const tribo_scene *s, const tribo_charge_forcing *f, double *q,
-                   long count)
+static double charge(void *cache, const tribo_scene *s, const tribo_charge_forcing *f, double *q,
+                     long count)
 {
     /* linear with constant coefficients: exact over the interval */
     const double one_minus_d = tribo_decay(cache, f->duration, s->tau0)->one_minus_decay;
-    for (long i = 0; i < count; i++)
-        q[i] += (1.0 - q[i]) * one_minus_d;
+    double change = 0.0;
+    for (long i = 0; i < count; i++) {
+        const double old = q[i];
+        q[i] += (1.0 - old) * one_minus_d;
+        change += q[i] - old;
+    }
+    return change;
 }
 
 static void segment_values(const tribo_scene *s, const double *globals, const double *q,
@@ -21,15 +26,26 @@ static void segment_values(const tribo_scene *s, const double *globals, const do
     memcpy(out, q, (size_t)n * sizeof *out);
 }
 
+/* q_i = sigma_i / sigma_0 starts at 0 and only relaxes towards 1 */
+static int valid(const tribo_scene *s, const double *globals, const double *q, int n)
+{
+    (void)s, (void)globals;
+    for (int i = 0; i < n; i++)
+        if (!(q[i] >= 0.0 && q[i] <= 1.0))
+            return 0;
+    return 1;
+}
+
 const tribo_charge_model tribo_charge_static = {
     .name = "static",
     .cache_size = sizeof(tribo_decay_cache),
     .charge = charge,
     .segment_values = segment_values,
+    .valid = valid,
 };
 
 double tribo_static_charge(tribo_model *m)
 {
     const tribo_charge_view v = tribo_charge_view_of(m, TRIBO_SEGMENTS_STATIC);
-    return v.segments ? tribo_mean(v.segments, v.n) : 0.0; /* Q_static, §5a */
+    return v.selected ? v.sum / v.n : 0.0; /* Q_static, §5a */
 }

@@ -54,7 +54,9 @@ void tribo_charging_free(tribo_charging *c)
         free(c->slot[i].segments);
         free(c->slot[i].segments_out);
         free(c->slot[i].cache);
-        c->slot[i].segments = c->slot[i].segments_out = NULL;
+        free(c->slot[i].window);
+        c->slot[i].segments = c->slot[i].segments_out = c->slot[i].window = NULL;
+        c->slot[i].window_cap = 0;
         c->slot[i].cache = NULL;
     }
 }
@@ -65,6 +67,7 @@ void tribo_charging_reset(tribo_charging *c)
         tribo_charge_slot *slot = &c->slot[i];
         if (slot->segments)
             memset(slot->segments, 0, (size_t)c->n * sizeof *slot->segments);
+        slot->sum = slot->sum_c = 0.0;
         if (slot->cache)
             memset(slot->cache, 0, slot->model->cache_size);
     }
@@ -118,33 +121,131 @@ void tribo_charging_step(tribo_charging *c, const tribo_scene *s, const tribo_po
     }
 }
 
-void tribo_charging_apply(tribo_charging *c, const tribo_scene *s, const tribo_contact_sample *sample,
-                          tribo_charge_target target)
+void tribo_compensated_add(double *sum, double *c, double x)
 {
-    if (!sample->in_contact || sample->duration <= 0.0)
-        return;
-    /* Segments whose arc [i L, (i+1) L) overlaps [s_c - Sc, s_c + Sc], periodic (§5). */
+    const double t = *sum + x;
+    *c += fabs(*sum) >= fabs(x) ? (*sum - t) + x : (x - t) + *sum;
+    *sum = t;
+}
+
+/* The run of segments a sample charges: those whose arc [i L, (i+1) L) overlaps
+   [s_c - Sc, s_c + Sc], periodic (§5). Returns how many (at most n; 0 for none) and sets
+   *first in [0, n). A contact wider than the boundary (or not a number) covers all of it;
+   the arithmetic stays in doubles until the values are known to fit. */
+static long segment_run(const tribo_charging *c, const tribo_contact_sample *sample, long *first)
+{
+    if (!sample->in_contact || !(sample->duration > 0.0))
+        return 0;
     const double lo = (sample->s_centre - sample->half_width) * c->segments_per_length;
     const double hi = (sample->s_centre + sample->half_width) * c->segments_per_length;
-    const long first = (long)floor(lo);
-    long count = (long)floor(hi) - first + 1;
-    if (count > c->n)
-        count = c->n;
-    long i = first % c->n;
-    if (i < 0)
-        i += c->n;
-    /* the run i .. i + count - 1, periodic: at most two contiguous slices */
-    const long head = count < c->n - i ? count : c->n - i;
-    for (int k = 0; k < c->n_models; k++) {
+    const double n = (double)c->n;
+    if (!(hi - lo < n)) {
+        *first = 0;
+        return c->n;
+    }
+    const double base = floor(lo);
+    double wrapped = base - n * floor(base / n);
+    if (!(wrapped >= 0.0 && wrapped < n))
+        wrapped = 0.0;
+    *first = (long)wrapped;
+    const double count = floor(hi) - base + 1.0;
+    return count < n ? (long)count : c->n;
+}
+
+/* Charge values[first .. first + count) of one model under a sample, in at most two
+   contiguous slices of a ring of n values; returns the change of their sum. */
+static double charge_run(tribo_charge_slot *slot, const tribo_scene *s,
+                         const tribo_contact_sample *sample, double *values, long n, long first,
+                         long count)
+{
+    const tribo_charge_forcing f = {sample->duration, sample->globals_begin + slot->globals_at,
+                                    sample->globals_mid + slot->globals_at,
+                                    sample->globals_end + slot->globals_at};
+    const long head = count < n - first ? count : n - first;
+    double delta = slot->model->charge(slot->cache, s, &f, values + first, head);
+    if (count > head)
+        delta += slot->model->charge(slot->cache, s, &f, values, count - head);
+    return delta;
+}
+
+long tribo_charging_apply(tribo_charging *c, const tribo_scene *s, const tribo_contact_sample *sample,
+                          tribo_charge_target target)
+{
+    long first;
+    const long count = segment_run(c, sample, &first);
+    long updates = 0;
+    for (int k = 0; count > 0 && k < c->n_models; k++) {
         tribo_charge_slot *slot = &c->slot[k];
         double *values = target == TRIBO_CHARGE_COMMITTED ? slot->segments : slot->segments_out;
         if (!slot->selected || !values)
             continue;
-        const tribo_charge_forcing f = {sample->duration, sample->globals_begin + slot->globals_at,
-                                        sample->globals_mid + slot->globals_at,
-                                        sample->globals_end + slot->globals_at};
-        slot->model->charge(slot->cache, s, &f, values + i, head);
-        if (count > head)
-            slot->model->charge(slot->cache, s, &f, values, count - head);
+        const double delta = charge_run(slot, s, sample, values, c->n, first, count);
+        if (target == TRIBO_CHARGE_COMMITTED)
+            tribo_compensated_add(&slot->sum, &slot->sum_c, delta);
+        updates += count;
     }
+    return updates;
+}
+
+/* The pending samples' runs lie in one window of the ring (the contact moves
+   continuously): the window is copied once and charged in place of the ring. */
+int tribo_charging_pending_sums(tribo_charging *c, const tribo_scene *s,
+                                const tribo_contact_sample *samples, size_t n_samples,
+                                double *deltas)
+{
+    const long n = c->n;
+    long anchor = -1, lo = 0, hi = 0; /* the window [anchor + lo, anchor + hi), unwrapped */
+    for (size_t i = 0; i < n_samples; i++) {
+        long first;
+        const long count = segment_run(c, &samples[i], &first);
+        if (!count)
+            continue;
+        if (anchor < 0) {
+            anchor = first;
+            hi = count;
+            continue;
+        }
+        long offset = (first - anchor) % n;
+        if (offset < 0)
+            offset += n;
+        if (offset > n / 2)
+            offset -= n; /* just before the anchor */
+        lo = offset < lo ? offset : lo;
+        hi = offset + count > hi ? offset + count : hi;
+    }
+    for (int k = 0; k < c->n_models; k++)
+        deltas[k] = 0.0;
+    if (anchor < 0)
+        return 0;
+    const long len = hi - lo < n ? hi - lo : n;
+    long start = len < n ? (anchor + lo) % n : 0;
+    if (start < 0)
+        start += n;
+    for (int k = 0; k < c->n_models; k++) {
+        tribo_charge_slot *slot = &c->slot[k];
+        if (!slot->selected || !slot->segments)
+            continue;
+        if (slot->window_cap < (size_t)len) {
+            double *w = realloc(slot->window, (size_t)len * sizeof *w);
+            if (!w)
+                return -1;
+            slot->window = w;
+            slot->window_cap = (size_t)len;
+        }
+        const long head = len < n - start ? len : n - start;
+        memcpy(slot->window, slot->segments + start, (size_t)head * sizeof(double));
+        memcpy(slot->window + head, slot->segments, (size_t)(len - head) * sizeof(double));
+        for (size_t i = 0; i < n_samples; i++) {
+            long first;
+            const long count = segment_run(c, &samples[i], &first);
+            if (!count)
+                continue;
+            long offset = (first - start) % n;
+            if (offset < 0)
+                offset += n;
+            /* in a window shorter than the ring a run never wraps: it lies inside */
+            deltas[k] += charge_run(slot, s, &samples[i], slot->window, len, offset, count);
+        }
+    }
+    return 0;
 }

@@ -28,6 +28,11 @@ typedef struct tribo_charge_slot {
     int quadratures_at; /* its quadratures after the motion in a point's y */
     double *segments;   /* committed values (NULL when not selected) */
     double *segments_out; /* a copy with the pending updates applied, made when read */
+    /* the sum of the committed values, kept up to date with each charge (compensated:
+       sum_c holds what the additions rounded off), so that a mean costs nothing to read */
+    double sum, sum_c;
+    double *window;       /* scratch for the pending updates' effect on the sum */
+    size_t window_cap;
     void *cache;
 } tribo_charge_slot;
 
@@ -68,9 +73,22 @@ void tribo_charging_step(tribo_charging *c, const tribo_scene *s, const tribo_po
                          const double *g0, double *g1, tribo_contact_sample *sample);
 
 /* Charge the segments under a sample (the overlap of [s_c - Sc, s_c + Sc], §5) with each
-   selected model, in the committed arrays or in the output copies. */
-void tribo_charging_apply(tribo_charging *c, const tribo_scene *s, const tribo_contact_sample *sample,
+   selected model, in the committed arrays (and their sums) or in the output copies.
+   Returns the number of segment values updated. */
+long tribo_charging_apply(tribo_charging *c, const tribo_scene *s, const tribo_contact_sample *sample,
                           tribo_charge_target target);
+
+/* The committed sum of a slot's values. */
+static inline double tribo_charging_sum(const tribo_charge_slot *slot) { return slot->sum + slot->sum_c; }
+/* Add x to a compensated sum (Neumaier). */
+void tribo_compensated_add(double *sum, double *c, double x);
+
+/* What the samples (in order, not committed) would add to each slot's sum: deltas[k] for
+   slot k (0 for slots not selected). Costs the segments they touch, not n. Returns 0, or
+   -1 if out of memory. */
+int tribo_charging_pending_sums(tribo_charging *c, const tribo_scene *s,
+                                const tribo_contact_sample *samples, size_t n_samples,
+                                double *deltas);
 
 /* The contact along an interval of the motion, as an integrator with dense output sees it
    at time t: the arc-length coordinate of the contact centre, the half-width Sc, the speed

@@ -6,6 +6,14 @@
  * last committed point and the asked time it sets an output point that is not committed.
  * It does so only through the services below: it never writes the instance's fields.
  * Every hook returns a status; a failure carries its reason (tribo_fail) to the caller.
+ *
+ * The committed point never lies after the output point: an advance commits only the
+ * steps that end at or before the asked time.
+ *
+ * An advance may end early, and only between steps: when tribo_work_spent says the work
+ * limit of the advance is spent, it returns tribo_stop_early() (TRIBO_INCOMPLETE, the output
+ * point at the committed one). That is the one way of stopping short of the asked time,
+ * whatever the reason; the next advance goes on from there as if nothing had stopped.
  */
 #ifndef TRIBO_INTEGRATOR_H
 #define TRIBO_INTEGRATOR_H
@@ -35,12 +43,19 @@ typedef struct tribo_integrator_ops {
     /* The committed point was set from outside (reset, a tunable or an input changed):
        start afresh from it (and commit it again, evaluated under the integrator's law). */
     tribo_status (*restart)(tribo_model *m, void *data);
-    /* Commit the motion up to t, then set the output point at t. */
+    /* Commit the motion up to t, then set the output point at t (or stop early, above). */
     tribo_status (*advance)(tribo_model *m, void *data, double t);
     /* The integrator's own state, as plain bytes. */
     size_t (*state_size)(const void *data);
     void (*state_save)(const void *data, unsigned char *buffer);
-    tribo_status (*state_load)(tribo_model *m, void *data, const unsigned char *buffer);
+    /* Check saved bytes against the committed point already loaded and the output time
+       t_out (every value one the integrator can produce, its times consistent with both,
+       and advancing to t_out commits nothing), then take them, applying the scene (which
+       may differ from the one the integrator was made with in its fixed parameters).
+       A refusal (TRIBO_ERR_STATE, with the reason) may leave the integrator's data
+       changed: the caller restores it. */
+    tribo_status (*state_load)(tribo_model *m, void *data, const unsigned char *buffer,
+                               double t_out);
 } tribo_integrator_ops;
 
 /* The integrator of a kind (tribo_integrator_kind), or NULL for an unknown kind. */
@@ -77,6 +92,15 @@ typedef enum tribo_counter {
     TRIBO_COUNT_SUBSTEPS   /* extra sub-steps the fixed step took           */
 } tribo_counter;
 void tribo_count(tribo_model *m, tribo_counter which, long long n);
+
+/* Book work of the advance under way, in internal steps (the unit of the scene's
+   work_limit: the cost of an RK4 step). The charging services book their own. */
+void tribo_work(tribo_model *m, double steps);
+/* Whether the advance under way has spent its work limit. */
+int tribo_work_spent(const tribo_model *m);
+/* End the advance under way at the committed point: it becomes the output point; returns
+   TRIBO_INCOMPLETE with the reason. */
+tribo_status tribo_stop_early(tribo_model *m);
 
 /* A warning of the integrator, to the instance's logger. */
 void tribo_warn(tribo_model *m, const char *message);

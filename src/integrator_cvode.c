@@ -50,6 +50,9 @@
 
 /* A restart every so many steps bounds the replay a state load costs. */
 #define STEPS_PER_RESTART 2000
+/* A step with its root finding, its samples for grazing switches and its dense output
+   costs about as much as this many RK4 steps (the unit of work_limit). */
+#define STEP_WORK 50.0
 /* Guards against runaway integration. */
 #define MAX_EVENTS_AT_ONE_INSTANT 64
 #define MAX_EVENTS_IN_A_ROW 100000
@@ -206,6 +209,21 @@ static void destroy(void *data)
     free(c);
 }
 
+/* The scene's tolerances (fixed parameters: set at creation, and again when a state of a
+   scene with others is loaded). The charge models' quadratures are integrated along the
+   charging sweep and must not steer the step: a huge absolute tolerance takes their
+   (constant) components out of the error norm. The vector keeps them whichever models are
+   selected, so that the motion does not depend on the selection. The dissipated and
+   external work are the mechanics' own book-keeping (smooth within a phase) and are held to
+   the tolerances like the motion, so that the energy balance of model.md §6 is. */
+static int set_tolerances(cvode_integrator *c, const tribo_scene *scene)
+{
+    N_VConst(scene->atol, c->abstol);
+    for (int i = TRIBO_NMOTION; i < c->n; i++)
+        N_VGetArrayPointer(c->abstol)[i] = 1e30;
+    return CVodeSVtolerances(c->mem, scene->rtol, c->abstol) == CV_SUCCESS;
+}
+
 static tribo_status create(tribo_model *m, void **data)
 {
     cvode_integrator *c = calloc(1, sizeof *c);
@@ -227,18 +245,8 @@ static tribo_status create(tribo_model *m, void **data)
     if (!c->y || !c->dky || !c->abstol || !c->mem)
         goto fail;
     N_VConst(0.0, c->y);
-    /* The charge models' quadratures are integrated along the charging sweep and must not
-       steer the step: a huge absolute tolerance takes their (constant) components out of
-       the error norm. The vector keeps them whichever models are selected, so that the
-       motion does not depend on the selection. The dissipated and external work are the
-       mechanics' own book-keeping (smooth within a phase) and are held to the tolerances
-       like the motion, so that the energy balance of model.md §6 is. */
-    N_VConst(scene->atol, c->abstol);
-    for (int i = TRIBO_NMOTION; i < c->n; i++)
-        N_VGetArrayPointer(c->abstol)[i] = 1e30;
     if (CVodeSetErrHandlerFn(c->mem, error_handler, c) != CV_SUCCESS ||
-        CVodeInit(c->mem, rhs, 0.0, c->y) != CV_SUCCESS ||
-        CVodeSVtolerances(c->mem, scene->rtol, c->abstol) != CV_SUCCESS ||
+        CVodeInit(c->mem, rhs, 0.0, c->y) != CV_SUCCESS || !set_tolerances(c, scene) ||
         CVodeSetUserData(c->mem, c) != CV_SUCCESS ||
         CVodeRootInit(c->mem, N_ROOTS, roots) != CV_SUCCESS ||
         CVodeSetNoInactiveRootWarn(c->mem) != CV_SUCCESS ||
@@ -317,8 +325,10 @@ static tribo_status take_step(cvode_integrator *c)
     capture_interpolant(c);
     if (!c->ends_at_root)
         find_grazing_switch(c, tribo_committed(c->m)->t);
-    if (!c->replaying)
+    if (!c->replaying) {
         tribo_count(c->m, TRIBO_COUNT_STEPS, 1);
+        tribo_work(c->m, STEP_WORK);
+    }
     return TRIBO_OK;
 }
 
@@ -538,6 +548,8 @@ static tribo_status advance(tribo_model *m, void *data, double t)
             return st;
         if (t <= tribo_committed(m)->t)
             break;
+        if (tribo_work_spent(m))
+            return tribo_stop_early(m);
         if (++steps > max_steps)
             return fail_at(c, tribo_committed(m)->t, tribo_committed(m)->y,
                            "too much work: more than 1e6 steps per time unit");
@@ -605,29 +617,74 @@ static void state_save(const void *data, unsigned char *b)
     memcpy(b, &s, sizeof s);
 }
 
-static tribo_status state_load(tribo_model *m, void *data, const unsigned char *b)
+/* Whether saved bytes hold values this integrator can produce. */
+static int saved_valid(const cvode_integrator *c, const saved *s)
+{
+    int ok = isfinite(s->t_restart) && s->steps_since_restart >= 0 &&
+             s->steps_since_restart <= STEPS_PER_RESTART && (s->open == 0 || s->open == 1) &&
+             (s->contact == 0 || s->contact == 1) &&
+             (s->normal == TRIBO_NORMAL_SIGN || s->normal == TRIBO_NORMAL_LOCK) &&
+             (s->tangent == TRIBO_TANGENT_STICK || s->tangent == TRIBO_TANGENT_SLIP) &&
+             (s->normal_sign == 1.0 || s->normal_sign == -1.0 || s->normal_sign == 0.0) &&
+             (s->slip_sign == 1.0 || s->slip_sign == -1.0 || s->slip_sign == 0.0) &&
+             (isfinite(s->last_event_t) || s->last_event_t == -INFINITY) &&
+             s->events_at_instant >= 0 && s->events_at_instant <= MAX_EVENTS_AT_ONE_INSTANT &&
+             s->events_in_a_row >= 0 && s->events_in_a_row <= MAX_EVENTS_IN_A_ROW;
+    for (int i = 0; ok && i < c->n; i++)
+        ok = isfinite(s->y_restart[i]);
+    return ok;
+}
+
+static tribo_status state_load(tribo_model *m, void *data, const unsigned char *b, double t_out)
 {
     cvode_integrator *c = data;
     saved s;
     memcpy(&s, b, sizeof s);
-    if (!isfinite(s.t_restart) || s.steps_since_restart < 0 || s.t_restart > tribo_committed(m)->t ||
-        (s.normal != TRIBO_NORMAL_SIGN && s.normal != TRIBO_NORMAL_LOCK) ||
-        (s.tangent != TRIBO_TANGENT_STICK && s.tangent != TRIBO_TANGENT_SLIP))
-        return tribo_fail(m, TRIBO_ERR_STATE, "CVODE state is corrupt");
+    const double t = tribo_committed(m)->t;
+    if (!saved_valid(c, &s) || !(s.t_restart <= t) || !(s.last_event_t <= t) ||
+        (!s.open && t_out != t))
+        return tribo_fail(m, TRIBO_ERR_STATE, "the CVODE state is corrupt");
+    if (!set_tolerances(c, tribo_get_scene(m)))
+        return tribo_fail(m, TRIBO_ERR_STATE, "CVODE refused the tolerances rtol = %g, atol = %g: %s",
+                          tribo_get_scene(m)->rtol, tribo_get_scene(m)->atol, c->message);
     phase ph;
     ph.contact = s.contact ? TRIBO_CONTACT_ON : TRIBO_CONTACT_OFF;
     ph.normal = (tribo_normal_rule)s.normal;
     ph.tangent = (tribo_tangent_rule)s.tangent;
     ph.normal_sign = s.normal_sign;
     ph.slip_sign = s.slip_sign;
-    /* CVODE is deterministic: the same restart and steps give the same open step */
+    /* CVODE is deterministic: the same restart and steps give the same open step. They must
+       reach the committed point, time and motion (but for the stretch, which a slip holds at
+       its limit there): the steps before the open one end there, and the open one holds the
+       output time. */
     c->replaying = 1;
+    double reached = s.t_restart, before = s.t_restart;
+    double y_reached[TRIBO_NSTATE_MAX], y_before[TRIBO_NSTATE_MAX];
+    memcpy(y_reached, s.y_restart, sizeof y_reached);
+    memcpy(y_before, s.y_restart, sizeof y_before);
     tribo_status st = restart_at(c, s.t_restart, s.y_restart, &ph);
-    for (long long k = 0; st == TRIBO_OK && k < s.steps_since_restart; k++)
-        st = take_step(c);
+    for (long long k = 0; st == TRIBO_OK && k < s.steps_since_restart; k++) {
+        before = reached;
+        memcpy(y_before, y_reached, sizeof y_before);
+        if ((st = take_step(c)) == TRIBO_OK) {
+            reached = c->t_end;
+            memcpy(y_reached, c->y_end, sizeof y_reached);
+        }
+    }
     c->replaying = 0;
     if (st != TRIBO_OK)
-        return st;
+        return tribo_fail(m, TRIBO_ERR_STATE, "the CVODE state does not replay: %s",
+                          tribo_last_error(m));
+    const double at = s.open ? before : reached;
+    const double *y_at = s.open ? y_before : y_reached;
+    int same = at == t && (!s.open || (s.steps_since_restart > 0 && t_out <= reached));
+    for (int i = 0; same && i < TRIBO_NMOTION; i++)
+        same = i == TRIBO_IDX || y_at[i] == tribo_committed(m)->y[i];
+    if (!same)
+        return tribo_fail(m, TRIBO_ERR_STATE,
+                          "the CVODE state is corrupt: its steps from t = %.17g do not reach the "
+                          "committed point at t = %.17g",
+                          s.t_restart, t);
     c->open = (int)s.open;
     c->last_event_t = s.last_event_t;
     c->events_at_instant = (int)s.events_at_instant;

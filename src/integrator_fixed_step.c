@@ -135,6 +135,7 @@ static void step(tribo_model *m, const tribo_point *p, double h, tribo_point *ne
     rk4(m, next->y, h / n);
     if (n > 1)
         tribo_count(m, TRIBO_COUNT_SUBSTEPS, n - 1);
+    tribo_work(m, n);
 
     const double dx = clamp_stretch(dp, next->y, ev);
     next->slipping = ev->in_contact && fabs(dx) >= ev->limit && (ev->limit > 0.0 || ev->vs != 0.0);
@@ -163,20 +164,35 @@ static tribo_status restart(tribo_model *m, void *data)
     return TRIBO_OK;
 }
 
+/* Grid point k: computed one way everywhere, so that a time is on the grid or not alike
+   for the advance and for a loaded state. */
+static double grid(const fixed_step *f, long long k, double dt) { return f->t_base + (double)k * dt; }
+
+/* A time that is a grid point up to this fraction of dt counts as that grid point: it is
+   the same point computed another way (t + h + h ... against t + n h). */
+#define GRID_SLACK 1e-9
+/* The grid must stay resolved: t / dt below 2^45 leaves each step 2^7 roundings of t wide. */
+#define GRID_MAX_STEPS 0x1p45
+
 static tribo_status advance(tribo_model *m, void *data, double t)
 {
     fixed_step *f = data;
     const double dt = tribo_get_scene(m)->dt;
-    /* a time that is a grid point up to rounding counts as that grid point */
-    const double slack = 1e-9;
-    const long long target = (long long)floor((t - f->t_base) / dt + slack);
+    if (!(t / dt < GRID_MAX_STEPS))
+        return tribo_fail(m, TRIBO_ERR_TIME,
+                          "cannot advance the fixed step to t = %.17g: steps of dt = %g are not "
+                          "resolved there (t / dt must stay below 2^45)",
+                          t, dt);
     tribo_contact_sample sample;
     tribo_point next;
 
-    while (f->k < target) {
+    /* commit every grid point up to t, none after it */
+    while (grid(f, f->k + 1, dt) <= t) {
+        if (tribo_work_spent(m))
+            return tribo_stop_early(m);
         step(m, tribo_committed(m), dt, &next, &sample, 1);
         f->k++;
-        next.t = f->t_base + (double)f->k * dt; /* no drift over millions of steps */
+        next.t = grid(f, f->k, dt); /* no drift over millions of steps */
         tribo_commit(m, &next);
         tribo_charge_sample(m, &sample, TRIBO_CHARGE_COMMIT);
         tribo_count(m, TRIBO_COUNT_STEPS, 1);
@@ -184,14 +200,16 @@ static tribo_status advance(tribo_model *m, void *data, double t)
 
     tribo_output_begin(m);
     const tribo_point *committed = tribo_committed(m);
-    const double h = t - committed->t;
     tribo_point out;
-    if (h <= slack * dt) {
+    if (t - committed->t <= GRID_SLACK * dt) {
         out = *committed;
         out.t = t;
         tribo_output_set(m, &out);
         return TRIBO_OK;
     }
+    /* a time just before the next grid point is that grid point: its whole step, not
+       committed (the next advance commits it, the same) */
+    const double h = grid(f, f->k + 1, dt) - t <= GRID_SLACK * dt ? dt : t - committed->t;
     step(m, committed, h, &out, &sample, 0);
     out.t = t;
     tribo_output_set(m, &out);
@@ -211,13 +229,23 @@ static void state_save(const void *data, unsigned char *b)
     memcpy(b + sizeof f->t_base, &f->k, sizeof f->k);
 }
 
-static tribo_status state_load(tribo_model *m, void *data, const unsigned char *b)
+static tribo_status state_load(tribo_model *m, void *data, const unsigned char *b, double t_out)
 {
     fixed_step *f = data;
-    memcpy(&f->t_base, b, sizeof f->t_base);
-    memcpy(&f->k, b + sizeof f->t_base, sizeof f->k);
-    if (!isfinite(f->t_base) || f->k < 0)
-        return tribo_fail(m, TRIBO_ERR_STATE, "fixed-step state is corrupt");
+    fixed_step saved;
+    memcpy(&saved.t_base, b, sizeof saved.t_base);
+    memcpy(&saved.k, b + sizeof saved.t_base, sizeof saved.k);
+    const double dt = tribo_get_scene(m)->dt, t = tribo_committed(m)->t;
+    /* the committed point is grid point k, and the output lies before grid point k + 1 */
+    if (!(saved.t_base >= 0.0 && saved.t_base <= t) || saved.k < 0 ||
+        !((double)saved.k < GRID_MAX_STEPS) || grid(&saved, saved.k, dt) != t ||
+        !(t_out < grid(&saved, saved.k + 1, dt)))
+        return tribo_fail(m, TRIBO_ERR_STATE,
+                          "the fixed step's state is corrupt: its grid (from t = %.17g, step "
+                          "%lld of dt = %g) does not hold the committed time %.17g and the "
+                          "output time %.17g",
+                          saved.t_base, saved.k, dt, t, t_out);
+    *f = saved;
     return TRIBO_OK;
 }
 

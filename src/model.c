@@ -78,6 +78,7 @@ static void pending_clear(tribo_model *m)
 {
     m->n_pending = 0;
     m->charges_out_valid = 0;
+    m->pending_sums_valid = 0;
 }
 
 void tribo_commit(tribo_model *m, const tribo_point *p) { m->committed = *p; }
@@ -93,6 +94,23 @@ void tribo_count(tribo_model *m, tribo_counter which, long long n)
     case TRIBO_COUNT_RESTARTS: m->stats.restarts += n; break;
     case TRIBO_COUNT_SUBSTEPS: m->stats.substeps += n; break;
     }
+}
+
+/* Charging this many segment values costs about one internal step (an RK4 step). */
+#define SEGMENT_UPDATES_PER_STEP 250.0
+
+void tribo_work(tribo_model *m, double steps) { m->work += steps; }
+
+int tribo_work_spent(const tribo_model *m) { return m->work >= (double)m->scene.work_limit; }
+
+tribo_status tribo_stop_early(tribo_model *m)
+{
+    tribo_output_begin(m);
+    tribo_output_set(m, &m->committed);
+    return tribo_fail(m, TRIBO_INCOMPLETE,
+                      "stopped early at t = %.17g: the advance spent its work limit (work_limit = "
+                      "%d internal steps; take shorter steps, or raise it)",
+                      m->committed.t, m->scene.work_limit);
 }
 
 void tribo_warn(tribo_model *m, const char *message)
@@ -154,6 +172,7 @@ static tribo_status pending_push(tribo_model *m, const tribo_contact_sample *sam
     }
     m->pending[m->n_pending++] = *sample;
     m->charges_out_valid = 0;
+    m->pending_sums_valid = 0;
     return TRIBO_OK;
 }
 
@@ -164,7 +183,8 @@ tribo_status tribo_charge_sample(tribo_model *m, const tribo_contact_sample *sam
         return TRIBO_OK;
     if (where == TRIBO_CHARGE_PENDING)
         return pending_push(m, sample);
-    tribo_charging_apply(&m->charging, &m->scene, sample, TRIBO_CHARGE_COMMITTED);
+    const long updates = tribo_charging_apply(&m->charging, &m->scene, sample, TRIBO_CHARGE_COMMITTED);
+    tribo_work(m, (double)updates / SEGMENT_UPDATES_PER_STEP);
     return TRIBO_OK;
 }
 
@@ -212,15 +232,26 @@ void tribo_probe_contact(const tribo_model *m, const double *y, double *s_centre
     k->rho_c = rho_c;
 }
 
-typedef struct sink_target {
+typedef struct sweep_target {
     tribo_model *m;
     tribo_charge_destination where;
-} sink_target;
+    const tribo_contact_probe *probe;
+} sweep_target;
 
 static int sink(void *ctx, const tribo_contact_sample *sample)
 {
-    sink_target *s = ctx;
+    sweep_target *s = ctx;
     return tribo_charge_sample(s->m, sample, s->where) != TRIBO_OK;
+}
+
+/* The integrator's probe, each look at the contact counted as an internal step (it costs
+   about as much as an RK4 step). */
+static void counted_probe(void *ctx, double t, double *s_centre, double *half_width,
+                          double *centre_speed, tribo_contact_kinematics *k)
+{
+    sweep_target *s = ctx;
+    tribo_work(s->m, 1.0);
+    s->probe->at(s->probe->ctx, t, s_centre, half_width, centre_speed, k);
 }
 
 tribo_status tribo_charge_sweep(tribo_model *m, const tribo_contact_probe *probe, double a,
@@ -228,8 +259,9 @@ tribo_status tribo_charge_sweep(tribo_model *m, const tribo_contact_probe *probe
 {
     if (!m->charging.any_selected)
         return TRIBO_OK;
-    sink_target target = {m, where};
-    if (tribo_charging_sweep(&m->charging, &m->scene, probe, a, b, m->scene.rtol, m->scene.atol,
+    sweep_target target = {m, where, probe};
+    const tribo_contact_probe counted = {counted_probe, &target};
+    if (tribo_charging_sweep(&m->charging, &m->scene, &counted, a, b, m->scene.rtol, m->scene.atol,
                              p->y + TRIBO_NMOTION, p->charge_globals, sink, &target) != 0)
         return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
     return TRIBO_OK;
@@ -238,7 +270,8 @@ tribo_status tribo_charge_sweep(tribo_model *m, const tribo_contact_probe *probe
 /* ---- the output point's charges ------------------------------------------------------------ */
 
 /* The committed charges with the pending updates applied: the committed arrays themselves
-   when nothing is pending, else the copies. Returns 0 if out of memory. */
+   when nothing is pending, else full copies (for the per-segment arrays only: the scalar
+   outputs take the sums). Returns 0 if out of memory. */
 static int charges_out(tribo_model *m)
 {
     tribo_charging *c = &m->charging;
@@ -259,14 +292,26 @@ static int charges_out(tribo_model *m)
     return 1;
 }
 
+/* What the pending updates add to each model's sum. Returns 0 if out of memory. */
+static int pending_sums(tribo_model *m)
+{
+    if (m->pending_sums_valid)
+        return 1;
+    if (tribo_charging_pending_sums(&m->charging, &m->scene, m->pending, m->n_pending,
+                                    m->pending_sums) != 0)
+        return 0;
+    m->pending_sums_valid = 1;
+    return 1;
+}
+
 tribo_charge_view tribo_charge_view_of(tribo_model *m, int index)
 {
     const tribo_charge_slot *slot = &m->charging.slot[index];
-    tribo_charge_view v = {&m->scene, NULL, m->charging.n,
+    tribo_charge_view v = {&m->scene, slot->segments != NULL, m->charging.n, 0.0,
                            m->out.charge_globals + slot->globals_at,
                            m->out.y + TRIBO_NMOTION + slot->quadratures_at};
-    if (slot->segments && charges_out(m))
-        v.segments = m->n_pending ? slot->segments_out : slot->segments;
+    if (v.selected)
+        v.sum = pending_sums(m) ? tribo_charging_sum(slot) + m->pending_sums[index] : NAN;
     return v;
 }
 
@@ -399,13 +444,53 @@ tribo_status tribo_reset(tribo_model *m)
     return restart_here(m);
 }
 
+tribo_status tribo_check_outputs(tribo_model *m)
+{
+    if (!pending_sums(m))
+        return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
+    for (int q = 0; q < TRIBO_Q_COUNT; q++) {
+        const double v = tribo_get(m, (tribo_quantity)q);
+        if (!isfinite(v))
+            return tribo_fail(m, TRIBO_ERR_INTEGRATOR, "%s = %g at t = %.17g is not a finite number",
+                              tribo_quantity_name((tribo_quantity)q), v, m->out.t);
+    }
+    return TRIBO_OK;
+}
+
 tribo_status tribo_advance(tribo_model *m, double t)
 {
     if (!isfinite(t) || t < m->out.t)
         return tribo_fail(m, TRIBO_ERR_TIME,
                           "cannot advance to t = %.17g: the instance is at t = %.17g", t,
                           m->out.t);
-    return m->integrator->advance(m, m->integrator_data, t);
+    if (t > TRIBO_TIME_MAX)
+        return tribo_fail(m, TRIBO_ERR_TIME,
+                          "cannot advance to t = %.17g: beyond t = %g the time is not resolved "
+                          "finely enough to integrate",
+                          t, TRIBO_TIME_MAX);
+    m->work = 0.0;
+    const tribo_status st = m->integrator->advance(m, m->integrator_data, t);
+    if (st != TRIBO_OK && st != TRIBO_INCOMPLETE)
+        return st;
+    const tribo_status checked = tribo_check_outputs(m);
+    if (checked == TRIBO_ERR_INTEGRATOR) {
+        /* one output is enough to say so; the motion or the charges overflowed */
+        char what[sizeof m->error];
+        memcpy(what, m->error, sizeof what);
+        return tribo_fail(m, TRIBO_ERR_INTEGRATOR,
+                          "the integration failed: %s (the motion or the charges overflowed); "
+                          "reset the instance",
+                          what);
+    }
+    return checked != TRIBO_OK ? checked : st;
+}
+
+tribo_status tribo_advance_fully(tribo_model *m, double t)
+{
+    tribo_status st;
+    while ((st = tribo_advance(m, t)) == TRIBO_INCOMPLETE)
+        ;
+    return st;
 }
 
 tribo_status tribo_set_param(tribo_model *m, const char *name, double value)
@@ -431,14 +516,10 @@ tribo_status tribo_set_param(tribo_model *m, const char *name, double value)
 
 tribo_status tribo_set_inputs(tribo_model *m, const double values[TRIBO_INPUT_COUNT])
 {
-    const char *const names[TRIBO_INPUT_COUNT] = {
-#define TRIBO_INPUT(id, name, ...) [TRIBO_INPUT_##id] = name,
-#include "quantities.def"
-    };
+    const tribo_param_info *inputs = tribo_input_table(NULL);
     for (int i = 0; i < TRIBO_INPUT_COUNT; i++)
-        if (!isfinite(values[i]))
-            return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT, "%s = %g is invalid: it must be finite",
-                              names[i], values[i]);
+        if (tribo_param_check(&inputs[i], values[i], m->error, sizeof m->error) != TRIBO_OK)
+            return TRIBO_ERR_INVALID_ARGUMENT;
     if (values[TRIBO_INPUT_F_T] == m->dyn.F_T && values[TRIBO_INPUT_F_N] == m->dyn.F_N)
         return TRIBO_OK;
     commit_output(m);
@@ -498,9 +579,11 @@ tribo_status tribo_get_segment_charges(tribo_model *m, tribo_segment_charge whic
     if (n != (size_t)m->charging.n)
         return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT,
                           "segment array of %zu values given, n_segments = %d", n, m->charging.n);
-    const tribo_charge_view v = tribo_charge_view_of(m, which);
-    if (!v.segments)
+    if (!charges_out(m))
         return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
-    m->charging.slot[which].model->segment_values(&m->scene, v.globals, v.segments, out, v.n);
+    const tribo_charge_slot *slot = &m->charging.slot[which];
+    const tribo_charge_view v = tribo_charge_view_of(m, which);
+    slot->model->segment_values(&m->scene, v.globals,
+                                m->n_pending ? slot->segments_out : slot->segments, out, v.n);
     return TRIBO_OK;
 }

@@ -24,6 +24,13 @@ struct tribo_model {
     tribo_contact_sample *pending;
     size_t n_pending, cap_pending;
     int charges_out_valid;
+    /* what the pending updates add to each model's sum (valid when pending_sums_valid) */
+    int pending_sums_valid;
+    double pending_sums[TRIBO_CHARGE_MAX_MODELS];
+
+    /* the work done by the advance under way, in internal steps (quantities.def:
+       work_limit) */
+    double work;
 
     const tribo_integrator_ops *integrator;
     void *integrator_data;
@@ -50,5 +57,9 @@ tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts
 
 /* Recompute dyn from the scene (after a tunable changed). */
 void tribo_derive_params(tribo_model *m);
+
+/* TRIBO_OK if every output at the output point is a finite number; else a failure naming
+   the first that is not. */
+tribo_status tribo_check_outputs(tribo_model *m);
 
 #endif

@@ -2,6 +2,7 @@
 #include "tribo.h"
 
 #include <ctype.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,9 +12,9 @@
 #define OPEN 0
 #define TRIBO_TYPE_ENUM(enumeration) TRIBO_TYPE_ENUM
 
-/* The rows of quantities.def. Upper bounds that the model leaves open are +INFINITY (any
-   finite value); the few finite caps are there to refuse input that would only exhaust
-   memory or time, and say so in their description. */
+/* The rows of quantities.def. Every bound is finite: the ranges are what the model can
+   compute (beyond them the arithmetic overflows, or the work of a step has no bound); a cap
+   with another reason says so in its description. */
 static const tribo_param_info PARAMS[] = {
 #define TRIBO_PARAMETER(name_, type_, vr_, unit_, min_, min_end, max_, max_end, start_,   \
                         variability_, description_)                                      \
@@ -25,6 +26,22 @@ static const tribo_param_info PARAMS[] = {
 };
 
 #define N_PARAMS (sizeof PARAMS / sizeof PARAMS[0])
+
+static const tribo_param_info INPUTS[TRIBO_INPUT_COUNT] = {
+#define TRIBO_INPUT(id_, name_, vr_, unit_, min_, max_, description_)                          \
+    [TRIBO_INPUT_##id_] = {.name = name_, .description = description_, .unit = unit_,         \
+                           .vr = vr_, .type = TRIBO_TYPE_REAL, .min = min_, .max = max_,      \
+                           .min_inclusive = CLOSED, .max_inclusive = CLOSED, .start = 0.0,    \
+                           .variability = TRIBO_PARAM_TUNABLE},
+#include "quantities.def"
+};
+
+const tribo_param_info *tribo_input_table(size_t *count)
+{
+    if (count)
+        *count = TRIBO_INPUT_COUNT;
+    return INPUTS;
+}
 
 void tribo_scene_defaults(tribo_scene *s)
 {
@@ -65,7 +82,8 @@ void tribo_param_write(tribo_scene *scene, const tribo_param_info *p, double val
 {
     char *base = (char *)scene + p->offset;
     if (p->type != TRIBO_TYPE_REAL) {
-        int v = (int)value;
+        /* saturated: a value an int cannot hold is invalid anyway, and reads back otherwise */
+        const int v = value >= (double)INT_MAX ? INT_MAX : value > (double)INT_MIN ? (int)value : INT_MIN;
         memcpy(base, &v, sizeof v);
     } else {
         memcpy(base, &value, sizeof value);

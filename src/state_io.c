@@ -4,20 +4,25 @@
  *   magic "TRIBOST1", version, total size,
  *   every scene parameter (in the order of the parameter table),
  *   the external force, the output time, the work counters,
- *   the committed point (with the charge models' quadratures and global states), the
- *   committed per-segment charges of each selected charge model, the integrator's own bytes.
+ *   the committed point (with the charge models' quadratures and global states), for each
+ *   selected charge model its committed per-segment charges and their running sum (value
+ *   and compensation), the integrator's own bytes.
  * The output point is not stored: it is recomputed from the committed point exactly as
  * the advance that made it did, so a loaded instance continues bit-identically.
+ *
+ * A load checks everything before it changes the instance, and puts the instance back as it
+ * was if the integrator refuses its part (which it can only check by replaying it).
  */
 #include "model.h"
 
 #include "byte_cursor.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 static const char MAGIC[8] = {'T', 'R', 'I', 'B', 'O', 'S', 'T', '1'};
-enum { STATE_VERSION = 2 };
+enum { STATE_VERSION = 3 };
 
 /* Fields of a point, in order; the contact evaluation is stored with it because some
    integrators (phases of the force law) cannot recompute it from y alone. */
@@ -55,6 +60,14 @@ static void put_point(tribo_writer *w, const tribo_model *m, const tribo_point *
     tribo_write_int(w, mo->outside_assumptions);
 }
 
+/* A flag or a small index saved in 64 bits; one that an int cannot hold reads as -1 (which
+   the checks refuse). */
+static int read_small(tribo_reader *r)
+{
+    const int64_t v = tribo_read_int(r);
+    return v >= -1 && v <= 1000 ? (int)v : -1;
+}
+
 static void get_point(tribo_reader *r, const tribo_model *m, tribo_point *p)
 {
     memset(p, 0, sizeof *p);
@@ -69,26 +82,27 @@ static void get_point(tribo_reader *r, const tribo_model *m, tribo_point *p)
                                    &c->delta_y, &c->vs, &c->sign_v, &c->psi_n, &c->psi_t, &c->limit};
     for (int i = 0; i < CONTACT_DOUBLES; i++)
         *cd[i] = tribo_read_double(r);
-    c->in_contact = (int)tribo_read_int(r);
-    p->slipping = (int)tribo_read_int(r);
+    c->in_contact = read_small(r);
+    p->slipping = read_small(r);
     tribo_motion *mo = &p->motion;
     mo->contact = tribo_read_double(r);
     mo->spin = tribo_read_double(r);
     for (int i = 0; i < TRIBO_MOTION_CLASSES; i++)
         mo->class_time[i] = tribo_read_double(r);
-    mo->current = (int)tribo_read_int(r);
-    mo->outside_assumptions = (int)tribo_read_int(r);
+    mo->current = read_small(r);
+    mo->outside_assumptions = read_small(r);
 }
 
 static size_t header_size(void) { return sizeof MAGIC + 2 * sizeof(int64_t); }
 
-/* The values of the committed per-segment charges, over every selected model. */
+/* The values of the committed per-segment charges and their sums, over every selected
+   model. */
 static size_t charge_count(const tribo_model *m)
 {
     size_t n = 0;
     for (int i = 0; i < m->charging.n_models; i++)
         if (m->charging.slot[i].segments)
-            n += (size_t)m->charging.n;
+            n += (size_t)m->charging.n + 2;
     return n;
 }
 
@@ -120,22 +134,124 @@ tribo_status tribo_state_save(const tribo_model *m, void *buffer, size_t size)
     tribo_write_double(&w, m->dyn.F_N);
     tribo_write_double(&w, m->out.t);
     const tribo_stats *s = &m->stats;
-    tribo_write_int(&w, s->steps);
-    tribo_write_int(&w, s->rhs_evals);
-    tribo_write_int(&w, s->events);
-    tribo_write_int(&w, s->restarts);
-    tribo_write_int(&w, s->substeps);
-    tribo_write_int(&w, s->assumption_warnings);
+    const long long counters[6] = {s->steps,    s->rhs_evals, s->events,
+                                   s->restarts, s->substeps,  s->assumption_warnings};
+    for (int i = 0; i < 6; i++)
+        tribo_write_int(&w, counters[i]);
     put_point(&w, m, &m->committed);
-    for (int i = 0; i < m->charging.n_models; i++)
-        if (m->charging.slot[i].segments)
-            tribo_write_bytes(&w, m->charging.slot[i].segments, (size_t)m->charging.n * sizeof(double));
+    for (int i = 0; i < m->charging.n_models; i++) {
+        const tribo_charge_slot *slot = &m->charging.slot[i];
+        if (!slot->segments)
+            continue;
+        tribo_write_bytes(&w, slot->segments, (size_t)m->charging.n * sizeof(double));
+        tribo_write_double(&w, slot->sum);
+        tribo_write_double(&w, slot->sum_c);
+    }
     m->integrator->state_save(m->integrator_data, w.p);
     return TRIBO_OK;
 }
 
-tribo_status tribo_state_load(tribo_model *m, const void *buffer, size_t size)
+tribo_status tribo_state_time(const void *buffer, size_t size, double *t)
 {
+    size_t n_params;
+    tribo_param_table(&n_params);
+    tribo_reader r = tribo_reader_of(buffer, buffer ? size : 0);
+    char magic[sizeof MAGIC];
+    tribo_read_bytes(&r, magic, sizeof magic);
+    const int64_t version = tribo_read_int(&r), total = tribo_read_int(&r);
+    for (size_t i = 0; i < n_params + 2; i++)
+        tribo_read_double(&r);
+    *t = tribo_read_double(&r);
+    if (r.overrun || memcmp(magic, MAGIC, sizeof MAGIC) != 0 || version != STATE_VERSION ||
+        (uint64_t)total != size)
+        return TRIBO_ERR_STATE;
+    return TRIBO_OK;
+}
+
+/* ---- load: read and check, then apply -------------------------------------------------- */
+
+/* A state read from bytes and checked, not yet applied. */
+typedef struct loaded {
+    tribo_scene scene;
+    double F_T, F_N, t_out;
+    tribo_stats stats;
+    tribo_point committed;
+    double *segments[TRIBO_CHARGE_MAX_MODELS]; /* owned; NULL for models not selected */
+    double sum[TRIBO_CHARGE_MAX_MODELS], sum_c[TRIBO_CHARGE_MAX_MODELS];
+    const unsigned char *integrator;           /* into the bytes */
+} loaded;
+
+static void loaded_free(loaded *l)
+{
+    for (int i = 0; i < TRIBO_CHARGE_MAX_MODELS; i++)
+        free(l->segments[i]);
+}
+
+static int all_finite(const double *v, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(v[i]))
+            return 0;
+    return 1;
+}
+
+/* The most a counter can have counted: far beyond any run, far below overflow. */
+#define COUNTER_MAX 0x1p53
+
+/* Whether a point holds what an integration can produce, up to time t_out. */
+static const char *point_problem(const tribo_model *m, const tribo_point *p, double t_out)
+{
+    /* sums of the steps' lengths may exceed the time by their rounding */
+    const double slack = 1e-9 * fmax(1.0, p->t);
+    const tribo_contact_eval *c = &p->contact;
+    const double cd[CONTACT_DOUBLES] = {c->pose.sin_phi, c->pose.cos_phi, c->pose.h, c->pose.cx,
+                                        c->delta_y, c->vs, c->sign_v, c->psi_n, c->psi_t, c->limit};
+    const tribo_motion *mo = &p->motion;
+    if (!(p->t >= 0.0 && p->t <= t_out && t_out <= TRIBO_TIME_MAX))
+        return "times";
+    if (!all_finite(p->y, m->n_state) || !all_finite(p->charge_globals, m->charging.n_globals) ||
+        !all_finite(cd, CONTACT_DOUBLES))
+        return "motion";
+    if (!(p->contact_time >= 0.0 && p->contact_time <= p->t + slack))
+        return "contact time";
+    if ((c->in_contact != 0 && c->in_contact != 1) || (p->slipping != 0 && p->slipping != 1))
+        return "contact flags";
+    /* an average of 0 and 1, up to its rounding */
+    if (!(mo->contact >= -1e-12 && mo->contact <= 1.0 + 1e-12) || !isfinite(mo->spin) ||
+        mo->current < 0 || mo->current >= TRIBO_MOTION_CLASSES ||
+        (mo->outside_assumptions != 0 && mo->outside_assumptions != 1))
+        return "motion classes";
+    for (int i = 0; i < TRIBO_MOTION_CLASSES; i++)
+        if (!(mo->class_time[i] >= 0.0 && mo->class_time[i] <= p->t + slack))
+            return "motion classes";
+    return NULL;
+}
+
+/* The committed charges of one model: finite, ones the model can produce, and their running
+   sum that of the values up to its rounding. */
+static const char *charges_problem(const tribo_model *m, const tribo_charge_slot *slot,
+                                   const double *values, double sum, double sum_c,
+                                   const double *globals)
+{
+    const int n = m->charging.n;
+    if (!all_finite(values, n) || !isfinite(sum) || !isfinite(sum_c))
+        return "values that are not numbers";
+    if (slot->model->valid && !slot->model->valid(&m->scene, globals + slot->globals_at, values, n))
+        return "values the model cannot produce";
+    double magnitude = 0.0;
+    for (int i = 0; i < n; i++)
+        magnitude += fabs(values[i]);
+    if (!(fabs(sum + sum_c - tribo_sum(values, n)) <= 1e-6 * magnitude + 1e-300))
+        return "a sum that is not the sum of its values";
+    return NULL;
+}
+
+/* Read a state; with check, refuse (with the reason) anything the instance could not have
+   saved. Without, only its size is checked: for the instance's own state, put back. */
+static tribo_status read_state(tribo_model *m, const void *buffer, size_t size, loaded *l,
+                               int check)
+{
+    memset(l, 0, sizeof *l);
     if (!buffer || size < header_size())
         return tribo_fail(m, TRIBO_ERR_STATE, "state of %zu bytes is too short", size);
     tribo_reader r = tribo_reader_of(buffer, size);
@@ -144,59 +260,132 @@ tribo_status tribo_state_load(tribo_model *m, const void *buffer, size_t size)
     const int64_t version = tribo_read_int(&r), total = tribo_read_int(&r);
     if (memcmp(magic, MAGIC, sizeof MAGIC) != 0 || version != STATE_VERSION)
         return tribo_fail(m, TRIBO_ERR_STATE, "not a tribo state (or of another version)");
-    if ((size_t)total != size || size != tribo_state_size(m))
+    if ((uint64_t)total != size || size != tribo_state_size(m))
         return tribo_fail(m, TRIBO_ERR_STATE,
                           "state of %zu bytes does not fit this instance (%zu bytes expected)",
                           size, tribo_state_size(m));
 
-    tribo_scene scene = m->scene;
+    l->scene = m->scene;
     size_t n_params;
     const tribo_param_info *params = tribo_param_table(&n_params);
+    char msg[300];
     for (size_t i = 0; i < n_params; i++) {
         const tribo_param_info *p = &params[i];
         const double v = tribo_read_double(&r);
         /* a structural parameter must be the instance's own (valid for its parts); the
            others must be valid */
-        if (p->variability == TRIBO_PARAM_STRUCTURAL && v != tribo_param_read(&m->scene, p))
+        if (check && p->variability == TRIBO_PARAM_STRUCTURAL && v != tribo_param_read(&m->scene, p))
             return tribo_fail(m, TRIBO_ERR_STATE,
                               "state was saved with %s = %.17g, this instance has %s = %.17g",
                               p->name, v, p->name, tribo_param_read(&m->scene, p));
-        if (p->variability != TRIBO_PARAM_STRUCTURAL &&
-            tribo_param_check(p, v, m->error, sizeof m->error) != TRIBO_OK)
-            return TRIBO_ERR_STATE;
-        tribo_param_write(&scene, p, v);
+        if (check && p->variability != TRIBO_PARAM_STRUCTURAL &&
+            tribo_param_check(p, v, msg, sizeof msg) != TRIBO_OK)
+            return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: %s", msg);
+        tribo_param_write(&l->scene, p, v);
     }
-    const double F_T = tribo_read_double(&r), F_N = tribo_read_double(&r),
-                 t_out = tribo_read_double(&r);
-    tribo_stats stats;
-    stats.steps = tribo_read_int(&r);
-    stats.rhs_evals = tribo_read_int(&r);
-    stats.events = tribo_read_int(&r);
-    stats.restarts = tribo_read_int(&r);
-    stats.substeps = tribo_read_int(&r);
-    stats.assumption_warnings = tribo_read_int(&r);
-    tribo_point committed;
-    get_point(&r, m, &committed);
-    if (!isfinite(F_T) || !isfinite(F_N) || !isfinite(t_out) || !isfinite(committed.t) ||
-        t_out < committed.t)
-        return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt (times or inputs)");
+    const tribo_param_info *inputs = tribo_input_table(NULL);
+    l->F_T = tribo_read_double(&r);
+    l->F_N = tribo_read_double(&r);
+    if (check && (tribo_param_check(&inputs[TRIBO_INPUT_F_T], l->F_T, msg, sizeof msg) != TRIBO_OK ||
+                  tribo_param_check(&inputs[TRIBO_INPUT_F_N], l->F_N, msg, sizeof msg) != TRIBO_OK))
+        return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: %s", msg);
+    l->t_out = tribo_read_double(&r);
+    long long counters[6];
+    for (int i = 0; i < 6; i++) {
+        counters[i] = tribo_read_int(&r);
+        if (check && !(counters[i] >= 0 && (double)counters[i] <= COUNTER_MAX))
+            return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt (work counters)");
+    }
+    const tribo_stats stats = {counters[0], counters[1], counters[2],
+                               counters[3], counters[4], counters[5]};
+    l->stats = stats;
+    get_point(&r, m, &l->committed);
+    const char *problem = check ? point_problem(m, &l->committed, l->t_out) : NULL;
+    if (problem)
+        return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt (%s of the committed point)", problem);
+    for (int i = 0; i < m->charging.n_models; i++) {
+        const tribo_charge_slot *slot = &m->charging.slot[i];
+        if (!slot->segments)
+            continue;
+        const size_t bytes = (size_t)m->charging.n * sizeof(double);
+        if (!(l->segments[i] = malloc(bytes)))
+            return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
+        tribo_read_bytes(&r, l->segments[i], bytes);
+        l->sum[i] = tribo_read_double(&r);
+        l->sum_c[i] = tribo_read_double(&r);
+        problem = check ? charges_problem(m, slot, l->segments[i], l->sum[i], l->sum_c[i],
+                                          l->committed.charge_globals)
+                        : NULL;
+        if (problem)
+            return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: the %s charges hold %s",
+                              slot->model->name, problem);
+    }
+    l->integrator = r.p;
+    return r.overrun ? tribo_fail(m, TRIBO_ERR_STATE, "state is truncated") : TRIBO_OK;
+}
 
-    m->scene = scene;
+/* Make the instance the loaded state; only the integrator's part can still be refused. */
+static tribo_status apply_state(tribo_model *m, const loaded *l)
+{
+    m->scene = l->scene;
     tribo_derive_params(m);
-    m->dyn.F_T = F_T;
-    m->dyn.F_N = F_N;
-    m->stats = stats;
-    m->committed = committed;
-    for (int i = 0; i < m->charging.n_models; i++)
-        if (m->charging.slot[i].segments)
-            tribo_read_bytes(&r, m->charging.slot[i].segments, (size_t)m->charging.n * sizeof(double));
-    tribo_status st = m->integrator->state_load(m, m->integrator_data, r.p);
-    if (st != TRIBO_OK)
-        return st;
-    /* the output point, exactly as the advance that made it */
+    m->dyn.F_T = l->F_T;
+    m->dyn.F_N = l->F_N;
+    m->stats = l->stats;
+    m->committed = l->committed;
+    for (int i = 0; i < m->charging.n_models; i++) {
+        tribo_charge_slot *slot = &m->charging.slot[i];
+        if (!slot->segments)
+            continue;
+        memcpy(slot->segments, l->segments[i], (size_t)m->charging.n * sizeof(double));
+        slot->sum = l->sum[i];
+        slot->sum_c = l->sum_c[i];
+    }
     m->out = m->committed;
     m->n_pending = 0;
     m->charges_out_valid = 0;
+    m->pending_sums_valid = 0;
+    m->work = 0.0;
+    tribo_status st = m->integrator->state_load(m, m->integrator_data, l->integrator, l->t_out);
+    if (st != TRIBO_OK)
+        return st;
+    /* the output point, exactly as the advance that made it (it commits nothing: checked) */
     m->error[0] = '\0';
-    return m->integrator->advance(m, m->integrator_data, t_out);
+    if ((st = m->integrator->advance(m, m->integrator_data, l->t_out)) != TRIBO_OK)
+        return st;
+    m->stats = l->stats; /* recomputing the output point is no new work */
+    if (tribo_check_outputs(m) != TRIBO_OK) {
+        char why[sizeof m->error];
+        memcpy(why, m->error, sizeof why);
+        return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: at its time %s", why);
+    }
+    return TRIBO_OK;
+}
+
+tribo_status tribo_state_load(tribo_model *m, const void *buffer, size_t size)
+{
+    loaded l;
+    tribo_status st = read_state(m, buffer, size, &l, 1);
+    size_t backup_size = 0;
+    unsigned char *backup = NULL;
+    if (st == TRIBO_OK) {
+        backup_size = tribo_state_size(m);
+        if (!(backup = malloc(backup_size)) || tribo_state_save(m, backup, backup_size) != TRIBO_OK)
+            st = tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
+    }
+    if (st == TRIBO_OK && (st = apply_state(m, &l)) != TRIBO_OK) {
+        /* back to the instance as it was: its own state, which loads */
+        char why[sizeof m->error];
+        memcpy(why, m->error, sizeof why);
+        loaded own;
+        if (read_state(m, backup, backup_size, &own, 0) == TRIBO_OK)
+            apply_state(m, &own);
+        loaded_free(&own);
+        memcpy(m->error, why, sizeof why);
+        if (st != TRIBO_ERR_MEMORY)
+            st = TRIBO_ERR_STATE;
+    }
+    free(backup);
+    loaded_free(&l);
+    return st;
 }

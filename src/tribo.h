@@ -39,7 +39,10 @@ typedef enum tribo_status {
     TRIBO_ERR_TIME,             /* advancing backwards, or to a non-finite time       */
     TRIBO_ERR_INTEGRATOR,       /* the integrator failed; the instance must be reset */
     TRIBO_ERR_STATE,            /* state bytes that do not belong to this scene       */
-    TRIBO_ERR_MEMORY
+    TRIBO_ERR_MEMORY,
+    TRIBO_INCOMPLETE            /* not an error: an advance spent its work limit and
+                                   stopped early, at tribo_get(model, TRIBO_Q_TIME); the
+                                   instance is consistent there and advances on from it */
 } tribo_status;
 
 /* ---- the scene: every parameter of the table (quantities.def) ------------------- */
@@ -130,6 +133,9 @@ tribo_status tribo_scene_set(tribo_scene *scene, const char *name, double value,
    with tribo_scene_set; stops at the first one refused. */
 tribo_status tribo_scene_apply(tribo_scene *scene, const char *settings, char *msg,
                                size_t msg_size);
+/* The inputs (enum tribo_input order): name, unit, description, value reference and valid
+   range (start 0, type REAL, variability TUNABLE), for tribo_param_check and messages. */
+const tribo_param_info *tribo_input_table(size_t *count);
 /* Check every parameter of a scene; the first failure is reported as above. */
 tribo_status tribo_scene_validate(const tribo_scene *scene, char *msg, size_t msg_size);
 /* The first structural parameter in which two scenes differ, or NULL if they have the
@@ -156,8 +162,19 @@ tribo_status tribo_reset(tribo_model *model);
 
 /* Advance to time t >= the current time. The committed integration is independent
    of the times asked for: advancing in n calls to t1 < ... < tn gives bit-identical
-   results to one call to tn (with constant inputs and parameters). */
+   results to one call to tn (with constant inputs and parameters).
+   One call does at most the scene's work_limit of work (internal steps, quantities.def);
+   when that is spent it stops after a whole step and returns TRIBO_INCOMPLETE, at an
+   earlier time (tribo_get TRIBO_Q_TIME) from which the next call goes on, with the same
+   results as if it had not stopped. A time the integrator cannot resolve (beyond
+   TRIBO_TIME_MAX, or a fixed step's grid finer than the rounding of t) is refused
+   (TRIBO_ERR_TIME) and nothing changes. An advance that would give a non-finite output
+   fails (TRIBO_ERR_INTEGRATOR) naming it. */
 tribo_status tribo_advance(tribo_model *model, double t);
+#define TRIBO_TIME_MAX 1e12
+/* tribo_advance to t, going on after each early stop (for a caller that needs no bound on
+   the work of one call, e.g. a batch run). */
+tribo_status tribo_advance_fully(tribo_model *model, double t);
 
 /* Change a tunable parameter (model.md §1: mu, nu, eta, tau0, tau_r, Sigma0) from the
    current time on. Structural and fixed parameters are rejected. */
@@ -225,7 +242,13 @@ void tribo_get_stats(const tribo_model *model, tribo_stats *stats);
    from a scene with the same structural parameters continues bit-identically. */
 size_t tribo_state_size(const tribo_model *model);
 tribo_status tribo_state_save(const tribo_model *model, void *buffer, size_t size);
+/* Everything the bytes carry is checked (finite, within its range, consistent with the
+   rest and with this instance's structure) before the instance changes; a refused state
+   (TRIBO_ERR_STATE, with the reason) leaves the instance exactly as it was. */
 tribo_status tribo_state_load(tribo_model *model, const void *buffer, size_t size);
+/* The time of the instance a state was saved from (TRIBO_ERR_STATE if the bytes are not a
+   state), for a caller that keeps a clock of its own beside the core's. */
+tribo_status tribo_state_time(const void *buffer, size_t size, double *t);
 
 #ifdef __cplusplus
 }

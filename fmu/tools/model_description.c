@@ -169,11 +169,9 @@ static void attr_value(const fmu_variable *v, int fmi_version)
     }
     if (v->type == FMU_TYPE_ENUMERATION)
         attr("declaredType", fmu_enumerations(NULL)[v->enumeration].type_name);
-    if (p) {
+    if (p) { /* a parameter or an input */
         attr_range(p);
         attr_number("start", p->start);
-    } else if (v->causality == FMU_CAUSALITY_INPUT) {
-        attr_number("start", 0.0);
     }
     (void)fmi_version;
 }
@@ -323,8 +321,9 @@ int main(int argc, char **argv)
     if (version == 2)
         puts("    canNotUseMemoryManagementFunctions=\"true\"\n"
              "    canGetAndSetFMUstate=\"true\"\n    canSerializeFMUstate=\"true\"/>");
-    else
-        puts("    canGetAndSetFMUState=\"true\"\n    canSerializeFMUState=\"true\"/>");
+    else /* a step cut short by the work limit (work_limit) returns early where allowed */
+        puts("    canGetAndSetFMUState=\"true\"\n    canSerializeFMUState=\"true\"\n"
+             "    mightReturnEarlyFromDoStep=\"true\"/>");
     if (!write_units())
         return 1;
     write_type_definitions(version);

@@ -31,8 +31,8 @@ static inline tribo_model *make(const tribo_scene *s)
 /* Advance two instances to t; the test fails with the reason if either fails. */
 static inline void advance_both(tribo_model *a, tribo_model *b, double t)
 {
-    cr_assert_eq(tribo_advance(a, t), TRIBO_OK, "%s", tribo_last_error(a));
-    cr_assert_eq(tribo_advance(b, t), TRIBO_OK, "%s", tribo_last_error(b));
+    cr_assert_eq(tribo_advance_fully(a, t), TRIBO_OK, "%s", tribo_last_error(a));
+    cr_assert_eq(tribo_advance_fully(b, t), TRIBO_OK, "%s", tribo_last_error(b));
 }
 
 /* The instance's whole state, saved into a new buffer of *size bytes (free it). */

@@ -225,3 +225,33 @@ Test(charging, sweep_finishes_at_a_kinked_or_singular_end, .timeout = 30)
     }
     tribo_charging_free(&c);
 }
+
+/* A contact wider than the boundary charges each segment once, and one far off the
+   numbering (as a corrupt or overflowing state could give) a segment or two, without a cast
+   of a double an integer cannot hold (the sanitizer build checks the casts); the sums the
+   outputs read follow the values. */
+Test(charging, a_contact_wider_than_the_boundary_charges_each_segment_once)
+{
+    tribo_charging c = make(0.5, 64);
+    const tribo_scene P = params();
+    const double wide[][2] = {{1.0, 1e148}, {1e148, 1e148}, {3.0, 1e300}};
+    for (int k = 0; k < 3; k++) {
+        const tribo_contact_sample s = sample(&c, 0.1, wide[k][0], wide[k][1], 0.01, 0.01, 0.01);
+        cr_expect_eq(tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMITTED), 2 * 64);
+    }
+    const double *q = static_q(&c);
+    double sum = 0.0;
+    for (int i = 0; i < 64; i++) {
+        cr_expect_float_eq(q[i], 1.0 - exp(-0.3 / P.tau0), 1e-15, "segment %d", i);
+        sum += q[i];
+    }
+    const double running = tribo_charging_sum(&c.slot[TRIBO_SEGMENTS_STATIC]);
+    cr_expect(fabs(running - sum) <= 1e-14 * sum, "running sum %.17g, sum %.17g", running, sum);
+    const double far[][2] = {{-1e148, 1.0}, {1e300, 0.0}, {-1e300, 1e-300}};
+    for (int k = 0; k < 3; k++) {
+        const tribo_contact_sample s = sample(&c, 0.1, far[k][0], far[k][1], 0.01, 0.01, 0.01);
+        const long updates = tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMITTED);
+        cr_expect(updates >= 2 && updates <= 2 * 2, "%ld updates", updates);
+    }
+    tribo_charging_free(&c);
+}

@@ -8,7 +8,7 @@ FMU's results to be compared against, number for number.
 import json
 import os
 import subprocess
-from ctypes import byref, c_void_p
+from ctypes import byref, c_bool, c_double, c_void_p
 
 from fmpy import read_model_description
 from fmpy.fmi1 import FMICallException
@@ -70,8 +70,9 @@ def status_of(call, *args, **kwargs):
 class Slave:
     """One co-simulation instance of a tribo FMU (fmu_dir: the unpacked .fmu)."""
 
-    def __init__(self, fmu_dir, version, name="tribo", logging_on=False):
+    def __init__(self, fmu_dir, version, name="tribo", logging_on=False, early_return=False):
         self.version = version
+        self.early_return = early_return  # FMI 3.0: earlyReturnAllowed
         self.md = model_description(fmu_dir)
         self.variables = {v.name: v for v in self.md.modelVariables}
         self.messages = []  # (status, category, message) as the logger received them
@@ -97,7 +98,8 @@ class Slave:
             self._callbacks = callbacks
             self.fmu.instantiate(callbacks=callbacks, loggingOn=logging_on)
         else:
-            self.fmu.instantiate(loggingOn=logging_on, logMessage=self._log3)
+            self.fmu.instantiate(loggingOn=logging_on, logMessage=self._log3,
+                                 earlyReturnAllowed=self.early_return)
 
     def _log2(self, instance_name, status, category, message):
         self.logged_instance_names.append(instance_name.decode())
@@ -128,6 +130,20 @@ class Slave:
     def step_to(self, t):
         self._explained(self.fmu.doStep, self.t, t - self.t)
         self.t = t
+
+    def do_step(self, t, h):
+        """doStep without fmpy's raising: (status, the last successful time, early return)."""
+        f = self.fmu._functions
+        if self.version == 2:
+            status = f["fmi2DoStep"](self.fmu.component, t, h, 1)
+            reached = c_double(float("nan"))
+            if f["fmi2GetRealStatus"](self.fmu.component, 2, byref(reached)) != OK:  # fmi2LastSuccessfulTime
+                reached.value = float("nan")
+            return status, reached.value, False
+        event, terminate, early, reached = c_bool(), c_bool(), c_bool(), c_double(float("nan"))
+        status = f["fmi3DoStep"](self.fmu.component, t, h, True, byref(event), byref(terminate),
+                                 byref(early), byref(reached))
+        return status, reached.value, early.value
 
     def run(self, times, outputs):
         """Step to each time and read the outputs there: a list of dicts."""

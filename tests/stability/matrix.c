@@ -81,7 +81,7 @@ void stability_run(const stability_case *c, int integrator, double t_end, double
     double q_prev = 0.0;
     int k = 1;
     for (; k * every <= t_end + 1e-9; k++) {
-        if (tribo_advance(m, k * every) != TRIBO_OK) {
+        if (tribo_advance_fully(m, k * every) != TRIBO_OK) {
             snprintf(r->error, sizeof r->error, "%s", tribo_last_error(m));
             break;
         }

@@ -48,8 +48,11 @@ void stability_run(const stability_case *c, int integrator, double t_end, double
    builds run several times slower and are not held to it. */
 #ifdef TRIBO_SANITIZED
 #define STABILITY_CPU_BOUND INFINITY
+/* a wall-clock guard against a hang, not a bound on the run's cost */
+#define STABILITY_TIMEOUT_S 600
 #else
 #define STABILITY_CPU_BOUND 10.0
+#define STABILITY_TIMEOUT_S 60
 #endif
 
 /* The verdict: 1 if every check passed. */

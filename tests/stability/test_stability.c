@@ -21,7 +21,7 @@ ParameterizedTestParameters(stability, matrix)
     return cr_make_param_array(run, runs, (size_t)n);
 }
 
-ParameterizedTest(run *r, stability, matrix, .timeout = 60)
+ParameterizedTest(run *r, stability, matrix, .timeout = STABILITY_TIMEOUT_S)
 {
     const stability_case *c = &STABILITY_CASES[r->case_index];
     const char *integ = stability_integrator_name(r->integrator);

@@ -1,0 +1,188 @@
+"""The model of what a tribo FMU answers, for the fuzz suite: the status each call must
+return (the FMI standard's state machines, and fmu/README.md: a refused call changes
+nothing and the instance stays usable) and the state it leaves the instance in.
+
+Where the FMU may choose, the model accepts each choice it may make: a step that spends
+the work limit ends early (Discard, or an early return where allowed)."""
+
+import copy
+import math
+import os
+import xml.etree.ElementTree as ET
+
+from fmi_calls import DISCARD, ERROR, OK, function_type
+
+INSTANTIATED = "Instantiated"
+CONFIGURATION = "Configuration Mode"
+INITIALIZATION = "Initialization Mode"
+STEP = "Step Mode"
+DISCARDED = "Step Discarded"  # FMI 2.0's stepFailed
+TERMINATED = "Terminated"
+FAILED = "failed"
+
+READABLE = {INITIALIZATION, STEP, DISCARDED, TERMINATED, FAILED}  # outputs from here on
+TIME_MAX = 1e12  # beyond it the core refuses (src/tribo.h)
+GRID_MAX_STEPS = 2.0**45  # the fixed step's grid (src/integrator_fixed_step.c)
+
+
+def rounding_tolerance(t):
+    return 1e-9 * max(1.0, abs(t))
+
+
+def declared(fmu_dir):
+    """Each variable's min, max and start by value reference, from the XML itself (fmpy
+    leaves out those of some types, e.g. UInt64)."""
+    root = ET.parse(os.path.join(fmu_dir, "modelDescription.xml")).getroot()
+    out = {}
+    for element in root.find("ModelVariables"):
+        attributes = dict(element.attrib)
+        if root.get("fmiVersion", "").startswith("2"):
+            attributes.update(element[0].attrib)  # FMI 2.0: on the type's element
+        out[int(attributes["valueReference"])] = attributes
+    return out
+
+
+class Variable:
+    def __init__(self, v, version, attributes):
+        self.name, self.vr, self.type = v.name, v.valueReference, v.type
+        self.causality, self.variability = v.causality, v.variability
+        self.ftype = function_type(version, v.type)
+        self.is_integer = v.type not in ("Real", "Float64", "Float32")
+        self.min = float(attributes.get("min", -math.inf))
+        self.max = float(attributes.get("max", math.inf))
+        self.start = float(attributes.get("start", 0.0))
+        self.dimension = v.dimensions[0].valueReference if v.dimensions else None
+
+    @property
+    def settable(self):
+        return self.causality in ("parameter", "structuralParameter", "input")
+
+    def valid(self, value):
+        if not math.isfinite(value) or not (self.min <= value <= self.max):
+            return False
+        return not self.is_integer or value == math.floor(value)
+
+
+class Model:
+    def __init__(self, md, fmu_dir, version, early_return):
+        self.version = version
+        self.early_return = early_return
+        attributes = declared(fmu_dir)
+        self.variables = [Variable(v, version, attributes[v.valueReference])
+                          for v in md.modelVariables]
+        self.by_vr = {v.vr: v for v in self.variables}
+        self.reset()
+
+    def reset(self):
+        self.lifecycle = INSTANTIATED
+        self.values = {v.name: v.start for v in self.variables if v.settable}
+        self.start, self.stop, self.time, self.core_time = 0.0, None, 0.0, 0.0
+
+    def copy(self):
+        other = copy.copy(self)
+        other.values = dict(self.values)
+        return other
+
+    # ---- values ------------------------------------------------------------------------
+
+    def count(self, v):
+        return int(self.values[self.by_vr[v.dimension].name]) if v.dimension is not None else 1
+
+    def _settable_now(self, v):
+        if self.version == 3 and v.causality == "structuralParameter":
+            return self.lifecycle in (INSTANTIATED, CONFIGURATION)
+        states = {INSTANTIATED, INITIALIZATION}
+        if v.variability == "tunable" or v.causality == "input":
+            states.add(STEP)
+        return self.lifecycle in states
+
+    def _resolved(self, ftype, vrs, n_values):
+        """The variables of a call, or None if one is unknown, of another type, or the
+        values do not fit."""
+        variables = [self.by_vr.get(vr) for vr in vrs]
+        if any(v is None or v.ftype != ftype for v in variables):
+            return None
+        if sum(self.count(v) for v in variables) != n_values:
+            return None
+        return variables
+
+    def expect_get(self, ftype, vrs, n_values):
+        """The statuses a get may return."""
+        variables = self._resolved(ftype, vrs, n_values)
+        if variables is None:
+            return {ERROR}
+        if any(v.causality == "output" for v in variables):
+            if self.lifecycle not in READABLE:
+                return {ERROR}
+            if self.lifecycle == FAILED:  # an output the failure left not finite is refused
+                return {OK, ERROR}
+        return {OK}
+
+    def expect_set(self, ftype, vrs, values):
+        """The status of a set, and the new values if it applies (all of them, or none)."""
+        variables = self._resolved(ftype, vrs, len(values))
+        if variables is None:
+            return ERROR, None
+        for v, value in zip(variables, values):
+            if not v.settable or not v.valid(float(value)) or not self._settable_now(v):
+                return ERROR, None
+        return OK, list(zip(variables, values))
+
+    def apply(self, assignments):
+        for v, value in assignments:
+            self.values[v.name] = float(value)
+
+    # ---- the life cycle ------------------------------------------------------------------
+
+    def experiment_valid(self, start, stop):
+        return math.isfinite(start) and (stop is None or (math.isfinite(stop) and stop >= start))
+
+    def set_experiment(self, start, stop):
+        self.start, self.stop, self.time, self.core_time = start, stop, start, 0.0
+
+    def expect_step(self, current, h):
+        """ERROR for a step the FMU must refuse, else None (it computes: OK, or it ends
+        early)."""
+        if self.lifecycle != STEP:
+            return ERROR
+        if not math.isfinite(current) or abs(current - self.time) > rounding_tolerance(self.time):
+            return ERROR
+        if not (math.isfinite(h) and h > 0.0):
+            return ERROR
+        end = current + h
+        if not (math.isfinite(end) and end > current):
+            return ERROR
+        if self.stop is not None and end > self.stop + rounding_tolerance(self.stop):
+            return ERROR
+        core_end = max(end - self.start, self.core_time)
+        if core_end > TIME_MAX:
+            return ERROR
+        if self.values["integrator"] == 0 and not core_end / self.values["dt"] < GRID_MAX_STEPS:
+            return ERROR
+        return None
+
+    def step_allowed(self, status, early, current, h, reached):
+        """Whether a computed step's answer is one the FMU may give; updates the model. A
+        failure of the core is one (an error, with its reason logged): the instance then
+        only resets or restores a state."""
+        end = current + h
+        if status == ERROR:
+            self.lifecycle = FAILED
+            return True
+        if status == OK and not early:
+            if reached != end:
+                return False
+            self.time = end
+            self.core_time = max(end - self.start, self.core_time)
+            return True
+        ended_early = (status == OK and early and self.early_return) or \
+            (status == DISCARD and not early)
+        # from the FMU's own time on, which the importer's may pass by its rounding (the
+        # core then integrates to the importer's end, as FMI 2.0's 4.2.2 suggests)
+        if not ended_early or not (min(current, self.time) <= reached < end):
+            return False
+        self.time = reached
+        self.core_time = reached - self.start
+        if status == DISCARD and self.version == 2:
+            self.lifecycle = DISCARDED
+        return True

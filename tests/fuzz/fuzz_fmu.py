@@ -1,0 +1,460 @@
+"""Fuzz a tribo FMU as a hostile or careless importer would: random call sequences checked
+against a model of the status each call must return (expected.py), and mutations of every
+8-byte field of serialized FMU states (and truncations, extensions, random bytes).
+
+    python tests/fuzz/fuzz_fmu.py FMU --seed N [--sequences N] [--mutation-bases N]
+        [--values-per-field N] [--timeout S] [--json FILE]
+
+It asserts: no crash (the process would end), no call over the timeout (a watchdog ends
+the process, naming the call), every status the model expects, no non-finite output after
+a call that returned OK, and that a refused FMU state leaves the instance unchanged (its
+own state, serialized, the same bytes) and usable. Exit status 0 if all held; a summary
+with the counts goes to --json."""
+
+import argparse
+import json
+import math
+import os
+import random
+import shutil
+import struct
+import sys
+import tempfile
+import threading
+import time
+import zipfile
+
+sys.path.insert(0, os.path.dirname(__file__))
+
+from fmpy import read_model_description  # noqa: E402
+
+from expected import (CONFIGURATION, DISCARDED, FAILED, INITIALIZATION, INSTANTIATED,  # noqa: E402
+                      READABLE, STEP, TERMINATED, Model)
+from fmi_calls import DISCARD, ERROR, OK, Instance  # noqa: E402
+from values import (UNKNOWN_VRS, communication_point, experiment, hostile_value,  # noqa: E402
+                    step_size, valid_value)
+
+NUMERIC_TYPES = {2: ["Real", "Integer", "Boolean"],
+                 3: ["Float64", "Float32", "Int8", "UInt8", "Int16", "UInt16", "Int32", "UInt32",
+                     "Int64", "UInt64", "Boolean"]}
+
+
+class Finding(Exception):
+    """A call answered otherwise than the model expects."""
+
+
+class Watchdog:
+    """Ends the process when one FMU call runs past the timeout (a hang), naming it."""
+
+    def __init__(self, timeout):
+        self.timeout, self.call, self.since = timeout, None, None
+        self.slowest = 0.0
+        threading.Thread(target=self._watch, daemon=True).start()
+
+    def _watch(self):
+        while True:
+            time.sleep(0.05)
+            since = self.since
+            if since is not None and time.monotonic() - since > self.timeout:
+                sys.stderr.write(f"TIMEOUT: {self.call} ran over {self.timeout} s\n")
+                sys.stderr.flush()
+                os._exit(3)
+
+    def run(self, description, fn, *args):
+        self.call, self.since = description, time.monotonic()
+        try:
+            return fn(*args)
+        finally:
+            self.slowest = max(self.slowest, time.monotonic() - self.since)
+            self.since = None
+
+
+class Fuzzer:
+    def __init__(self, fmu_dir, version, rng, watchdog):
+        self.fmu_dir, self.version, self.rng, self.dog = fmu_dir, version, rng, watchdog
+        self.calls = 0
+        self.log = []
+        self.core_failures = []
+        self.slow_steps = []
+
+    # ---- one call, checked ------------------------------------------------------------
+
+    def call(self, what, fn, *args):
+        self.log.append(what)
+        return self.dog.run(what, fn, *args)
+
+    def expect(self, what, status, allowed):
+        if status not in allowed:
+            raise Finding(f"{what}: status {status}, expected one of {sorted(allowed)}")
+
+    def check_outputs(self, inst, model):
+        """After an OK call: every output (scalars and arrays) a finite number, every
+        parameter and input the value the model holds."""
+        if model.lifecycle not in READABLE or model.lifecycle == FAILED:
+            return
+        by_type = {}
+        for v in model.variables:
+            if v.causality in ("output", "parameter", "structuralParameter", "input"):
+                by_type.setdefault(v.ftype, []).append(v)
+        for ftype, variables in by_type.items():
+            counts = [model.count(v) for v in variables]
+            status, values = self.call(f"get{ftype} all", inst.get, ftype, [v.vr for v in variables],
+                                       sum(counts))
+            self.expect(f"get{ftype} of every variable", status, {OK})
+            at = 0
+            for v, n in zip(variables, counts):
+                mine = values[at:at + n]
+                at += n
+                if v.causality == "output" and not all(math.isfinite(x) for x in mine):
+                    raise Finding(f"{v.name} = {mine[:4]} is not finite after OK")
+                if v.causality != "output" and float(mine[0]) != model.values[v.name]:
+                    raise Finding(f"{v.name} reads {mine[0]}, set {model.values[v.name]}")
+
+    # ---- the operations of a sequence -------------------------------------------------
+
+    def op_set(self, inst, model):
+        settable = [v for v in model.variables if v.settable]
+        variables = self.rng.sample(settable, self.rng.randint(1, 3))
+        if self.rng.random() < 0.15:  # an output, the time or an unknown reference among them
+            others = [v for v in model.variables if not v.settable]
+            variables.append(self.rng.choice(others))
+        ftype = variables[0].ftype
+        if self.rng.random() < 0.1:
+            ftype = self.rng.choice(NUMERIC_TYPES[self.version])
+        vrs, values = [], []
+        for v in variables:
+            count = model.count(v)
+            for _ in range(count):
+                if v.ftype == ftype and v.settable and self.rng.random() < 0.7:
+                    values.append(inst.c_value(ftype, valid_value(self.rng, v)))
+                else:
+                    values.append(inst.c_value(ftype, hostile_value(self.rng, v, ftype)))
+            vrs.append(v.vr)
+        if self.rng.random() < 0.05:
+            vrs.append(self.rng.choice(UNKNOWN_VRS))
+            values.append(inst.c_value(ftype, 1))
+        expected, assignments = model.expect_set(ftype, vrs, values)
+        what = f"set{ftype} {[(model.by_vr[r].name if r in model.by_vr else r) for r in vrs]} = {values}"
+        status = self.call(what, inst.set, ftype, vrs, values)
+        self.expect(what, status, {expected})
+        if status == OK:
+            model.apply(assignments)
+
+    def op_get(self, inst, model):
+        variables = self.rng.sample(model.variables, self.rng.randint(1, 4))
+        ftype = variables[0].ftype if self.rng.random() < 0.8 else self.rng.choice(NUMERIC_TYPES[self.version])
+        vrs = [v.vr for v in variables]
+        if self.rng.random() < 0.05:
+            vrs.append(self.rng.choice(UNKNOWN_VRS))
+        n_values = sum(model.count(model.by_vr[r]) if r in model.by_vr else 1 for r in vrs)
+        if self.version == 3 and self.rng.random() < 0.05:  # FMI 2.0 has no nValues
+            n_values += self.rng.choice([-1, 1])
+        allowed = model.expect_get(ftype, vrs, max(0, n_values))
+        what = f"get{ftype} {vrs} ({n_values} values)"
+        status, _ = self.call(what, inst.get, ftype, vrs, max(0, n_values))
+        self.expect(what, status, allowed)
+
+    def op_initialize(self, inst, model):
+        start, stop = experiment(self.rng)
+        if self.version == 2:
+            ok = model.lifecycle == INSTANTIATED and model.experiment_valid(start, stop)
+            if self.rng.random() < 0.8:
+                status = self.call(f"setupExperiment({start}, {stop})", inst.setup_experiment, start, stop)
+                self.expect("setupExperiment", status, {OK if ok else ERROR})
+                if ok:
+                    model.set_experiment(start, stop)
+            status = self.call("enterInitializationMode", inst.enter_initialization)
+            self.expect("enterInitializationMode", status, {OK if model.lifecycle == INSTANTIATED else ERROR})
+        else:
+            ok = model.lifecycle == INSTANTIATED and model.experiment_valid(start, stop)
+            status = self.call(f"enterInitializationMode({start}, {stop})", inst.enter_initialization, start, stop)
+            self.expect("enterInitializationMode", status, {OK if ok else ERROR})
+            if ok:
+                model.set_experiment(start, stop)
+        if status == OK:
+            model.lifecycle = INITIALIZATION
+        if self.rng.random() < 0.3:
+            self.check_outputs(inst, model)
+        if self.rng.random() < 0.9:
+            status = self.call("exitInitializationMode", inst.exit_initialization)
+            self.expect("exitInitializationMode", status, {OK if model.lifecycle == INITIALIZATION else ERROR})
+            if status == OK:
+                model.lifecycle = STEP
+
+    def op_configuration(self, inst, model):
+        if self.version != 3:
+            return
+        if model.lifecycle == CONFIGURATION:
+            status = self.call("exitConfigurationMode", inst.exit_configuration)
+            self.expect("exitConfigurationMode", status, {OK})
+            model.lifecycle = INSTANTIATED
+        else:
+            status = self.call("enterConfigurationMode", inst.enter_configuration)
+            self.expect("enterConfigurationMode", status, {OK if model.lifecycle == INSTANTIATED else ERROR})
+            if status == OK:
+                model.lifecycle = CONFIGURATION
+
+    def op_step(self, inst, model):
+        current, h = communication_point(self.rng, model), step_size(self.rng, model)
+        what = f"doStep({current!r}, {h!r})"
+        refused = model.expect_step(current, h)
+        started = time.monotonic()
+        status, reached, early = self.call(what, inst.do_step, current, h)
+        if time.monotonic() - started > 1.0:  # for the summary: what the slow steps were
+            self.slow_steps.append({"call": what, "seconds": round(time.monotonic() - started, 2),
+                                    "values": dict(model.values)})
+        if refused is not None:
+            self.expect(what, status, {ERROR})
+            return
+        changed = {k: v for k, v in model.values.items()
+                   if v != next(x.start for x in model.variables if x.name == k)}
+        if not model.step_allowed(status, early, current, h, reached):
+            raise Finding(f"{what}: status {status}, reached {reached!r}, early return {early}: "
+                          f"{inst.errors()[-1:]}; parameters and inputs changed: {changed}")
+        if status == ERROR:  # the core failed, and said why
+            if not inst.errors() or "failed" not in inst.errors()[-1]:
+                raise Finding(f"{what}: an error without its reason")
+            self.core_failures.append({"call": what, "reason": inst.errors()[-1],
+                                       "changed": changed})
+            return
+        self.check_outputs(inst, model)
+
+    def op_terminate(self, inst, model):
+        status = self.call("terminate", inst.terminate)
+        self.expect("terminate", status, {OK if model.lifecycle in (STEP, DISCARDED) else ERROR})
+        if status == OK:
+            model.lifecycle = TERMINATED
+
+    def op_reset(self, inst, model):
+        status = self.call("reset", inst.reset)
+        self.expect("reset", status, {OK})
+        model.reset()
+
+    def op_state(self, inst, model, states):
+        r = self.rng.random()
+        if r < 0.5 or not states:
+            status, state = self.call("getFMUState", inst.get_state)
+            self.expect("getFMUState", status, {ERROR if model.lifecycle == FAILED else OK})
+            if status == OK:
+                if self.rng.random() < 0.5:  # through its serialized bytes
+                    status, data = self.call("serialize", inst.serialize, state)
+                    self.expect("serialize", status, {OK})
+                    self.call("freeFMUState", inst.free_state, state)
+                    status, state = self.call("deserialize", inst.deserialize, data)
+                    self.expect("deserialize", status, {OK})
+                states.append((state, model.copy()))
+        elif r < 0.9:
+            state, saved = self.rng.choice(states)
+            status = self.call("setFMUState", inst.set_state, state)
+            self.expect("setFMUState", status, {OK})
+            model.__dict__.update(saved.copy().__dict__)
+            self.check_outputs(inst, model)
+        else:
+            state, _ = states.pop(self.rng.randrange(len(states)))
+            self.expect("freeFMUState", self.call("freeFMUState", inst.free_state, state), {OK})
+
+    # ---- a sequence ------------------------------------------------------------------
+
+    def sequence(self, length):
+        self.log = []
+        inst = Instance(self.fmu_dir, self.version,
+                        early_return=self.version == 3 and self.rng.random() < 0.5)
+        model = Model(inst.md, self.fmu_dir, self.version, inst.slave.early_return)
+        states = []
+        weights = {
+            INSTANTIATED: [("set", 5), ("init", 4), ("config", 1), ("get", 1), ("state", 1), ("step", 1)],
+            CONFIGURATION: [("set", 3), ("config", 2), ("init", 1), ("get", 1)],
+            INITIALIZATION: [("set", 2), ("init", 2), ("get", 2), ("state", 1), ("step", 1)],
+            STEP: [("step", 8), ("set", 3), ("get", 2), ("state", 2), ("terminate", 1), ("reset", 1)],
+            DISCARDED: [("step", 1), ("state", 3), ("terminate", 1), ("reset", 1), ("get", 1), ("set", 1)],
+            TERMINATED: [("reset", 2), ("get", 1), ("state", 1), ("step", 1), ("set", 1)],
+            FAILED: [("reset", 2), ("state", 2), ("get", 1), ("step", 1)],
+        }
+        try:
+            if self.rng.random() < 0.6:
+                # a lower work limit: more steps end early, and the suite runs faster
+                v = next(x for x in model.variables if x.name == "work_limit")
+                value = self.rng.choice([1, 50, 1000, 20000])
+                what = f"set{v.ftype} work_limit = {value}"
+                self.expect(what, self.call(what, inst.set, v.ftype, [v.vr], [value]), {OK})
+                model.apply([(v, value)])
+            for _ in range(length):
+                choices = weights[model.lifecycle]
+                op = self.rng.choices([c for c, _ in choices], [w for _, w in choices])[0]
+                if op == "state":
+                    self.op_state(inst, model, states)
+                else:
+                    getattr(self, {"set": "op_set", "get": "op_get", "init": "op_initialize",
+                                   "config": "op_configuration", "step": "op_step",
+                                   "terminate": "op_terminate", "reset": "op_reset"}[op])(inst, model)
+        finally:
+            for state, _ in states:
+                inst.free_state(state)
+            self.calls += inst.calls
+            inst.free()
+
+    # ---- mutated states ----------------------------------------------------------------
+
+    def base_states(self, count):
+        """Instances in states worth mutating: each integrator, off the step grid, in
+        Step Mode, Initialization Mode, Instantiated, and (FMI 2.0) a discarded step."""
+        scenes = [{"integrator": 0}, {"integrator": 1}, {"integrator": 2}, {"integrator": 1, "mu": 1.0, "nu": 1.0},
+                  {"integrator": 0, "work_limit": 50, "discard": True}, {"lifecycle": INITIALIZATION},
+                  {"lifecycle": INSTANTIATED}]
+        for scene in scenes[:count]:
+            inst = Instance(self.fmu_dir, self.version)
+            model = Model(inst.md, self.fmu_dir, self.version, False)
+            params = {k: v for k, v in scene.items() if k in model.values}
+            params["n_segments"] = 32
+            for name, value in params.items():
+                v = next(x for x in model.variables if x.name == name)
+                assert inst.set(v.ftype, [v.vr], [value]) == OK
+                model.values[name] = float(value)
+            if scene.get("lifecycle") != INSTANTIATED:
+                assert inst.enter_initialization() == OK
+                model.lifecycle = INITIALIZATION
+                if scene.get("lifecycle") != INITIALIZATION:
+                    assert inst.exit_initialization() == OK
+                    model.lifecycle = STEP
+                    status, reached, _ = inst.do_step(0.0, 2.00037)
+                    assert status in (OK, DISCARD), inst.errors()
+                    model.step_allowed(status, False, 0.0, 2.00037, reached)
+            yield inst, model
+
+    def mutations(self, data, per_field):
+        """(what, bytes): every 8-byte field replaced by values of every kind, then
+        truncations, extensions and random bytes."""
+        pack_d, pack_q = (lambda x: struct.pack("=d", x)), (lambda x: struct.pack("=q", x))
+        kinds = [pack_d(math.nan), pack_d(math.inf), pack_d(-math.inf), pack_d(0.0), pack_d(-1.0),
+                 pack_d(1e300), pack_d(5e-324), pack_d(1e9), pack_q(2**62), pack_q(-1), pack_q(2**63 - 1),
+                 pack_q(1), pack_q(3), b"\xff" * 8]
+        for offset in range(0, len(data) - 7, 8):
+            for value in self.rng.sample(kinds, min(per_field, len(kinds))):
+                if value != data[offset:offset + 8]:
+                    yield f"field at {offset} = {value.hex()}", data[:offset] + value + data[offset + 8:]
+            flipped = bytearray(data[offset:offset + 8])
+            flipped[self.rng.randrange(8)] ^= 1 << self.rng.randrange(8)
+            yield f"a bit of the field at {offset}", data[:offset] + bytes(flipped) + data[offset + 8:]
+        for n in (0, 7, 31, 32, len(data) // 2, len(data) - 8, len(data) - 1):
+            yield f"truncated to {n}", data[:n]
+        # extended, with the size in the header made to match (its third 8-byte field)
+        for extra in (8, 64):
+            longer = data + os.urandom(extra)
+            yield f"extended by {extra}", longer
+            yield f"extended by {extra}, size fixed", longer[:24] + struct.pack("=q", len(longer)) + longer[32:]
+        for _ in range(8):
+            noise = bytearray(os.urandom(len(data)))
+            noise[:32] = data[:32]  # a header that passes, the rest random
+            yield "random bytes", bytes(noise)
+
+    def mutate(self, inst, model, per_field):
+        """Offer every mutation of the instance's own state to it. Returns the number
+        offered."""
+        original = inst.snapshot()
+        assert original is not None
+        count = 0
+        for what, data in self.mutations(original, per_field):
+            count += 1
+            self.log = [what]
+            status, state = self.call(f"deserialize ({what})", inst.deserialize, data)
+            if status != OK:
+                self.expect(f"deserialize ({what})", status, {ERROR})
+                continue
+            status = self.call(f"setFMUState ({what})", inst.set_state, state)
+            self.call("freeFMUState", inst.free_state, state)
+            self.expect(f"setFMUState ({what})", status, {OK, ERROR})
+            if status == ERROR:
+                # refused: the instance is as it was, its state the same bytes
+                if self.call("snapshot", inst.snapshot) != original:
+                    raise Finding(f"{what}: refused, but the instance changed")
+                continue
+            self.accepted(inst, what)
+            restore, state = self.call("deserialize", inst.deserialize, original)
+            self.expect("deserialize the original", restore, {OK})
+            self.expect("setFMUState the original", self.call("setFMUState", inst.set_state, state), {OK})
+            inst.free_state(state)
+        # and the instance is still usable
+        if model.lifecycle == STEP:
+            status, _, _ = self.call("doStep after the mutations", inst.do_step, model.time, 0.5)
+            self.expect("doStep after the mutations", status, {OK, DISCARD})
+        return count
+
+    def accepted(self, inst, what):
+        """A mutated state the FMU took: its outputs are numbers, and a step from it is
+        computed or refused, never answered with a non-finite output."""
+        mutated = Model(inst.md, self.fmu_dir, self.version, False)
+        for v in mutated.variables:
+            if v.causality == "output" and not v.dimension:
+                status, values = self.call(f"get {v.name}", inst.get, v.ftype, [v.vr], 1)
+                if status == OK and not math.isfinite(values[0]):
+                    raise Finding(f"{what}: accepted with {v.name} = {values[0]}")
+        status, t = self.call("get time", inst.get, "Real" if self.version == 2 else "Float64", [0], 1)
+        status, _, _ = self.call(f"doStep after {what}", inst.do_step, t[0], 0.1)
+        if status == OK:
+            for v in mutated.variables:
+                if v.causality == "output" and not v.dimension:
+                    s, values = self.call(f"get {v.name}", inst.get, v.ftype, [v.vr], 1)
+                    if s == OK and not math.isfinite(values[0]):
+                        raise Finding(f"{what}: a step gave {v.name} = {values[0]} with OK")
+
+
+def unpacked(fmu):
+    if os.path.isdir(fmu):
+        return fmu, None
+    target = tempfile.mkdtemp(prefix="tribo_fuzz_")
+    with zipfile.ZipFile(fmu) as z:
+        z.extractall(target)
+    return target, target
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("fmu")
+    parser.add_argument("--seed", type=int, required=True)
+    parser.add_argument("--sequences", type=int, default=200)
+    parser.add_argument("--calls-per-sequence", type=int, default=30)
+    parser.add_argument("--mutation-bases", type=int, default=7)
+    parser.add_argument("--values-per-field", type=int, default=4)
+    parser.add_argument("--timeout", type=float, default=20.0)
+    parser.add_argument("--json")
+    args = parser.parse_args()
+
+    fmu_dir, cleanup = unpacked(args.fmu)
+    version = int(read_model_description(fmu_dir, validate=False).fmiVersion[0])
+    rng = random.Random(args.seed)
+    dog = Watchdog(args.timeout)
+    fuzzer = Fuzzer(fmu_dir, version, rng, dog)
+    findings, started = [], time.monotonic()
+    for i in range(args.sequences):
+        try:
+            fuzzer.sequence(rng.randint(5, 2 * args.calls_per_sequence))
+        except Finding as e:
+            findings.append({"sequence": i, "finding": str(e), "calls": fuzzer.log[-int(os.environ.get("FUZZ_LOG", 15)):]})
+    mutated = 0
+    for inst, model in fuzzer.base_states(args.mutation_bases):
+        try:
+            mutated += fuzzer.mutate(inst, model, args.values_per_field)
+        except Finding as e:
+            findings.append({"mutation": True, "finding": str(e), "calls": fuzzer.log[-5:]})
+        fuzzer.calls += inst.calls
+        inst.free()
+    summary = {"fmu": args.fmu, "fmi_version": version, "seed": args.seed,
+               "sequences": args.sequences, "calls": fuzzer.calls, "mutated_states": mutated,
+               "seconds": round(time.monotonic() - started, 1),
+               "slowest_call_seconds": round(dog.slowest, 3),
+               "core_failures": fuzzer.core_failures, "slow_steps": fuzzer.slow_steps,
+               "findings": findings}
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(summary, f, indent=1)
+    print(json.dumps({k: (len(v) if k in ("core_failures", "slow_steps") else v)
+                      for k, v in summary.items() if k != "findings"}))
+    for f in findings[:10]:
+        print("FINDING:", json.dumps(f), file=sys.stderr)
+    if cleanup:
+        shutil.rmtree(cleanup, ignore_errors=True)
+    return 1 if findings else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

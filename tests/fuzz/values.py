@@ -1,0 +1,82 @@
+"""What a hostile or careless importer passes, for the fuzz suite: values of every kind for
+a variable (valid, at and just beyond its bounds, not numbers, denormal, huge, of the C
+type's extremes), value references that do not exist, steps and times of every size."""
+
+import math
+
+# C types' extremes by FMI 3.0 function type (FMI 2.0: Integer is an int, Boolean an int)
+INT_LIMITS = {"Int8": 8, "Int16": 16, "Int32": 32, "Int64": 64, "Integer": 32, "Boolean": 32}
+UINT_LIMITS = {"UInt8": 8, "UInt16": 16, "UInt32": 32, "UInt64": 64}
+
+# valid values that make a run cheap, for the parameters that set its cost; the others take
+# any value of their range
+CHEAP = {"n_segments": [16, 64, 500, 2000], "dt": [1e-3, 8e-5, 0.1], "work_limit": [1, 50, 1000, 100000, 1000000]}
+# the expensive ends of those ranges, now and then
+COSTLY = {"n_segments": [100000], "dt": [1e-9], "nu": [1e3]}
+
+UNKNOWN_VRS = [22, 24, 99, 103, 200, 230, 300, 303, 999, 2**31, 2**32 - 1]
+
+
+def valid_value(rng, v):
+    if v.name in COSTLY and rng.random() < 0.02:
+        return rng.choice(COSTLY[v.name])
+    if v.name in CHEAP:
+        return rng.choice(CHEAP[v.name])
+    lo, hi = v.min, v.max
+    if v.is_integer:
+        return rng.randint(int(lo), int(min(hi, lo + 1000)))
+    if lo > 0 and hi / lo > 100:  # log-uniform over a wide positive range
+        return math.exp(rng.uniform(math.log(lo), math.log(hi)))
+    return rng.uniform(max(lo, -1e3), min(hi, 1e3))
+
+
+def hostile_value(rng, v, ftype):
+    """A value for a variable, for the C type of the function ftype."""
+    if ftype in INT_LIMITS or ftype in UINT_LIMITS:
+        if ftype in UINT_LIMITS:
+            bits = UINT_LIMITS[ftype]
+            extremes = [0, 2**bits - 1, 2**(bits - 1)]
+        else:
+            bits = INT_LIMITS[ftype]
+            extremes = [-2**(bits - 1), 2**(bits - 1) - 1, -1, 0]
+        candidates = extremes + [1, 2, 3, 4, 16, 100000, 100001]
+        if v is not None and v.is_integer:  # bounds and their neighbours (an output has none)
+            if math.isfinite(v.min):
+                candidates += [int(v.min), int(v.min) - 1]
+            if math.isfinite(v.max):
+                hi = int(min(v.max, 2**63))
+                candidates += [hi, hi + 1]
+        return rng.choice(candidates)
+    candidates = [math.nan, -math.nan, math.inf, -math.inf, 5e-324, -5e-324, 2.2250738585072014e-308,
+                  1e308, -1e308, 1e300, -1e18, 0.0, -0.0, -1.0, 1.0, 0.5]
+    if v is not None and math.isfinite(v.min):
+        candidates += [v.min, math.nextafter(v.min, -math.inf)]
+    if v is not None and math.isfinite(v.max):
+        candidates += [v.max, math.nextafter(v.max, math.inf)]
+    return rng.choice(candidates)
+
+
+def step_size(rng, model):
+    """A communication step, mostly one an importer would take."""
+    sizes = [0.01, 0.1, 0.25, 1.0, 3.0]
+    if model.values.get("work_limit", 0) <= 1e6:  # bounded work: long steps end early
+        sizes += [40.0, 1e6]
+    odd = [0.0, -0.1, math.nan, math.inf, -math.inf, 5e-324, 1e-300, 1e-12, 1e18, 1e300]
+    return rng.choice(odd) if rng.random() < 0.15 else rng.choice(sizes)
+
+
+def communication_point(rng, model):
+    """The importer's current time: the FMU's, or the FMU's up to rounding, or off it."""
+    r = rng.random()
+    if r < 0.85:
+        return model.time
+    if r < 0.92:
+        return model.time * (1 + 1e-12) + 1e-12
+    return rng.choice([model.time + 1.0, model.time - 0.5, math.nan, math.inf, -1e300])
+
+
+def experiment(rng):
+    """A start time and a stop time (None: undefined)."""
+    start = rng.choice([0.0, 0.0, 0.0, 1.5, -3.0, 1e6, 1e12, 1e300, math.nan, math.inf])
+    stop = rng.choice([None, None, None, start + 5.0, start + 1e6, start - 1.0, math.nan])
+    return start, stop

@@ -1,0 +1,85 @@
+"""The fuzz suite (tests/fuzz/fuzz_fmu.py) over both FMUs: random call sequences checked
+against a model of the expected statuses, and mutated FMU states, with fixed seeds and a
+timeout per call. Once on the Release build and once on the sanitizer build (build-sanitize:
+AddressSanitizer and UndefinedBehaviorSanitizer with float-cast-overflow; the FMU's library
+is loaded with the sanitizer runtime preloaded). About two minutes on 2 cores; each run's
+counts are written to <build>/fuzz/*.json and printed."""
+
+import json
+import os
+import subprocess
+import sys
+from concurrent.futures import ThreadPoolExecutor
+
+import pytest
+
+from tribo_fmu import BUILD_DIR, ROOT
+
+SANITIZE_DIR = os.path.abspath(os.environ.get("TRIBO_SANITIZE_BUILD_DIR",
+                                              os.path.join(ROOT, "build-sanitize")))
+FUZZ = os.path.join(ROOT, "tests", "fuzz", "fuzz_fmu.py")
+
+# (build, FMI version, seed, sequences, states mutated, values per field, seconds per call)
+RUNS = [
+    (BUILD_DIR, 2, 11, 500, 7, 4, 20),
+    (BUILD_DIR, 3, 12, 500, 7, 4, 20),
+    (SANITIZE_DIR, 2, 13, 80, 3, 2, 120),
+    (SANITIZE_DIR, 3, 14, 80, 3, 2, 120),
+]
+
+
+def sanitizer_runtime():
+    """The sanitizer libraries of the compiler the build used, to preload into Python."""
+    libraries = []
+    for name in ("libasan.so", "libubsan.so"):
+        path = subprocess.run(["cc", f"-print-file-name={name}"], capture_output=True,
+                              text=True).stdout.strip()
+        if not os.path.isabs(path):
+            pytest.fail(f"the compiler does not know where {name} is")
+        libraries.append(path)
+    return " ".join(libraries)
+
+
+def fuzz(run):
+    build, version, seed, sequences, bases, per_field, timeout = run
+    fmu = os.path.join(build, "fmu", f"tribo_fmi{version}.fmu")
+    summary = os.path.join(build, "fuzz", f"fmi{version}_seed{seed}.json")
+    os.makedirs(os.path.dirname(summary), exist_ok=True)
+    if os.path.exists(summary):
+        os.remove(summary)
+    env = dict(os.environ)
+    if build == SANITIZE_DIR:
+        # a report ends the process with its own exit status (Python leaks by design)
+        env.update(LD_PRELOAD=sanitizer_runtime(), ASAN_OPTIONS="detect_leaks=0:exitcode=86",
+                   UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:exitcode=87")
+    command = [sys.executable, FUZZ, fmu, "--seed", str(seed), "--sequences", str(sequences),
+               "--mutation-bases", str(bases), "--values-per-field", str(per_field),
+               "--timeout", str(timeout), "--json", summary]
+    done = subprocess.run(command, env=env, capture_output=True, text=True)
+    return run, summary, done
+
+
+def test_fuzz_both_fmus_release_and_sanitized():
+    for build in (BUILD_DIR, SANITIZE_DIR):
+        for version in (2, 3):
+            if not os.path.exists(os.path.join(build, "fmu", f"tribo_fmi{version}.fmu")):
+                pytest.fail(f"{build}/fmu/tribo_fmi{version}.fmu is missing: build it "
+                            f"(scripts/test.sh builds build-sanitize with the FMUs)")
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        results = list(pool.map(fuzz, RUNS))
+    failures = []
+    for run, summary, done in results:
+        what = f"{os.path.basename(run[0])} FMI {run[1]}.0 (seed {run[2]})"
+        # a crash, a sanitizer report or a timeout ends the process otherwise than by 0 / 1
+        if done.returncode not in (0, 1) or not os.path.exists(summary):
+            failures.append(f"{what}: exit {done.returncode}\n{done.stderr[-4000:]}")
+            continue
+        with open(summary) as f:
+            counts = json.load(f)
+        print(f"{what}: {counts['sequences']} sequences, {counts['calls']} calls, "
+              f"{counts['mutated_states']} mutated states, {counts['seconds']} s "
+              f"(slowest call {counts['slowest_call_seconds']} s, "
+              f"{len(counts['core_failures'])} failures of the core reported)")
+        if counts["findings"]:
+            failures.append(f"{what}: " + json.dumps(counts["findings"][:3], indent=1))
+    assert not failures, "\n".join(failures)

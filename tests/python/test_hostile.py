@@ -1,0 +1,218 @@
+"""Hostile and careless importers (issue 11): each defect that fuzzing the FMUs found, as an
+importer meets it through fmpy. The fuzz suite itself: test_fuzz.py (tests/fuzz)."""
+
+import math
+import struct
+import time
+
+import pytest
+
+from tribo_fmu import DISCARD, ERROR, INTEGRATORS, OK, VERSIONS, Slave, integrator_id, status_of
+
+SMALL = {"n_segments": 64}
+MOTION = ["X", "Y", "phi", "U", "V", "Omega", "Q_static", "Q_sliding", "energy"]
+
+
+def finite_outputs(s, output_names):
+    return all(math.isfinite(v) for v in s.get_many(output_names).values())
+
+
+# ---- defect 1: the fixed step restores its own state at accumulated times ---------------------
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_fixed_step_restores_its_state_when_the_importer_adds_up_time(fmu_dir, version):
+    s = Slave(fmu_dir(version), version).init(integrator=0, **SMALL)
+    t = 0.0
+    for _ in range(40):  # 0.30000000000000004, 0.9999999999999999, ...
+        s.fmu.doStep(t, 0.1)
+        t += 0.1
+        state = s.get_state()
+        s.set_state(state)  # was: "state is corrupt (times or inputs)" from the 10th step on
+        s.free_state(state)
+    assert s.errors() == []
+    s.t = t
+    s.step_to(t + 0.1)
+
+
+# ---- defect 2: a restored state runs on with its own tolerances ---------------------------------
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_state_restored_into_other_tolerances_continues_the_saved_run(fmu_dir, version):
+    saver = Slave(fmu_dir(version), version).init(integrator=1, rtol=1e-6, atol=1e-8, **SMALL)
+    saver.step_to(10.0)
+    data = saver.serialize(saver.get_state())
+    other = Slave(fmu_dir(version), version).init(integrator=1, **SMALL)  # rtol 1e-9
+    other.set_state(other.deserialize(data))
+    other.t = 10.0
+    assert other.get("rtol") == 1e-6
+    # was: X 0.424780 against 0.424808 at 25
+    assert other.run([25.0], MOTION) == saver.run([25.0], MOTION)
+
+
+# ---- defect 3: a state of Initialization Mode after a change restores ---------------------------
+
+def enter_initialization(s):
+    if s.version == 2:
+        s.fmu.setupExperiment(startTime=0.0)
+        s.fmu.enterInitializationMode()
+    else:
+        s.fmu.enterInitializationMode(startTime=0.0)
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_state_of_initialization_mode_after_a_change_restores(fmu_dir, version):
+    s = Slave(fmu_dir(version), version)
+    s.set(**SMALL)
+    enter_initialization(s)
+    s.get("X")  # the core instance is made, for epsilon = 0.5
+    s.set(epsilon=0.3)  # and outdated
+    state = s.get_state()
+    s.set(epsilon=0.7)
+    s.set_state(state)  # was: "state was saved with epsilon = 0.5, this instance has 0.3"
+    assert s.get("epsilon") == 0.3 and s.errors() == []
+    s.fmu.exitInitializationMode()
+    reference = Slave(fmu_dir(version), version).init(epsilon=0.3, **SMALL)
+    assert s.run([1.0], MOTION) == reference.run([1.0], MOTION)
+
+
+# ---- defect 4: corrupt states are refused, and the instance stays as it was -------------------
+
+def offsets(s):
+    """Where fields lie in a serialized state (fmu/fmu_state.c, src/state_io.c, the CVODE
+    integrator's bytes at the end)."""
+    n = len([v for v in s.md.modelVariables if v.causality in ("parameter", "structuralParameter")])
+    core = 32 + 8 * 8 + 2 * 8 + 8 * n
+    params_end = core + 24 + 8 * n
+    return {"core t_out": params_end + 16, "steps": params_end + 24,
+            "X": params_end + 24 + 48 + 8, "fmu time": 64}
+
+
+def mutated(data, offset, value, fmt="=d"):
+    data = bytearray(data)
+    data[offset:offset + 8] = struct.pack(fmt, value)
+    return bytes(data)
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+@pytest.mark.parametrize("integrator", (0, 1), ids=integrator_id)
+def test_corrupt_states_are_refused_and_change_nothing(fmu_dir, output_names, version, integrator):
+    s = Slave(fmu_dir(version), version).init(integrator=integrator, **SMALL)
+    twin = Slave(fmu_dir(version), version).init(integrator=integrator, **SMALL)
+    s.step_to(1.0)
+    twin.step_to(1.0)
+    data = s.serialize(s.get_state())
+    at = offsets(s)
+    bad = {
+        "NaN in the motion": mutated(data, at["X"], math.nan),
+        "infinity in the motion": mutated(data, at["X"], math.inf),
+        "an output time of 1e9": mutated(data, at["core t_out"], 1e9),  # was: endless
+        "the FMU's time off the core's": mutated(data, at["fmu time"], 7.0),
+        "a step counter at 2^63 - 1": mutated(data, at["steps"], 2**63 - 1, "=q"),  # was: UB
+        "a replay of 2^62 steps": mutated(data, len(data) - 176 + 96, 2**62, "=q"),
+    }
+    before = s.get_many(output_names)
+    for what, corrupt in bad.items():
+        state = s.deserialize(corrupt)  # only the header is checked here
+        start = time.monotonic()
+        assert status_of(s.set_state, state) == ERROR, what
+        assert time.monotonic() - start < 2.0, what
+        assert "corrupt" in s.errors()[-1] or "refused" in s.errors()[-1], (what, s.errors()[-1])
+        assert s.get_many(output_names) == before, what
+        s.free_state(state)
+    # a refused header or size does not change the instance either
+    assert status_of(s.deserialize, data[:-8]) == ERROR
+    assert status_of(s.deserialize, b"garbage!" + data[8:]) == ERROR
+    assert s.run([2.0], output_names) == twin.run([2.0], output_names)
+
+
+# ---- defect 5: huge steps are refused or bounded -----------------------------------------------
+
+@pytest.mark.parametrize("version", VERSIONS)
+@pytest.mark.parametrize("integrator", INTEGRATORS, ids=integrator_id)
+def test_huge_steps_are_refused_or_end_early(fmu_dir, output_names, version, integrator):
+    s = Slave(fmu_dir(version), version).init(integrator=integrator, **SMALL)
+    for huge in (1e300, 1e18, 2e12):
+        start = time.monotonic()
+        status, _, _ = s.do_step(0.0, huge)
+        assert status == ERROR and time.monotonic() - start < 1.0, huge
+        assert "cannot advance" in s.errors()[-1], s.errors()[-1]
+    assert status_of(s.fmu.doStep, 0.0, 0.5) == OK  # the instance is still at 0, usable
+    start = time.monotonic()
+    status, reached, early = s.do_step(0.5, 1e6)  # was: +-inf and NaN, or never returned
+    assert time.monotonic() - start < 20.0
+    assert status == DISCARD and not early and 0.5 < reached < 1e6
+    assert s.get("time") == reached and finite_outputs(s, output_names)
+    if version == 2:  # stepFailed: no step, but terminate, reset or a saved state
+        assert s.do_step(reached, 1.0)[0] == ERROR
+        s.fmu.terminate()
+    else:  # Step Mode goes on from the time reached
+        assert s.do_step(reached, 1.0)[0] == OK
+
+
+# ---- defect 6: the work of one step is bounded; stopping early changes nothing ---------------
+
+@pytest.mark.parametrize("integrator", (0, 1), ids=integrator_id)
+def test_early_returns_continue_the_same_run(fmu_dir, output_names, integrator):
+    """FMI 3.0 with early returns allowed: a step that spends work_limit returns early at
+    the time reached, and going on from there gives the run of unlimited steps."""
+    limit = 20000 if integrator == 0 else 500  # some 20000 fixed steps, 10 CVODE steps
+    parts = Slave(fmu_dir(3), 3, early_return=True).init(integrator=integrator, work_limit=limit,
+                                                          **SMALL)
+    whole = Slave(fmu_dir(3), 3).init(integrator=integrator, work_limit=2**31 - 1, **SMALL)
+    t, returns = 0.0, 0
+    while t < 10.0:
+        status, reached, early = parts.do_step(t, 10.0 - t)
+        assert status == OK and reached > t and early == (reached < 10.0)
+        returns += early
+        t = reached
+    assert returns > 2
+    whole.step_to(10.0)
+    assert parts.get_many(output_names) == whole.get_many(output_names)
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_a_stiff_input_ends_the_step_early_instead_of_running_for_minutes(fmu_dir, output_names,
+                                                                             version):
+    s = Slave(fmu_dir(version), version).init(integrator=0, **SMALL)
+    s.set(F_N_ext=-10.0, nu=100.0)  # pushed into the plate: thousands of sub-steps per step
+    start = time.monotonic()
+    status, reached, _ = s.do_step(0.0, 1.0)
+    assert time.monotonic() - start < 10.0
+    assert status in (OK, DISCARD) and 0.0 < reached <= 1.0
+    assert finite_outputs(s, output_names)
+
+
+# ---- defect 7: valid extreme values give finite outputs ---------------------------------------
+
+EXTREMES = [{"tau0": 1e-9, "tau_r": 1e-9}, {"Sigma0": 1e-9, "eta": 1e9}, {"Sigma0": 1e9},
+            {"Gamma": 10.0}, {"drop_speed": 10.0}, {"epsilon": 1e-3}, {"mu": 100.0, "nu": 100.0},
+            {"F_T_ext": 10.0, "F_N_ext": -10.0}, {"Omega0": 100.0, "epsilon": 0.2}]
+
+
+@pytest.mark.parametrize("integrator", (0, 1), ids=integrator_id)
+@pytest.mark.parametrize("extreme", EXTREMES, ids=lambda e: ",".join(f"{k}={v:g}" for k, v in e.items()))
+def test_values_at_the_ends_of_their_ranges_give_finite_outputs(fmu_dir, output_names, integrator,
+                                                                extreme):
+    s = Slave(fmu_dir(2), 2).init(integrator=integrator, **dict(SMALL, **extreme))
+    status, reached, _ = s.do_step(0.0, 0.5)
+    assert status in (OK, DISCARD), s.errors()
+    assert finite_outputs(s, output_names)
+
+
+# ---- defect 8: a set call is checked whole before any of it is applied ------------------------
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_a_set_with_one_refused_value_applies_none(fmu_dir, output_names, version):
+    s = Slave(fmu_dir(version), version)
+    set_real = s.fmu.setReal if version == 2 else s.fmu.setFloat64
+    mu, y, eps = (s.variables[n].valueReference for n in ("mu", "Y", "epsilon"))
+    assert status_of(set_real, [mu, y], [0.7, 1.0]) == ERROR  # Y is an output
+    assert s.get("mu") == 0.1  # was: 0.7
+    s.init(**SMALL)
+    s.step_to(0.5)
+    force = s.variables["F_T_ext"].valueReference
+    assert status_of(set_real, [mu, force, eps], [0.7, 0.5, 0.3]) == ERROR  # epsilon is fixed
+    assert status_of(set_real, [mu, force], [0.7, math.nan]) == ERROR
+    assert s.get("mu") == 0.1 and s.get("F_T_ext") == 0.0
+    undisturbed = Slave(fmu_dir(version), version).init(**SMALL).run([0.5, 1.0], output_names)[-1]
+    assert s.run([1.0], output_names)[-1] == undisturbed
