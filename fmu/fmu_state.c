@@ -8,7 +8,8 @@
  *   "TRIBOFMU", layout version, FMI version, total size,
  *   lifecycle state, start time, stop time, stop time defined, time, the inputs,
  *   number of parameters, every parameter (in the core table's order),
- *   core instance outdated, size of the core's state, the core's state (tribo_state_save)
+ *   core instance outdated, tolerances set explicitly (bit 0: rtol, bit 1: atol), size of
+ *   the core's state, the core's state (tribo_state_save)
  *
  * A core state size of 0 means there is no core instance to keep: none yet (before
  * initialization), or one made for parameters changed since, which would be remade.
@@ -31,12 +32,12 @@ struct fmu_state {
 };
 
 static const char MAGIC[8] = {'T', 'R', 'I', 'B', 'O', 'F', 'M', 'U'};
-enum { LAYOUT_VERSION = 2, HEADER_SIZE = 8 + 3 * 8 };
+enum { LAYOUT_VERSION = 3, HEADER_SIZE = 8 + 3 * 8 };
 
-/* Everything but the core's state: the header, 8 fields, the inputs and the parameters. */
+/* Everything but the core's state: the header, 9 fields, the inputs and the parameters. */
 static size_t fixed_size(size_t n_params)
 {
-    return HEADER_SIZE + 8 * 8 + TRIBO_INPUT_COUNT * 8 + n_params * 8;
+    return HEADER_SIZE + 9 * 8 + TRIBO_INPUT_COUNT * 8 + n_params * 8;
 }
 
 /* ---- save ---------------------------------------------------------------------- */
@@ -80,6 +81,8 @@ fmu_status fmu_state_get(fmu_instance *inst, const char *fn, fmu_state **state)
     for (size_t i = 0; i < n_params; i++)
         tribo_write_double(&c, tribo_param_read(&inst->scene, &params[i]));
     tribo_write_int(&c, core ? 0 : inst->model_outdated);
+    /* an importer's tolerance, given later, must not override what was set explicitly */
+    tribo_write_int(&c, (inst->rtol_set ? 1 : 0) | (inst->atol_set ? 2 : 0));
     tribo_write_int(&c, (int64_t)core_size);
     if (core_size && tribo_state_save(core, c.p, core_size) != TRIBO_OK)
         return fmu_error(inst, "%s: %s", fn, tribo_last_error(inst->model));
@@ -110,7 +113,7 @@ static const char *header_problem(const fmu_instance *inst, const unsigned char 
 
 /* An FMU state read from bytes, not yet applied. */
 typedef struct restored {
-    int64_t lifecycle, stop_time_defined, model_outdated;
+    int64_t lifecycle, stop_time_defined, model_outdated, tolerances_set;
     double start_time, stop_time, time;
     double inputs[TRIBO_INPUT_COUNT];
     tribo_scene scene;
@@ -163,13 +166,15 @@ static const char *read_restored(const fmu_instance *inst, const fmu_state *s, r
         tribo_param_write(&r->scene, &params[i], v);
     }
     r->model_outdated = tribo_read_int(&c);
+    r->tolerances_set = tribo_read_int(&c);
     r->core_size = (uint64_t)tribo_read_int(&c);
     r->core = c.p;
     const int has_core = r->core_size > 0;
     if (r->core_size != s->size - fixed_size(n_params))
         return "the size of the core's state does not match the state's";
     if (!lifecycle_valid(inst, r->lifecycle, has_core) ||
-        (r->model_outdated != 0 && r->model_outdated != 1) || (has_core && r->model_outdated))
+        (r->model_outdated != 0 && r->model_outdated != 1) || (has_core && r->model_outdated) ||
+        r->tolerances_set < 0 || r->tolerances_set > 3)
         return "the FMI state is not one this FMU saves";
     if (!isfinite(r->start_time) || !isfinite(r->time) || !isfinite(r->stop_time) ||
         (r->stop_time_defined != 0 && r->stop_time_defined != 1) ||
@@ -246,6 +251,8 @@ fmu_status fmu_state_set(fmu_instance *inst, const char *fn, const fmu_state *s)
     tribo_free(inst->model);
     inst->model = model;
     inst->model_outdated = r.model_outdated != 0;
+    inst->rtol_set = (r.tolerances_set & 1) != 0;
+    inst->atol_set = (r.tolerances_set & 2) != 0;
     inst->scene = r.scene;
     for (int i = 0; i < TRIBO_INPUT_COUNT; i++)
         inst->inputs[i] = r.inputs[i];

@@ -80,3 +80,23 @@ def test_a_tolerance_outside_rtols_range_is_refused(fmu_dir, version):
     assert status == ERROR
     assert "tolerance = 9.9999999999999995e-21" in s.errors()[-1] and "1e-14 <= rtol < 1" in s.errors()[-1]
     assert s.get("rtol") == 1e-9
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_an_explicit_rtol_survives_an_fmu_state(fmu_dir, version):
+    """rtol set explicitly, the state saved before initialization and restored into a fresh
+    instance: the importer's tolerance still does not override it (the state keeps which
+    tolerances were set)."""
+    a = Slave(fmu_dir(version), version)
+    a.set(**SMALL, rtol=1e-7)
+    data = a.serialize(a.get_state())
+    b = Slave(fmu_dir(version), version, logging_on=True)
+    b.set_state(b.deserialize(data))
+    if version == 2:
+        b.fmu.setupExperiment(tolerance=1e-6, startTime=0.0)
+        b.fmu.enterInitializationMode()
+    else:
+        b.fmu.enterInitializationMode(tolerance=1e-6, startTime=0.0)
+    b.fmu.exitInitializationMode()
+    assert (b.get("rtol"), b.get("atol")) == (1e-7, 1e-11 * (1e-6 / 1e-9))
+    assert any("rtol = 1e-07 (set explicitly)" in m for _, _, m in b.messages)
