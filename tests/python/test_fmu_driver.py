@@ -81,7 +81,7 @@ def test_fmi3_terminate_with_ok_ends_the_run_too(fmu_dir):
     with Instance(fmu_dir(3)) as s:
         s.init(n_segments=64)
         real = s._do_step3
-        s._do_step3 = lambda t, h: (lambda r: (r[0], t + h >= 2.0, r[2]))(real(t, h))
+        s._do_step3 = lambda t, h: (lambda r: (r[0], t + h >= 2.0, r[2], r[3]))(real(t, h))
         reached, rows = record(s, TIMES, NAMES)
     assert list(reached) == [0.0, 1.0, 2.0]
 
@@ -93,8 +93,8 @@ def test_simulate_and_the_api_record_an_early_end(fmu_file, monkeypatch):
     def do_step3(self, t, h):
         if t + h <= END:
             return real(self, t, h)
-        status, _, reached = real(self, t, END - t)
-        return DISCARD, True, reached
+        status, _, _, reached = real(self, t, END - t)
+        return DISCARD, True, False, reached
 
     monkeypatch.setattr(Instance, "_do_step3", do_step3)
     recording = simulate(FmuImage.load(fmu_file(3)), {"n_segments": 64}, 5.0, 1.0, NAMES, segments=True)
