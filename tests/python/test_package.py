@@ -79,7 +79,7 @@ def test_run_gives_the_fmus_numbers_as_a_dataframe(fmu_file):
 
 
 def test_run_refuses_a_bad_value_with_the_fmus_reason(fmu_file):
-    with pytest.raises(ParameterError, match=r"epsilon = 1.5.*0 < epsilon <= 1"):
+    with pytest.raises(ParameterError, match=r"epsilon = 1.5.*0.001 <= epsilon <= 1"):
         tribo.run(epsilon=1.5, fmu=fmu_file(3))
     with pytest.raises(ValueError, match="expected name=value"):
         tribo.run("epsilon 0.5", fmu=fmu_file(3))

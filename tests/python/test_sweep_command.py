@@ -67,8 +67,8 @@ def test_a_scheduler_that_does_not_answer_is_one_line_within_seconds(fmu_file, t
 
 @pytest.mark.parametrize("args, words", [
     (["--param", "n_segments=100.5"], ["n_segments = 100.5 is not a whole number"]),
-    (["--param", "epsilon=1.5"], ["epsilon = 1.5", "0 < epsilon <= 1"]),
-    (["--param", "mu=-1"], ["mu = -1", "mu >= 0"]),
+    (["--param", "epsilon=1.5"], ["epsilon = 1.5", "0.001 <= epsilon <= 1"]),
+    (["--param", "mu=-1"], ["mu = -1", "0 <= mu <= 100"]),
     (["--param", "epsilon=abc"], ["--param epsilon=abc", "expected a:b:n"]),
     (["--param", "roundness=0.5"], ["not parameters of the FMU: roundness"]),
     (["--param", "epsilon=0.5", "--t-end", "0"], ["the horizon t_end must be a positive number, got 0"]),
