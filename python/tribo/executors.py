@@ -79,12 +79,14 @@ class SerialExecutor:
 
     def run(self, function: Callable, image, specs) -> Iterator:
         for i, spec in enumerate(specs):
-            try:
-                result = function(image, spec)
-            except Exception as e:  # one failed run does not stop the sweep
-                yield i, e
-            else:
-                yield i, result
+            with _sigint_held() as interrupted:
+                try:
+                    result = function(image, spec)
+                except Exception as e:  # one failed run does not stop the sweep
+                    result = e
+            yield i, result
+            if interrupted:  # after the run is handed over, so that it is kept
+                raise KeyboardInterrupt
 
 
 class DaskExecutor:
@@ -188,6 +190,28 @@ def _ship_package(client) -> None:
                         path = os.path.join(folder, f)
                         z.write(path, os.path.join(name, os.path.relpath(path, PACKAGE_DIR)))
         client.upload_file(archive, load=True)
+
+
+@contextlib.contextmanager
+def _sigint_held():
+    """Ctrl-C during a run is held until the run returns (the list it gives is then not
+    empty): a KeyboardInterrupt raised while the FMU calls its logger, a ctypes callback,
+    would be printed and dropped by ctypes, and the run would go on. A second Ctrl-C
+    interrupts at once."""
+    interrupted = []
+    if threading.current_thread() is not threading.main_thread():  # only it has signals
+        yield interrupted
+        return
+
+    def hold(signum, frame):
+        interrupted.append(signum)
+        signal.signal(signal.SIGINT, previous)
+
+    previous = signal.signal(signal.SIGINT, hold)
+    try:
+        yield interrupted
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 @contextlib.contextmanager

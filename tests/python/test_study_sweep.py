@@ -5,9 +5,11 @@ file, a fresh start keeps the old file, and a sweep runs on an existing Dask clu
 does not have the package."""
 
 import os
+import signal
 import socket
 import subprocess
 import sys
+import time
 
 import pandas as pd
 import pytest
@@ -87,6 +89,26 @@ def test_limited_sweep_resumes_without_redoing_runs(image, uninterrupted, tmp_pa
     assert (r2.executed, r2.skipped) == (len(SPECS) - 2, 2)
     assert not {s.as_json() for s in first.specs} & {s.as_json() for s in second.specs}
     pd.testing.assert_frame_equal(without_timing(read_results(path)), without_timing(uninterrupted))
+
+
+def test_ctrl_c_during_a_serial_run_is_held_until_the_run_is_handed_over():
+    """SIGINT in the middle of a run (where the FMU may be calling its logger, a ctypes
+    callback that would drop the KeyboardInterrupt): the run finishes, its result is
+    yielded, then the interruption is raised; the next run does not start."""
+    started = []
+
+    def run(image, spec):
+        started.append(spec)
+        os.kill(os.getpid(), signal.SIGINT)
+        time.sleep(0.05)  # the signal is delivered inside the run
+        return f"result {spec}"
+
+    got = []
+    with SerialExecutor() as ex, pytest.raises(KeyboardInterrupt):
+        for outcome in ex.run(run, None, [1, 2, 3]):
+            got.append(outcome)
+    assert got == [(0, "result 1")] and started == [1]
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
 
 
 def test_interrupted_sweep_resumes(image, uninterrupted, tmp_path):
