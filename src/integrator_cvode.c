@@ -156,6 +156,18 @@ static void hold_lock(const cvode_integrator *c, double *y)
     y[TRIBO_IV] = -(g.cx * y[TRIBO_IOMEGA]);
 }
 
+/* The longest step: the time in which the steady loads (gravity and the inputs) move a
+   particle from rest by 5e-4 semi-axes, sqrt(1e-3 / load), but at least 1 (the paper's
+   scenes, Gamma >= 1e-3, keep 1; the contact's own period, 2 pi, CVODE resolves itself). The
+   switch functions are sampled within each step (find_grazing_switch): a step of that
+   length leaves nothing between the samples. A physical particle has a tiny Gamma (1e-8 for
+   a 1 mm polymer grain on steel): a step of 1 would then take ~1e6 steps to cross a chute
+   the slow motion crosses in ~1e3 (model.md §8, §9). */
+static double slow_step(const tribo_dyn_params *p)
+{
+    return fmax(1.0, sqrt(1e-3 / (p->Gamma + fabs(p->F_T) + fabs(p->F_N))));
+}
+
 /* (Re)start CVODE at (t, y) in phase ph. */
 static tribo_status restart_at(cvode_integrator *c, double t, const double *y, const phase *ph)
 {
@@ -176,7 +188,7 @@ static tribo_status restart_at(cvode_integrator *c, double t, const double *y, c
     /* a rotating particle in flight must not swing its lowest point through the plate and
        back within one step unseen: 0.2 rad per step at most */
     const double spin = fabs(y[TRIBO_IOMEGA]);
-    const double hmax = spin > 0.2 ? 0.2 / spin : 1.0;
+    const double hmax = spin > 0.0 ? fmin(0.2 / spin, slow_step(c->dyn)) : slow_step(c->dyn);
     if (CVodeReInit(c->mem, t, c->y) != CV_SUCCESS || CVodeSetRootDirection(c->mem, dir) != CV_SUCCESS ||
         CVodeSetMaxStep(c->mem, hmax) != CV_SUCCESS)
         return tribo_fail(m, TRIBO_ERR_INTEGRATOR, "CVODE restart failed at t = %.17g: %s", t,

@@ -29,7 +29,9 @@
      decided under the tangential rule it would have: only study_contact_point/ moved.
    - issue 11, the charge means are compensated running sums (O(1) outputs): Q_static,
      Q_sliding and Sigma_mean moved in their last bits (at most 1.9e-14 relative); every
-     other output at every run's last sample is bit-identical. */
+     other output at every run's last sample is bit-identical.
+   - issue 12, CVODE's longest step grows as 1/sqrt(Gamma) below Gamma = 1e-3 (it was 1 at
+     every Gamma): only the stability case Gamma = 1e-6 moved, with CVODE (Adams and BDF). */
 #include <inttypes.h>
 #include <stdint.h>
 #include <stdio.h>
