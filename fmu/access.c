@@ -112,7 +112,8 @@ static int model_readable(fmu_instance *inst, const char *fn, const fmu_variable
 {
     const unsigned modes = FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_INITIALIZATION) | FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_STEP) |
                            FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_TERMINATED) |
-                           FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_STEP_DISCARDED) | FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_FAILED);
+                           FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_STEP_DISCARDED) | FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_FAILED) |
+                           FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_EXITED);
     if (!(modes & FMU_LIFECYCLE_BIT(inst->lifecycle))) {
         fmu_error(inst, "%s: %s is computed from Initialization Mode on; it cannot be read in state %s",
                   fn, v->name, fmu_lifecycle_name(inst->lifecycle));

@@ -32,7 +32,7 @@ struct fmu_state {
 };
 
 static const char MAGIC[8] = {'T', 'R', 'I', 'B', 'O', 'F', 'M', 'U'};
-enum { LAYOUT_VERSION = 3, HEADER_SIZE = 8 + 3 * 8 };
+enum { LAYOUT_VERSION = 4, HEADER_SIZE = 8 + 3 * 8 };
 
 /* Everything but the core's state: the header, 9 fields, the inputs and the parameters. */
 static size_t fixed_size(size_t n_params)
@@ -132,6 +132,7 @@ static int lifecycle_valid(const fmu_instance *inst, int64_t lifecycle, int has_
     case FMU_LIFECYCLE_STEP:
     case FMU_LIFECYCLE_TERMINATED: return has_core;
     case FMU_LIFECYCLE_STEP_DISCARDED: return has_core && inst->fmi_version == 2;
+    case FMU_LIFECYCLE_EXITED: return has_core;
     }
     return 0;
 }
@@ -246,6 +247,14 @@ fmu_status fmu_state_set(fmu_instance *inst, const char *fn, const fmu_state *s)
     tribo_model *model = NULL;
     if (r.core_size && !(model = load_core(inst, fn, &r)))
         return FMU_ERROR;
+    /* the FMU is in its exited state exactly when the core's run is over (model.md §9), or
+       has been terminated */
+    const int over = model && tribo_get(model, TRIBO_Q_EXITED) != 0.0;
+    if (model && r.lifecycle != FMU_LIFECYCLE_TERMINATED && over != (r.lifecycle == FMU_LIFECYCLE_EXITED)) {
+        tribo_free(model);
+        return fmu_error(inst, "%s: the state is corrupt: its run %s over, but its FMI state is %s",
+                         fn, over ? "is" : "is not", fmu_lifecycle_name((fmu_lifecycle)r.lifecycle));
+    }
 
     /* all accepted: the instance becomes the state */
     tribo_free(inst->model);

@@ -15,7 +15,11 @@ typedef enum fmu_lifecycle {
     /* FMI 2.0's stepFailed: a step was discarded (it ended early); outputs and FMU states
        can be read, and terminate, reset or a saved FMU state lead on */
     FMU_LIFECYCLE_STEP_DISCARDED,
-    FMU_LIFECYCLE_FAILED /* the core failed: only reset, a saved FMU state or free help */
+    FMU_LIFECYCLE_FAILED, /* the core failed: only reset, a saved FMU state or free help */
+    /* the particle left the chute (model.md §9): the run is over; outputs and FMU states can
+       be read, and terminate, reset or a saved FMU state lead on (FMI 2.0: fmi2Terminated;
+       FMI 3.0: terminateSimulation) */
+    FMU_LIFECYCLE_EXITED
 } fmu_lifecycle;
 
 #define FMU_LIFECYCLE_BIT(m) (1u << (m))

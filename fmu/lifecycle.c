@@ -15,6 +15,8 @@ static const char *const LIFECYCLE_NAMES[] = {
     [FMU_LIFECYCLE_STEP_DISCARDED] =
         "Step Discarded (stepFailed: the last step ended early; terminate, reset or restore a state)",
     [FMU_LIFECYCLE_FAILED] = "Error (after a failure of the core: reset the instance or restore a state)",
+    [FMU_LIFECYCLE_EXITED] = "Exited (the particle left the chute and the run is over: terminate, "
+                             "reset or restore a state)",
 };
 
 const char *fmu_lifecycle_name(fmu_lifecycle state) { return LIFECYCLE_NAMES[state]; }
@@ -100,6 +102,8 @@ void fmu_free(fmu_instance *inst)
 }
 
 double fmu_time(const fmu_instance *inst) { return inst->time; }
+
+int fmu_exited(const fmu_instance *inst) { return inst && inst->lifecycle == FMU_LIFECYCLE_EXITED; }
 
 void fmu_allow_early_return(fmu_instance *inst, int allowed)
 {
@@ -248,7 +252,8 @@ fmu_status fmu_terminate(fmu_instance *inst, const char *fn)
 {
     if (!inst || !fmu_lifecycle_allows(inst, fn,
                                        FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_STEP) |
-                                           FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_STEP_DISCARDED)))
+                                           FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_STEP_DISCARDED) |
+                                           FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_EXITED)))
         return FMU_ERROR;
     inst->lifecycle = FMU_LIFECYCLE_TERMINATED;
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s() at time %.17g", fn, inst->time);

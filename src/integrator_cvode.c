@@ -30,6 +30,10 @@
  * time, and the state at an asked time comes from the dense output of the open step.
  * The state can be saved because CVODE is deterministic: the bytes hold the point where
  * CVODE was last restarted and the number of steps since, which a load replays.
+ *
+ * On a chute of finite length (model.md §9) the centre passing its end is one more root
+ * (TRIBO_SWITCH_EXIT): the step that reaches it is committed, CVODE is restarted there (so
+ * that the saved state is the exit point) and the run ends.
  */
 #include "integrator.h"
 
@@ -507,6 +511,12 @@ static tribo_status close_step(cvode_integrator *c)
         return TRIBO_OK;
     }
 
+    /* the end of the run: no phase follows (model.md §9) */
+    if (c->roots[TRIBO_SWITCH_EXIT]) {
+        st = restart_at(c, c->t_end, tribo_committed(m)->y, &c->phase);
+        return st == TRIBO_OK ? TRIBO_ENDED : st;
+    }
+
     /* an event: new phase, resets, restart */
     const double t = c->t_end;
     if (fabs(t - c->last_event_t) <= 1e-12 * fmax(1.0, fabs(t)))
@@ -557,11 +567,11 @@ static tribo_status advance(tribo_model *m, void *data, double t)
         if (c->open && t <= c->t_end)
             break;
         if (c->open && (st = close_step(c)) != TRIBO_OK)
-            return st;
+            return st == TRIBO_ENDED ? tribo_stop_early(m, TRIBO_STOP_EXIT) : st;
         if (t <= tribo_committed(m)->t)
             break;
         if (tribo_work_spent(m))
-            return tribo_stop_early(m);
+            return tribo_stop_early(m, TRIBO_STOP_WORK_LIMIT);
         if (++steps > max_steps)
             return fail_at(c, tribo_committed(m)->t, tribo_committed(m)->y,
                            "too much work: more than 1e6 steps per time unit");

@@ -97,7 +97,10 @@ void tribo_param_range_text(const tribo_param_info *p, char *buf, size_t n)
         return;
     }
     const int has_lo = isfinite(p->min), has_hi = isfinite(p->max);
-    if (has_lo && has_hi)
+    if (has_lo && p->max == INFINITY && p->max_inclusive)
+        snprintf(buf, n, "%g %s %s <= INF (INF: none)", p->min, p->min_inclusive ? "<=" : "<",
+                 p->name);
+    else if (has_lo && has_hi)
         snprintf(buf, n, "%g %s %s %s %g", p->min, p->min_inclusive ? "<=" : "<", p->name,
                  p->max_inclusive ? "<=" : "<", p->max);
     else if (has_lo)
@@ -110,7 +113,8 @@ void tribo_param_range_text(const tribo_param_info *p, char *buf, size_t n)
 
 tribo_status tribo_param_check(const tribo_param_info *p, double v, char *msg, size_t msg_size)
 {
-    int ok = isfinite(v);
+    /* a closed infinite bound admits the infinity itself (quantities.def) */
+    int ok = isfinite(v) || (v == INFINITY && p->max == INFINITY && p->max_inclusive);
     if (ok && p->type != TRIBO_TYPE_REAL)
         ok = v == floor(v);
     if (ok)
@@ -192,6 +196,20 @@ tribo_status tribo_scene_validate(const tribo_scene *scene, char *msg, size_t ms
                                             msg_size);
         if (st != TRIBO_OK)
             return st;
+    }
+    return tribo_scene_check_combinations(scene, msg, msg_size);
+}
+
+tribo_status tribo_scene_check_combinations(const tribo_scene *scene, char *msg, size_t msg_size)
+{
+    /* the drop lies on the chute (model.md §9) */
+    if (!(scene->X0 < scene->chute_length)) {
+        if (msg && msg_size)
+            snprintf(msg, msg_size,
+                     "X0 = %.17g is invalid with chute_length = %.17g: the particle must start "
+                     "before the end of the chute, X0 < chute_length",
+                     scene->X0, scene->chute_length);
+        return TRIBO_ERR_INVALID_ARGUMENT;
     }
     return TRIBO_OK;
 }

@@ -49,10 +49,15 @@ static void attr(const char *name, const char *value)
     putchar('"');
 }
 
-/* The shortest decimal that reads back as v (an integer as an integer). */
+/* The shortest decimal that reads back as v (an integer as an integer; an infinity as XML
+   Schema's INF, which the importers tested read: tests/python/test_chute_fmu.py). */
 static void attr_number(const char *name, double v)
 {
     char buf[32];
+    if (isinf(v)) {
+        printf(" %s=\"%sINF\"", name, v < 0 ? "-" : "");
+        return;
+    }
     if (v == floor(v) && fabs(v) < 1e15) {
         printf(" %s=\"%.0f\"", name, v);
         return;

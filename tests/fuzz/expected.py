@@ -3,7 +3,9 @@ return (the FMI standard's state machines, and fmu/README.md: a refused call cha
 nothing and the instance stays usable) and the state it leaves the instance in.
 
 Where the FMU may choose, the model accepts each choice it may make: a step that spends
-the work limit ends early (Discard, or an early return where allowed)."""
+the work limit ends early (Discard, or an early return where allowed), and one in which the
+particle leaves the chute ends the run there (Discard with fmi2Terminated; FMI 3.0 OK with
+terminateSimulation)."""
 
 import copy
 import math
@@ -19,8 +21,9 @@ STEP = "Step Mode"
 DISCARDED = "Step Discarded"  # FMI 2.0's stepFailed
 TERMINATED = "Terminated"
 FAILED = "failed"
+EXITED = "Exited"  # the particle left the chute: the run is over
 
-READABLE = {INITIALIZATION, STEP, DISCARDED, TERMINATED, FAILED}  # outputs from here on
+READABLE = {INITIALIZATION, STEP, DISCARDED, TERMINATED, FAILED, EXITED}  # outputs from here on
 TIME_MAX = 1e12  # beyond it the core refuses (src/tribo.h)
 GRID_MAX_STEPS = 2.0**45  # the fixed step's grid (src/integrator_fixed_step.c)
 
@@ -52,12 +55,17 @@ class Variable:
         self.max = float(attributes.get("max", math.inf))
         self.start = float(attributes.get("start", 0.0))
         self.dimension = v.dimensions[0].valueReference if v.dimensions else None
+        # a real parameter without a max takes the infinity too (chute_length: no end)
+        self.takes_infinity = not self.is_integer and "max" not in attributes and \
+            self.causality == "parameter"
 
     @property
     def settable(self):
         return self.causality in ("parameter", "structuralParameter", "input")
 
     def valid(self, value):
+        if value == math.inf and self.takes_infinity:
+            return True
         if not math.isfinite(value) or not (self.min <= value <= self.max):
             return False
         return not self.is_integer or value == math.floor(value)
@@ -84,6 +92,12 @@ class Model:
         return other
 
     # ---- values ------------------------------------------------------------------------
+
+    def scene_valid(self):
+        """Whether the parameters, each valid, also go together (the core's combinations):
+        the drop lies on the chute. Otherwise the model cannot be made: initialization
+        and the outputs are refused."""
+        return self.values["X0"] < self.values["chute_length"]
 
     def count(self, v):
         return int(self.values[self.by_vr[v.dimension].name]) if v.dimension is not None else 1
@@ -113,6 +127,8 @@ class Model:
             return {ERROR}
         if any(v.causality == "output" for v in variables):
             if self.lifecycle not in READABLE:
+                return {ERROR}
+            if self.lifecycle == INITIALIZATION and not self.scene_valid():
                 return {ERROR}
             if self.lifecycle == FAILED:  # an output the failure left not finite is refused
                 return {OK, ERROR}
@@ -161,13 +177,24 @@ class Model:
             return ERROR
         return None
 
-    def step_allowed(self, status, early, current, h, reached):
+    def step_allowed(self, status, early, current, h, reached, terminate=False):
         """Whether a computed step's answer is one the FMU may give; updates the model. A
         failure of the core is one (an error, with its reason logged): the instance then
-        only resets or restores a state."""
+        only resets or restores a state. So is the end of the run, where the particle leaves
+        the chute: FMI 2.0 Discard, FMI 3.0 OK with an early return where allowed, at the
+        exit time."""
         end = current + h
         if status == ERROR:
             self.lifecycle = FAILED
+            return True
+        if terminate:
+            if (status, early) != ((DISCARD, False) if self.version == 2 else (OK, self.early_return)):
+                return False
+            if not (min(current, self.time) <= reached <= end):
+                return False
+            self.time = reached
+            self.core_time = reached - self.start
+            self.lifecycle = EXITED
             return True
         if status == OK and not early:
             if reached != end:

@@ -5,7 +5,7 @@ from fmpy's prototypes, so that the suite follows a change of types there."""
 
 import os
 import sys
-from ctypes import byref, c_bool, c_double, c_size_t, c_void_p
+from ctypes import byref, c_bool, c_double, c_int, c_size_t, c_void_p
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "python"))
 
@@ -78,16 +78,17 @@ class Instance:
         return self._call("Reset")
 
     def do_step(self, t, h):
-        """(status, the last successful time, early return)"""
+        """(status, the last successful time, early return, the FMU asks to terminate)"""
         if self.version == 2:
             status = self._call("DoStep", t, h, 1)
-            reached = c_double(float("nan"))
+            reached, terminated = c_double(float("nan")), c_int(0)
             self._call("GetRealStatus", 2, byref(reached))  # fmi2LastSuccessfulTime
-            return status, reached.value, False
+            self._call("GetBooleanStatus", 3, byref(terminated))  # fmi2Terminated
+            return status, reached.value, False, bool(terminated.value)
         event, terminate, early, reached = c_bool(), c_bool(), c_bool(), c_double(float("nan"))
         status = self._call("DoStep", t, h, True, byref(event), byref(terminate), byref(early),
                             byref(reached))
-        return status, reached.value, early.value
+        return status, reached.value, early.value, terminate.value
 
     # ---- values ------------------------------------------------------------------------
 

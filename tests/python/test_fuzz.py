@@ -21,8 +21,8 @@ FUZZ = os.path.join(ROOT, "tests", "fuzz", "fuzz_fmu.py")
 
 # (build, FMI version, seed, sequences, states mutated, values per field, seconds per call)
 RUNS = [
-    (BUILD_DIR, 2, 11, 500, 7, 4, 20),
-    (BUILD_DIR, 3, 12, 500, 7, 4, 20),
+    (BUILD_DIR, 2, 11, 500, 8, 4, 20),
+    (BUILD_DIR, 3, 12, 500, 8, 4, 20),
     (SANITIZE_DIR, 2, 13, 80, 3, 2, 120),
     (SANITIZE_DIR, 3, 14, 80, 3, 2, 120),
 ]
@@ -79,7 +79,8 @@ def test_fuzz_both_fmus_release_and_sanitized():
         print(f"{what}: {counts['sequences']} sequences, {counts['calls']} calls, "
               f"{counts['mutated_states']} mutated states, {counts['seconds']} s "
               f"(slowest call {counts['slowest_call_seconds']} s, "
-              f"{len(counts['core_failures'])} failures of the core reported)")
+              f"{len(counts['core_failures'])} failures of the core reported, "
+              f"{counts['exits']} exits from the chute)")
         if counts["findings"]:
             failures.append(f"{what}: " + json.dumps(counts["findings"][:3], indent=1))
     assert not failures, "\n".join(failures)
