@@ -66,7 +66,7 @@ static const fmu_variable VARIABLES[] = {
 };
 
 static const fmu_unit UNITS[] = {
-#define TRIBO_UNIT(name, base_unit, display_unit, display_factor, description)                   \
+#define TRIBO_UNIT(name, quantity, base_unit, display_unit, display_factor, description)         \
     {name, base_unit, display_unit, display_factor, description},
 #include "quantities.def"
 };

@@ -122,9 +122,10 @@ typedef struct tribo_param_info {
 const tribo_param_info *tribo_param_table(size_t *count);
 /* The entry named `name`, or NULL. */
 const tribo_param_info *tribo_param_find(const char *name);
-/* Read / write a parameter of a scene through its table entry. */
-double tribo_param_read(const tribo_scene *scene, const tribo_param_info *p);
-void tribo_param_write(tribo_scene *scene, const tribo_param_info *p, double value);
+/* Read / write a parameter of a scene through its table entry (a tribo_scene for the rows
+   of tribo_param_table, a tribo_si_scene for those of tribo_si_param_table, si.h). */
+double tribo_param_read(const void *scene, const tribo_param_info *p);
+void tribo_param_write(void *scene, const tribo_param_info *p, double value);
 /* The valid range of `p` in words, e.g. "0 < epsilon <= 1" (for messages). */
 void tribo_param_range_text(const tribo_param_info *p, char *buf, size_t n);
 /* TRIBO_OK if `value` is valid for `p`; otherwise TRIBO_ERR_INVALID_ARGUMENT and a
