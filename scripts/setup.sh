@@ -28,12 +28,16 @@ fi
 # machine and this one get the same interpreter.
 PYTHON=/usr/bin/python3
 VENV="$ROOT/.venv"
-want=$(sha256sum "$ROOT/requirements.txt" | cut -d' ' -f1)
+# the venv is made again when the pinned requirements or the package's metadata change
+want=$(cat "$ROOT/requirements.txt" "$ROOT/pyproject.toml" | sha256sum | cut -d' ' -f1)
 if [ ! -x "$VENV/bin/python" ] || [ "$(cat "$VENV/.requirements.sha256" 2>/dev/null)" != "$want" ]; then
   echo "setup: creating the Python venv in .venv"
   rm -rf "$VENV"
   "$PYTHON" -m venv "$VENV"
   "$VENV/bin/pip" install -q --disable-pip-version-check -r "$ROOT/requirements.txt"
+  # the Python package tribo (python/tribo), editable: the venv imports the working tree's
+  # code; its dependencies are already there, at the pinned versions
+  "$VENV/bin/pip" install -q --disable-pip-version-check --no-deps -e "$ROOT"
   echo "$want" > "$VENV/.requirements.sha256"
 fi
 

@@ -39,13 +39,20 @@ static void expect_same(tribo_model *a, tribo_model *b, const char *what)
     free(u);
 }
 
+/* A new instance of the scene, advanced to t. */
+static tribo_model *made_and_run(const tribo_scene *s, double t)
+{
+    tribo_model *m = make(s);
+    cr_assert_eq(tribo_advance(m, t), TRIBO_OK, "%s", tribo_last_error(m));
+    return m;
+}
+
 Test(state, copy_out_and_in_continues_bit_identically)
 {
     FOR_EACH_INTEGRATOR {
         tribo_scene s = scene();
-        tribo_model *a = make(&s);
         /* off the step grid, so that the saved point carries a partial step */
-        cr_assert_eq(tribo_advance(a, 3.00013), TRIBO_OK);
+        tribo_model *a = made_and_run(&s, 3.00013);
         size_t n;
         unsigned char *saved = saved_state(a, &n);
         cr_assert_eq(tribo_advance(a, 10.0), TRIBO_OK);
@@ -78,8 +85,7 @@ Test(state, tunables_and_inputs_travel_with_the_state)
 {
     FOR_EACH_INTEGRATOR {
         tribo_scene s = scene();
-        tribo_model *a = make(&s);
-        cr_assert_eq(tribo_advance(a, 2.0), TRIBO_OK);
+        tribo_model *a = made_and_run(&s, 2.0);
         cr_assert_eq(tribo_set_param(a, "mu", 0.3), TRIBO_OK);
         cr_assert_eq(tribo_set_external_force(a, 1e-4, -2e-4), TRIBO_OK);
         size_t n;
@@ -100,8 +106,7 @@ Test(state, foreign_or_corrupt_state_is_refused)
 {
     FOR_EACH_INTEGRATOR {
         tribo_scene s = scene();
-        tribo_model *a = make(&s);
-        cr_assert_eq(tribo_advance(a, 1.0), TRIBO_OK);
+        tribo_model *a = made_and_run(&s, 1.0);
         size_t n;
         unsigned char *saved = saved_state(a, &n);
         cr_expect_eq(tribo_state_save(a, saved, n - 1), TRIBO_ERR_INVALID_ARGUMENT);

@@ -3,15 +3,11 @@ FMI status (fmpy would raise), and each value is passed in the C type of the fun
 that takes it. The variables and their types come from the modelDescription, the C types
 from fmpy's prototypes, so that the suite follows a change of types there."""
 
-import os
-import sys
 from ctypes import byref, c_bool, c_double, c_int, c_size_t, c_void_p
 
-sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "python"))
-
-from tribo_fmu import Slave  # noqa: E402  (instantiation and the importer's logger)
-
-OK, WARNING, DISCARD, ERROR, FATAL = range(5)
+# instantiation and the importer's logger: the package's driver
+from tribo.fmu import DISCARD, ERROR, FATAL, OK, WARNING  # noqa: F401
+from tribo.fmu import Instance as Driver
 
 # the functions that take a variable type's values: FMI 2.0 passes enumerations as
 # Integer, FMI 3.0 as Int64
@@ -30,7 +26,8 @@ class Instance:
 
     def __init__(self, fmu_dir, version, early_return=False):
         self.version = version
-        self.slave = Slave(fmu_dir, version, early_return=early_return)
+        self.slave = Driver(fmu_dir, early_return=early_return)
+        assert self.slave.version == version, (fmu_dir, version)
         self.fmu = self.slave.fmu
         self.md = self.slave.md
         self.f = self.fmu._functions

@@ -24,15 +24,15 @@ import threading
 import time
 import zipfile
 
-sys.path.insert(0, os.path.dirname(__file__))
+# run as a script: Python puts this folder first on the module path, so the suite's own
+# modules import as they are
+from fmpy import read_model_description
 
-from fmpy import read_model_description  # noqa: E402
-
-from expected import (CONFIGURATION, DISCARDED, EXITED, FAILED, INITIALIZATION,  # noqa: E402
+from expected import (CONFIGURATION, DISCARDED, EXITED, FAILED, INITIALIZATION,
                       INSTANTIATED, READABLE, STEP, TERMINATED, Model)
-from fmi_calls import DISCARD, ERROR, OK, Instance  # noqa: E402
-from values import (UNKNOWN_VRS, communication_point, experiment, hostile_value,  # noqa: E402
-                    step_size, valid_value)
+from fmi_calls import DISCARD, ERROR, OK, Instance
+from values import (UNKNOWN_VRS, communication_point, experiment, hostile_value, step_size,
+                    valid_value)
 
 NUMERIC_TYPES = {2: ["Real", "Integer", "Boolean"],
                  3: ["Float64", "Float32", "Int8", "UInt8", "Int16", "UInt16", "Int32", "UInt32",

@@ -1,18 +1,21 @@
-"""Shared by the tests of the study package (examples/tribo_study): puts examples/ on
-sys.path and gives the FMU as the package takes it."""
+"""Shared by the tests of the package's study and sweep tools: short runs, the FMU as the
+package takes it, the commands as a user runs them."""
 
 import os
 import sys
 
-EXAMPLES = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", "examples"))
-if EXAMPLES not in sys.path:
-    sys.path.insert(0, EXAMPLES)
-
-from tribo_study.fmu_run import FmuImage, run_fmu  # noqa: E402
-from tribo_study.specs import paper_spec  # noqa: E402
-from tribo_study.sweep import TIMING_COLUMNS  # noqa: E402
+from tribo.fmu import FmuImage
+from tribo.particle import run_fmu
+from tribo.specs import paper_spec
+from tribo.sweep import TIMING_COLUMNS
 
 PYTHON = sys.executable
+BIN = os.path.dirname(PYTHON)  # the venv's bin/, where pip put the entry points
+
+
+def command(name: str) -> str:
+    """The path of a console command of the package (tribo-study, tribo-sweep)."""
+    return os.path.join(BIN, name)
 
 
 def short_spec(epsilon, friction, t_end=200.0, **overrides):

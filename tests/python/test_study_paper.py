@@ -1,23 +1,23 @@
-"""The study command (examples/paper_study.py, which scripts/main.sh runs) on a tiny
-setting: it runs on the default local Dask cluster, writes its tables and figures, and a
-second invocation reuses every run."""
+"""The study command (tribo-study, which scripts/main.sh runs) on a tiny setting: it runs on
+the default local Dask cluster, writes its tables and figures (each panel with its legend,
+the axes saying what is normalised by what), and a second invocation reuses every run."""
 
-import os
 import re
 import subprocess
 
+import numpy as np
 import pandas as pd
 import pytest
 
-from study_support import EXAMPLES, PYTHON
-from tribo_study.figures import FIGURES
+from study_support import command
+from tribo.figures import FIGURES
 
 
 @pytest.fixture(scope="module")
 def tiny_study(fmu_file, tmp_path_factory):
     out = tmp_path_factory.mktemp("study")
-    cmd = [PYTHON, os.path.join(EXAMPLES, "paper_study.py"), "--epsilons", "0.3,1.0", "--t-end", "200",
-           "--transition-width", "0.25", "--out", str(out), "--fmu", fmu_file(2), "--workers", "2",
+    cmd = [command("tribo-study"), "--epsilons", "0.3,1.0", "--t-end", "200",
+           "--transition-width", "0.25", "--out", str(out), "--fmu", fmu_file(3), "--workers", "2",
            "--no-progress"]
     first = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
     assert first.returncode == 0, first.stderr
@@ -33,9 +33,9 @@ def test_writes_tables_and_figures(tiny_study):
     runs = pd.read_csv(out / "study_runs.csv")
     assert list(zip(runs["friction"], runs["epsilon"])) == [("low", 0.3), ("low", 1.0),
                                                             ("high", 0.3), ("high", 1.0)]
-    assert {"Q_static_t200", "Q_sliding_t40", "fraction_rolling_after_warmup", "assumption_warnings",
+    assert {"Q_static_end", "Q_sliding_20pct", "fraction_rolling_after_warmup", "assumption_warnings",
             "cpu_s", "wall_s"} <= set(runs.columns)
-    assert (runs["Q_static_t200"] > 0).all() and (runs["cpu_s"] > 0).all()
+    assert (runs["Q_static_end"] > 0).all() and (runs["cpu_s"] > 0).all()
     points = pd.read_csv(out / "transition_points.csv")
     assert set(points["friction"]) == {"low", "high"} and (~points["on_grid"]).any()
 
@@ -66,7 +66,7 @@ def test_the_dashpots_side_by_side(fmu_file, tmp_path):
     """--dashpots 0,1: the grid with both normal dashpots, compared in one table and in the
     bounce and charge figures (a row per dashpot); the centre's runs are really the centre
     law's: at high friction it holds the centre's height and indents ten times deeper."""
-    cmd = [PYTHON, os.path.join(EXAMPLES, "paper_study.py"), "--epsilons", "0.3", "--t-end", "100",
+    cmd = [command("tribo-study"), "--epsilons", "0.3", "--t-end", "100",
            "--transition-width", "0.5", "--out", str(tmp_path), "--fmu", fmu_file(2), "--serial",
            "--no-progress", "--dashpots", "0,1"]
     done = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
@@ -82,3 +82,108 @@ def test_the_dashpots_side_by_side(fmu_file, tmp_path):
     from matplotlib.image import imread
     one = imread(tmp_path / "bounce_amplitude.png").shape[0]
     assert one > 1.8 * 380  # two rows of 3.8 inches at 100 dpi
+
+
+@pytest.fixture(scope="module")
+def tiny_result(tiny_study, fmu_file):
+    """The tiny study's result in this process (every run reused from its runs/)."""
+    from dataclasses import replace
+
+    from tribo.executors import SerialExecutor
+    from tribo.fmu import FmuImage
+    from tribo.study import REDUCED, run_study
+    out, _, _ = tiny_study
+    settings = replace(REDUCED, epsilons=(0.3, 1.0), t_end=200.0, transition_width=0.25)
+    result = run_study(settings, FmuImage.load(fmu_file(3)), str(out), SerialExecutor(), progress=False)
+    assert result.executed == 0
+    return result
+
+
+def test_the_study_uses_the_fmus_default_tolerances(tiny_study, tiny_result, fmu_file):
+    """The runs carry the FMU's default rtol and atol (its modelDescription's start values),
+    and a grid run is, bit for bit, the run that leaves them unset; the old pinned rtol 1e-8
+    gives other numbers."""
+    from tribo.fmu import model_description
+    from tribo.particle import simulate
+    out, _, _ = tiny_study
+    start = {v.name: float(v.start) for v in model_description(fmu_file(3)).modelVariables
+             if v.name in ("rtol", "atol")}
+    runs = pd.read_csv(out / "study_runs.csv")
+    assert (runs["rtol"] == start["rtol"]).all() and (runs["atol"] == start["atol"]).all()
+    assert tiny_result.tolerances == start
+    assert "(the FMU's defaults)" in (out / "study.md").read_text()
+    row = runs.iloc[0]
+    params = {n: row[n] for n in ("epsilon", "mu", "nu", "n_segments", "charge_model", "integrator",
+                                  "damping_point", "Gamma", "beta", "tau0", "Sigma0", "eta", "tau_r",
+                                  "drop_speed")}
+    from tribo.fmu import FmuImage
+    fmu = FmuImage.load(fmu_file(3))
+    unset = simulate(fmu, params, 200.0).series
+    pinned = simulate(fmu, dict(params, rtol=1e-8, atol=1e-10), 200.0).series
+    recorded = tiny_result.series_of(0, row["friction"], row["epsilon"])
+    assert unset["Y"].to_numpy() == pytest.approx(recorded["Y"].to_numpy(), rel=1e-9)  # CSV: 10 digits
+    assert unset["Q_static"].iloc[-1] == row["Q_static_end"]
+    assert pinned["Q_static"].iloc[-1] != row["Q_static_end"]
+
+
+def _panels(fig):
+    """The panels of a figure, without the twin axes that share a panel."""
+    twins = {a for ax in fig.axes for a in ax.get_shared_x_axes().get_siblings(ax) if a is not ax}
+    return [ax for ax in fig.axes if ax not in twins or ax.get_legend() is not None]
+
+
+@pytest.mark.parametrize("name", [n for n in FIGURES])
+def test_every_panel_has_a_legend_and_distinct_lines(tiny_result, name):
+    from matplotlib.colors import to_hex
+
+    from tribo import figures
+    writer = getattr(figures, name[:-len(".png")])
+    fig = writer(tiny_result)
+    panels = _panels(fig)
+    assert panels
+    for ax in panels:
+        legend = ax.get_legend()
+        assert legend is not None, (name, ax.get_title())
+        texts = [t.get_text() for t in legend.get_texts()]
+        assert len(texts) >= 2 and all(texts), (name, texts)
+        assert min(t.get_fontsize() for t in legend.get_texts()) >= 7  # readable
+        # the lines of a legend are told apart by colour, or by marker where they share one
+        styles = [(to_hex(line.get_color()), line.get_marker(), line.get_linestyle())
+                  for line in ax.get_lines() if not line.get_label().startswith("_")]
+        assert len(set(styles)) == len(styles), (name, ax.get_title(), styles)
+
+
+def test_axes_say_what_is_normalised_by_what(tiny_result):
+    from tribo import figures
+    fig = figures.charge_vs_time(tiny_result)
+    for ax in fig.axes:
+        assert ax.get_xlabel() == "τ = t / sqrt(m/k)"
+        assert "Q / Q_saturation" in ax.get_ylabel() and ("σ0" in ax.get_ylabel() or "Σ0" in ax.get_ylabel())
+    trajectory = figures.trajectory(tiny_result)
+    labels = [ax.get_ylabel() for ax in trajectory.axes]
+    assert "height of the centre Y / a" in labels and any("revolutions" in y for y in labels)
+    # the height plotted is the run's Y
+    line = trajectory.axes[0].get_lines()[0]
+    series = tiny_result.series_of(0, "low", 0.3)
+    assert list(line.get_ydata()) == list(series["Y"])
+
+
+def test_the_segment_map_is_a_polar_plot_of_the_segment_charges(tiny_result):
+    from tribo import figures
+    fig = figures.segment_charge(tiny_result)
+    assert all(ax.name == "polar" for ax in fig.axes) and len(fig.axes) == 4
+    ax = fig.axes[0]  # static, low friction
+    line = ax.get_lines()[0]
+    q = tiny_result.segments_of(0, "low", 0.3)["static"].to_numpy()
+    assert list(line.get_ydata()[:-1]) == list(q) and len(q) == 2000
+    assert line.get_xdata()[0] == pytest.approx(np.pi / 2000)  # the middle of segment 0
+    # at epsilon 0.3, low friction, the particle charges the side it rests on, not all round
+    assert q.max() > 0.5 and q.min() == 0.0
+
+
+def test_an_fmi2_fmu_gives_no_segment_map(tiny_result):
+    from dataclasses import replace
+
+    from tribo import figures
+    without = replace(tiny_result, all_segments={k: None for k in tiny_result.all_segments})
+    assert figures.segment_charge(without) is None

@@ -1,26 +1,25 @@
-"""Sweeps (examples/tribo_study/sweep.py, executors.py, results.py; examples/sweep.py):
-Dask gives the serial run's numbers, an interrupted or limited sweep resumes without
-redoing finished runs and ends with the uninterrupted sweep's file, and a sweep runs on
-an existing Dask cluster that does not have the package."""
+"""Sweeps (tribo/sweep.py, executors.py, results.py, grid.py; tribo-sweep): Dask gives the
+serial run's numbers, an interrupted or limited sweep resumes without redoing finished
+runs and ends with the uninterrupted sweep's file, runs of different horizons share a
+file, a fresh start keeps the old file, and a sweep runs on an existing Dask cluster that
+does not have the package."""
 
 import os
 import socket
 import subprocess
 import sys
-import time
 
 import pandas as pd
 import pytest
 
-from study_support import EXAMPLES, PYTHON, CountingRun, image_of, short_spec, without_timing
-from tribo_study.fmu_run import run_fmu
-from tribo_study.executors import DaskExecutor, SerialExecutor
-from tribo_study.results import read_results
-from tribo_study.specs import run_key
-from tribo_study.sweep import run_sweep, series_path
-
-sys.path.insert(0, EXAMPLES)
-import sweep as sweep_cli  # noqa: E402  (examples/sweep.py)
+from study_support import PYTHON, CountingRun, command, image_of, short_spec, without_timing
+from tribo.executors import DaskExecutor, SerialExecutor
+from tribo.grid import PAPER_BASE, build_specs, parse_param
+from tribo.parameters import ParameterError, check_names, integer_names
+from tribo.particle import run_fmu
+from tribo.results import read_results
+from tribo.specs import run_key
+from tribo.sweep import run_sweep, series_path
 
 SPECS = [short_spec(e, f, t_end=100.0) for f in ("low", "high") for e in (0.3, 0.6, 1.0)]
 
@@ -72,7 +71,7 @@ def test_results_load_with_plain_pandas(uninterrupted, image, tmp_path):
     assert plain["turned_over"].dtype.kind == "i"
     # the numbers read back are the run's, bit for bit
     direct = run_fmu(image, SPECS[1]).row
-    for column in ("Q_static_t100", "Q_sliding_t40", "contact_fraction", "turns", "Y_max"):
+    for column in ("Q_static_end", "Q_sliding_40pct", "contact_fraction", "turns", "Y_max"):
         assert plain[column].iloc[1] == direct[column], column
 
 
@@ -121,12 +120,41 @@ def test_interrupted_sweep_resumes(image, uninterrupted, tmp_path):
     assert len(fresh.specs) == len(SPECS)
 
 
-def test_a_file_of_other_runs_is_not_mixed_in(image, tmp_path):
+def test_runs_of_other_horizons_share_the_file(image, tmp_path):
+    """A longer horizon into the same file adds its rows; both sweeps' rows stay, and each
+    is the run of its own horizon."""
+    path = str(tmp_path / "results.csv")
+    longer = [short_spec(e, "low", t_end=150.0) for e in (0.3, 0.6)]
+    with SerialExecutor() as ex:
+        first = run_sweep(SPECS[:2], image, path, ex, progress=False)
+        second = run_sweep(longer, image, path, ex, progress=False)
+    assert first.executed == 2 and second.executed == 2 and second.skipped == 0
+    table = read_results(path)
+    assert len(table) == 4 and sorted(table["t_end"]) == [100.0, 100.0, 150.0, 150.0]
+    assert set(table["key"]) == set(first.keys) | set(second.keys)
+    assert table.set_index("key").loc[second.keys[1], "Q_static_end"] == run_fmu(image, longer[1]).row["Q_static_end"]
+
+
+def test_a_file_of_other_parameters_is_refused_saying_which(image, tmp_path):
     path = str(tmp_path / "results.csv")
     with SerialExecutor() as ex:
         run_sweep(SPECS[:1], image, path, ex, progress=False)
-        with pytest.raises(ValueError, match="other runs"):  # another horizon: other columns
-            run_sweep([short_spec(0.3, "low", t_end=50.0)], image, path, ex, progress=False)
+        with pytest.raises(ValueError, match=r"other columns \(these runs have phi0\).*--fresh"):
+            run_sweep([short_spec(0.3, "low", t_end=100.0, phi0=0.1)], image, path, ex, progress=False)
+    assert len(read_results(path)) == 1  # untouched
+
+
+def test_a_fresh_start_keeps_the_old_file(image, tmp_path):
+    path = tmp_path / "results.csv"
+    with SerialExecutor() as ex:
+        run_sweep(SPECS[:2], image, str(path), ex, progress=False)
+        before = path.read_bytes()
+        report = run_sweep(SPECS[:1], image, str(path), ex, resume=False, progress=False)
+        assert report.backup == str(tmp_path / "results.backup-1.csv")
+        again = run_sweep(SPECS[:1], image, str(path), ex, resume=False, progress=False)
+    assert (tmp_path / "results.backup-1.csv").read_bytes() == before  # the 2 rows, kept
+    assert again.backup == str(tmp_path / "results.backup-2.csv")
+    assert len(read_results(str(path))) == 1
 
 
 def test_the_key_is_stable_and_specific(image):
@@ -136,19 +164,21 @@ def test_the_key_is_stable_and_specific(image):
     assert run_key(a, image.sha256) != run_key(a, "another FMU")
 
 
-def test_sweep_cli_builds_the_grid(fmu_file):
-    kinds = sweep_cli.parameter_kinds(fmu_file(2))
-    swept = [sweep_cli.parse_param("epsilon=0.1:1.0:10"), sweep_cli.parse_param("mu=0.1,1.0"),
-             sweep_cli.parse_param("n_segments=64")]
-    specs = sweep_cli.build_specs(swept, sweep_cli.PAPER_BASE, kinds, 500, 1.0)
+def test_the_grid_of_a_sweep(image):
+    md = image.model_description()
+    swept = [parse_param("epsilon=0.1:1.0:10"), parse_param("mu=0.1,1.0"), parse_param("n_segments=64")]
+    specs = build_specs(swept, PAPER_BASE, integer_names(md), 500, 1.0)
     assert len(specs) == 20
     assert [s.params["epsilon"] for s in specs[::2]] == [round(0.1 * k, 12) for k in range(1, 11)]
     assert all(s.params["nu"] == s.params["mu"] for s in specs)  # nu follows mu
     assert all(type(s.params["n_segments"]) is int for s in specs)
-    untied = sweep_cli.build_specs(swept[1:2], sweep_cli.PAPER_BASE, kinds, 500, 1.0, tie=False)
+    assert "rtol" not in specs[0].params  # the FMU's default tolerances
+    untied = build_specs(swept[1:2], PAPER_BASE, integer_names(md), 500, 1.0, tie=False)
     assert [s.params["nu"] for s in untied] == [0.1, 0.1]
-    with pytest.raises(SystemExit, match="not parameters"):
-        sweep_cli.build_specs([("roundness", [0.5])], {}, kinds, 500, 1.0)
+    with pytest.raises(ParameterError, match="not parameters"):
+        check_names(md, ["roundness"])
+    with pytest.raises(ValueError, match="n_segments = 100.5 is not a whole number"):
+        build_specs([("n_segments", [100.5])], {}, integer_names(md), 500, 1.0)
 
 
 def _free_port():
@@ -159,20 +189,26 @@ def _free_port():
 
 @pytest.fixture
 def external_cluster(tmp_path):
-    """A Dask scheduler and two workers started from the command line, in a directory and
-    environment where the study package cannot be imported."""
+    """A Dask scheduler and two workers started from the command line with the README's
+    flags that keep them on the loopback interface (without --dashboard-address, each
+    listens on 0.0.0.0 for HTTP even with --no-dashboard), the workers where the package cannot
+    be imported: the venv's site-packages on their path without its .pth files (python -S),
+    so without the editable install's entry."""
     port = _free_port()
     address = f"tcp://127.0.0.1:{port}"
-    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
-    dask = os.path.join(os.path.dirname(PYTHON), "dask")
-    procs = [subprocess.Popen([dask, "scheduler", "--host", "127.0.0.1", "--port", str(port),
-                               "--no-dashboard"], cwd=tmp_path, env=env,
+    site_packages = next(p for p in sys.path if p.endswith("site-packages") and p.startswith(sys.prefix))
+    env = dict({k: v for k, v in os.environ.items() if k != "PYTHONPATH"})
+    procs = [subprocess.Popen([PYTHON, "-m", "distributed.cli.dask_scheduler", "--host", "127.0.0.1",
+                               "--port", str(port), "--dashboard-address", "127.0.0.1:0", "--no-dashboard"],
+                              cwd=tmp_path, env=env,
                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)]
-    procs.append(subprocess.Popen([dask, "worker", address, "--nworkers", "2", "--nthreads", "1",
-                                   "--no-dashboard"], cwd=tmp_path, env=env,
+    procs.append(subprocess.Popen([PYTHON, "-S", "-m", "distributed.cli.dask_worker", address,
+                                   "--host", "127.0.0.1", "--dashboard-address", "127.0.0.1:0", "--no-dashboard",
+                                   "--nworkers", "2", "--nthreads", "1"], cwd=tmp_path,
+                                  env=dict(env, PYTHONPATH=site_packages),
                                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
     try:
-        yield address
+        yield address, procs
     finally:
         from distributed import Client
         try:  # a clean shutdown of scheduler and workers is quicker than signals to each
@@ -191,25 +227,39 @@ def external_cluster(tmp_path):
 def test_sweep_on_an_existing_cluster(image, uninterrupted, external_cluster, tmp_path):
     from distributed import Client
 
-    with Client(external_cluster, timeout=30) as c:
+    address, procs = external_cluster
+    with Client(address, timeout=30) as c:
         c.wait_for_workers(2, timeout=30)
         # the package is not importable there before the sweep sends it
-        assert not any(c.run(lambda: __import__("importlib").util.find_spec("tribo_study")
+        assert not any(c.run(lambda: __import__("importlib").util.find_spec("tribo")
                              is not None).values())
     path = str(tmp_path / "results.csv")
-    with DaskExecutor(address=external_cluster) as executor:
+    with DaskExecutor(address=address) as executor:
         report = run_sweep(SPECS, image, path, executor, progress=False)
-        where = executor.client.run(lambda: __import__("tribo_study").__file__)
+        where = executor.client.run(lambda: __import__("tribo").__file__)
     assert report.executed == len(SPECS) and not report.failed
     assert all(".zip" in f for f in where.values())  # the uploaded package
     pd.testing.assert_frame_equal(without_timing(read_results(path)), without_timing(uninterrupted))
+    # the README's flags keep the cluster on the loopback interface
+    assert listening_addresses(procs) and all(ip == "127.0.0.1" for ip in listening_addresses(procs))
+
+
+def listening_addresses(procs) -> list[str]:
+    """The IP addresses on which the processes (and their children) listen."""
+    import psutil
+    ips = []
+    for p in procs:
+        tree = psutil.Process(p.pid)
+        for q in [tree] + tree.children(recursive=True):
+            ips += [c.laddr.ip for c in q.net_connections(kind="inet") if c.status == psutil.CONN_LISTEN]
+    return ips
 
 
 def test_sweep_cli_runs_and_resumes(fmu_file, tmp_path):
     out = tmp_path / "results.csv"
-    cmd = [PYTHON, os.path.join(EXAMPLES, "sweep.py"), "--param", "epsilon=0.4,1.0",
+    cmd = [command("tribo-sweep"), "--param", "epsilon=0.4,1.0",
            "--param", "mu=0.1,1.0", "--param", "n_segments=64", "--t-end", "60", "--out", str(out),
-           "--fmu", fmu_file(2), "--serial", "--no-progress"]
+           "--fmu", fmu_file(2), "--serial", "--no-progress", "--no-plot"]
     first = subprocess.run(cmd + ["--max-runs", "3"], capture_output=True, text=True, check=True)
     assert "3 executed, 0 already in the file" in first.stdout
     second = subprocess.run(cmd, capture_output=True, text=True, check=True)

@@ -1,8 +1,8 @@
 """What one run is, and the key that identifies it.
 
-A run is the FMU's parameters (every one the study sets, explicitly, so that a
-result does not depend on the FMU's start values), the horizon t_end and the interval
-at which the outputs are recorded. Its key is a hash of those and of the FMU's bytes:
+A run is the FMU's parameters (those the study or the sweep sets; the rest keep the
+FMU's start values, which the FMU's hash in the key pins down), the horizon t_end and the
+interval at which the outputs are recorded. Its key is a hash of those and of the FMU's bytes:
 the same key means the same numbers, so a finished run can be skipped on resume, and
 a rebuilt FMU with other behaviour is not mistaken for the old one.
 """
@@ -13,8 +13,9 @@ import math
 from dataclasses import dataclass, field
 
 # docs/model.md section 7 (the paper's set-up), with CVODE instead of the paper's fixed step
-# (faster at equal error, see docs/work_precision.md), and the normal dashpot on the contact
-# point (docs/model.md section 3). epsilon, mu and nu are set per run.
+# (faster at equal error, see docs/work_precision.md) at the FMU's default tolerances (rtol,
+# atol: not set here), and the normal dashpot on the contact point (docs/model.md section 3).
+# epsilon, mu and nu are set per run.
 PAPER_SETUP = {
     "Gamma": 0.001,
     "beta": 45 * (math.pi / 180.0),  # rad
@@ -26,8 +27,6 @@ PAPER_SETUP = {
     "drop_speed": 0.025,
     "charge_model": 3,  # both charge models
     "integrator": 1,  # CVODE (Adams)
-    "rtol": 1e-8,
-    "atol": 1e-10,
     "damping_point": 0,
 }
 
@@ -74,8 +73,8 @@ def normalise_values(params: dict, integer_names=("n_segments", "charge_model", 
     out = {}
     for name, value in params.items():
         if name in integer_names:
-            if float(value) != int(value):
-                raise ValueError(f"{name} must be an integer, got {value}")
+            if not float(value).is_integer():
+                raise ValueError(f"{name} = {value:g} is not a whole number ({name} takes whole numbers only)")
             out[name] = int(value)
         elif name in exact_names:
             out[name] = float(value)

@@ -1,11 +1,12 @@
-"""A sweep: many runs, each recorded as it finishes, resumable.
+"""A parameter sweep: many runs, each recorded as it finishes, resumable.
 
 `run_sweep` keys every run (specs.run_key), skips the runs whose rows are already in the
 results file (and whose time series are on disk, if series are kept), runs the rest on
 the executor, and appends each finished run's row to the file at once. Interrupt it at
 any point and call it again with the same runs: only the unfinished ones run. When the file
 holds exactly the sweep's runs, all finished, it is put in the sweep's order (a file
-shared by several sweeps keeps the order its rows came in).
+shared by several sweeps keeps the order its rows came in). Runs of different horizons
+share the columns, so they can share a file.
 """
 
 import os
@@ -14,8 +15,9 @@ from dataclasses import dataclass, field
 import pandas as pd
 from tqdm.auto import tqdm
 
-from .fmu_run import FmuImage, run_fmu
-from .results import KEY, ResultsFile
+from .fmu import FmuImage
+from .particle import run_fmu
+from .results import KEY, ResultsFile, read_results
 from .specs import RunSpec, run_key
 from .summary import summary_columns
 
@@ -30,6 +32,7 @@ class SweepReport:
     executed: int = 0  # runs executed by this call
     skipped: int = 0  # runs found finished in the results file
     failed: list = field(default_factory=list)  # (spec, exception) of runs that raised
+    backup: str | None = None  # where a fresh start moved the earlier results file
 
     @property
     def complete(self) -> bool:
@@ -38,10 +41,24 @@ class SweepReport:
 
 def sweep_columns(specs: list[RunSpec]) -> list[str]:
     names = list(specs[0].params)
-    t_ends = {s.t_end for s in specs}
-    if any(list(s.params) != names for s in specs) or len(t_ends) != 1:
-        raise ValueError("the runs of one sweep must set the same parameters and share t_end")
-    return [KEY] + names + RUN_COLUMNS + summary_columns(specs[0].t_end) + TIMING_COLUMNS
+    if any(list(s.params) != names for s in specs):
+        raise ValueError("the runs of one sweep must set the same parameters")
+    return [KEY] + names + RUN_COLUMNS + summary_columns() + TIMING_COLUMNS
+
+
+def keys_of(specs: list[RunSpec], image: FmuImage) -> list[str]:
+    """The sweep's run keys, each once, in the sweep's order."""
+    return list(dict.fromkeys(run_key(s, image.sha256) for s in specs))
+
+
+def kept(results_path: str, keys: list[str]) -> int:
+    """How many of `keys` have their row in the results file."""
+    if not os.path.exists(results_path):
+        return 0
+    try:
+        return len(set(read_results(results_path)[KEY]) & set(keys))
+    except (ValueError, pd.errors.EmptyDataError):
+        return 0
 
 
 def run_sweep(specs: list[RunSpec], image: FmuImage, results_path: str, executor, *,
@@ -55,6 +72,7 @@ def run_sweep(specs: list[RunSpec], image: FmuImage, results_path: str, executor
     unique = list(dict.fromkeys(keys))
     spec_of = dict(zip(keys, specs))
     results = ResultsFile(results_path, sweep_columns(specs), fresh=not resume)
+    backup = results.backup
     if series_dir:
         os.makedirs(series_dir, exist_ok=True)
 
@@ -63,7 +81,8 @@ def run_sweep(specs: list[RunSpec], image: FmuImage, results_path: str, executor
 
     done = {k for k in results.finished_keys() if finished(k)}
     todo = [k for k in unique if k not in done]
-    report = SweepReport(keys=unique, results=pd.DataFrame(), skipped=len(unique) - len(todo))
+    report = SweepReport(keys=unique, results=pd.DataFrame(), skipped=len(unique) - len(todo),
+                         backup=backup)
     if max_runs is not None:
         todo = todo[:max_runs]
 
@@ -77,6 +96,8 @@ def run_sweep(specs: list[RunSpec], image: FmuImage, results_path: str, executor
                 bar.write(f"run {key} failed: {outcome}")
                 continue
             if series_dir:  # first the series, so that a row in the file implies its series
+                if outcome.segments is not None:
+                    write_series(outcome.segments, segments_path(series_dir, key))
                 write_series(outcome.series, series_path(series_dir, key))
             row = {KEY: key, **spec.params, "t_end": spec.t_end,
                    "record_interval": spec.record_interval, "fmu_sha256": image.sha256,
@@ -97,6 +118,11 @@ def series_path(series_dir: str, key: str) -> str:
     return os.path.join(series_dir, f"{key}.csv")
 
 
+def segments_path(series_dir: str, key: str) -> str:
+    """Each segment's charge at the end of the run (from an FMI 3.0 FMU)."""
+    return os.path.join(series_dir, f"{key}.segments.csv")
+
+
 def write_series(series: pd.DataFrame, path: str) -> None:
     tmp = path + ".tmp"
     series.to_csv(tmp, index=False, float_format="%.10g")
@@ -105,3 +131,8 @@ def write_series(series: pd.DataFrame, path: str) -> None:
 
 def read_series(series_dir: str, key: str) -> pd.DataFrame:
     return pd.read_csv(series_path(series_dir, key))
+
+
+def read_segments(series_dir: str, key: str) -> pd.DataFrame | None:
+    path = segments_path(series_dir, key)
+    return pd.read_csv(path) if os.path.exists(path) else None

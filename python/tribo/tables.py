@@ -14,7 +14,8 @@ import pandas as pd
 
 from .executors import available_cores
 from .specs import dashpot_name
-from .summary import ENVELOPE_WIDTH, MODES, TURNED_OVER, WARMUP, report_times, time_label
+from .summary import (ENVELOPE_WIDTH, MODES, REPORT_FRACTIONS, TURNED_OVER, WARMUP, charge_column,
+                      report_times)
 
 FRICTION_TITLES = {"low": "low (mu = nu = 0.1)", "high": "high (mu = nu = 1.0)"}
 
@@ -38,8 +39,8 @@ def markdown_table(df: pd.DataFrame, formats: dict | None = None) -> str:
 def charges_table(runs: pd.DataFrame, t_end: float) -> pd.DataFrame:
     out = runs[["friction", "epsilon"]].copy()
     for model in ("static", "sliding"):
-        for t in report_times(t_end):
-            out[f"Q_{model} @{t:g}"] = runs[f"Q_{model}_{time_label(t)}"]
+        for f, t in zip(REPORT_FRACTIONS, report_times(t_end)):
+            out[f"Q_{model} @{t:g}"] = runs[charge_column(model, f)]
     return out
 
 
@@ -84,7 +85,7 @@ def dashpot_table(result) -> pd.DataFrame:
     out["dashpot"] = runs["damping_point"].map(dashpot_name)
     _add_motion(out, runs)
     for model in ("static", "sliding"):
-        out[f"Q_{model}"] = runs[f"Q_{model}_{time_label(s.t_end)}"]
+        out[f"Q_{model}"] = runs[charge_column(model, 1.0)]
     out["CPU s"] = runs["cpu_s"]
     return out
 
@@ -124,7 +125,7 @@ def transition_table(result) -> pd.DataFrame:
     checks = result.tolerance_checks
     for friction, t in result.transitions.items():
         c = checks[checks.friction == friction] if len(checks) else checks
-        agree = bool(len(c)) and bool((c["turns_at_rtol_1e-8"] == c["turns_at_rtol_1e-10"]).all())
+        agree = bool(len(c)) and bool((c["turns_at_study_tolerance"] == c["turns_at_rtol_1e-10"]).all())
         rows.append({
             "friction": FRICTION_TITLES.get(friction, friction),
             "eps_t": f"{t.estimate:.4f} +- {t.uncertainty:.4f}" if t.found else t.describe(),
@@ -155,6 +156,13 @@ def assumptions_note(runs: pd.DataFrame) -> str:
                      f"turning over on the plate lifts its centre to 1, standing on its tip).")
         lines.append(line)
     return "\n".join(lines)
+
+
+def tolerance_text(result) -> str:
+    tol = result.tolerances
+    given = dict(result.settings.tolerances)
+    text = ", ".join(f"{name} = {value:g}" for name, value in tol.items())
+    return text + (" (given)" if given else " (the FMU's defaults)")
 
 
 def write_all(result, out_dir: str, command: str) -> list[str]:
@@ -189,10 +197,15 @@ def write_all(result, out_dir: str, command: str) -> list[str]:
         f"eta = 0.1, N = 2000 segments, drop speed 0.025, both charge models; mu = nu = 0.1 "
         f"(low friction) and 1.0 (high friction); epsilon in {{{', '.join(f'{e:g}' for e in s.epsilons)}}}; "
         f"tau from 0 to {s.t_end:g}, outputs recorded every {s.record_interval:g}. "
-        f"Integrator: CVODE (Adams), rtol = 1e-8, atol = 1e-10. {dashpot_text}",
+        f"Integrator: CVODE (Adams), {tolerance_text(result)}. {dashpot_text}",
         "",
         "## Definitions",
         "",
+        "- **Units** (docs/model.md section 1): lengths in semi-major axes a, time "
+        "tau = t / sqrt(m/k) (m the mass, k the contact stiffness). Q_static is the mean of "
+        "sigma_i / sigma0 over the segments: the static charge over its saturation charge. "
+        "Q_sliding is the mean of Sigma_i / Sigma0: the sliding charge over the saturation "
+        "charge at rest, above 1 where frictional work has raised the saturation density.",
         f"- **Bounce amplitude**: the upper envelope of the centre height Y: the maximum of the "
         f"recorded Y over a centred sliding window of {ENVELOPE_WIDTH:g} time units. The table "
         f"gives its mean over tau >= {WARMUP:g}.",

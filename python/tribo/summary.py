@@ -9,7 +9,8 @@ Definitions (used in the tables, the figures and the docs):
   run. Y is recorded every `record_interval` (1 time unit), which resolves a ballistic
   apex to ~1e-4 (Gamma cos(beta) (1/2)^2 / 2).
 * charges: Q_static and Q_sliding at REPORT_FRACTIONS of the horizon (1000, 2000, ...,
-  5000 for the paper's tau = 5000).
+  5000 for the paper's tau = 5000), in columns named by the fraction, not the time
+  (Q_static_20pct, ..., Q_static_end), so that runs of different horizons share them.
 * contact modes: the FMU's fractions of time in each mode over the whole run, and the
   same fractions after the warm-up (the FMU classifies over a ~20-unit exponential
   window, so the first WARMUP units read as "bouncing" while that window fills up). The
@@ -38,8 +39,14 @@ def report_times(t_end: float) -> list[float]:
     return [round(t_end * f, 9) for f in REPORT_FRACTIONS]
 
 
-def time_label(t: float) -> str:
-    return f"t{t:g}"
+def charge_column(model: str, fraction: float) -> str:
+    """The column of a charge model's Q at a fraction of the horizon: Q_static_20pct, ...,
+    Q_static_end."""
+    return f"Q_{model}_end" if fraction == 1.0 else f"Q_{model}_{round(100 * fraction)}pct"
+
+
+def charge_columns(model: str) -> list[str]:
+    return [charge_column(model, f) for f in REPORT_FRACTIONS]
 
 
 def upper_envelope(y: np.ndarray, samples_per_window: int) -> np.ndarray:
@@ -52,14 +59,14 @@ def upper_envelope(y: np.ndarray, samples_per_window: int) -> np.ndarray:
 
 def bounce_envelope(series: pd.DataFrame, width: float = ENVELOPE_WIDTH) -> np.ndarray:
     """The bounce amplitude at every recorded time (see the module's definition)."""
-    tau = series["tau"].to_numpy()
+    tau = series["time"].to_numpy()
     interval = (tau[-1] - tau[0]) / max(1, len(tau) - 1)
     return upper_envelope(series["Y"].to_numpy(), int(round(width / interval)) | 1)
 
 
 def fractions_after(series: pd.DataFrame, t_from: float) -> dict[str, float]:
     """Fraction of the time after t_from spent in each mode (NaN if the run is shorter)."""
-    tau = series["tau"].to_numpy()
+    tau = series["time"].to_numpy()
     i = int(np.searchsorted(tau, t_from - 1e-9))
     if i >= len(tau) - 1:
         return {m: math.nan for m in MODES}
@@ -73,11 +80,10 @@ def fractions_after(series: pd.DataFrame, t_from: float) -> dict[str, float]:
     return out
 
 
-def summary_columns(t_end: float) -> list[str]:
+def summary_columns() -> list[str]:
     """The names of `summarize`'s row, in its order (a results file's header needs them
-    before the first run has finished)."""
-    charges = [f"Q_{model}_{time_label(t)}" for model in ("static", "sliding")
-               for t in report_times(t_end)]
+    before the first run has finished); the same for every horizon."""
+    charges = charge_columns("static") + charge_columns("sliding")
     return (charges + ["contact_fraction", "turns", "turns_max", "turned_over", "motion_class_end"]
             + [f"fraction_{m}" for m in MODES] + [f"fraction_{m}_after_warmup" for m in MODES]
             + ["assumption_warnings", "delta_y_max", "Y_max", "bounce_amplitude_end",
@@ -86,13 +92,13 @@ def summary_columns(t_end: float) -> list[str]:
 
 def summarize(series: pd.DataFrame, t_end: float) -> dict:
     """The summary row of a run (column name -> number)."""
-    tau = series["tau"].to_numpy()
+    tau = series["time"].to_numpy()
     last = series.iloc[-1]
     row = {}
     for model in ("static", "sliding"):
         q = series[f"Q_{model}"].to_numpy()
-        for t in report_times(t_end):
-            row[f"Q_{model}_{time_label(t)}"] = float(np.interp(t, tau, q))
+        for f, t in zip(REPORT_FRACTIONS, report_times(t_end)):
+            row[charge_column(model, f)] = float(np.interp(t, tau, q))
     turns_max = float(series["turns"].max())
     row.update(
         contact_fraction=float(last["contact_fraction"]),

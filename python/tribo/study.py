@@ -3,8 +3,13 @@ of roundness values, both charge models, to the horizon; the transition roundnes
 each friction case; figures and tables. Optionally the same grid with other normal
 dashpots (damping_point, docs/model.md section 3), side by side with the study's own.
 
+The runs use the FMU's default tolerances (rtol, atol: the start values of its
+modelDescription, set explicitly so that the results file shows them) unless the settings
+give others.
+
 Everything a run produces goes to <out>/runs/ (results.csv: one row per run, keyed;
-series/<key>.csv: its time series), so a study that is interrupted resumes where it
+series/<key>.csv: its time series; series/<key>.segments.csv: each segment's charge at
+the end, from an FMI 3.0 FMU), so a study that is interrupted resumes where it
 stopped, and a second study with the same runs (e.g. the transition search's coarse
 grid, which is the study's roundness grid) reuses them.
 """
@@ -17,7 +22,7 @@ import pandas as pd
 
 from . import figures, tables
 from .specs import FRICTION_CASES, paper_spec
-from .sweep import read_series, run_sweep
+from .sweep import read_segments, read_series, run_sweep
 from .transition import Transition, find_transition
 
 PAPER_EPSILONS = tuple(round(0.1 * k, 10) for k in range(1, 11))
@@ -39,6 +44,8 @@ class StudySettings:
     # the normal dashpots (damping_point values): the first is the study's own (eps_t,
     # the detailed tables); the grid is run with the others too, for comparison
     dashpots: tuple = (0,)
+    # (name, value) pairs that override the FMU's default tolerances, e.g. (("rtol", 1e-8),)
+    tolerances: tuple = ()
 
     @property
     def dashpot(self) -> int:
@@ -58,6 +65,7 @@ class StudyResult:
     # "damping_point" columns, the study's own dashpot first
     all_runs: pd.DataFrame
     all_series: dict  # (damping_point, friction, epsilon) -> time series
+    all_segments: dict  # (damping_point, friction, epsilon) -> segment charges at the end, or None
     transitions: dict  # friction -> Transition
     transition_points: pd.DataFrame  # every evaluated point of the searches
     tolerance_checks: pd.DataFrame  # the bracket ends at CHECK_TOLERANCES
@@ -67,6 +75,8 @@ class StudyResult:
     executor: str = ""
     fmu_name: str = ""
     fmu_sha256: str = ""
+    tolerances: dict = field(default_factory=dict)  # rtol and atol the runs used
+    backup: str | None = None  # where --fresh moved the earlier results
     files: list = field(default_factory=list)
 
     @property
@@ -80,6 +90,9 @@ class StudyResult:
     def series_of(self, dashpot: int, friction: str, epsilon: float) -> pd.DataFrame:
         return self.all_series[(dashpot, friction, epsilon)]
 
+    def segments_of(self, dashpot: int, friction: str, epsilon: float) -> pd.DataFrame | None:
+        return self.all_segments[(dashpot, friction, epsilon)]
+
 
 
 def run_study(settings: StudySettings, image, out_dir: str, executor, *, resume: bool = True,
@@ -90,11 +103,15 @@ def run_study(settings: StudySettings, image, out_dir: str, executor, *, resume:
     runs_dir = os.path.join(out_dir, "runs")
     results_path = os.path.join(runs_dir, "results.csv")
     series_dir = os.path.join(runs_dir, "series")
-    counts = {"executed": 0, "total": set()}
+    counts = {"executed": 0, "total": set(), "backup": None}
+    # set in every run, so that the results file says which; the grid's equal the runs
+    # that leave them at the FMU's defaults, bit for bit
+    tolerances = tolerances_of(image, settings)
 
     def sweep(specs, desc, fresh=False):
         report = run_sweep(specs, image, results_path, executor, resume=not fresh,
                            series_dir=series_dir, progress=progress, desc=desc)
+        counts["backup"] = counts["backup"] or report.backup
         if report.failed:
             spec, error = report.failed[0]
             raise RuntimeError(f"{len(report.failed)} run(s) failed, e.g. {spec.params}: {error}")
@@ -104,13 +121,14 @@ def run_study(settings: StudySettings, image, out_dir: str, executor, *, resume:
 
     def spec(e, friction, dashpot=settings.dashpot, **overrides):
         return paper_spec(e, friction, settings.t_end, settings.record_interval,
-                          damping_point=dashpot, **overrides)
+                          damping_point=dashpot, **dict(tolerances, **overrides))
 
     grid = [(d, f, e) for d in settings.dashpots for f in settings.frictions
             for e in settings.epsilons]
     runs = sweep([spec(e, f, d) for d, f, e in grid], "study runs", fresh=not resume)
     runs.insert(1, "friction", [f for _, f, _ in grid])
     series = {(d, f, e): read_series(series_dir, k) for (d, f, e), k in zip(grid, runs["key"])}
+    segments = {(d, f, e): read_segments(series_dir, k) for (d, f, e), k in zip(grid, runs["key"])}
 
     transitions, points, checks = {}, [], []
     for friction in settings.frictions:
@@ -126,10 +144,12 @@ def run_study(settings: StudySettings, image, out_dir: str, executor, *, resume:
                                        on_grid=evaluated["epsilon"].isin(found.grid)))
         checks += _tolerance_check(found, friction, spec, sweep)
 
-    result = StudyResult(settings, runs, series, transitions, pd.concat(points, ignore_index=True),
-                         pd.DataFrame(checks), executed=counts["executed"],
-                         total_runs=len(counts["total"]), executor=executor.describe(),
-                         fmu_name=image.name, fmu_sha256=image.sha256)
+    result = StudyResult(settings, runs, series, segments, transitions,
+                         pd.concat(points, ignore_index=True), pd.DataFrame(checks),
+                         executed=counts["executed"], total_runs=len(counts["total"]),
+                         executor=executor.describe(), fmu_name=image.name,
+                         fmu_sha256=image.sha256, tolerances=tolerances,
+                         backup=counts["backup"])
     os.makedirs(out_dir, exist_ok=True)
     result.files += figures.write_all(result, out_dir)
     result.wall_s = time.perf_counter() - start
@@ -143,6 +163,15 @@ def _tolerance_check(found: Transition, friction: str, spec, sweep) -> list:
         return []
     specs = [spec(e, friction, **CHECK_TOLERANCES) for e in ends]
     tight = sweep(specs, f"tolerance check, {friction} friction")
-    return [{"friction": friction, "epsilon": e, "turns_at_rtol_1e-8": found.evaluated[e],
+    return [{"friction": friction, "epsilon": e, "turns_at_study_tolerance": found.evaluated[e],
              "turns_at_rtol_1e-10": bool(t), "turns_max_at_rtol_1e-10": m}
             for e, t, m in zip(ends, tight["turned_over"], tight["turns_max"])]
+
+
+def tolerances_of(image, settings: StudySettings) -> dict:
+    """rtol and atol of the study's runs: the settings' overrides, else the FMU's defaults
+    (the start values in its modelDescription)."""
+    variables = {v.name: v for v in image.model_description().modelVariables}
+    out = {name: float(variables[name].start) for name in ("rtol", "atol") if name in variables}
+    out.update(dict(settings.tolerances))
+    return out

@@ -3,7 +3,8 @@ key (specs.run_key).
 
 Rows are appended (and flushed to disk) as runs finish, so an interrupted sweep loses
 at most the runs that were in flight; a row cut short by the interruption is dropped
-when the file is opened again. `rewrite_in_order` puts the rows in a given order (the
+when the file is opened again. Starting a file afresh never deletes it: the old file is
+renamed to <name>.backup-<n>.csv first. `rewrite_in_order` puts the rows in a given order (the
 sweep does so when it completes). Floats are written in their shortest round-trip form, which
 pandas (3.x) reads back exactly: numbers survive the file bit for bit.
 """
@@ -29,8 +30,10 @@ class ResultsFile:
             raise ValueError(f"the first column must be {KEY!r}")
         self.path = path
         self.columns = list(columns)
+        self.backup = None  # where fresh=True moved an earlier file
         if fresh and os.path.exists(path):
-            os.remove(path)
+            self.backup = backup_path(path)
+            os.replace(path, self.backup)
         self._open_or_create()
 
     def _open_or_create(self):
@@ -41,11 +44,11 @@ class ResultsFile:
             # a run killed mid-write leaves a last line without its newline: drop it
             complete = data[: data.rfind(b"\n") + 1]
             if complete:
-                found = complete.split(b"\n", 1)[0].decode()
-                if found.split(",") != self.columns:
-                    raise ValueError(
-                        f"{self.path} holds the results of other runs (its columns differ); "
-                        f"start afresh (--fresh) or write to another file")
+                found = complete.split(b"\n", 1)[0].decode().split(",")
+                if found != self.columns:
+                    raise ValueError(f"{self.path} holds runs with other columns ({_difference(found, self.columns)}): "
+                                     f"write to another file, or start this one afresh (--fresh; the "
+                                     f"old file is kept as a backup)")
                 if len(complete) != len(data):
                     with open(self.path, "wb") as f:
                         f.write(complete)
@@ -79,3 +82,23 @@ class ResultsFile:
         tmp = self.path + ".tmp"
         df.drop(columns="_rank").to_csv(tmp, index=False)
         os.replace(tmp, self.path)
+
+
+def backup_path(path: str) -> str:
+    """<stem>.backup-<n><ext>, the first n not taken."""
+    stem, ext = os.path.splitext(path)
+    n = 1
+    while os.path.exists(f"{stem}.backup-{n}{ext}"):
+        n += 1
+    return f"{stem}.backup-{n}{ext}"
+
+
+def _difference(found: list[str], wanted: list[str]) -> str:
+    only_file = [c for c in found if c not in wanted]
+    only_new = [c for c in wanted if c not in found]
+    parts = []
+    if only_file:
+        parts.append(f"the file has {', '.join(only_file)}")
+    if only_new:
+        parts.append(f"these runs have {', '.join(only_new)}")
+    return "; ".join(parts) or "in another order"

@@ -1,0 +1,42 @@
+"""tribo: the tribocharging particle model's FMUs from Python: one particle, parameter
+sweeps, the paper's study.
+
+The API (each function documented where it is defined, in tribo/api.py):
+
+    import tribo
+    df = tribo.run(epsilon=0.3, mu=1.0, nu=1.0, t_end=200)       # one particle -> DataFrame
+    df = tribo.run("epsilon=0.3 mu=1 nu=1", t_end=200)           # the same, as a scene text
+    res = tribo.sweep({"epsilon": [0.3, 0.6, 1.0], "mu": [0.1, 1.0]}, t_end=500,
+                      out="out/sweep/results.csv")                # a parameter sweep
+    res = tribo.load_results("out/sweep/results.csv")             # its results file
+    path = tribo.find_fmu()                                       # the FMU used by default
+
+The commands: tribo-study (the paper's study) and tribo-sweep (parameter sweeps), each
+with --help. The FMUs are those of the build directory (build/, or $TRIBO_BUILD_DIR) or
+the one given by path (fmu=...).
+
+Modules, one responsibility each:
+
+    api         the functions above
+    fmu         the fmpy driver (one instance, its logger, steps that end early), shared
+                with the tests
+    locate      where the FMUs are
+    particle    one particle's run: series, segment charges, summary row
+    parameters  parameter values checked by the FMU before any run
+    specs       what one run is (parameters, horizon, recording interval) and its key
+    grid        the runs of a sweep: combinations of values over a base set-up
+    summary     what a time series is summarised into (bounce envelope, charges, modes)
+    results     the results CSV: append a row per finished run, resume, backups
+    executors   where runs execute: serially here, or on Dask (local cluster or address)
+    sweep       a sweep: skip finished runs, run the rest, record them as they finish
+    transition  the transition roundness eps_t: coarse grid, then multi-section
+    study       the paper's study (docs/model.md section 7): runs, eps_t, figures, tables
+    figures     the study's figures; sweep_plot: a sweep's; plotting: what they share
+    tables      the study's tables (CSV and markdown)
+    cli         the commands
+"""
+
+from .api import load_results, run, sweep
+from .locate import find_fmu
+
+__all__ = ["run", "sweep", "load_results", "find_fmu"]

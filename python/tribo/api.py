@@ -1,0 +1,79 @@
+"""The package's functions for users: one particle as a DataFrame, a sweep, its results."""
+
+import pandas as pd
+
+from .executors import DaskExecutor, SerialExecutor
+from .fmu import FmuImage
+from .grid import PAPER_BASE, build_specs, values_of
+from .locate import find_fmu
+from .parameters import check_names, check_values, integer_names
+from .particle import simulate
+from .results import read_results
+from .sweep import run_sweep
+
+
+def scene_of(scene: str | dict | None = None, **parameters) -> dict:
+    """Parameters from a mapping or a text "name=value name=value ...", updated by the
+    keyword arguments."""
+    if isinstance(scene, str):
+        pairs = [item.partition("=") for item in scene.split()]
+        bad = [name for name, sep, value in pairs if not sep or not value]
+        if bad:
+            raise ValueError(f"scene {scene!r}: expected name=value items, not {' '.join(bad)}")
+        scene = {name: float(value) for name, _, value in pairs}
+    return dict(scene or {}, **parameters)
+
+
+def run(scene: str | dict | None = None, *, t_end: float = 100.0, record_interval: float = 1.0,
+        outputs: list[str] | None = None, fmu: str | int | None = None,
+        **parameters) -> pd.DataFrame:
+    """Run one particle and return its outputs as a DataFrame: a column "time" (tau for
+    the dimensionless FMU), then one column per output, a row every `record_interval`
+    from 0 to t_end (fewer if the FMU ends the run early).
+
+    scene: FMU parameters as a mapping or a text "epsilon=0.3 mu=1"; keyword arguments
+    add to it. Parameters not given keep the FMU's start values (docs/model.md section 7
+    at epsilon 0.5, mu = nu = 0.1), the tolerances included. outputs: the names to record
+    (default: every scalar output). fmu: a path, or 2 / 3 for the build's FMI 2.0 / 3.0
+    FMU (default 3)."""
+    image = FmuImage.load(find_fmu(fmu))
+    md = image.model_description()
+    params = scene_of(scene, **parameters)
+    check_values(image, {name: [value] for name, value in params.items()})
+    if outputs is None:
+        outputs = [v.name for v in md.modelVariables if v.causality == "output" and not v.dimensions]
+    return simulate(image, params, t_end, record_interval, outputs).series
+
+
+def sweep(grid: dict, *, t_end: float, out: str, record_interval: float = 1.0,
+          base: str = "paper", tie: bool = True, fmu: str | int | None = None,
+          scheduler: str | None = None, workers: int | None = None, serial: bool = False,
+          fresh: bool = False, series_dir: str | None = None, progress: bool = False) -> pd.DataFrame:
+    """Run every combination of the values in `grid` (parameter name -> values), one row
+    per run appended to the CSV `out` as it finishes; runs already in the file are not
+    run again. Returns the sweep's rows (the columns of tribo-sweep --help).
+
+    base: "paper" (docs/model.md section 7, CVODE) or "fmu" (the FMU's start values) for
+    the parameters not swept; the tolerances are the FMU's unless swept. tie: nu follows
+    mu and tau_r follows tau0 unless they are swept too. Runs on a local Dask cluster, on
+    the one at `scheduler`, or in this process (serial=True). fresh: start the file over,
+    keeping the old one as <name>.backup-<n>.csv."""
+    image = FmuImage.load(find_fmu(fmu))
+    md = image.model_description()
+    check_names(md, grid)
+    specs = build_specs([(n, list(v)) for n, v in grid.items()], PAPER_BASE if base == "paper" else {},
+                        integer_names(md), t_end, record_interval, tie)
+    check_values(image, values_of(specs))
+    executor = SerialExecutor() if serial else DaskExecutor(scheduler, workers)
+    with executor:
+        report = run_sweep(specs, image, out, executor, resume=not fresh, series_dir=series_dir,
+                           progress=progress)
+    if report.failed:
+        spec, error = report.failed[0]
+        raise RuntimeError(f"{len(report.failed)} run(s) failed, e.g. {spec.params}: {error}")
+    return report.results
+
+
+def load_results(path: str) -> pd.DataFrame:
+    """A results file of a sweep or a study (runs/results.csv), floats exactly as written."""
+    return read_results(path)

@@ -1,0 +1,1 @@
+"""The console commands (entry points in pyproject.toml): tribo-study, tribo-sweep."""

@@ -1,0 +1,66 @@
+"""What the commands share: errors in one line, the checks made before any run (the
+output is writable, the scheduler's address is one Dask takes) and where runs execute."""
+
+import argparse
+import os
+import sys
+import tempfile
+
+from ..executors import DaskExecutor, SerialExecutor
+
+
+class OneLineParser(argparse.ArgumentParser):
+    """argparse, with a usage error in one line (no usage block)."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message} (see --help)\n")
+
+
+def fail(prog: str, message: str, status: int = 2) -> int:
+    print(f"{prog}: error: {message}", file=sys.stderr, flush=True)
+    return status
+
+
+def check_writable_file(path: str) -> None:
+    """OSError, naming the path, unless the file can be written (made, with its folders,
+    if it does not exist). Writes nothing that stays."""
+    check_writable_dir(os.path.dirname(os.path.abspath(path)))
+    if os.path.isdir(path):
+        raise OSError(f"cannot write {path}: it is a directory")
+    if os.path.exists(path):
+        try:
+            with open(path, "a"):
+                pass
+        except OSError as e:
+            raise OSError(f"cannot write {path}: {e.strerror}") from None
+
+
+def check_writable_dir(path: str) -> None:
+    """OSError, naming the path, unless files can be made in the folder (made if missing)."""
+    try:
+        os.makedirs(path, exist_ok=True)
+        with tempfile.NamedTemporaryFile(dir=path, prefix=".tribo_write_check_"):
+            pass
+    except OSError as e:
+        raise OSError(f"cannot write into {path}: {e.strerror or e}") from None
+
+
+def add_execution_options(p: argparse.ArgumentParser) -> None:
+    where = p.add_mutually_exclusive_group()
+    where.add_argument("--scheduler", metavar="ADDRESS",
+                       help="run on the existing Dask cluster at ADDRESS: [tcp://]host[:port], "
+                            "port 8786 if none (default: a local cluster on 127.0.0.1, no dashboard)")
+    where.add_argument("--serial", action="store_true", help="run in this process, without Dask")
+    p.add_argument("--workers", type=int, help="worker processes of the local cluster (default: one per core)")
+    p.add_argument("--connect-timeout", type=float, default=5.0, metavar="S",
+                   help="seconds to wait for --scheduler to answer (default 5)")
+
+
+def executor_of(args):
+    """The executor the options ask for (ValueError for an address Dask does not take).
+    Nothing starts until it is entered."""
+    if args.serial:
+        return SerialExecutor()
+    if args.workers is not None and args.workers < 1:
+        raise ValueError(f"--workers {args.workers}: at least 1")
+    return DaskExecutor(args.scheduler, args.workers, connect_timeout=args.connect_timeout)

@@ -1,0 +1,69 @@
+"""Parameter values checked before any run: the type from the FMU's modelDescription (an
+integer or enumeration parameter takes whole numbers only), the range by the FMU itself.
+
+`check_values` instantiates the FMU here, in this process, and sets every value once:
+the FMU refuses a value out of its range with a message naming the variable, the value
+and the valid range (the same check as in a run, with open and closed ends as the FMU
+has them). So a sweep or a study with a bad value stops with that message before a
+cluster starts or any run is made.
+"""
+
+import math
+import numbers
+
+from fmpy.fmi1 import FMICallException
+
+from .fmu import REAL_TYPES, FmuImage, Instance, parameters, unpacked
+
+
+class ParameterError(ValueError):
+    """A parameter name or value the FMU does not take (the message says why)."""
+
+
+def integer_names(md) -> tuple:
+    """The parameters that take whole numbers (Integer, UInt64, Enumeration, ...)."""
+    return tuple(n for n, v in parameters(md).items() if v.type not in REAL_TYPES)
+
+
+def check_names(md, names) -> None:
+    known = parameters(md)
+    unknown = [n for n in names if n not in known]
+    if unknown:
+        raise ParameterError(f"not parameters of the FMU: {', '.join(unknown)} "
+                             f"(its parameters: {', '.join(known)})")
+
+
+def check_values(image: FmuImage, values: dict) -> None:
+    """values: parameter name -> the values it will take. Raises ParameterError with the
+    first refused value's reason."""
+    md = image.model_description()
+    check_names(md, values)
+    integers = set(integer_names(md))
+    for name, options in values.items():
+        v = parameters(md)[name]
+        for value in options:
+            if isinstance(value, bool) or not isinstance(value, numbers.Real):
+                raise ParameterError(f"{name} = {value!r} is not a number")
+            if name in integers and not (math.isfinite(value) and float(value).is_integer()):
+                raise ParameterError(f"{name} = {value:g} is not a whole number ({name} is "
+                                     f"{v.type.lower()}: it takes whole numbers only)")
+    with unpacked(image) as fmu_dir:
+        instance = Instance(fmu_dir, name="tribo_check")
+        try:
+            for name, options in values.items():
+                for value in dict.fromkeys(options):
+                    try:
+                        instance.set_parameters({name: value})
+                    except FMICallException:
+                        errors = instance.errors()
+                        raise ParameterError(_reason(errors[-1]) if errors else
+                                             f"{name} = {value!r}: refused by the FMU") from None
+        finally:
+            instance.free()
+
+
+def _reason(message: str) -> str:
+    """The FMU's message without the FMI function's name it starts with."""
+    head, sep, rest = message.partition(": ")
+    return rest if sep and head.startswith("fmi") else message
+

@@ -1,0 +1,42 @@
+"""The figure of a parameter sweep's results: the charges at the horizon, the contact
+fraction and the turns against the first swept parameter, a line per combination of the
+other swept parameters (and per horizon, where the file holds several)."""
+
+import numpy as np
+
+from .plotting import CHARGE_LABELS, distinct_colours, legend, plt, save
+
+QUANTITIES = [  # column, axis label, log scale
+    ("Q_static_end", CHARGE_LABELS["static"], False),
+    ("Q_sliding_end", CHARGE_LABELS["sliding"], False),
+    ("contact_fraction", "contact fraction (time in contact / t_end)", False),
+    ("turns_max", "most turns |φ − φ0| / 2π", True),
+]
+
+
+def write_sweep_figure(results, swept: list[str], path: str) -> str:
+    """results: the sweep's rows (tribo.load_results); swept: the swept parameters, the
+    first on the x axis."""
+    x, others = swept[0], list(swept[1:])
+    if results["t_end"].nunique() > 1:
+        others.append("t_end")
+    groups = list(results.groupby(others, sort=True)) if others else [((), results)]
+    colours = distinct_colours(len(groups))
+    fig, axes = plt.subplots(2, 2, figsize=(13, 8), squeeze=False, layout="constrained")
+    for ax, (column, label, log) in zip(axes.flat, QUANTITIES):
+        for colour, (values, g) in zip(colours, groups):
+            g = g.sort_values(x)
+            values = values if isinstance(values, tuple) else (values,)
+            name = ", ".join(f"{n} = {v:g}" for n, v in zip(others, values)) or "all runs"
+            y = g[column].to_numpy(float)
+            ax.plot(g[x], np.maximum(y, 1e-4) if log else y, "o-", ms=4, color=colour, label=name)
+        if log:
+            ax.set_yscale("log")
+        ax.set_xlabel(x)
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+        legend(ax, fontsize=7)
+    horizons = ", ".join(f"{t:g}" for t in sorted(results["t_end"].unique()))
+    fig.suptitle(f"sweep over {', '.join(swept)}: {len(results)} runs, at the horizon τ = {horizons}",
+                 fontsize=10)
+    return save(fig, path)

@@ -1,0 +1,108 @@
+"""The Python package tribo: installed in the venv in editable mode (the checkout's
+python/tribo), imported without any sys.path manipulation, its console commands, its API
+(one particle as a DataFrame, a sweep, its results) and where it finds the FMUs."""
+
+import hashlib
+import importlib.metadata
+import os
+import re
+import subprocess
+import sys
+
+import numpy as np
+import pandas as pd
+import pytest
+from fmpy import simulate_fmu
+
+import tribo
+from study_support import command
+from tribo.parameters import ParameterError
+from tribo_fmu import ROOT
+
+
+def test_the_venv_imports_the_checkouts_package(tmp_path):
+    assert tribo.__file__ == os.path.join(ROOT, "python", "tribo", "__init__.py")
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    done = subprocess.run([sys.executable, "-c", "import tribo; print(tribo.__file__)"], cwd=tmp_path,
+                          env=env, capture_output=True, text=True, check=True)
+    assert done.stdout.strip() == tribo.__file__
+    # the venv was made from the current requirements and package metadata (setup.sh)
+    files = b"".join(open(os.path.join(ROOT, f), "rb").read() for f in ("requirements.txt", "pyproject.toml"))
+    with open(os.path.join(sys.prefix, ".requirements.sha256")) as f:
+        assert f.read().strip() == hashlib.sha256(files).hexdigest()
+
+
+def test_nothing_in_the_repository_changes_sys_path():
+    pattern = re.compile(r"sys\.path\s*(\.\s*(insert|append|extend)|\[|\+=|=[^=])")
+    tracked = subprocess.run(["git", "ls-files", "--cached", "--others", "--exclude-standard", "*.py"],
+                             cwd=ROOT, capture_output=True, text=True, check=True).stdout.split()
+    offenders = []
+    for path in tracked:
+        with open(os.path.join(ROOT, path), encoding="utf-8") as f:
+            for n, line in enumerate(f, 1):
+                if pattern.search(line) and "pattern" not in line:
+                    offenders.append(f"{path}:{n}: {line.strip()}")
+    assert not offenders, offenders
+
+
+@pytest.mark.parametrize("name, module", [("tribo-study", "tribo.cli.study:main"),
+                                          ("tribo-sweep", "tribo.cli.sweep:main")])
+def test_console_commands(name, module):
+    scripts = {e.name: e.value for e in importlib.metadata.entry_points(group="console_scripts")}
+    assert scripts[name] == module
+    done = subprocess.run([command(name), "--help"], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0 and done.stdout.startswith(f"usage: {name} ")
+    assert "--scheduler" in done.stdout and "--fresh" in done.stdout
+
+
+def test_package_data_is_part_of_the_package():
+    """python/tribo/data/* (e.g. a materials table) goes with the package."""
+    import tomllib
+    with open(os.path.join(ROOT, "pyproject.toml"), "rb") as f:
+        project = tomllib.load(f)
+    assert project["tool"]["setuptools"]["package-data"]["tribo"] == ["data/*"]
+    assert project["tool"]["setuptools"]["packages"]["find"]["where"] == ["python"]
+
+
+def test_run_gives_the_fmus_numbers_as_a_dataframe(fmu_file):
+    params = {"epsilon": 0.3, "mu": 1.0, "nu": 1.0, "n_segments": 64}
+    df = tribo.run(params, t_end=20.0, fmu=fmu_file(2))
+    assert isinstance(df, pd.DataFrame) and list(df["time"]) == [float(k) for k in range(21)]
+    assert {"X", "Y", "Q_static", "motion_class", "assumption_warnings"} <= set(df.columns)
+    plain = simulate_fmu(fmu_file(2), stop_time=20.0, output_interval=1.0, start_values=params,
+                         output=["Y", "Q_static"])
+    assert np.array_equal(df["Y"].to_numpy(), plain["Y"]) and np.array_equal(df["Q_static"], plain["Q_static"])
+    # the same scene as text and as keywords, and from the FMI 3.0 FMU
+    text = tribo.run("epsilon=0.3 mu=1 nu=1", n_segments=64, t_end=20.0, fmu=fmu_file(3),
+                     outputs=["Y", "Q_static"])
+    assert list(text.columns) == ["time", "Y", "Q_static"] and text["Y"].equals(df["Y"])
+
+
+def test_run_refuses_a_bad_value_with_the_fmus_reason(fmu_file):
+    with pytest.raises(ParameterError, match=r"epsilon = 1.5.*0.001 <= epsilon <= 1"):
+        tribo.run(epsilon=1.5, fmu=fmu_file(3))
+    with pytest.raises(ValueError, match="expected name=value"):
+        tribo.run("epsilon 0.5", fmu=fmu_file(3))
+
+
+def test_sweep_and_load_results(fmu_file, tmp_path):
+    out = str(tmp_path / "results.csv")
+    df = tribo.sweep({"epsilon": [0.3, 1.0], "n_segments": [64]}, t_end=20.0, out=out,
+                     fmu=fmu_file(3), serial=True)
+    assert list(df["epsilon"]) == [0.3, 1.0] and (df["t_end"] == 20.0).all()
+    loaded = tribo.load_results(out)
+    pd.testing.assert_frame_equal(loaded, df)
+    one = tribo.run(epsilon=1.0, mu=0.1, n_segments=64, t_end=20.0, fmu=fmu_file(3))
+    assert loaded["Q_static_end"].iloc[1] == one["Q_static"].iloc[-1]
+
+
+def test_find_fmu(tmp_path, monkeypatch):
+    assert tribo.find_fmu() == os.path.join(ROOT, "build", "fmu", "tribo_fmi3.fmu") or \
+        os.environ.get("TRIBO_BUILD_DIR")
+    monkeypatch.setenv("TRIBO_BUILD_DIR", str(tmp_path))
+    with pytest.raises(FileNotFoundError, match="TRIBO_BUILD_DIR"):
+        tribo.find_fmu(2)
+    (tmp_path / "fmu").mkdir()
+    (tmp_path / "fmu" / "tribo_fmi2.fmu").write_bytes(b"")
+    assert tribo.find_fmu(2) == str(tmp_path / "fmu" / "tribo_fmi2.fmu")
+    assert tribo.find_fmu(str(tmp_path / "fmu" / "tribo_fmi2.fmu")) == str(tmp_path / "fmu" / "tribo_fmi2.fmu")
