@@ -15,7 +15,7 @@ import pint
 import pytest
 from fmpy import read_model_description, simulate_fmu
 
-from tribo_fmu import ERROR, OK, VERSIONS, Slave, status_of
+from tribo_fmu import ERROR, OK, VERSIONS, Slave, libcosim_run, status_of
 
 U = pint.UnitRegistry()
 SI = "tribo_si"
@@ -253,29 +253,16 @@ def test_fmpy_reads_inf_as_no_end(fmu_file, fmu_dir, version):
 
 
 def test_libcosim_reads_inf_and_stops_at_the_exit(fmu_file):
-    from libcosimpy.CosimExecution import CosimExecution
-    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
-    from libcosimpy.CosimObserver import CosimObserver
-    from libcosimpy.CosimSlave import CosimLocalSlave
-
-    log_output_level(CosimLogLevel.ERROR)
+    """As the dimensionless FMU (test_chute_fmu.py): libcosim takes INF, and a run that
+    leaves the chute ends at the step before the exit."""
     fmu = fmu_file(2, SI)
-    vr = {v.name: v.valueReference for v in read_model_description(fmu).modelVariables}
-    results = {}
-    for length in (None, 0.05):
-        execution = CosimExecution.from_step_size(step_size=int(1e7))  # steps of 10 ms
-        index = execution.add_local_slave(local_slave=CosimLocalSlave(fmu_path=fmu, instance_name="tribo"))
-        observer = CosimObserver.create_last_value()
-        execution.add_observer(observer=observer)
-        execution.integer_initial_value(index, vr["n_segments"], 64)
-        if length is not None:
-            execution.real_initial_value(index, vr["chute_length"], length)
-        done = execution.simulate_until(target_time=int(1e9))  # 1 s
-        results[length] = (done, observer.last_real_values(index, [vr["chute_length"], vr["x"]]))
-    done, (L, x) = results[None]
-    assert done and L == math.inf and x > 0.05
-    done, (L, x) = results[0.05]
-    assert not done and L == 0.05 and x < 0.05
+    results = {length: libcosim_run(fmu, 0.01, 1.0, {} if length is None else {"chute_length": length},
+                                    {"n_segments": 64}, ["chute_length", "x"])
+               for length in (None, 0.05)}
+    done, now, (L, x) = results[None]
+    assert done and now == 1.0 and L == math.inf and x > 0.05
+    done, now, (L, x) = results[0.05]
+    assert not done and now < 1.0 and L == 0.05 and x < 0.05
 
 
 # ---- bad input -----------------------------------------------------------------------------------
