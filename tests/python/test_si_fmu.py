@@ -217,6 +217,12 @@ def test_si_and_dimensionless_fmus_give_the_same_run(fmu_dir, version, integrato
     # to 1e-14 (about 75 times the measured, for other compilers' rounding)
     error = np.abs(rows_si - rows_model).max(axis=0) / np.abs(rows_model).max(axis=0)
     assert error.max() <= 1e-14, dict(zip(pairs, error))
+    if version == 3:  # the per-segment arrays: the model's times sigma0 (docs/model.md §8)
+        for si_name, name in (("segment_sigma_static", "segment_charge_static"),
+                              ("segment_sigma_sliding", "segment_charge_sliding")):
+            mine, theirs = np.array(si.get(si_name)) / sigma0, np.array(model.get(name))
+            assert len(mine) == 64 and np.abs(theirs).max() > 0
+            assert np.abs(mine - theirs).max() <= 1e-14 * np.abs(theirs).max(), si_name
     si.free()
     model.free()
 
