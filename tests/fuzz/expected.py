@@ -103,6 +103,11 @@ class Model:
         refused."""
         return self.front.scene_valid(self.values)
 
+    def time_scale(self):
+        """The FMU's unit of time per unit of the model's: the fuzz suite's steps are sized in
+        the model's units (an SI FMU's second is ~10^6 of them)."""
+        return self.front.time_unit(self.values)
+
     def initialization_valid(self):
         """Whether initialization ends: the scene makes a model and it takes the inputs."""
         return self.scene_valid() and self.front.inputs_valid(self.values)

@@ -334,9 +334,10 @@ class Fuzzer:
                 if scene.get("lifecycle") != INITIALIZATION:
                     assert inst.exit_initialization() == OK
                     model.lifecycle = STEP
-                    status, reached, _, terminate = inst.do_step(0.0, 2.00037)
+                    h = 2.00037 * model.time_scale()
+                    status, reached, _, terminate = inst.do_step(0.0, h)
                     assert status in (OK, DISCARD), inst.errors()
-                    model.step_allowed(status, False, 0.0, 2.00037, reached, terminate)
+                    model.step_allowed(status, False, 0.0, h, reached, terminate)
             yield inst, model
 
     def mutations(self, data, per_field):
@@ -386,18 +387,19 @@ class Fuzzer:
                 if self.call("snapshot", inst.snapshot) != original:
                     raise Finding(f"{what}: refused, but the instance changed")
                 continue
-            self.accepted(inst, what)
+            self.accepted(inst, what, model.time_scale())
             restore, state = self.call("deserialize", inst.deserialize, original)
             self.expect("deserialize the original", restore, {OK})
             self.expect("setFMUState the original", self.call("setFMUState", inst.set_state, state), {OK})
             inst.free_state(state)
         # and the instance is still usable
         if model.lifecycle == STEP:
-            status, _, _, _ = self.call("doStep after the mutations", inst.do_step, model.time, 0.5)
+            status, _, _, _ = self.call("doStep after the mutations", inst.do_step, model.time,
+                                        0.5 * model.time_scale())
             self.expect("doStep after the mutations", status, {OK, DISCARD})
         return count
 
-    def accepted(self, inst, what):
+    def accepted(self, inst, what, time_scale):
         """A mutated state the FMU took: its outputs are numbers, and a step from it is
         computed or refused, never answered with a non-finite output."""
         mutated = Model(inst.md, self.fmu_dir, self.version, False)
@@ -407,7 +409,7 @@ class Fuzzer:
                 if status == OK and not math.isfinite(values[0]):
                     raise Finding(f"{what}: accepted with {v.name} = {values[0]}")
         status, t = self.call("get time", inst.get, "Real" if self.version == 2 else "Float64", [0], 1)
-        status, _, _, _ = self.call(f"doStep after {what}", inst.do_step, t[0], 0.1)
+        status, _, _, _ = self.call(f"doStep after {what}", inst.do_step, t[0], 0.1 * time_scale)
         if status == OK:
             for v in mutated.variables:
                 if v.causality == "output" and not v.dimension:

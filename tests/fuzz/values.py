@@ -64,7 +64,8 @@ def step_size(rng, model):
     if model.values.get("work_limit", 0) <= 1e6:  # bounded work: long steps end early
         sizes += [40.0, 1e6]
     odd = [0.0, -0.1, math.nan, math.inf, -math.inf, 5e-324, 1e-300, 1e-12, 1e18, 1e300]
-    return rng.choice(odd) if rng.random() < 0.15 else rng.choice(sizes)
+    # an importer's steps in the model's units of time (the SI FMU's: t* seconds)
+    return rng.choice(odd) if rng.random() < 0.15 else rng.choice(sizes) * model.time_scale()
 
 
 def communication_point(rng, model):
