@@ -4,7 +4,8 @@
  *   tribo_paper_run [name=value ...]
  *
  * Any scene parameter can be set by its name (epsilon=0.3 mu=1 nu=1 ...); t_end (default
- * 1000) and every (default 100) set the horizon and the print interval.
+ * 1000) and every (default 100) set the horizon and the print interval. On a chute
+ * (chute_length=...) the run ends where the particle leaves it.
  */
 #include "tribo.h"
 
@@ -61,14 +62,20 @@ int main(int argc, char **argv)
         double t = k * every;
         if (t > t_end)
             t = t_end;
-        if (tribo_advance_fully(m, t) != TRIBO_OK) {
+        const tribo_status st = tribo_advance_fully(m, t);
+        if (st != TRIBO_OK && st != TRIBO_ENDED) {
             fprintf(stderr, "%s\n", tribo_last_error(m));
             tribo_free(m);
             return 1;
         }
-        printf("%10.2f %12.6f %12.6f %12.5f %12.6f %10.4f %8.3f\n", t, tribo_get(m, TRIBO_Q_STATIC),
-               tribo_get(m, TRIBO_Q_SLIDING), tribo_get(m, TRIBO_Q_X), tribo_get(m, TRIBO_Q_Y),
-               tribo_get(m, TRIBO_Q_CONTACT_FRACTION), tribo_get(m, TRIBO_Q_TURNS));
+        printf("%10.2f %12.6f %12.6f %12.5f %12.6f %10.4f %8.3f\n", tribo_get(m, TRIBO_Q_TIME),
+               tribo_get(m, TRIBO_Q_STATIC), tribo_get(m, TRIBO_Q_SLIDING), tribo_get(m, TRIBO_Q_X),
+               tribo_get(m, TRIBO_Q_Y), tribo_get(m, TRIBO_Q_CONTACT_FRACTION),
+               tribo_get(m, TRIBO_Q_TURNS));
+        if (st == TRIBO_ENDED) { /* the particle left the chute (chute_length) */
+            printf("%s\n", tribo_last_error(m));
+            break;
+        }
         if (t >= t_end)
             break;
     }

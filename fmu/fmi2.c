@@ -290,8 +290,9 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
     UNUSED(noSetFMUStatePriorToCurrentPoint); /* states cost nothing to keep */
     double reached;
     int early_return; /* never allowed in FMI 2.0: a step that ends early is discarded */
+    int terminate;    /* the particle left the chute: fmi2Terminated after the fmi2Discard */
     return STATUS(fmu_do_step(INST(c), __func__, currentCommunicationPoint,
-                              communicationStepSize, &reached, &early_return));
+                              communicationStepSize, &reached, &early_return, &terminate));
 }
 
 fmi2Status fmi2CancelStep(fmi2Component c)
@@ -300,7 +301,8 @@ fmi2Status fmi2CancelStep(fmi2Component c)
 }
 
 /* The status inquiries: those that make sense for a step that runs synchronously (after
-   fmi2Discard: the time reached, and that the FMU does not ask to terminate). */
+   fmi2Discard: the time reached, and whether the FMU asks to terminate: it does once the
+   particle has left the chute). */
 
 fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind s, fmi2Status *value)
 {
@@ -328,7 +330,7 @@ fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind s, fmi2Boo
     if (!c || s != fmi2Terminated || !value)
         return STATUS(fmu_refuse(INST(c), __func__,
                                  "only fmi2Terminated is available, into a non-NULL value"));
-    *value = fmi2False; /* the FMU never asks to end the simulation */
+    *value = fmu_exited(INST(c)) ? fmi2True : fmi2False;
     return fmi2OK;
 }
 

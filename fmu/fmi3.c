@@ -490,13 +490,13 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
 {
     UNUSED(noSetFMUStatePriorToCurrentPoint); /* states cost nothing to keep */
     double reached = 0.0;
-    int early_return = 0;
+    int early_return = 0, terminate = 0;
     const fmu_status st = fmu_do_step(INST(instance), __func__, currentCommunicationPoint,
-                                      communicationStepSize, &reached, &early_return);
+                                      communicationStepSize, &reached, &early_return, &terminate);
     if (eventHandlingNeeded)
         *eventHandlingNeeded = fmi3False;
     if (terminateSimulation)
-        *terminateSimulation = fmi3False;
+        *terminateSimulation = terminate ? fmi3True : fmi3False;
     if (earlyReturn)
         *earlyReturn = early_return ? fmi3True : fmi3False;
     if (lastSuccessfulTime)

@@ -80,9 +80,15 @@ void fmu_allow_early_return(fmu_instance *inst, int allowed);
    When the work limit of the core (parameter work_limit) ends the step early, the
    instance stays at the time reached: with an early return allowed (FMI 3.0) the status
    is FMU_OK and *early_return 1; otherwise FMU_DISCARD (FMI 2.0: the instance enters
-   stepFailed, FMI 3.0 stays in Step Mode). */
+   stepFailed, FMI 3.0 stays in Step Mode). When the particle leaves the chute during the
+   step (model.md §9), the run is over at the exit time, *reached: *terminate is 1; FMI 2.0
+   gets FMU_DISCARD (with fmi2Terminated), FMI 3.0 FMU_OK (with terminateSimulation, and an
+   early return where allowed). Either way the instance ends in its exited state, where a
+   further step is refused with the reason. */
 fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, double step,
-                       double *reached, int *early_return);
+                       double *reached, int *early_return, int *terminate);
+/* Whether the run is over: the particle left the chute (fmi2Terminated). */
+int fmu_exited(const fmu_instance *inst);
 fmu_status fmu_terminate(fmu_instance *inst, const char *fn);
 /* Back to the Instantiated state with every variable at its start value. */
 fmu_status fmu_reset(fmu_instance *inst, const char *fn);

@@ -26,13 +26,32 @@ static fmu_status ended_early(fmu_instance *inst, const char *fn, double end, in
     return FMU_DISCARD;
 }
 
+/* The particle left the chute during the step (model.md §9): the run is over at the exit. */
+static fmu_status exited(fmu_instance *inst, const char *fn, double end, int *early_return,
+                         int *terminate)
+{
+    inst->lifecycle = FMU_LIFECYCLE_EXITED;
+    *terminate = 1;
+    /* FMI 3.0: an early return where the importer allows it; either way the simulation is to
+       terminate, at lastSuccessfulTime */
+    *early_return = inst->early_return_allowed;
+    fmu_log(inst, inst->fmi_version == 2 ? FMU_DISCARD : FMU_OK, FMU_LOG_CALLS,
+            "%s: the step to %.17g ends at %.17g, the last successful time: %s", fn, end,
+            inst->time, tribo_last_error(inst->model));
+    return inst->fmi_version == 2 ? FMU_DISCARD : FMU_OK;
+}
+
 fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, double step,
-                       double *reached, int *early_return)
+                       double *reached, int *early_return, int *terminate)
 {
     *early_return = 0;
+    *terminate = 0;
     if (!inst)
         return FMU_ERROR;
     *reached = inst->time;
+    if (inst->lifecycle == FMU_LIFECYCLE_EXITED)
+        return fmu_error(inst, "%s: the particle left the chute at t = %.17g: the run is over "
+                         "(terminate, reset or restore a state)", fn, inst->time);
     if (!fmu_lifecycle_allows(inst, fn, FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_STEP)))
         return FMU_ERROR;
     const double tolerance = fmu_rounding_tolerance(inst->time);
@@ -56,18 +75,21 @@ fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, 
                          "set at initialization",
                          fn, current_time, step, end, inst->stop_time);
 
-    /* inputs set since the last step hold from this communication point on */
+    /* inputs set since the last step hold from this communication point on (checked when
+       set: a refusal here changes nothing) */
+    if (fmu_pass_inputs(inst, fn) != FMU_OK)
+        return FMU_ERROR;
     tribo_model *m = inst->model;
-    tribo_status st = tribo_set_inputs(m, inst->inputs);
-    if (st == TRIBO_OK) {
-        /* the communication point may lie a rounding error before the core's time */
-        const double core_end = fmax(end - inst->start_time, tribo_get(m, TRIBO_Q_TIME));
-        st = tribo_advance(m, core_end);
-    }
-    if (st == TRIBO_INCOMPLETE) {
-        inst->time = inst->start_time + tribo_get(m, TRIBO_Q_TIME);
+    /* the FMU's time is the start time plus the core's, in the front end's unit */
+    const double unit = fmu_front_time_unit(&inst->derived);
+    /* the communication point may lie a rounding error before the core's time */
+    const double core_end = fmax((end - inst->start_time) / unit, tribo_get(m, TRIBO_Q_TIME));
+    tribo_status st = tribo_advance(m, core_end);
+    if (st == TRIBO_INCOMPLETE || st == TRIBO_ENDED) {
+        inst->time = inst->start_time + unit * tribo_get(m, TRIBO_Q_TIME);
         *reached = inst->time;
-        return ended_early(inst, fn, end, early_return);
+        return st == TRIBO_ENDED ? exited(inst, fn, end, early_return, terminate)
+                                 : ended_early(inst, fn, end, early_return);
     }
     if (st != TRIBO_OK) {
         /* a time the core refuses changes nothing; any other failure leaves it broken */

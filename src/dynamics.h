@@ -35,6 +35,7 @@ typedef struct tribo_dyn_params {
     double rtol, atol;   /* the event-driven integrator's tolerances: within them a state
                             cannot tell which side of a switch it is on */
     double F_T, F_N;     /* external force (inputs) */
+    double chute_length; /* X where the chute ends (model.md §9); INFINITY: none */
 } tribo_dyn_params;
 
 /* The normal velocity the dashpot opposes (model.md §3): the contact point's

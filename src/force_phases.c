@@ -26,6 +26,8 @@ void tribo_switch_functions(const tribo_dyn_params *p, const tribo_force_law *la
     tribo_contact_eval ev;
     for (int i = 0; i < TRIBO_N_SWITCHES; i++)
         g[i] = 1.0;
+    if (isfinite(p->chute_length))
+        g[TRIBO_SWITCH_EXIT] = p->chute_length - y[TRIBO_IX];
     tribo_pose_at(p->eps2, y[TRIBO_IPHI], &ev.pose);
     g[TRIBO_SWITCH_CONTACT] = ev.pose.h - y[TRIBO_IY];
     if (!tribo_touching(law))
@@ -55,6 +57,8 @@ void tribo_switch_directions(const tribo_dyn_params *p, const tribo_force_law *p
 {
     for (int i = 0; i < TRIBO_N_SWITCHES; i++)
         dir[i] = 0;
+    if (isfinite(p->chute_length))
+        dir[TRIBO_SWITCH_EXIT] = -1; /* the centre passes X = L going down-slope */
     if (!tribo_touching(ph)) {
         dir[TRIBO_SWITCH_CONTACT] = +1;
         return;

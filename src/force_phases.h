@@ -8,8 +8,11 @@
 
 /* The switch functions: contact made or lost (delta_y = 0); the normal sign's damped
    velocity = 0 (vn, or V for the centre dashpot), or the two edges of the normal lock's
-   band; stick -> slip at either edge of the Coulomb limit, or slip -> stick; and the factor
-   A of a slipping normal lock reaching 0 (model.md §3). Unused ones read 1. */
+   band; stick -> slip at either edge of the Coulomb limit, or slip -> stick; the factor
+   A of a slipping normal lock reaching 0 (model.md §3); and, in every phase, the centre
+   passing the end of the chute, X = chute_length (model.md §9): not a switch of the force law
+   but the end of the run, which the integrator handles (no phase follows it). Unused ones
+   read 1. */
 enum {
     TRIBO_SWITCH_CONTACT,
     TRIBO_SWITCH_NORMAL_A,
@@ -17,6 +20,7 @@ enum {
     TRIBO_SWITCH_TANGENT_A,
     TRIBO_SWITCH_TANGENT_B,
     TRIBO_SWITCH_LOCK_FACTOR,
+    TRIBO_SWITCH_EXIT,
     TRIBO_N_SWITCHES
 };
 

@@ -11,9 +11,11 @@
  * steps that end at or before the asked time.
  *
  * An advance may end early, and only between steps: when tribo_work_spent says the work
- * limit of the advance is spent, it returns tribo_stop_early() (TRIBO_INCOMPLETE, the output
- * point at the committed one). That is the one way of stopping short of the asked time,
- * whatever the reason; the next advance goes on from there as if nothing had stopped.
+ * limit of the advance is spent, or when the step just committed ends where the particle
+ * leaves the chute (model.md §9: the exit switch of force_phases.h, located exactly), it
+ * returns tribo_stop_early() with the reason (the output point at the committed one). That
+ * is the one way of stopping short of the asked time: after the work limit the next advance
+ * goes on from there as if nothing had stopped; after the exit the run is over.
  */
 #ifndef TRIBO_INTEGRATOR_H
 #define TRIBO_INTEGRATOR_H
@@ -98,9 +100,14 @@ void tribo_count(tribo_model *m, tribo_counter which, long long n);
 void tribo_work(tribo_model *m, double steps);
 /* Whether the advance under way has spent its work limit. */
 int tribo_work_spent(const tribo_model *m);
+/* Why an advance ends before the asked time. */
+typedef enum tribo_stop_reason {
+    TRIBO_STOP_WORK_LIMIT, /* the advance spent its work limit: TRIBO_INCOMPLETE */
+    TRIBO_STOP_EXIT        /* the committed point is the exit from the chute: TRIBO_ENDED */
+} tribo_stop_reason;
 /* End the advance under way at the committed point: it becomes the output point; returns
-   TRIBO_INCOMPLETE with the reason. */
-tribo_status tribo_stop_early(tribo_model *m);
+   the status of the reason, with a message. */
+tribo_status tribo_stop_early(tribo_model *m, tribo_stop_reason why);
 
 /* A warning of the integrator, to the instance's logger. */
 void tribo_warn(tribo_model *m, const char *message);

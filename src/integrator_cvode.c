@@ -30,6 +30,10 @@
  * time, and the state at an asked time comes from the dense output of the open step.
  * The state can be saved because CVODE is deterministic: the bytes hold the point where
  * CVODE was last restarted and the number of steps since, which a load replays.
+ *
+ * On a chute of finite length (model.md §9) the centre passing its end is one more root
+ * (TRIBO_SWITCH_EXIT): the step that reaches it is committed, CVODE is restarted there (so
+ * that the saved state is the exit point) and the run ends.
  */
 #include "integrator.h"
 
@@ -156,6 +160,18 @@ static void hold_lock(const cvode_integrator *c, double *y)
     y[TRIBO_IV] = -(g.cx * y[TRIBO_IOMEGA]);
 }
 
+/* The longest step: the time in which the steady loads (gravity and the inputs) move a
+   particle from rest by 5e-4 semi-axes, sqrt(1e-3 / load), but at least 1 (the paper's
+   scenes, Gamma >= 1e-3, keep 1; the contact's own period, 2 pi, CVODE resolves itself). The
+   switch functions are sampled within each step (find_grazing_switch): a step of that
+   length leaves nothing between the samples. A physical particle has a tiny Gamma (1e-8 for
+   a 1 mm polymer grain on steel): a step of 1 would then take ~1e6 steps to cross a chute
+   the slow motion crosses in ~1e3 (model.md §8, §9). */
+static double slow_step(const tribo_dyn_params *p)
+{
+    return fmax(1.0, sqrt(1e-3 / (p->Gamma + fabs(p->F_T) + fabs(p->F_N))));
+}
+
 /* (Re)start CVODE at (t, y) in phase ph. */
 static tribo_status restart_at(cvode_integrator *c, double t, const double *y, const phase *ph)
 {
@@ -176,7 +192,7 @@ static tribo_status restart_at(cvode_integrator *c, double t, const double *y, c
     /* a rotating particle in flight must not swing its lowest point through the plate and
        back within one step unseen: 0.2 rad per step at most */
     const double spin = fabs(y[TRIBO_IOMEGA]);
-    const double hmax = spin > 0.2 ? 0.2 / spin : 1.0;
+    const double hmax = spin > 0.0 ? fmin(0.2 / spin, slow_step(c->dyn)) : slow_step(c->dyn);
     if (CVodeReInit(c->mem, t, c->y) != CV_SUCCESS || CVodeSetRootDirection(c->mem, dir) != CV_SUCCESS ||
         CVodeSetMaxStep(c->mem, hmax) != CV_SUCCESS)
         return tribo_fail(m, TRIBO_ERR_INTEGRATOR, "CVODE restart failed at t = %.17g: %s", t,
@@ -495,6 +511,12 @@ static tribo_status close_step(cvode_integrator *c)
         return TRIBO_OK;
     }
 
+    /* the end of the run: no phase follows (model.md §9) */
+    if (c->roots[TRIBO_SWITCH_EXIT]) {
+        st = restart_at(c, c->t_end, tribo_committed(m)->y, &c->phase);
+        return st == TRIBO_OK ? TRIBO_ENDED : st;
+    }
+
     /* an event: new phase, resets, restart */
     const double t = c->t_end;
     if (fabs(t - c->last_event_t) <= 1e-12 * fmax(1.0, fabs(t)))
@@ -545,11 +567,11 @@ static tribo_status advance(tribo_model *m, void *data, double t)
         if (c->open && t <= c->t_end)
             break;
         if (c->open && (st = close_step(c)) != TRIBO_OK)
-            return st;
+            return st == TRIBO_ENDED ? tribo_stop_early(m, TRIBO_STOP_EXIT) : st;
         if (t <= tribo_committed(m)->t)
             break;
         if (tribo_work_spent(m))
-            return tribo_stop_early(m);
+            return tribo_stop_early(m, TRIBO_STOP_WORK_LIMIT);
         if (++steps > max_steps)
             return fail_at(c, tribo_committed(m)->t, tribo_committed(m)->y,
                            "too much work: more than 1e6 steps per time unit");

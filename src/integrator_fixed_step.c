@@ -19,6 +19,9 @@
  *
  * Charging follows the paper: a step is charged at its end point's contact. The frictional
  * work of a step that ends in flight is still booked into Sigma_s (model.md §5b).
+ *
+ * On a chute of finite length (model.md §9) a step that would carry the centre past its end
+ * is cut where it crosses X = chute_length (leave_chute): the run ends there.
  */
 #include "integrator.h"
 
@@ -144,6 +147,64 @@ static void step(tribo_model *m, const tribo_point *p, double h, tribo_point *ne
     tribo_charge_step(m, p, next, h, sample);
 }
 
+/* Whether a step ends past the end of the chute. */
+static int past_the_end(const tribo_model *m, const tribo_point *p)
+{
+    return p->y[TRIBO_IX] >= tribo_dynamics(m)->chute_length;
+}
+
+/* The step from p that ends where the centre crosses X = chute_length, given that one of
+   length h_past ends past it (model.md §9): its length is bracketed, by false position with
+   the Illinois rule, to the rounding of the time, between a step that ends before the end and
+   one that ends at or past it; the latter is the step taken. Deterministic: the same for
+   every advance that meets it. */
+static double crossing_step(tribo_model *m, const tribo_point *p, double h_past)
+{
+    const double L = tribo_dynamics(m)->chute_length;
+    tribo_point probe;
+    tribo_contact_sample sample;
+    double lo = 0.0, hi = h_past, f_lo = p->y[TRIBO_IX] - L;
+    step(m, p, h_past, &probe, &sample, 0);
+    double f_hi = probe.y[TRIBO_IX] - L;
+    int side = 0; /* which end the last two updates kept */
+    for (int it = 0; it < 200 && f_hi > 0.0 && hi - lo > 2e-16 * (p->t + hi); it++) {
+        double h = hi - f_hi * (hi - lo) / (f_hi - f_lo);
+        if (!(h > lo && h < hi))
+            h = 0.5 * (lo + hi);
+        step(m, p, h, &probe, &sample, 0);
+        const double f = probe.y[TRIBO_IX] - L;
+        if (f >= 0.0) {
+            hi = h, f_hi = f;
+            if (side == +1)
+                f_lo *= 0.5;
+            side = +1;
+        } else {
+            lo = h, f_lo = f;
+            if (side == -1)
+                f_hi *= 0.5;
+            side = -1;
+        }
+    }
+    return hi;
+}
+
+/* Cut the step from the committed point at the crossing, commit it and end the run. */
+static tribo_status leave_chute(tribo_model *m, fixed_step *f, double h_past)
+{
+    const tribo_point *p = tribo_committed(m);
+    const double h = crossing_step(m, p, h_past);
+    tribo_point end;
+    tribo_contact_sample sample;
+    step(m, p, h, &end, &sample, 1);
+    tribo_commit(m, &end);
+    tribo_charge_sample(m, &sample, TRIBO_CHARGE_COMMIT);
+    tribo_count(m, TRIBO_COUNT_STEPS, 1);
+    /* the grid starts at the exit, so that a saved state's committed point is on it */
+    f->t_base = end.t;
+    f->k = 0;
+    return tribo_stop_early(m, TRIBO_STOP_EXIT);
+}
+
 static tribo_status create(tribo_model *m, void **data)
 {
     (void)m;
@@ -185,17 +246,32 @@ static tribo_status advance(tribo_model *m, void *data, double t)
                           t, dt);
     tribo_contact_sample sample;
     tribo_point next;
+    const int chute = isfinite(tribo_dynamics(m)->chute_length);
 
-    /* commit every grid point up to t, none after it */
+    /* commit every grid point up to t, none after it; on a chute, a step is booked (its
+       assumption check counted) only once it is known not to leave it */
     while (grid(f, f->k + 1, dt) <= t) {
         if (tribo_work_spent(m))
-            return tribo_stop_early(m);
-        step(m, tribo_committed(m), dt, &next, &sample, 1);
+            return tribo_stop_early(m, TRIBO_STOP_WORK_LIMIT);
+        step(m, tribo_committed(m), dt, &next, &sample, !chute);
+        if (chute) {
+            if (past_the_end(m, &next))
+                return leave_chute(m, f, dt);
+            tribo_book_interval(m, tribo_committed(m), &next, 1);
+        }
         f->k++;
         next.t = grid(f, f->k, dt); /* no drift over millions of steps */
         tribo_commit(m, &next);
         tribo_charge_sample(m, &sample, TRIBO_CHARGE_COMMIT);
         tribo_count(m, TRIBO_COUNT_STEPS, 1);
+    }
+
+    /* the exit may lie within the next grid step, before t: the grid step tells */
+    if (chute && t > tribo_committed(m)->t) {
+        const tribo_point *p = tribo_committed(m);
+        step(m, p, dt, &next, &sample, 0);
+        if (past_the_end(m, &next) && p->t + crossing_step(m, p, dt) <= t)
+            return leave_chute(m, f, dt);
     }
 
     tribo_output_begin(m);

@@ -44,6 +44,7 @@ void tribo_derive_params(tribo_model *m)
     d->damping_point = s->damping_point;
     d->rtol = s->rtol;
     d->atol = s->atol;
+    d->chute_length = s->chute_length;
 }
 
 /* The initial point of the scene (model.md §7 by default); its contact is evaluated by the
@@ -56,12 +57,14 @@ static void initial_point(const tribo_model *m, tribo_point *p)
     tribo_pose_at(m->dyn.eps2, s->phi0, &pose);
     memset(p, 0, sizeof *p);
     /* model.md §7: centre at the height of first contact (plus the gap), dropped straight
-       down in the external frame */
+       down in the external frame; §9: or at drop_angle from the vertical, towards down-slope
+       when positive */
+    const double direction = beta + s->drop_angle;
     p->y[TRIBO_IX] = s->X0;
     p->y[TRIBO_IY] = pose.h + s->gap0;
     p->y[TRIBO_IPHI] = s->phi0;
-    p->y[TRIBO_IU] = s->drop_speed * sin(beta);
-    p->y[TRIBO_IV] = -s->drop_speed * cos(beta);
+    p->y[TRIBO_IU] = s->drop_speed * sin(direction);
+    p->y[TRIBO_IV] = -s->drop_speed * cos(direction);
     p->y[TRIBO_IOMEGA] = s->Omega0;
     tribo_charging_start(&m->charging, s, p->charge_globals);
     p->motion.current = TRIBO_MOTION_FLIGHT;
@@ -96,6 +99,15 @@ void tribo_count(tribo_model *m, tribo_counter which, long long n)
     }
 }
 
+/* The run is over: the particle left the chute (model.md §9). */
+static tribo_status ended(tribo_model *m)
+{
+    return tribo_fail(m, TRIBO_ENDED,
+                      "the particle left the chute at t = %.17g (its centre passed X = "
+                      "chute_length = %.17g): the run is over there; reset to run again",
+                      m->out.t, m->scene.chute_length);
+}
+
 /* Charging this many segment values costs about one internal step (an RK4 step). */
 #define SEGMENT_UPDATES_PER_STEP 250.0
 
@@ -103,10 +115,14 @@ void tribo_work(tribo_model *m, double steps) { m->work += steps; }
 
 int tribo_work_spent(const tribo_model *m) { return m->work >= (double)m->scene.work_limit; }
 
-tribo_status tribo_stop_early(tribo_model *m)
+tribo_status tribo_stop_early(tribo_model *m, tribo_stop_reason why)
 {
     tribo_output_begin(m);
     tribo_output_set(m, &m->committed);
+    if (why == TRIBO_STOP_EXIT) {
+        m->ended = 1;
+        return ended(m);
+    }
     return tribo_fail(m, TRIBO_INCOMPLETE,
                       "stopped early at t = %.17g: the advance spent its work limit (work_limit = "
                       "%d internal steps; take shorter steps, or raise it)",
@@ -128,6 +144,8 @@ void tribo_book_interval(tribo_model *m, const tribo_point *from, tribo_point *t
     const int in_contact = to->contact.in_contact;
     to->contact_time = from->contact_time + (in_contact ? h : 0.0);
     to->motion = from->motion;
+    if (in_contact && !from->contact.in_contact)
+        to->motion.impacts++;
     if (!(h > 0.0))
         return;
     if (m->motion_decay_h != h) {
@@ -438,6 +456,7 @@ void tribo_set_logger(tribo_model *m, tribo_log_fn fn, void *user)
 tribo_status tribo_reset(tribo_model *m)
 {
     initial_point(m, &m->committed);
+    m->ended = 0;
     tribo_charging_reset(&m->charging);
     memset(&m->stats, 0, sizeof m->stats);
     m->error[0] = '\0';
@@ -468,9 +487,11 @@ tribo_status tribo_advance(tribo_model *m, double t)
                           "cannot advance to t = %.17g: beyond t = %g the time is not resolved "
                           "finely enough to integrate",
                           t, TRIBO_TIME_MAX);
+    if (m->ended)
+        return t > m->out.t ? ended(m) : TRIBO_OK;
     m->work = 0.0;
     const tribo_status st = m->integrator->advance(m, m->integrator_data, t);
-    if (st != TRIBO_OK && st != TRIBO_INCOMPLETE)
+    if (st != TRIBO_OK && st != TRIBO_INCOMPLETE && st != TRIBO_ENDED)
         return st;
     const tribo_status checked = tribo_check_outputs(m);
     if (checked == TRIBO_ERR_INTEGRATOR) {
@@ -508,6 +529,8 @@ tribo_status tribo_set_param(tribo_model *m, const char *name, double value)
                           "%s cannot change during a run (it is %s); create a new instance",
                           p->name,
                           p->variability == TRIBO_PARAM_STRUCTURAL ? "structural" : "fixed");
+    if (m->ended)
+        return ended(m);
     commit_output(m);
     tribo_param_write(&m->scene, p, value);
     tribo_derive_params(m);
@@ -522,6 +545,8 @@ tribo_status tribo_set_inputs(tribo_model *m, const double values[TRIBO_INPUT_CO
             return TRIBO_ERR_INVALID_ARGUMENT;
     if (values[TRIBO_INPUT_F_T] == m->dyn.F_T && values[TRIBO_INPUT_F_N] == m->dyn.F_N)
         return TRIBO_OK;
+    if (m->ended)
+        return ended(m);
     commit_output(m);
     m->dyn.F_T = values[TRIBO_INPUT_F_T];
     m->dyn.F_N = values[TRIBO_INPUT_F_N];

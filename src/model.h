@@ -31,6 +31,8 @@ struct tribo_model {
     /* the work done by the advance under way, in internal steps (quantities.def:
        work_limit) */
     double work;
+    /* the particle left the chute (model.md §9): the output point is the exit, for good */
+    int ended;
 
     const tribo_integrator_ops *integrator;
     void *integrator_data;

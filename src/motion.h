@@ -24,6 +24,7 @@ typedef struct tribo_motion {
     int current;      /* tribo_motion_class at the end of the last update */
     double class_time[TRIBO_MOTION_CLASSES];
     int outside_assumptions; /* the contact was outside them at the last update */
+    long long impacts;       /* contacts made after a flight */
 } tribo_motion;
 
 /* Window of the averages: long enough to span the flights between the paper's bounces

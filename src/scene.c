@@ -1,5 +1,6 @@
-/* scene.c: the scene's parameters (quantities.def): defaults, valid ranges, validation. */
-#include "tribo.h"
+/* scene.c: the scene's parameters (quantities.def): defaults, valid ranges, validation; and
+   what any table of parameters does with one (param_table.h). */
+#include "param_table.h"
 
 #include <ctype.h>
 #include <limits.h>
@@ -8,31 +9,20 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define CLOSED 1
-#define OPEN 0
-#define TRIBO_TYPE_ENUM(enumeration) TRIBO_TYPE_ENUM
-
 /* The rows of quantities.def. Every bound is finite: the ranges are what the model can
    compute (beyond them the arithmetic overflows, or the work of a step has no bound); a cap
-   with another reason says so in its description. */
+   with another reason says so in its description. The one infinite bound, chute_length's,
+   is the plate without end. */
 static const tribo_param_info PARAMS[] = {
-#define TRIBO_PARAMETER(name_, type_, vr_, unit_, min_, min_end, max_, max_end, start_,   \
-                        variability_, description_)                                      \
-    {.name = #name_, .description = description_, .unit = unit_, .vr = vr_,               \
-     .offset = offsetof(tribo_scene, name_), .type = TRIBO_TYPE_##type_, .min = min_,     \
-     .max = max_, .min_inclusive = min_end, .max_inclusive = max_end, .start = start_,    \
-     .variability = TRIBO_PARAM_##variability_},
+#define TRIBO_PARAMETER(...) TRIBO_PARAM_INFO(tribo_scene, __VA_ARGS__),
 #include "quantities.def"
 };
 
 #define N_PARAMS (sizeof PARAMS / sizeof PARAMS[0])
+static const tribo_param_table_of TABLE = {PARAMS, N_PARAMS};
 
 static const tribo_param_info INPUTS[TRIBO_INPUT_COUNT] = {
-#define TRIBO_INPUT(id_, name_, vr_, unit_, min_, max_, description_)                          \
-    [TRIBO_INPUT_##id_] = {.name = name_, .description = description_, .unit = unit_,         \
-                           .vr = vr_, .type = TRIBO_TYPE_REAL, .min = min_, .max = max_,      \
-                           .min_inclusive = CLOSED, .max_inclusive = CLOSED, .start = 0.0,    \
-                           .variability = TRIBO_PARAM_TUNABLE},
+#define TRIBO_INPUT(id_, ...) [TRIBO_INPUT_##id_] = TRIBO_INPUT_INFO(__VA_ARGS__),
 #include "quantities.def"
 };
 
@@ -43,12 +33,14 @@ const tribo_param_info *tribo_input_table(size_t *count)
     return INPUTS;
 }
 
-void tribo_scene_defaults(tribo_scene *s)
+void tribo_table_defaults(tribo_param_table_of t, void *scene, size_t scene_size)
 {
-    memset(s, 0, sizeof *s);
-    for (size_t i = 0; i < N_PARAMS; i++)
-        tribo_param_write(s, &PARAMS[i], PARAMS[i].start);
+    memset(scene, 0, scene_size);
+    for (size_t i = 0; i < t.n; i++)
+        tribo_param_write(scene, &t.rows[i], t.rows[i].start);
 }
+
+void tribo_scene_defaults(tribo_scene *s) { tribo_table_defaults(TABLE, s, sizeof *s); }
 
 const tribo_param_info *tribo_param_table(size_t *count)
 {
@@ -57,15 +49,17 @@ const tribo_param_info *tribo_param_table(size_t *count)
     return PARAMS;
 }
 
-const tribo_param_info *tribo_param_find(const char *name)
+const tribo_param_info *tribo_table_find(tribo_param_table_of t, const char *name)
 {
-    for (size_t i = 0; name && i < N_PARAMS; i++)
-        if (strcmp(PARAMS[i].name, name) == 0)
-            return &PARAMS[i];
+    for (size_t i = 0; name && i < t.n; i++)
+        if (strcmp(t.rows[i].name, name) == 0)
+            return &t.rows[i];
     return NULL;
 }
 
-double tribo_param_read(const tribo_scene *scene, const tribo_param_info *p)
+const tribo_param_info *tribo_param_find(const char *name) { return tribo_table_find(TABLE, name); }
+
+double tribo_param_read(const void *scene, const tribo_param_info *p)
 {
     const char *base = (const char *)scene + p->offset;
     if (p->type != TRIBO_TYPE_REAL) {
@@ -78,7 +72,7 @@ double tribo_param_read(const tribo_scene *scene, const tribo_param_info *p)
     return v;
 }
 
-void tribo_param_write(tribo_scene *scene, const tribo_param_info *p, double value)
+void tribo_param_write(void *scene, const tribo_param_info *p, double value)
 {
     char *base = (char *)scene + p->offset;
     if (p->type != TRIBO_TYPE_REAL) {
@@ -97,7 +91,10 @@ void tribo_param_range_text(const tribo_param_info *p, char *buf, size_t n)
         return;
     }
     const int has_lo = isfinite(p->min), has_hi = isfinite(p->max);
-    if (has_lo && has_hi)
+    if (has_lo && p->max == INFINITY && p->max_inclusive)
+        snprintf(buf, n, "%g %s %s <= INF (INF: none)", p->min, p->min_inclusive ? "<=" : "<",
+                 p->name);
+    else if (has_lo && has_hi)
         snprintf(buf, n, "%g %s %s %s %g", p->min, p->min_inclusive ? "<=" : "<", p->name,
                  p->max_inclusive ? "<=" : "<", p->max);
     else if (has_lo)
@@ -110,7 +107,8 @@ void tribo_param_range_text(const tribo_param_info *p, char *buf, size_t n)
 
 tribo_status tribo_param_check(const tribo_param_info *p, double v, char *msg, size_t msg_size)
 {
-    int ok = isfinite(v);
+    /* a closed infinite bound admits the infinity itself (quantities.def) */
+    int ok = isfinite(v) || (v == INFINITY && p->max == INFINITY && p->max_inclusive);
     if (ok && p->type != TRIBO_TYPE_REAL)
         ok = v == floor(v);
     if (ok)
@@ -128,10 +126,10 @@ tribo_status tribo_param_check(const tribo_param_info *p, double v, char *msg, s
     return TRIBO_ERR_INVALID_ARGUMENT;
 }
 
-tribo_status tribo_scene_set(tribo_scene *scene, const char *name, double value, char *msg,
-                             size_t msg_size)
+tribo_status tribo_table_set(tribo_param_table_of t, void *scene, const char *name, double value,
+                             char *msg, size_t msg_size)
 {
-    const tribo_param_info *p = tribo_param_find(name);
+    const tribo_param_info *p = tribo_table_find(t, name);
     if (!p) {
         if (msg && msg_size)
             snprintf(msg, msg_size, "unknown parameter '%s'", name ? name : "(null)");
@@ -143,7 +141,13 @@ tribo_status tribo_scene_set(tribo_scene *scene, const char *name, double value,
     return st;
 }
 
-tribo_status tribo_scene_apply(tribo_scene *scene, const char *settings, char *msg,
+tribo_status tribo_scene_set(tribo_scene *scene, const char *name, double value, char *msg,
+                             size_t msg_size)
+{
+    return tribo_table_set(TABLE, scene, name, value, msg, msg_size);
+}
+
+tribo_status tribo_table_apply(tribo_param_table_of t, void *scene, const char *settings, char *msg,
                                size_t msg_size)
 {
     const char *p = settings ? settings : "";
@@ -173,25 +177,51 @@ tribo_status tribo_scene_apply(tribo_scene *scene, const char *settings, char *m
                 snprintf(msg, msg_size, "%s: '%s' is not a number", item, text);
             return TRIBO_ERR_INVALID_ARGUMENT;
         }
-        const tribo_status st = tribo_scene_set(scene, item, value, msg, msg_size);
+        const tribo_status st = tribo_table_set(t, scene, item, value, msg, msg_size);
         if (st != TRIBO_OK)
             return st;
         p = end;
     }
 }
 
-tribo_status tribo_scene_validate(const tribo_scene *scene, char *msg, size_t msg_size)
+tribo_status tribo_scene_apply(tribo_scene *scene, const char *settings, char *msg,
+                               size_t msg_size)
+{
+    return tribo_table_apply(TABLE, scene, settings, msg, msg_size);
+}
+
+tribo_status tribo_table_validate(tribo_param_table_of t, const void *scene, char *msg, size_t msg_size)
 {
     if (!scene) {
         if (msg && msg_size)
             snprintf(msg, msg_size, "scene is NULL");
         return TRIBO_ERR_INVALID_ARGUMENT;
     }
-    for (size_t i = 0; i < N_PARAMS; i++) {
-        tribo_status st = tribo_param_check(&PARAMS[i], tribo_param_read(scene, &PARAMS[i]), msg,
+    for (size_t i = 0; i < t.n; i++) {
+        tribo_status st = tribo_param_check(&t.rows[i], tribo_param_read(scene, &t.rows[i]), msg,
                                             msg_size);
         if (st != TRIBO_OK)
             return st;
+    }
+    return TRIBO_OK;
+}
+
+tribo_status tribo_scene_validate(const tribo_scene *scene, char *msg, size_t msg_size)
+{
+    const tribo_status st = tribo_table_validate(TABLE, scene, msg, msg_size);
+    return st != TRIBO_OK ? st : tribo_scene_check_combinations(scene, msg, msg_size);
+}
+
+tribo_status tribo_scene_check_combinations(const tribo_scene *scene, char *msg, size_t msg_size)
+{
+    /* the drop lies on the chute (model.md §9) */
+    if (!(scene->X0 < scene->chute_length)) {
+        if (msg && msg_size)
+            snprintf(msg, msg_size,
+                     "X0 = %.17g is invalid with chute_length = %.17g: the particle must start "
+                     "before the end of the chute, X0 < chute_length",
+                     scene->X0, scene->chute_length);
+        return TRIBO_ERR_INVALID_ARGUMENT;
     }
     return TRIBO_OK;
 }

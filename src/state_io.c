@@ -3,7 +3,8 @@
  * Layout (native byte order, doubles and 64-bit integers):
  *   magic "TRIBOST1", version, total size,
  *   every scene parameter (in the order of the parameter table),
- *   the external force, the output time, the work counters,
+ *   the external force, the output time, the work counters, whether the run has ended
+ *   (the particle left the chute),
  *   the committed point (with the charge models' quadratures and global states), for each
  *   selected charge model its committed per-segment charges and their running sum (value
  *   and compensation), the integrator's own bytes.
@@ -22,12 +23,12 @@
 #include <string.h>
 
 static const char MAGIC[8] = {'T', 'R', 'I', 'B', 'O', 'S', 'T', '1'};
-enum { STATE_VERSION = 3 };
+enum { STATE_VERSION = 4 };
 
 /* Fields of a point, in order; the contact evaluation is stored with it because some
    integrators (phases of the force law) cannot recompute it from y alone. */
 #define CONTACT_DOUBLES 10
-#define POINT_INTS 4
+#define POINT_INTS 5
 
 static size_t point_size(const tribo_model *m)
 {
@@ -58,6 +59,7 @@ static void put_point(tribo_writer *w, const tribo_model *m, const tribo_point *
         tribo_write_double(w, mo->class_time[i]);
     tribo_write_int(w, mo->current);
     tribo_write_int(w, mo->outside_assumptions);
+    tribo_write_int(w, mo->impacts);
 }
 
 /* A flag or a small index saved in 64 bits; one that an int cannot hold reads as -1 (which
@@ -91,6 +93,7 @@ static void get_point(tribo_reader *r, const tribo_model *m, tribo_point *p)
         mo->class_time[i] = tribo_read_double(r);
     mo->current = read_small(r);
     mo->outside_assumptions = read_small(r);
+    mo->impacts = tribo_read_int(r);
 }
 
 static size_t header_size(void) { return sizeof MAGIC + 2 * sizeof(int64_t); }
@@ -111,7 +114,7 @@ size_t tribo_state_size(const tribo_model *m)
     size_t n_params;
     tribo_param_table(&n_params);
     return header_size() + n_params * sizeof(double) + 3 * sizeof(double) /* F_T, F_N, t_out */
-           + 6 * sizeof(int64_t)                                            /* stats */
+           + 7 * sizeof(int64_t)                                            /* stats, ended */
            + point_size(m) + charge_count(m) * sizeof(double) +
            m->integrator->state_size(m->integrator_data);
 }
@@ -138,6 +141,7 @@ tribo_status tribo_state_save(const tribo_model *m, void *buffer, size_t size)
                                    s->restarts, s->substeps,  s->assumption_warnings};
     for (int i = 0; i < 6; i++)
         tribo_write_int(&w, counters[i]);
+    tribo_write_int(&w, m->ended);
     put_point(&w, m, &m->committed);
     for (int i = 0; i < m->charging.n_models; i++) {
         const tribo_charge_slot *slot = &m->charging.slot[i];
@@ -175,6 +179,7 @@ typedef struct loaded {
     tribo_scene scene;
     double F_T, F_N, t_out;
     tribo_stats stats;
+    int ended;
     tribo_point committed;
     double *segments[TRIBO_CHARGE_MAX_MODELS]; /* owned; NULL for models not selected */
     double sum[TRIBO_CHARGE_MAX_MODELS], sum_c[TRIBO_CHARGE_MAX_MODELS];
@@ -224,6 +229,21 @@ static const char *point_problem(const tribo_model *m, const tribo_point *p, dou
     for (int i = 0; i < TRIBO_MOTION_CLASSES; i++)
         if (!(mo->class_time[i] >= 0.0 && mo->class_time[i] <= p->t + slack))
             return "motion classes";
+    if (!(mo->impacts >= 0 && (double)mo->impacts <= COUNTER_MAX))
+        return "impacts";
+    return NULL;
+}
+
+/* Whether the run has ended where the state says (model.md §9): an ended run's committed
+   point is the exit, at or past the end of the chute, and its output point; a run that goes
+   on has its committed point before the end. */
+static const char *end_problem(const loaded *l)
+{
+    const double L = l->scene.chute_length, X = l->committed.y[TRIBO_IX];
+    if (l->ended != 0 && l->ended != 1)
+        return "whether the run has ended";
+    if (l->ended ? !(X >= L && l->t_out == l->committed.t) : !(X < L))
+        return "the end of the run";
     return NULL;
 }
 
@@ -283,6 +303,8 @@ static tribo_status read_state(tribo_model *m, const void *buffer, size_t size, 
             return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: %s", msg);
         tribo_param_write(&l->scene, p, v);
     }
+    if (check && tribo_scene_check_combinations(&l->scene, msg, sizeof msg) != TRIBO_OK)
+        return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: %s", msg);
     const tribo_param_info *inputs = tribo_input_table(NULL);
     l->F_T = tribo_read_double(&r);
     l->F_N = tribo_read_double(&r);
@@ -299,8 +321,11 @@ static tribo_status read_state(tribo_model *m, const void *buffer, size_t size, 
     const tribo_stats stats = {counters[0], counters[1], counters[2],
                                counters[3], counters[4], counters[5]};
     l->stats = stats;
+    l->ended = read_small(&r);
     get_point(&r, m, &l->committed);
     const char *problem = check ? point_problem(m, &l->committed, l->t_out) : NULL;
+    if (!problem && check)
+        problem = end_problem(l);
     if (problem)
         return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt (%s of the committed point)", problem);
     for (int i = 0; i < m->charging.n_models; i++) {
@@ -332,6 +357,7 @@ static tribo_status apply_state(tribo_model *m, const loaded *l)
     m->dyn.F_T = l->F_T;
     m->dyn.F_N = l->F_N;
     m->stats = l->stats;
+    m->ended = l->ended;
     m->committed = l->committed;
     for (int i = 0; i < m->charging.n_models; i++) {
         tribo_charge_slot *slot = &m->charging.slot[i];

@@ -40,9 +40,14 @@ typedef enum tribo_status {
     TRIBO_ERR_INTEGRATOR,       /* the integrator failed; the instance must be reset */
     TRIBO_ERR_STATE,            /* state bytes that do not belong to this scene       */
     TRIBO_ERR_MEMORY,
-    TRIBO_INCOMPLETE            /* not an error: an advance spent its work limit and
+    TRIBO_INCOMPLETE,           /* not an error: an advance spent its work limit and
                                    stopped early, at tribo_get(model, TRIBO_Q_TIME); the
                                    instance is consistent there and advances on from it */
+    TRIBO_ENDED                 /* not an error: the particle left the chute (model.md §9)
+                                   at tribo_get(model, TRIBO_Q_EXIT_TIME), where the run is
+                                   over and every output stays; any later advance past it
+                                   returns this again and changes nothing (reset to run
+                                   again) */
 } tribo_status;
 
 /* ---- the scene: every parameter of the table (quantities.def) ------------------- */
@@ -117,9 +122,10 @@ typedef struct tribo_param_info {
 const tribo_param_info *tribo_param_table(size_t *count);
 /* The entry named `name`, or NULL. */
 const tribo_param_info *tribo_param_find(const char *name);
-/* Read / write a parameter of a scene through its table entry. */
-double tribo_param_read(const tribo_scene *scene, const tribo_param_info *p);
-void tribo_param_write(tribo_scene *scene, const tribo_param_info *p, double value);
+/* Read / write a parameter of a scene through its table entry (a tribo_scene for the rows
+   of tribo_param_table, a tribo_si_scene for those of tribo_si_param_table, si.h). */
+double tribo_param_read(const void *scene, const tribo_param_info *p);
+void tribo_param_write(void *scene, const tribo_param_info *p, double value);
 /* The valid range of `p` in words, e.g. "0 < epsilon <= 1" (for messages). */
 void tribo_param_range_text(const tribo_param_info *p, char *buf, size_t n);
 /* TRIBO_OK if `value` is valid for `p`; otherwise TRIBO_ERR_INVALID_ARGUMENT and a
@@ -136,8 +142,12 @@ tribo_status tribo_scene_apply(tribo_scene *scene, const char *settings, char *m
 /* The inputs (enum tribo_input order): name, unit, description, value reference and valid
    range (start 0, type REAL, variability TUNABLE), for tribo_param_check and messages. */
 const tribo_param_info *tribo_input_table(size_t *count);
-/* Check every parameter of a scene; the first failure is reported as above. */
+/* Check every parameter of a scene, then the combinations
+   (tribo_scene_check_combinations); the first failure is reported as above. */
 tribo_status tribo_scene_validate(const tribo_scene *scene, char *msg, size_t msg_size);
+/* The combinations of valid parameters a scene must also satisfy: the drop lies on the chute,
+   X0 < chute_length (model.md §9). A failure names the parameters and their values. */
+tribo_status tribo_scene_check_combinations(const tribo_scene *scene, char *msg, size_t msg_size);
 /* The first structural parameter in which two scenes differ, or NULL if they have the
    same structure (an instance of one can load the other's state). */
 const tribo_param_info *tribo_scene_structure_differs(const tribo_scene *a, const tribo_scene *b);
@@ -169,15 +179,18 @@ tribo_status tribo_reset(tribo_model *model);
    results as if it had not stopped. A time the integrator cannot resolve (beyond
    TRIBO_TIME_MAX, or a fixed step's grid finer than the rounding of t) is refused
    (TRIBO_ERR_TIME) and nothing changes. An advance that would give a non-finite output
-   fails (TRIBO_ERR_INTEGRATOR) naming it. */
+   fails (TRIBO_ERR_INTEGRATOR) naming it. On a chute of finite length (model.md §9) the
+   advance that carries the particle past its end stops there, exactly at the crossing, and
+   returns TRIBO_ENDED. */
 tribo_status tribo_advance(tribo_model *model, double t);
 #define TRIBO_TIME_MAX 1e12
 /* tribo_advance to t, going on after each early stop (for a caller that needs no bound on
-   the work of one call, e.g. a batch run). */
+   the work of one call, e.g. a batch run); TRIBO_ENDED if the particle leaves the chute. */
 tribo_status tribo_advance_fully(tribo_model *model, double t);
 
 /* Change a tunable parameter (model.md §1: mu, nu, eta, tau0, tau_r, Sigma0) from the
-   current time on. Structural and fixed parameters are rejected. */
+   current time on. Structural and fixed parameters are rejected, and so is any change once
+   the run has ended (TRIBO_ENDED). */
 tribo_status tribo_set_param(tribo_model *model, const char *name, double value);
 
 /* The inputs (quantities.def: the external force along and normal to the plate,
@@ -187,6 +200,7 @@ typedef enum tribo_input {
 #include "quantities.def"
     TRIBO_INPUT_COUNT
 } tribo_input;
+/* (A change once the run has ended is refused, TRIBO_ENDED.) */
 tribo_status tribo_set_inputs(tribo_model *model, const double values[TRIBO_INPUT_COUNT]);
 /* The same for the two components of the external force. */
 tribo_status tribo_set_external_force(tribo_model *model, double F_T, double F_N);

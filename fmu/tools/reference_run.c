@@ -4,7 +4,7 @@
  *
  *   set NAME VALUE     a scene parameter, before `create`
  *   create             the instance, from the scene so far (defaults otherwise)
- *   advance T          tribo_advance to core time T
+ *   advance T          tribo_advance to core time T (on a chute it may end before)
  *   param NAME VALUE   tribo_set_param (a tunable, mid-run)
  *   force F_T F_N      tribo_set_external_force
  *   print              one JSON line: every quantity by its tribo_quantity_name
@@ -115,7 +115,7 @@ int main(void)
         } else {
             return fail("unknown command", cmd);
         }
-        if (st != TRIBO_OK)
+        if (st != TRIBO_OK && st != TRIBO_ENDED) /* (the run may end on a chute) */
             return fail(cmd, tribo_last_error(m));
     }
     tribo_free(m);

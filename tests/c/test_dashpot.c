@@ -281,6 +281,7 @@ static tribo_dyn_params params_of(const tribo_scene *s)
     p.damping_point = s->damping_point;
     p.rtol = s->rtol;
     p.atol = s->atol;
+    p.chute_length = s->chute_length;
     return p;
 }
 

@@ -20,6 +20,7 @@ static tribo_dyn_params params(double eps, double mu, double nu)
     p.g_t = p.g_n = 1e-3 * sqrt(0.5);
     p.inv_inertia = 4.0 / (1.0 + eps * eps);
     p.v_reg = 1e-6;
+    p.chute_length = INFINITY;
     return p;
 }
 

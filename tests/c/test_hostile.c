@@ -348,8 +348,10 @@ Test(hostile, every_parameter_at_the_ends_of_its_range_computes, .timeout = 240)
                 /* a short run: at most ~1e5 fixed steps */
                 const double t = fmin(1.0, 1e5 * s.dt);
                 const tribo_status st = tribo_advance(m, t);
-                cr_expect(st == TRIBO_OK || st == TRIBO_INCOMPLETE, "%s = %g, integrator %d: %s",
-                          p->name, v, s.integrator, tribo_last_error(m));
+                /* (the shortest chute ends the run at once) */
+                cr_expect(st == TRIBO_OK || st == TRIBO_INCOMPLETE || st == TRIBO_ENDED,
+                          "%s = %g, integrator %d: %s", p->name, v, s.integrator,
+                          tribo_last_error(m));
                 cr_expect(outputs_finite(m), "%s = %g, integrator %d", p->name, v, s.integrator);
                 tribo_free(m);
             }

@@ -28,7 +28,8 @@ static int bad_values(const tribo_param_info *p, double *out)
 {
     int n = 0;
     out[n++] = NAN;
-    out[n++] = INFINITY;
+    if (!(p->max == INFINITY && p->max_inclusive)) /* a closed infinite bound admits it */
+        out[n++] = INFINITY;
     out[n++] = -INFINITY;
     if (isfinite(p->min))
         out[n++] = p->min_inclusive ? p->min - fmax(1e-9, fabs(p->min) * 1e-9) - (p->type != TRIBO_TYPE_REAL ? 1 : 0) : p->min;

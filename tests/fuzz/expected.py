@@ -3,7 +3,9 @@ return (the FMI standard's state machines, and fmu/README.md: a refused call cha
 nothing and the instance stays usable) and the state it leaves the instance in.
 
 Where the FMU may choose, the model accepts each choice it may make: a step that spends
-the work limit ends early (Discard, or an early return where allowed)."""
+the work limit ends early (Discard, or an early return where allowed), and one in which the
+particle leaves the chute ends the run there (Discard with fmi2Terminated; FMI 3.0 OK with
+terminateSimulation)."""
 
 import copy
 import math
@@ -11,6 +13,7 @@ import os
 import xml.etree.ElementTree as ET
 
 from fmi_calls import DISCARD, ERROR, OK, function_type
+from front_ends import front_end_of
 
 INSTANTIATED = "Instantiated"
 CONFIGURATION = "Configuration Mode"
@@ -19,8 +22,9 @@ STEP = "Step Mode"
 DISCARDED = "Step Discarded"  # FMI 2.0's stepFailed
 TERMINATED = "Terminated"
 FAILED = "failed"
+EXITED = "Exited"  # the particle left the chute: the run is over
 
-READABLE = {INITIALIZATION, STEP, DISCARDED, TERMINATED, FAILED}  # outputs from here on
+READABLE = {INITIALIZATION, STEP, DISCARDED, TERMINATED, FAILED, EXITED}  # outputs from here on
 TIME_MAX = 1e12  # beyond it the core refuses (src/tribo.h)
 GRID_MAX_STEPS = 2.0**45  # the fixed step's grid (src/integrator_fixed_step.c)
 
@@ -52,12 +56,17 @@ class Variable:
         self.max = float(attributes.get("max", math.inf))
         self.start = float(attributes.get("start", 0.0))
         self.dimension = v.dimensions[0].valueReference if v.dimensions else None
+        # a real parameter without a max takes the infinity too (chute_length: no end)
+        self.takes_infinity = not self.is_integer and "max" not in attributes and \
+            self.causality == "parameter"
 
     @property
     def settable(self):
         return self.causality in ("parameter", "structuralParameter", "input")
 
     def valid(self, value):
+        if value == math.inf and self.takes_infinity:
+            return True
         if not math.isfinite(value) or not (self.min <= value <= self.max):
             return False
         return not self.is_integer or value == math.floor(value)
@@ -71,6 +80,8 @@ class Model:
         self.variables = [Variable(v, version, attributes[v.valueReference])
                           for v in md.modelVariables]
         self.by_vr = {v.vr: v for v in self.variables}
+        # the dimensionless model's variables, or the SI front end's (front_ends.py)
+        self.front = front_end_of(md.coSimulation.modelIdentifier)
         self.reset()
 
     def reset(self):
@@ -84,6 +95,22 @@ class Model:
         return other
 
     # ---- values ------------------------------------------------------------------------
+
+    def scene_valid(self):
+        """Whether the parameters, each valid, also go together (the core's combinations:
+        the drop lies on the chute; the SI FMU's: what they derive is in the model's
+        ranges). Otherwise the model cannot be made: initialization and the outputs are
+        refused."""
+        return self.front.scene_valid(self.values)
+
+    def time_scale(self):
+        """The FMU's unit of time per unit of the model's: the fuzz suite's steps are sized in
+        the model's units (an SI FMU's second is ~10^6 of them)."""
+        return self.front.time_unit(self.values)
+
+    def initialization_valid(self):
+        """Whether initialization ends: the scene makes a model and it takes the inputs."""
+        return self.scene_valid() and self.front.inputs_valid(self.values)
 
     def count(self, v):
         return int(self.values[self.by_vr[v.dimension].name]) if v.dimension is not None else 1
@@ -111,8 +138,11 @@ class Model:
         variables = self._resolved(ftype, vrs, n_values)
         if variables is None:
             return {ERROR}
-        if any(v.causality == "output" for v in variables):
+        # outputs and calculated parameters are computed from Initialization Mode on
+        if any(v.causality in ("output", "calculatedParameter") for v in variables):
             if self.lifecycle not in READABLE:
+                return {ERROR}
+            if self.lifecycle == INITIALIZATION and not self.scene_valid():
                 return {ERROR}
             if self.lifecycle == FAILED:  # an output the failure left not finite is refused
                 return {OK, ERROR}
@@ -125,6 +155,10 @@ class Model:
             return ERROR, None
         for v, value in zip(variables, values):
             if not v.settable or not v.valid(float(value)) or not self._settable_now(v):
+                return ERROR, None
+            # the running model must take it too (the SI front end's conversion)
+            if self.lifecycle == STEP and \
+                    not self.front.accepts_while_running(v.name, float(value), self.values):
                 return ERROR, None
         return OK, list(zip(variables, values))
 
@@ -154,26 +188,37 @@ class Model:
             return ERROR
         if self.stop is not None and end > self.stop + rounding_tolerance(self.stop):
             return ERROR
-        core_end = max(end - self.start, self.core_time)
+        core_end = max((end - self.start) / self.front.time_unit(self.values), self.core_time)
         if core_end > TIME_MAX:
             return ERROR
         if self.values["integrator"] == 0 and not core_end / self.values["dt"] < GRID_MAX_STEPS:
             return ERROR
         return None
 
-    def step_allowed(self, status, early, current, h, reached):
+    def step_allowed(self, status, early, current, h, reached, terminate=False):
         """Whether a computed step's answer is one the FMU may give; updates the model. A
         failure of the core is one (an error, with its reason logged): the instance then
-        only resets or restores a state."""
+        only resets or restores a state. So is the end of the run, where the particle leaves
+        the chute: FMI 2.0 Discard, FMI 3.0 OK with an early return where allowed, at the
+        exit time."""
         end = current + h
         if status == ERROR:
             self.lifecycle = FAILED
+            return True
+        if terminate:
+            if (status, early) != ((DISCARD, False) if self.version == 2 else (OK, self.early_return)):
+                return False
+            if not (min(current, self.time) <= reached <= end):
+                return False
+            self.time = reached
+            self.core_time = (reached - self.start) / self.front.time_unit(self.values)
+            self.lifecycle = EXITED
             return True
         if status == OK and not early:
             if reached != end:
                 return False
             self.time = end
-            self.core_time = max(end - self.start, self.core_time)
+            self.core_time = max((end - self.start) / self.front.time_unit(self.values), self.core_time)
             return True
         ended_early = (status == OK and early and self.early_return) or \
             (status == DISCARD and not early)
@@ -182,7 +227,7 @@ class Model:
         if not ended_early or not (min(current, self.time) <= reached < end):
             return False
         self.time = reached
-        self.core_time = reached - self.start
+        self.core_time = (reached - self.start) / self.front.time_unit(self.values)
         if status == DISCARD and self.version == 2:
             self.lifecycle = DISCARDED
         return True

@@ -3,7 +3,7 @@ FMI status (fmpy would raise), and each value is passed in the C type of the fun
 that takes it. The variables and their types come from the modelDescription, the C types
 from fmpy's prototypes, so that the suite follows a change of types there."""
 
-from ctypes import byref, c_bool, c_double, c_size_t, c_void_p
+from ctypes import byref, c_bool, c_double, c_int, c_size_t, c_void_p
 
 # instantiation and the importer's logger: the package's driver
 from tribo.fmu import DISCARD, ERROR, FATAL, OK, WARNING  # noqa: F401
@@ -75,16 +75,17 @@ class Instance:
         return self._call("Reset")
 
     def do_step(self, t, h):
-        """(status, the last successful time, early return)"""
+        """(status, the last successful time, early return, the FMU asks to terminate)"""
         if self.version == 2:
             status = self._call("DoStep", t, h, 1)
-            reached = c_double(float("nan"))
+            reached, terminated = c_double(float("nan")), c_int(0)
             self._call("GetRealStatus", 2, byref(reached))  # fmi2LastSuccessfulTime
-            return status, reached.value, False
+            self._call("GetBooleanStatus", 3, byref(terminated))  # fmi2Terminated
+            return status, reached.value, False, bool(terminated.value)
         event, terminate, early, reached = c_bool(), c_bool(), c_bool(), c_double(float("nan"))
         status = self._call("DoStep", t, h, True, byref(event), byref(terminate), byref(early),
                             byref(reached))
-        return status, reached.value, early.value
+        return status, reached.value, early.value, terminate.value
 
     # ---- values ------------------------------------------------------------------------
 

@@ -28,8 +28,8 @@ import zipfile
 # modules import as they are
 from fmpy import read_model_description
 
-from expected import (CONFIGURATION, DISCARDED, FAILED, INITIALIZATION, INSTANTIATED,
-                      READABLE, STEP, TERMINATED, Model)
+from expected import (CONFIGURATION, DISCARDED, EXITED, FAILED, INITIALIZATION,
+                      INSTANTIATED, READABLE, STEP, TERMINATED, Model)
 from fmi_calls import DISCARD, ERROR, OK, Instance
 from values import (UNKNOWN_VRS, communication_point, experiment, hostile_value, step_size,
                     valid_value)
@@ -76,6 +76,7 @@ class Fuzzer:
         self.log = []
         self.core_failures = []
         self.slow_steps = []
+        self.exits = 0  # steps in which the particle left the chute
 
     # ---- one call, checked ------------------------------------------------------------
 
@@ -92,9 +93,11 @@ class Fuzzer:
         parameter and input the value the model holds."""
         if model.lifecycle not in READABLE or model.lifecycle == FAILED:
             return
+        if model.lifecycle == INITIALIZATION and not model.scene_valid():
+            return  # no model can be made of these parameters: the outputs are refused
         by_type = {}
         for v in model.variables:
-            if v.causality in ("output", "parameter", "structuralParameter", "input"):
+            if v.causality in ("output", "calculatedParameter", "parameter", "structuralParameter", "input"):
                 by_type.setdefault(v.ftype, []).append(v)
         for ftype, variables in by_type.items():
             counts = [model.count(v) for v in variables]
@@ -105,9 +108,12 @@ class Fuzzer:
             for v, n in zip(variables, counts):
                 mine = values[at:at + n]
                 at += n
-                if v.causality == "output" and not all(math.isfinite(x) for x in mine):
+                computed = v.causality in ("output", "calculatedParameter")
+                # (a calculated parameter may be INF: the SI FMU's chute length in units of a)
+                if computed and not all(math.isfinite(x) or (x == math.inf and v.causality != "output")
+                                        for x in mine):
                     raise Finding(f"{v.name} = {mine[:4]} is not finite after OK")
-                if v.causality != "output" and float(mine[0]) != model.values[v.name]:
+                if not computed and float(mine[0]) != model.values[v.name]:
                     raise Finding(f"{v.name} reads {mine[0]}, set {model.values[v.name]}")
 
     # ---- the operations of a sequence -------------------------------------------------
@@ -177,7 +183,8 @@ class Fuzzer:
             self.check_outputs(inst, model)
         if self.rng.random() < 0.9:
             status = self.call("exitInitializationMode", inst.exit_initialization)
-            self.expect("exitInitializationMode", status, {OK if model.lifecycle == INITIALIZATION else ERROR})
+            self.expect("exitInitializationMode", status,
+                        {OK if model.lifecycle == INITIALIZATION and model.initialization_valid() else ERROR})
             if status == OK:
                 model.lifecycle = STEP
 
@@ -199,7 +206,7 @@ class Fuzzer:
         what = f"doStep({current!r}, {h!r})"
         refused = model.expect_step(current, h)
         started = time.monotonic()
-        status, reached, early = self.call(what, inst.do_step, current, h)
+        status, reached, early, terminate = self.call(what, inst.do_step, current, h)
         if time.monotonic() - started > 1.0:  # for the summary: what the slow steps were
             self.slow_steps.append({"call": what, "seconds": round(time.monotonic() - started, 2),
                                     "values": dict(model.values)})
@@ -208,9 +215,11 @@ class Fuzzer:
             return
         changed = {k: v for k, v in model.values.items()
                    if v != next(x.start for x in model.variables if x.name == k)}
-        if not model.step_allowed(status, early, current, h, reached):
-            raise Finding(f"{what}: status {status}, reached {reached!r}, early return {early}: "
+        if not model.step_allowed(status, early, current, h, reached, terminate):
+            raise Finding(f"{what}: status {status}, reached {reached!r}, early return {early}, "
+                          f"terminate {terminate}: "
                           f"{inst.errors()[-1:]}; parameters and inputs changed: {changed}")
+        self.exits += model.lifecycle == EXITED
         if status == ERROR:  # the core failed, and said why
             if not inst.errors() or "failed" not in inst.errors()[-1]:
                 raise Finding(f"{what}: an error without its reason")
@@ -221,7 +230,7 @@ class Fuzzer:
 
     def op_terminate(self, inst, model):
         status = self.call("terminate", inst.terminate)
-        self.expect("terminate", status, {OK if model.lifecycle in (STEP, DISCARDED) else ERROR})
+        self.expect("terminate", status, {OK if model.lifecycle in (STEP, DISCARDED, EXITED) else ERROR})
         if status == OK:
             model.lifecycle = TERMINATED
 
@@ -267,6 +276,7 @@ class Fuzzer:
             INITIALIZATION: [("set", 2), ("init", 2), ("get", 2), ("state", 1), ("step", 1)],
             STEP: [("step", 8), ("set", 3), ("get", 2), ("state", 2), ("terminate", 1), ("reset", 1)],
             DISCARDED: [("step", 1), ("state", 3), ("terminate", 1), ("reset", 1), ("get", 1), ("set", 1)],
+            EXITED: [("step", 1), ("state", 2), ("terminate", 1), ("reset", 1), ("get", 1), ("set", 1)],
             TERMINATED: [("reset", 2), ("get", 1), ("state", 1), ("step", 1), ("set", 1)],
             FAILED: [("reset", 2), ("state", 2), ("get", 1), ("step", 1)],
         }
@@ -276,6 +286,13 @@ class Fuzzer:
                 v = next(x for x in model.variables if x.name == "work_limit")
                 value = self.rng.choice([1, 50, 1000, 20000])
                 what = f"set{v.ftype} work_limit = {value}"
+                self.expect(what, self.call(what, inst.set, v.ftype, [v.vr], [value]), {OK})
+                model.apply([(v, value)])
+            if self.rng.random() < 0.2:
+                # a chute the drop reaches: runs that end where the particle leaves it
+                v = next(x for x in model.variables if x.name == "chute_length")
+                value = self.rng.choice([0.05, 2.0])
+                what = f"set{v.ftype} chute_length = {value}"
                 self.expect(what, self.call(what, inst.set, v.ftype, [v.vr], [value]), {OK})
                 model.apply([(v, value)])
             for _ in range(length):
@@ -300,7 +317,8 @@ class Fuzzer:
         Step Mode, Initialization Mode, Instantiated, and (FMI 2.0) a discarded step."""
         scenes = [{"integrator": 0}, {"integrator": 1}, {"integrator": 2}, {"integrator": 1, "mu": 1.0, "nu": 1.0},
                   {"integrator": 0, "work_limit": 50, "discard": True}, {"lifecycle": INITIALIZATION},
-                  {"lifecycle": INSTANTIATED}]
+                  {"lifecycle": INSTANTIATED}, {"integrator": 1, "chute_length": 0.01},
+                  {"integrator": 0, "chute_length": 0.01}]
         for scene in scenes[:count]:
             inst = Instance(self.fmu_dir, self.version)
             model = Model(inst.md, self.fmu_dir, self.version, False)
@@ -316,9 +334,10 @@ class Fuzzer:
                 if scene.get("lifecycle") != INITIALIZATION:
                     assert inst.exit_initialization() == OK
                     model.lifecycle = STEP
-                    status, reached, _ = inst.do_step(0.0, 2.00037)
+                    h = 2.00037 * model.time_scale()
+                    status, reached, _, terminate = inst.do_step(0.0, h)
                     assert status in (OK, DISCARD), inst.errors()
-                    model.step_allowed(status, False, 0.0, 2.00037, reached)
+                    model.step_allowed(status, False, 0.0, h, reached, terminate)
             yield inst, model
 
     def mutations(self, data, per_field):
@@ -368,18 +387,19 @@ class Fuzzer:
                 if self.call("snapshot", inst.snapshot) != original:
                     raise Finding(f"{what}: refused, but the instance changed")
                 continue
-            self.accepted(inst, what)
+            self.accepted(inst, what, model.time_scale())
             restore, state = self.call("deserialize", inst.deserialize, original)
             self.expect("deserialize the original", restore, {OK})
             self.expect("setFMUState the original", self.call("setFMUState", inst.set_state, state), {OK})
             inst.free_state(state)
         # and the instance is still usable
         if model.lifecycle == STEP:
-            status, _, _ = self.call("doStep after the mutations", inst.do_step, model.time, 0.5)
+            status, _, _, _ = self.call("doStep after the mutations", inst.do_step, model.time,
+                                        0.5 * model.time_scale())
             self.expect("doStep after the mutations", status, {OK, DISCARD})
         return count
 
-    def accepted(self, inst, what):
+    def accepted(self, inst, what, time_scale):
         """A mutated state the FMU took: its outputs are numbers, and a step from it is
         computed or refused, never answered with a non-finite output."""
         mutated = Model(inst.md, self.fmu_dir, self.version, False)
@@ -389,7 +409,7 @@ class Fuzzer:
                 if status == OK and not math.isfinite(values[0]):
                     raise Finding(f"{what}: accepted with {v.name} = {values[0]}")
         status, t = self.call("get time", inst.get, "Real" if self.version == 2 else "Float64", [0], 1)
-        status, _, _ = self.call(f"doStep after {what}", inst.do_step, t[0], 0.1)
+        status, _, _, _ = self.call(f"doStep after {what}", inst.do_step, t[0], 0.1 * time_scale)
         if status == OK:
             for v in mutated.variables:
                 if v.causality == "output" and not v.dimension:
@@ -443,6 +463,7 @@ def main():
                "seconds": round(time.monotonic() - started, 1),
                "slowest_call_seconds": round(dog.slowest, 3),
                "core_failures": fuzzer.core_failures, "slow_steps": fuzzer.slow_steps,
+               "exits": fuzzer.exits,
                "findings": findings}
     if args.json:
         with open(args.json, "w") as f:

@@ -10,11 +10,13 @@ UINT_LIMITS = {"UInt8": 8, "UInt16": 16, "UInt32": 32, "UInt64": 64}
 
 # valid values that make a run cheap, for the parameters that set its cost; the others take
 # any value of their range
-CHEAP = {"n_segments": [16, 64, 500, 2000], "dt": [1e-3, 8e-5, 0.1], "work_limit": [1, 50, 1000, 100000, 1000000]}
+CHEAP = {"n_segments": [16, 64, 500, 2000], "dt": [1e-3, 8e-5, 0.1], "work_limit": [1, 50, 1000, 100000, 1000000],
+         # mostly no end; else one the drop may reach (or start beyond: refused at initialization)
+         "chute_length": [math.inf, math.inf, 1e6, 2.0, 0.05, 5e-324]}
 # the expensive ends of those ranges, now and then
 COSTLY = {"n_segments": [100000], "dt": [1e-9], "nu": [1e3]}
 
-UNKNOWN_VRS = [22, 24, 99, 103, 200, 230, 300, 303, 999, 2**31, 2**32 - 1]
+UNKNOWN_VRS = [26, 99, 103, 200, 234, 300, 303, 999, 2**31, 2**32 - 1]
 
 
 def valid_value(rng, v):
@@ -62,7 +64,8 @@ def step_size(rng, model):
     if model.values.get("work_limit", 0) <= 1e6:  # bounded work: long steps end early
         sizes += [40.0, 1e6]
     odd = [0.0, -0.1, math.nan, math.inf, -math.inf, 5e-324, 1e-300, 1e-12, 1e18, 1e300]
-    return rng.choice(odd) if rng.random() < 0.15 else rng.choice(sizes)
+    # an importer's steps in the model's units of time (the SI FMU's: t* seconds)
+    return rng.choice(odd) if rng.random() < 0.15 else rng.choice(sizes) * model.time_scale()
 
 
 def communication_point(rng, model):

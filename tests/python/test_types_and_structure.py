@@ -32,14 +32,15 @@ def project_version():
 @pytest.mark.parametrize("version", VERSIONS)
 def test_flags_are_booleans_and_counts_integers(fmu_dir, version):
     v = variables(fmu_dir, version)
-    for flag in ("in_contact", "slipping"):
+    for flag in ("in_contact", "slipping", "exited"):
         assert (v[flag].type, v[flag].variability) == ("Boolean", "discrete"), flag
-    assert v["assumption_warnings"].type == ("Integer" if version == 2 else "Int32")
-    assert v["assumption_warnings"].variability == "discrete"
+    for count in ("assumption_warnings", "impacts"):
+        assert v[count].type == ("Integer" if version == 2 else "Int32"), count
+        assert v[count].variability == "discrete", count
     assert v["n_segments"].type == ("Integer" if version == 2 else "UInt64")
     # everything else an output is, is a real
     others = {n for n, x in v.items() if x.causality == "output"} - \
-        {"in_contact", "slipping", "assumption_warnings", "motion_class"}
+        {"in_contact", "slipping", "exited", "assumption_warnings", "impacts", "motion_class"}
     assert {v[n].type for n in others} == {"Real" if version == 2 else "Float64"}
 
 

@@ -1,0 +1,48 @@
+/*
+ * param_table.h: a table of parameters (tribo_param_info rows over one struct) and what is
+ * done with one by name, value or string, whichever table it is: the model's scene
+ * (quantities.def, scene.c) or the SI front end's (si_quantities.def, si.c). Internal to the
+ * core.
+ */
+#ifndef TRIBO_PARAM_TABLE_H
+#define TRIBO_PARAM_TABLE_H
+
+#include <stddef.h>
+
+#include "tribo.h"
+
+/* A table's rows as tribo_param_info initialisers: a TRIBO_PARAMETER row of the struct
+   `scene_type`, and a TRIBO_INPUT row (a real, tunable, both ends closed, start 0). */
+#define TRIBO_CLOSED 1
+#define TRIBO_OPEN 0
+#define TRIBO_TYPE_ENUM(enumeration) TRIBO_TYPE_ENUM
+#define TRIBO_PARAM_INFO(scene_type, name_, type_, vr_, unit_, min_, min_end, max_, max_end,     \
+                         start_, variability_, description_)                                    \
+    {.name = #name_, .description = description_, .unit = unit_, .vr = vr_,                    \
+     .offset = offsetof(scene_type, name_), .type = TRIBO_TYPE_##type_, .min = min_,           \
+     .max = max_, .min_inclusive = TRIBO_##min_end, .max_inclusive = TRIBO_##max_end,          \
+     .start = start_, .variability = TRIBO_PARAM_##variability_}
+#define TRIBO_INPUT_INFO(name_, vr_, unit_, min_, max_, description_)                           \
+    {.name = name_, .description = description_, .unit = unit_, .vr = vr_,                     \
+     .type = TRIBO_TYPE_REAL, .min = min_, .max = max_, .min_inclusive = TRIBO_CLOSED,         \
+     .max_inclusive = TRIBO_CLOSED, .start = 0.0, .variability = TRIBO_PARAM_TUNABLE}
+
+typedef struct tribo_param_table_of {
+    const tribo_param_info *rows;
+    size_t n;
+} tribo_param_table_of;
+
+/* Every row at its start value (the rest of the struct zero). */
+void tribo_table_defaults(tribo_param_table_of t, void *scene, size_t scene_size);
+/* The row named `name`, or NULL. */
+const tribo_param_info *tribo_table_find(tribo_param_table_of t, const char *name);
+/* Set `name` to `value` after checking it (tribo_param_check); an unknown name is refused. */
+tribo_status tribo_table_set(tribo_param_table_of t, void *scene, const char *name, double value,
+                             char *msg, size_t msg_size);
+/* "name=value name=value ...", each with tribo_table_set; stops at the first refused. */
+tribo_status tribo_table_apply(tribo_param_table_of t, void *scene, const char *settings, char *msg,
+                               size_t msg_size);
+/* Every row's value checked; the first failure is reported. */
+tribo_status tribo_table_validate(tribo_param_table_of t, const void *scene, char *msg, size_t msg_size);
+
+#endif

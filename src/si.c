@@ -1,0 +1,295 @@
+/* si.c: the SI front end (si.h): its table, the mapping of model.md §8, the checks of what
+   it derives, and the model's outputs in SI units. */
+#include "si.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "geometry.h"
+#include "param_table.h"
+
+static const tribo_param_info PARAMS[] = {
+#define TRIBO_PARAMETER(...) TRIBO_PARAM_INFO(tribo_si_scene, __VA_ARGS__),
+#include "si_quantities.def"
+};
+static const tribo_param_table_of TABLE = {PARAMS, sizeof PARAMS / sizeof PARAMS[0]};
+
+static const tribo_param_info INPUTS[TRIBO_SI_INPUT_COUNT] = {
+#define TRIBO_INPUT(id_, ...) [TRIBO_SI_INPUT_##id_] = TRIBO_INPUT_INFO(__VA_ARGS__),
+#include "si_quantities.def"
+};
+
+void tribo_si_scene_defaults(tribo_si_scene *s) { tribo_table_defaults(TABLE, s, sizeof *s); }
+
+const tribo_param_info *tribo_si_param_table(size_t *count)
+{
+    if (count)
+        *count = TABLE.n;
+    return PARAMS;
+}
+
+const tribo_param_info *tribo_si_param_find(const char *name) { return tribo_table_find(TABLE, name); }
+
+tribo_status tribo_si_scene_set(tribo_si_scene *s, const char *name, double value, char *msg,
+                                size_t msg_size)
+{
+    return tribo_table_set(TABLE, s, name, value, msg, msg_size);
+}
+
+tribo_status tribo_si_scene_apply(tribo_si_scene *s, const char *settings, char *msg, size_t msg_size)
+{
+    return tribo_table_apply(TABLE, s, settings, msg, msg_size);
+}
+
+const tribo_param_info *tribo_si_input_table(size_t *count)
+{
+    if (count)
+        *count = TRIBO_SI_INPUT_COUNT;
+    return INPUTS;
+}
+
+/* ---- the mapping (model.md §8) ---------------------------------------------------------- */
+
+/* How an SI parameter (or input) becomes the model's: as it is, or in the model's units. */
+typedef enum conversion {
+    SAME,    /* dimensionless (or an angle, a choice)          */
+    LENGTH,  /* / a                                            */
+    TIME,    /* / t_star                                       */
+    SPEED,   /* / (a / t_star)                                 */
+    RATE,    /* * t_star                                       */
+    DENSITY, /* |sigma| / sqrt(kappa k' a): the sign is the polarity */
+    FORCE    /* / (k' a): a force per unit length              */
+} conversion;
+
+static double convert(const tribo_si_derived *d, conversion how, double v)
+{
+    switch (how) {
+    case SAME: break;
+    case LENGTH: return v / d->a;
+    case TIME: return v / d->t_star;
+    case SPEED: return v / d->velocity;
+    case RATE: return v * d->t_star;
+    case DENSITY: return fabs(v) / d->sigma_scale;
+    case FORCE: return v / d->force;
+    }
+    return v;
+}
+
+/* Every parameter of the model's scene but Gamma, from one SI parameter. */
+static const struct mapping {
+    const char *si, *model;
+    conversion how;
+} MAP[] = {
+    {"epsilon", "epsilon", SAME},      {"mu", "mu", SAME},
+    {"nu", "nu", SAME},                {"eta", "eta", SAME},
+    {"tilt", "beta", SAME},            {"charging_time", "tau0", TIME},
+    {"backflow_time", "tau_r", TIME},  {"sigma0", "Sigma0", DENSITY},
+    {"chute_length", "chute_length", LENGTH}, {"drop_height", "gap0", LENGTH},
+    {"drop_speed", "drop_speed", SPEED}, {"drop_angle", "drop_angle", SAME},
+    {"x0", "X0", LENGTH},              {"phi0", "phi0", SAME},
+    {"omega0", "Omega0", RATE},        {"n_segments", "n_segments", SAME},
+    {"charge_model", "charge_model", SAME}, {"integrator", "integrator", SAME},
+    {"dt", "dt", SAME},                {"rtol", "rtol", SAME},
+    {"atol", "atol", SAME},            {"v_reg", "v_reg", SAME},
+    {"damping_point", "damping_point", SAME}, {"work_limit", "work_limit", SAME},
+};
+#define N_MAP (sizeof MAP / sizeof MAP[0])
+
+/* "name = value unit" of an SI parameter, appended to buf. */
+static void append_value(char *buf, size_t n, const tribo_si_scene *si, const char *name,
+                         const char *separator)
+{
+    const tribo_param_info *p = tribo_si_param_find(name);
+    const size_t used = strlen(buf);
+    snprintf(buf + used, n > used ? n - used : 0, "%s%s = %.6g%s%s", separator, name,
+             tribo_param_read(si, p), strcmp(p->unit, "1") ? " " : "",
+             strcmp(p->unit, "1") ? p->unit : "");
+}
+
+/* Where the contact stiffness comes from, in words. */
+static void describe_stiffness(char *buf, size_t n, const tribo_si_scene *si, const tribo_si_derived *d)
+{
+    const size_t used = strlen(buf);
+    if (si->contact_stiffness > 0.0) {
+        append_value(buf, n, si, "contact_stiffness", ", ");
+        return;
+    }
+    snprintf(buf + used, n > used ? n - used : 0, ", k' = %.6g N/m2 from ", d->k_prime);
+    append_value(buf, n, si, "youngs_modulus_particle", "");
+    append_value(buf, n, si, "poisson_ratio_particle", ", ");
+    append_value(buf, n, si, "youngs_modulus_wall", ", ");
+    append_value(buf, n, si, "poisson_ratio_wall", ", ");
+}
+
+/* The SI inputs of a derived number: its own SI parameter (if any), and what the unit of its
+   conversion is made of. */
+static void describe_inputs(char *buf, size_t n, const tribo_si_scene *si, const tribo_si_derived *d,
+                            const char *own, conversion how)
+{
+    buf[0] = '\0';
+    if (own)
+        append_value(buf, n, si, own, "");
+    const int time_scale = how == TIME || how == SPEED || how == RATE || how == FORCE;
+    if (how == LENGTH || time_scale || how == DENSITY)
+        append_value(buf, n, si, "semi_major_axis", own ? ", " : "");
+    if (time_scale && how != FORCE) {
+        append_value(buf, n, si, "epsilon", ", ");
+        append_value(buf, n, si, "density", ", ");
+    }
+    if (how == DENSITY)
+        append_value(buf, n, si, "interface_capacitance", ", ");
+    if (time_scale || how == DENSITY)
+        describe_stiffness(buf, n, si, d);
+}
+
+/* Check a derived value against the model's range; on failure, say what made it. */
+static tribo_status check_derived(const tribo_param_info *p, double value, const char *made_of,
+                                  char *msg, size_t msg_size)
+{
+    if (tribo_param_check(p, value, NULL, 0) == TRIBO_OK)
+        return TRIBO_OK;
+    if (msg && msg_size) {
+        char range[128];
+        tribo_param_range_text(p, range, sizeof range);
+        snprintf(msg, msg_size,
+                 "%s = %.6g, the model's parameter derived from %s, is outside the model's "
+                 "valid range %s (docs/model.md §8)",
+                 p->name, value, made_of, range);
+    }
+    return TRIBO_ERR_INVALID_ARGUMENT;
+}
+
+static const struct mapping *mapping_of(const char *si_name)
+{
+    for (size_t i = 0; i < N_MAP; i++)
+        if (strcmp(MAP[i].si, si_name) == 0)
+            return &MAP[i];
+    return NULL;
+}
+
+tribo_status tribo_si_derive(const tribo_si_scene *si, tribo_si_derived *d, char *msg,
+                             size_t msg_size)
+{
+    tribo_status st = tribo_table_validate(TABLE, si, msg, msg_size);
+    if (st != TRIBO_OK)
+        return st;
+    if (!(si->x0 < si->chute_length)) {
+        if (msg && msg_size)
+            snprintf(msg, msg_size,
+                     "x0 = %.15g m is invalid with chute_length = %.15g m: the particle must start "
+                     "before the end of the chute, x0 < chute_length",
+                     si->x0, si->chute_length);
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    }
+    const double a = si->semi_major_axis;
+    memset(d, 0, sizeof *d);
+    d->a = a;
+    d->depth = si->cylinder_length;
+    d->sigma0 = si->sigma0;
+    /* the 2D Hertz load with the paper's contact width (model.md §8) */
+    d->E_star = 1.0 / ((1.0 - si->poisson_ratio_particle * si->poisson_ratio_particle) /
+                           si->youngs_modulus_particle +
+                       (1.0 - si->poisson_ratio_wall * si->poisson_ratio_wall) /
+                           si->youngs_modulus_wall);
+    d->k_prime = si->contact_stiffness > 0.0 ? si->contact_stiffness : (M_PI / 4.0) * d->E_star;
+    d->mass_per_length = si->density * M_PI * a * a * si->epsilon;
+    d->t_star = sqrt(d->mass_per_length / d->k_prime);
+    d->velocity = a / d->t_star;
+    d->force = d->k_prime * a;
+    d->energy = d->k_prime * a * a;
+    d->sigma_scale = sqrt(si->interface_capacitance * d->k_prime * a);
+    d->perimeter = a * tribo_ellipse_perimeter(si->epsilon);
+
+    tribo_scene_defaults(&d->scene);
+    char made_of[400];
+    for (size_t i = 0; i < N_MAP; i++) {
+        const tribo_param_info *model = tribo_param_find(MAP[i].model);
+        const double v = convert(d, MAP[i].how, tribo_param_read(si, tribo_si_param_find(MAP[i].si)));
+        describe_inputs(made_of, sizeof made_of, si, d, MAP[i].si, MAP[i].how);
+        if ((st = check_derived(model, v, made_of, msg, msg_size)) != TRIBO_OK)
+            return st;
+        tribo_param_write(&d->scene, model, v);
+    }
+    /* model.md §8: Gamma = m' g / (k' a) */
+    d->scene.Gamma = d->mass_per_length * si->gravity / d->force;
+    describe_inputs(made_of, sizeof made_of, si, d, "gravity", SPEED);
+    if ((st = check_derived(tribo_param_find("Gamma"), d->scene.Gamma, made_of, msg, msg_size)) != TRIBO_OK)
+        return st;
+    return tribo_scene_validate(&d->scene, msg, msg_size);
+}
+
+tribo_status tribo_si_model_param(const tribo_si_derived *d, const tribo_param_info *p,
+                                  double value, const char **model_name, double *model_value,
+                                  char *msg, size_t msg_size)
+{
+    const struct mapping *map = mapping_of(p->name);
+    if (!map) {
+        if (msg && msg_size)
+            snprintf(msg, msg_size, "%s is not a parameter of the model", p->name);
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    }
+    *model_name = map->model;
+    *model_value = convert(d, map->how, value);
+    char made_of[400];
+    snprintf(made_of, sizeof made_of, "%s = %.6g %s and the set-up's t_star = %.6g s", p->name, value,
+             p->unit, d->t_star);
+    return check_derived(tribo_param_find(map->model), *model_value, made_of, msg, msg_size);
+}
+
+tribo_status tribo_si_model_inputs(const tribo_si_derived *d,
+                                   const double values[TRIBO_SI_INPUT_COUNT],
+                                   double model_values[TRIBO_INPUT_COUNT], char *msg, size_t msg_size)
+{
+    const tribo_param_info *model = tribo_input_table(NULL);
+    for (int i = 0; i < TRIBO_SI_INPUT_COUNT; i++) {
+        if (tribo_param_check(&INPUTS[i], values[i], msg, msg_size) != TRIBO_OK)
+            return TRIBO_ERR_INVALID_ARGUMENT;
+        model_values[i] = convert(d, FORCE, values[i]);
+        char made_of[400];
+        snprintf(made_of, sizeof made_of, "%s = %.6g N/m and the unit of force k' a = %.6g N/m",
+                 INPUTS[i].name, values[i], d->force);
+        const tribo_status st = check_derived(&model[i], model_values[i], made_of, msg, msg_size);
+        if (st != TRIBO_OK)
+            return st;
+    }
+    return TRIBO_OK;
+}
+
+/* ---- what can be read ------------------------------------------------------------------- */
+
+double tribo_si_get(const tribo_si_derived *d, tribo_model *m, tribo_si_quantity q)
+{
+#define Q(id) tribo_get(m, TRIBO_Q_##id)
+    switch (q) {
+#define TRIBO_TIME(id, name, vr, unit, description, value) \
+    case TRIBO_SI_Q_##id: return (value);
+#define TRIBO_OUTPUT(id, name, type, vr, unit, description, value) \
+    case TRIBO_SI_Q_##id: return (value);
+#define TRIBO_CALCULATED(id, name, vr, unit, variability, description, value) \
+    case TRIBO_SI_Q_##id: return (value);
+#include "si_quantities.def"
+    case TRIBO_SI_Q_COUNT: break;
+    }
+#undef Q
+    return NAN;
+}
+
+const char *tribo_si_quantity_name(tribo_si_quantity q)
+{
+    static const char *const names[TRIBO_SI_Q_COUNT] = {
+#define TRIBO_TIME(id, name, ...) [TRIBO_SI_Q_##id] = name,
+#define TRIBO_OUTPUT(id, name, ...) [TRIBO_SI_Q_##id] = name,
+#define TRIBO_CALCULATED(id, name, ...) [TRIBO_SI_Q_##id] = name,
+#include "si_quantities.def"
+    };
+    return (unsigned)q < TRIBO_SI_Q_COUNT ? names[q] : NULL;
+}
+
+double tribo_si_segment_factor(const tribo_si_derived *d, tribo_segment_charge which)
+{
+    /* the static q_i = sigma_i / sigma0; the sliding Sigma_i / Sigma0,ref, Sigma0,ref =
+       |sigma0| / sqrt(kappa k' a) (sigma0 is fixed), so sigma_i = sigma0 Sigma_i / Sigma0,ref */
+    (void)which;
+    return d->sigma0;
+}

@@ -1,0 +1,126 @@
+/*
+ * si.h: the SI front end (docs/model.md §8): a physical set-up in SI units (a particle, a
+ * wall, a chute, the charging constants) mapped onto the model's dimensionless scene, and the
+ * model's outputs in SI units. Its table is si_quantities.def.
+ *
+ * Usage:
+ *   tribo_si_scene si;
+ *   tribo_si_scene_defaults(&si);            // the reference case (si_quantities.def)
+ *   si.chute_length = 0.3;
+ *   tribo_si_derived d;
+ *   char err[512];
+ *   if (tribo_si_derive(&si, &d, err, sizeof err) != TRIBO_OK) { puts(err); ... }
+ *   tribo_model *m = tribo_create(&d.scene, err, sizeof err);
+ *   tribo_advance_fully(m, 1e9);              // to the exit: TRIBO_ENDED
+ *   double q_per_m = tribo_si_get(&d, m, TRIBO_SI_Q_Q_PER_M_STATIC);
+ *
+ * The model is two-dimensional: the particle is a cylinder of elliptical section; totals
+ * are per unit length times the cylinder's depth (cylinder_length).
+ */
+#ifndef TRIBO_SI_H
+#define TRIBO_SI_H
+
+#include "tribo.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Every parameter of the SI table, one field per row of si_quantities.def. */
+typedef struct tribo_si_scene {
+#define TRIBO_PARAMETER(name, type, ...) TRIBO_CTYPE_##type name;
+#include "si_quantities.def"
+} tribo_si_scene;
+
+/* The reference case (si_quantities.def's defaults). */
+void tribo_si_scene_defaults(tribo_si_scene *scene);
+
+/* The SI parameters (their rows, for tribo_param_check, tribo_param_read, messages). */
+const tribo_param_info *tribo_si_param_table(size_t *count);
+const tribo_param_info *tribo_si_param_find(const char *name);
+/* Set one, checked against its range; apply "name=value ..."; each as for tribo_scene_*. */
+tribo_status tribo_si_scene_set(tribo_si_scene *scene, const char *name, double value, char *msg,
+                                size_t msg_size);
+tribo_status tribo_si_scene_apply(tribo_si_scene *scene, const char *settings, char *msg,
+                                  size_t msg_size);
+
+/* The inputs (enum tribo_si_input order), forces per unit length in N/m. */
+typedef enum tribo_si_input {
+#define TRIBO_INPUT(id, ...) TRIBO_SI_INPUT_##id,
+#include "si_quantities.def"
+    TRIBO_SI_INPUT_COUNT
+} tribo_si_input;
+const tribo_param_info *tribo_si_input_table(size_t *count);
+
+/* What a set-up means to the model (model.md §8), and the model's scene. */
+typedef struct tribo_si_derived {
+    double a;               /* semi-major axis, m: the model's unit of length        */
+    double E_star;          /* effective modulus of particle and wall, Pa            */
+    double k_prime;         /* contact stiffness per unit length used, N/m^2         */
+    double mass_per_length; /* m' = rho pi a^2 epsilon, kg/m                         */
+    double t_star;          /* sqrt(m'/k'), s: the model's unit of time              */
+    double velocity;        /* a / t_star, m/s                                       */
+    double force;           /* k' a, N/m: the unit of force per unit length          */
+    double energy;          /* k' a^2, J/m: the unit of energy per unit length       */
+    double sigma_scale;     /* sqrt(kappa k' a), C/m^2: the sliding model's unit of
+                               charge density                                        */
+    double perimeter;       /* a P(epsilon), m: the boundary of the section          */
+    double depth;           /* the cylinder's depth l, m                             */
+    double sigma0;          /* C/m^2, its sign the polarity                          */
+    tribo_scene scene;      /* the model's scene                                     */
+} tribo_si_derived;
+
+/* Derive: every SI value in its range, the drop on the chute, and every parameter of the
+   model's scene in the model's range. A failure (TRIBO_ERR_INVALID_ARGUMENT) names the SI
+   variable, its value and its range, or, for a derived parameter, the model's parameter,
+   its value and range, and the SI inputs (with their values) that made it. */
+tribo_status tribo_si_derive(const tribo_si_scene *si, tribo_si_derived *d, char *msg,
+                             size_t msg_size);
+
+/* A tunable SI parameter's new value as the model's parameter it sets (the same conversion
+   as tribo_si_derive), checked against the model's range as there. */
+tribo_status tribo_si_model_param(const tribo_si_derived *d, const tribo_param_info *p,
+                                  double value, const char **model_name, double *model_value,
+                                  char *msg, size_t msg_size);
+
+/* The SI inputs as the model's inputs (forces in units of k' a), checked as there. */
+tribo_status tribo_si_model_inputs(const tribo_si_derived *d,
+                                   const double values[TRIBO_SI_INPUT_COUNT],
+                                   double model_values[TRIBO_INPUT_COUNT], char *msg,
+                                   size_t msg_size);
+
+/* What can be read: the time, the outputs and the calculated parameters. */
+typedef enum tribo_si_quantity {
+#define TRIBO_TIME(id, ...) TRIBO_SI_Q_##id,
+#define TRIBO_OUTPUT(id, ...) TRIBO_SI_Q_##id,
+#define TRIBO_CALCULATED(id, ...) TRIBO_SI_Q_##id,
+#include "si_quantities.def"
+    TRIBO_SI_Q_COUNT
+} tribo_si_quantity;
+
+/* A quantity of an instance of the derived scene (m may be NULL for the calculated
+   parameters, which depend on the set-up alone). */
+double tribo_si_get(const tribo_si_derived *d, tribo_model *m, tribo_si_quantity q);
+const char *tribo_si_quantity_name(tribo_si_quantity q);
+
+/* The per-segment arrays in C/m^2: the model's (tribo_get_segment_charges) times this. */
+double tribo_si_segment_factor(const tribo_si_derived *d, tribo_segment_charge which);
+
+/* The charge per unit length of the cylinder, C/m, of a mean charge density over its
+   boundary (model.md §8: Q' = (a P(epsilon) / N) sum sigma_i). */
+static inline double tribo_si_charge_per_length(const tribo_si_derived *d, double sigma_mean)
+{
+    return d->perimeter * sigma_mean;
+}
+
+/* A density of the sliding model in C/m^2 (model.md §8: sign(sigma0) Sigma sqrt(kappa k' a)). */
+static inline double tribo_si_sliding_density(const tribo_si_derived *d, double Sigma)
+{
+    return (d->sigma0 < 0.0 ? -1.0 : 1.0) * Sigma * d->sigma_scale;
+}
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

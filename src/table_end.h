@@ -1,0 +1,11 @@
+/* table_end.h: the end of a table (see table_rows.h): every row macro is undefined again. */
+#undef TRIBO_PARAMETER
+#undef TRIBO_TIME
+#undef TRIBO_INPUT
+#undef TRIBO_OUTPUT
+#undef TRIBO_CALCULATED
+#undef TRIBO_SEGMENTS
+#undef TRIBO_UNIT
+#undef TRIBO_DISPLAY_UNIT
+#undef TRIBO_ENUMERATION
+#undef TRIBO_ENUM_ITEM

@@ -1,0 +1,204 @@
+/* The SI front end (docs/model.md §8, src/si.h): the mapping onto the model's scene, the
+   refusal of every SI value out of range and of every set-up whose derived parameters leave
+   the model's ranges (naming what made them), and the outputs as the model's in SI units. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "geometry.h"
+#include "si.h"
+#include "support.h"
+
+static tribo_si_scene si_of(const char *settings)
+{
+    tribo_si_scene s;
+    char err[512];
+    tribo_si_scene_defaults(&s);
+    cr_assert_eq(tribo_si_scene_apply(&s, settings, err, sizeof err), TRIBO_OK, "%s", err);
+    return s;
+}
+
+static tribo_si_derived derived_of(const tribo_si_scene *s)
+{
+    tribo_si_derived d;
+    char err[512];
+    cr_assert_eq(tribo_si_derive(s, &d, err, sizeof err), TRIBO_OK, "%s", err);
+    return d;
+}
+
+static int close_to(double a, double b, double rel) { return fabs(a - b) <= rel * fabs(b); }
+
+Test(si, the_reference_case_maps_as_model_md_section_8_says)
+{
+    /* 1 mm polyethylene (a = 0.5 mm, eps 0.6, 950 kg/m3, E 1 GPa, nu 0.46) on steel (200 GPa,
+       0.29): the numbers worked by hand (Python, the formulas of model.md §8) */
+    const tribo_si_scene s = si_of("");
+    const tribo_si_derived d = derived_of(&s);
+    cr_expect(close_to(d.E_star, 1261066648.0028803, 1e-13), "E* %.17g", d.E_star);
+    cr_expect(close_to(d.k_prime, 990439429.2632385, 1e-13), "k' %.17g", d.k_prime);
+    cr_expect(close_to(d.mass_per_length, 4.4767695313654553e-4, 1e-13), "m' %.17g", d.mass_per_length);
+    cr_expect(close_to(d.t_star, 6.723081994145245e-07, 1e-13), "t* %.17g", d.t_star);
+    cr_expect(close_to(d.scene.Gamma, 8.8682069403e-09, 1e-10), "Gamma %.17g", d.scene.Gamma);
+    cr_expect(close_to(d.scene.tau0, 1487.4130657202218, 1e-13), "tau0 %.17g", d.scene.tau0);
+    cr_expect_eq(d.scene.tau_r, d.scene.tau0);
+    cr_expect_eq(d.scene.gap0, 0.01 / 5e-4);
+    cr_expect_eq(d.scene.beta, s.tilt);
+    cr_expect_eq(d.scene.chute_length, INFINITY);
+    cr_expect(close_to(d.sigma_scale, sqrt(s.interface_capacitance * d.k_prime * 5e-4), 1e-15));
+    cr_expect(close_to(d.scene.Sigma0, 1e-5 / d.sigma_scale, 1e-15));
+    cr_expect_eq(d.perimeter, 5e-4 * tribo_ellipse_perimeter(0.6));
+    /* the dimensionless choices pass through */
+    cr_expect_eq(d.scene.n_segments, 2000);
+    cr_expect_eq(d.scene.integrator, TRIBO_INTEGRATOR_CVODE);
+    cr_expect_eq(d.scene.charge_model, TRIBO_CHARGE_BOTH);
+    /* a stiffness given directly wins over the moduli */
+    tribo_si_scene k = si_of("contact_stiffness=2e9");
+    const tribo_si_derived dk = derived_of(&k);
+    cr_expect_eq(dk.k_prime, 2e9);
+    cr_expect(close_to(dk.t_star, sqrt(dk.mass_per_length / 2e9), 1e-15));
+}
+
+Test(si, the_shared_dimensionless_parameters_are_the_models)
+{
+    /* the SI table repeats the model's own parameters: same type, range and variability */
+    size_t n;
+    const tribo_param_info *si = tribo_si_param_table(&n);
+    int shared = 0;
+    for (size_t i = 0; i < n; i++) {
+        const tribo_param_info *model = tribo_param_find(si[i].name);
+        if (!model || strcmp(si[i].unit, model->unit) != 0)
+            continue; /* chute_length: metres against units of a */
+        shared++;
+        cr_expect(si[i].type == model->type && si[i].min == model->min && si[i].max == model->max &&
+                      si[i].min_inclusive == model->min_inclusive &&
+                      si[i].max_inclusive == model->max_inclusive &&
+                      si[i].variability == model->variability,
+                  "%s differs from the model's", si[i].name);
+    }
+    cr_expect_eq(shared, 15);
+}
+
+Test(si, every_si_value_out_of_range_is_refused_with_its_message)
+{
+    size_t n;
+    const tribo_param_info *table = tribo_si_param_table(&n);
+    for (size_t i = 0; i < n; i++) {
+        const tribo_param_info *p = &table[i];
+        const double below = p->min_inclusive ? nextafter(p->min, -INFINITY) - (p->type != TRIBO_TYPE_REAL)
+                                              : p->min;
+        tribo_si_scene s;
+        tribo_si_scene_defaults(&s);
+        tribo_param_write(&s, p, below);
+        tribo_si_derived d;
+        char err[512] = "";
+        cr_expect_eq(tribo_si_derive(&s, &d, err, sizeof err), TRIBO_ERR_INVALID_ARGUMENT, "%s", p->name);
+        char range[128];
+        tribo_param_range_text(p, range, sizeof range);
+        cr_expect(strstr(err, p->name) == err && strstr(err, range), "%s: '%s'", p->name, err);
+    }
+}
+
+/* A set-up refused, with the words its message must hold. */
+static void expect_refused(const char *settings, const char *const *words)
+{
+    tribo_si_scene s = si_of(settings);
+    tribo_si_derived d;
+    char err[600] = "";
+    cr_expect_eq(tribo_si_derive(&s, &d, err, sizeof err), TRIBO_ERR_INVALID_ARGUMENT, "%s", settings);
+    for (int i = 0; words[i]; i++)
+        cr_expect(strstr(err, words[i]) != NULL, "%s: '%s' lacks '%s'", settings, err, words[i]);
+}
+
+Test(si, a_derived_parameter_out_of_the_models_range_names_what_made_it)
+{
+    /* a grain so small and stiff that its weight is beyond the model's smallest Gamma */
+    expect_refused("semi_major_axis=1e-7 youngs_modulus_particle=1e13 youngs_modulus_wall=1e13",
+                   (const char *const[]){"Gamma = ", "valid range 1e-12 <= Gamma <= 10",
+                                         "semi_major_axis = 1e-07 m", "density = 950 kg/m3",
+                                         "gravity = 9.81 m/s2", "youngs_modulus_particle = 1e+13 Pa",
+                                         "poisson_ratio_wall = 0.29", NULL});
+    /* so soft that it would sink: Gamma above 10 */
+    expect_refused("semi_major_axis=1 density=1e5 youngs_modulus_particle=1e3 youngs_modulus_wall=1e3",
+                   (const char *const[]){"Gamma = ", "<= 10", NULL});
+    /* a charging time beyond the model's 1e9 t_star (t_star = 0.67 us) */
+    expect_refused("charging_time=1e6",
+                   (const char *const[]){"tau0 = ", "charging_time = 1e+06 s", "semi_major_axis", NULL});
+    /* no polarity, no charge: Sigma0 = 0 */
+    expect_refused("sigma0=0", (const char *const[]){"Sigma0 = 0", "sigma0 = 0 C/m2",
+                                                     "interface_capacitance", NULL});
+    /* the given stiffness is named as given */
+    expect_refused("contact_stiffness=1e15 semi_major_axis=1e-7",
+                   (const char *const[]){"the model's parameter derived from",
+                                         "contact_stiffness = 1e+15 N/m2", NULL});
+    /* a drop too fast for the model (more than 10 a / t_star; a / t_star = 23 m/s for E = 1 MPa) */
+    expect_refused("drop_speed=1000 youngs_modulus_particle=1e6",
+                   (const char *const[]){"drop_speed = ", "drop_speed = 1000 m/s", "youngs_modulus_particle = 1e+06 Pa", NULL});
+    /* a start beyond the chute's end */
+    expect_refused("chute_length=0.3 x0=0.5", (const char *const[]){"x0 = 0.5 m", "chute_length = 0.3", NULL});
+    expect_refused("x0=999", (const char *const[]){"X0 = ", "x0 = 999 m", NULL});
+}
+
+Test(si, tunables_and_inputs_convert_as_the_set_up_does)
+{
+    const tribo_si_scene s = si_of("charging_time=2e-3");
+    const tribo_si_derived d = derived_of(&s);
+    const char *name;
+    double v;
+    char err[512];
+    cr_assert_eq(tribo_si_model_param(&d, tribo_si_param_find("charging_time"), 2e-3, &name, &v, err, sizeof err),
+                 TRIBO_OK, "%s", err);
+    cr_expect(strcmp(name, "tau0") == 0 && v == d.scene.tau0, "%s = %.17g", name, v);
+    cr_assert_eq(tribo_si_model_param(&d, tribo_si_param_find("mu"), 0.7, &name, &v, err, sizeof err), TRIBO_OK);
+    cr_expect(strcmp(name, "mu") == 0 && v == 0.7);
+    cr_expect_eq(tribo_si_model_param(&d, tribo_si_param_find("backflow_time"), 1e-20, &name, &v, err, sizeof err),
+                 TRIBO_ERR_INVALID_ARGUMENT);
+    cr_expect(strstr(err, "tau_r = ") && strstr(err, "backflow_time = 1e-20 s"), "%s", err);
+    /* forces per unit length in units of k' a, at most 10 of them */
+    const double in[TRIBO_SI_INPUT_COUNT] = {d.force, -2.5 * d.force};
+    double out[TRIBO_INPUT_COUNT];
+    cr_assert_eq(tribo_si_model_inputs(&d, in, out, err, sizeof err), TRIBO_OK, "%s", err);
+    cr_expect(out[TRIBO_INPUT_F_T] == 1.0 && out[TRIBO_INPUT_F_N] == -2.5);
+    const double big[TRIBO_SI_INPUT_COUNT] = {0.0, 11 * d.force};
+    cr_expect_eq(tribo_si_model_inputs(&d, big, out, err, sizeof err), TRIBO_ERR_INVALID_ARGUMENT);
+    cr_expect(strstr(err, "F_N_ext = 11") && strstr(err, "k' a = "), "%s", err);
+}
+
+Test(si, the_outputs_are_the_models_in_si_units)
+{
+    /* a 0.5 mm grain dropped from 0.5 mm: its first impacts (tau to 1000) */
+    tribo_si_scene s = si_of("drop_height=5e-4 n_segments=200");
+    const tribo_si_derived d = derived_of(&s);
+    tribo_model *m = make(&d.scene);
+    cr_assert_eq(tribo_advance_fully(m, 2e4), TRIBO_OK, "%s", tribo_last_error(m));
+    cr_assert(tribo_get(m, TRIBO_Q_STATIC) > 0.0 && tribo_get(m, TRIBO_Q_SIGMA_MEAN) > 0.0);
+    const double a = 5e-4, t = d.t_star;
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_TIME), t * tribo_get(m, TRIBO_Q_TIME));
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_X), a * tribo_get(m, TRIBO_Q_X));
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_U), (a / t) * tribo_get(m, TRIBO_Q_U));
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_OMEGA), tribo_get(m, TRIBO_Q_OMEGA) / t);
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_ENERGY),
+                 d.k_prime * a * a * 1e-3 * tribo_get(m, TRIBO_Q_ENERGY));
+    /* the charges: sigma0 Q_static, and the sliding density with sigma0's sign */
+    const double static_density = -1e-5 * tribo_get(m, TRIBO_Q_STATIC);
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_SIGMA_MEAN_STATIC), static_density);
+    cr_expect(tribo_si_get(&d, m, TRIBO_SI_Q_SIGMA_MEAN_SLIDING) < 0.0);
+    cr_expect(close_to(tribo_si_get(&d, m, TRIBO_SI_Q_SIGMA_MEAN_SLIDING),
+                       -1e-5 * tribo_get(m, TRIBO_Q_SLIDING), 1e-14));
+    const double per_length = d.perimeter * static_density;
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_CHARGE_PER_LENGTH_STATIC), per_length);
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_CHARGE_STATIC), 1e-3 * per_length);
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_Q_PER_M_STATIC), per_length / d.mass_per_length);
+    cr_expect_eq(tribo_si_segment_factor(&d, TRIBO_SEGMENTS_STATIC), -1e-5);
+    /* the calculated parameters need no instance */
+    cr_expect_eq(tribo_si_get(&d, NULL, TRIBO_SI_Q_T_STAR), t);
+    cr_expect_eq(tribo_si_get(&d, NULL, TRIBO_SI_Q_GAMMA), d.scene.Gamma);
+    cr_expect_eq(tribo_si_get(&d, NULL, TRIBO_SI_Q_MASS), d.mass_per_length * 1e-3);
+
+    /* the charge-to-mass ratio does not depend on the cylinder's depth; the charge does */
+    s.cylinder_length = 0.25;
+    const tribo_si_derived deep = derived_of(&s);
+    cr_expect_eq(tribo_si_get(&deep, m, TRIBO_SI_Q_Q_PER_M_STATIC), tribo_si_get(&d, m, TRIBO_SI_Q_Q_PER_M_STATIC));
+    cr_expect_eq(tribo_si_get(&deep, m, TRIBO_SI_Q_CHARGE_STATIC), 0.25 * per_length);
+    tribo_free(m);
+}
