@@ -6,6 +6,8 @@ The API (each function documented where it is defined, in tribo/api.py):
     import tribo
     df = tribo.run(epsilon=0.3, mu=1.0, nu=1.0, t_end=200)       # one particle -> DataFrame
     df = tribo.run("epsilon=0.3 mu=1 nu=1", t_end=200)           # the same, as a scene text
+    df = tribo.run_si("PE", "steel", semi_major_axis=0.5e-3, chute_length=0.3)
+                                                                  # a real particle, SI units
     res = tribo.sweep({"epsilon": [0.3, 0.6, 1.0], "mu": [0.1, 1.0]}, t_end=500,
                       out="out/sweep/results.csv")                # a parameter sweep
     res = tribo.load_results("out/sweep/results.csv")             # its results file
@@ -41,7 +43,7 @@ Modules, one responsibility each:
 """
 
 from . import materials
-from .api import load_results, run, sweep
+from .api import load_results, run, run_si, sweep
 from .locate import find_fmu
 
-__all__ = ["run", "sweep", "load_results", "find_fmu", "materials"]
+__all__ = ["run", "run_si", "sweep", "load_results", "find_fmu", "materials"]
