@@ -7,13 +7,17 @@ trajectory.png, sweep.png, sweep.csv.
 The reference case: a 1 mm polyethylene grain (a = 0.5 mm, epsilon 0.6) dropped 10 mm
 straight down onto a 0.3 m steel chute tilted 30 degrees, mu = nu = 0.3, both charge
 models (the SI FMU's defaults with chute_length = 0.3). The sweep varies the size
-2a (0.1 .. 5 mm) and epsilon, each over four initial orientations phi0 (the bouncing is
-chaotic: one run is one sample), and plots the mean and range of q/m at the exit.
+2a (0.1 .. 5 mm) and epsilon, each over two initial orientations phi0 (the bouncing is
+chaotic: one run is one sample), and plots the mean and range of q/m at the exit; every
+run goes to the exit (a run that ends in sustained contact costs up to tens of CPU seconds:
+docs/reference_case.md, "Sustained contact at physical Gamma"), and its CPU time is in the
+CSV.
 """
 
 import argparse
 import math
 import os
+import time
 
 import matplotlib
 matplotlib.use("Agg")
@@ -23,13 +27,15 @@ import pandas as pd  # noqa: E402
 
 import tribo  # noqa: E402
 
-# atol 1e-13, not the default 1e-11: at these Gamma (1e-10 .. 1e-7) the default lets the
-# contact chatter (docs/reference_case.md, "Limitation")
 CHUTE = dict(chute_length=0.3)
-SWEEP_TOLERANCE = dict(atol=1e-13)
+# the SI FMU's default tolerances (rtol 1e-9, atol 1e-11): a tighter atol does not end the
+# normal lock's cycling in sustained contact, it makes it faster (docs/reference_case.md,
+# "Sustained contact at physical Gamma": 0.1 mm, epsilon 0.3 costs 5 times more at 1e-13)
+SWEEP_TOLERANCE = dict()
 SIZES_MM = [0.1, 0.2, 0.5, 1.0, 2.0, 5.0]
 EPSILONS = [0.3, 0.6, 1.0]
-PHI0 = [0.0, math.pi / 4, math.pi / 2, 3 * math.pi / 4]
+# two orientations, not more: runs ending in sustained contact cost up to tens of seconds
+PHI0 = [0.0, math.pi / 4]
 
 
 def trajectory(out):
@@ -64,24 +70,20 @@ def sweep(out):
     for size in SIZES_MM:
         for eps in EPSILONS:
             for phi0 in PHI0:
-                try:
-                    df = tribo.run_si("PE", "steel", semi_major_axis=size * 0.5e-3, epsilon=eps,
-                                      phi0=phi0, t_end=2.0, record_interval=0.01, outputs=names, **SWEEP_TOLERANCE,
-                                      **CHUTE)
-                except RuntimeError:
-                    # more than the work limit (20000 CVODE steps) in 10 ms: a chattering
-                    # bounce (docs/reference_case.md, "Limitation"); left out of the means
-                    rows.append(dict(size_mm=size, epsilon=eps, phi0=phi0, chattered=True))
-                    continue
+                cpu = time.process_time()
+                df = tribo.run_si("PE", "steel", semi_major_axis=size * 0.5e-3, epsilon=eps,
+                                  phi0=phi0, t_end=2.0, record_interval=0.01, outputs=names,
+                                  **SWEEP_TOLERANCE, **CHUTE)
+                cpu = time.process_time() - cpu
                 last = df.iloc[-1]
-                rows.append(dict(size_mm=size, epsilon=eps, phi0=phi0, chattered=False,
+                rows.append(dict(size_mm=size, epsilon=eps, phi0=phi0, cpu_s=cpu,
                                  **{n: float(last[n]) for n in names}))
+                print(f"2a {size} mm, epsilon {eps}, phi0 {phi0:.4f}: exit {last['exit_time']:.4g} s, "
+                      f"{last['impacts']:.0f} impacts, CPU {cpu:.3g} s", flush=True)
     res = pd.DataFrame(rows)
     res.to_csv(os.path.join(out, "sweep.csv"), index=False)
-    print(f"{int(res.chattered.sum())} of {len(res)} runs chattered (left out):")
-    print(res[res.chattered][["size_mm", "epsilon", "phi0"]].to_string())
-    n_left_out = int(res.chattered.sum())
-    res = res[~res.chattered]
+    print(f"{len(res)} runs, CPU per run {res.cpu_s.min():.3g} .. {res.cpu_s.max():.3g} s "
+          f"(median {res.cpu_s.median():.3g} s, total {res.cpu_s.sum():.3g} s)")
     fig, axes = plt.subplots(1, 2, figsize=(10, 4.2))
     for ax, model, label in ((axes[0], "charge_to_mass_static", "static model"),
                              (axes[1], "charge_to_mass_sliding", "sliding model")):
@@ -94,12 +96,11 @@ def sweep(out):
         ax.set_yscale("log")
         ax.set_xlabel("particle size 2a [mm]")
         ax.set_ylabel("−q/m at the exit [µC/kg]")
-        ax.set_title(f"{label}: mean and range over 4 orientations φ0", fontsize=10)
+        ax.set_title(f"{label}: mean and range over {len(PHI0)} orientations φ0", fontsize=10)
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=8)
     fig.suptitle("PE on steel, 30°, 0.3 m chute, 10 mm drop (q/m < 0: plotted −q/m); "
-                 f"{n_left_out} of {n_left_out + len(res)} runs left out: contact chatter",
-                 fontsize=10)
+                 f"all {len(res)} runs to the exit", fontsize=10)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "sweep.png"), dpi=120)
     plt.close(fig)
