@@ -86,7 +86,8 @@ def run_coupled(params, t_end, step, charge="sliding", couple=True, outputs=("y"
 
 
 def ellipse_perimeter(a, b):
-    """Ramanujan's second approximation (relative error below 1e-9 at b/a >= 0.3)."""
+    """The ellipse's perimeter by Ramanujan's second approximation (relative error 2e-11 at
+    b/a = 0.6, 7e-8 at 0.3, 1e-5 at 0.1: against a 2e6-sided polygon)."""
     h = ((a - b) / (a + b)) ** 2
     return math.pi * (a + b) * (1.0 + 3.0 * h / (10.0 + math.sqrt(4.0 - 3.0 * h)))
 
