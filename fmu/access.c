@@ -61,7 +61,7 @@ static const fmu_variable *resolve(fmu_instance *inst, const char *fn, fmu_vr vr
 
 static size_t value_count(const fmu_instance *inst, const fmu_variable *v)
 {
-    return v->maps_to == FMU_MAPS_TO_SEGMENTS ? (size_t)inst->scene.n_segments : 1;
+    return v->maps_to == FMU_MAPS_TO_SEGMENTS ? (size_t)fmu_scene_value(inst, "n_segments") : 1;
 }
 
 /* Resolve every value reference and check that they hold nvalues values. */
@@ -126,7 +126,7 @@ static int model_readable(fmu_instance *inst, const char *fn, const fmu_variable
 static int has_charge_model(const fmu_instance *inst, tribo_segment_charge which)
 {
     const int bit = which == TRIBO_SEGMENTS_STATIC ? TRIBO_CHARGE_STATIC : TRIBO_CHARGE_SLIDING;
-    return (inst->scene.charge_model & bit) != 0;
+    return ((int)fmu_scene_value(inst, "charge_model") & bit) != 0;
 }
 
 /* Write the values of v at values[k...]. */
@@ -146,7 +146,7 @@ static int read_variable(fmu_instance *inst, const char *fn, const fmu_variable 
     case FMU_MAPS_TO_QUANTITY: {
         if (!model_readable(inst, fn, v))
             return 0;
-        const double value = tribo_get(inst->model, (tribo_quantity)v->index);
+        const double value = fmu_front_get(&inst->derived, inst->model, v->index);
         /* after a failed step the core may hold what is not a number: never with OK */
         if (!isfinite(value)) {
             fmu_error(inst, "%s: %s = %g is not a finite number (the core failed: %s)", fn,
@@ -173,8 +173,9 @@ static int read_variable(fmu_instance *inst, const char *fn, const fmu_variable 
             fmu_error(inst, "%s: %s: %s", fn, v->name, tribo_last_error(inst->model));
             return 0;
         }
+        const double factor = fmu_front_segment_factor(&inst->derived, which);
         for (size_t i = 0; i < n; i++)
-            if (!isfinite(out[i])) {
+            if (!isfinite(out[i] *= factor)) {
                 fmu_error(inst, "%s: %s[%zu] = %g is not a finite number (the core failed: %s)",
                           fn, v->name, i, out[i], tribo_last_error(inst->model));
                 return 0;
@@ -224,6 +225,22 @@ static const char *when_settable(const fmu_instance *inst, const fmu_variable *v
     return "a fixed parameter, set in state Instantiated or in Initialization Mode";
 }
 
+/* Whether the running model takes the value of a tunable parameter or an input. */
+static int model_accepts(const fmu_instance *inst, const fmu_variable *v, double value, char *msg,
+                         size_t msg_size)
+{
+    if (v->maps_to == FMU_MAPS_TO_INPUT) {
+        double inputs[TRIBO_INPUT_COUNT], model_inputs[TRIBO_INPUT_COUNT];
+        for (int i = 0; i < TRIBO_INPUT_COUNT; i++)
+            inputs[i] = i == v->index ? value : inst->inputs[i];
+        return fmu_front_model_inputs(&inst->derived, inputs, model_inputs, msg, msg_size) == TRIBO_OK;
+    }
+    const char *name;
+    double model_value;
+    return fmu_front_tunable(&inst->derived, fmu_variable_param(v), value, &name, &model_value, msg,
+                             msg_size) == TRIBO_OK;
+}
+
 /* Whether v may take the value now: settable in this state, and within its range. */
 static int check_value(fmu_instance *inst, const char *fn, const fmu_variable *v, fmu_c_type c_type,
                        void *values, size_t k)
@@ -234,7 +251,10 @@ static int check_value(fmu_instance *inst, const char *fn, const fmu_variable *v
         fmu_error(inst, "%s: %s (value reference %u) is %s, computed by the FMU: it cannot be set "
                   "(value %.17g refused)",
                   fn, v->name, v->vr,
-                  v->maps_to == FMU_MAPS_TO_TIME ? "the independent variable" : "an output", value);
+                  v->maps_to == FMU_MAPS_TO_TIME                     ? "the independent variable"
+                  : v->causality == FMU_CAUSALITY_CALCULATED_PARAMETER ? "a calculated parameter"
+                                                                       : "an output",
+                  value);
         return 0;
     }
     char msg[512];
@@ -247,6 +267,12 @@ static int check_value(fmu_instance *inst, const char *fn, const fmu_variable *v
         tribo_param_range_text(p, range, sizeof range);
         fmu_error(inst, "%s: %s = %.17g cannot be set in state %s: %s is %s (valid range: %s)", fn,
                   v->name, value, fmu_lifecycle_name(inst->lifecycle), v->name, when_settable(inst, v), range);
+        return 0;
+    }
+    /* while running, the value must also be one the model takes (the front end's
+       conversion: an SI value whose model value is out of the model's range is refused) */
+    if (inst->lifecycle == FMU_LIFECYCLE_STEP && !model_accepts(inst, v, value, msg, sizeof msg)) {
+        fmu_error(inst, "%s: %s", fn, msg);
         return 0;
     }
     return 1;
@@ -265,11 +291,18 @@ static int apply_value(fmu_instance *inst, const char *fn, const fmu_variable *v
         if (inst->lifecycle == FMU_LIFECYCLE_STEP) {
             /* the core commits the present, then runs on with the new value; it has checked
                nothing the FMU did not, so a failure here is the integrator's restart */
-            if (tribo_set_param(inst->model, v->name, value) != TRIBO_OK) {
+            const char *model_name;
+            double model_value;
+            char msg[512];
+            if (fmu_front_tunable(&inst->derived, p, value, &model_name, &model_value, msg,
+                                  sizeof msg) != TRIBO_OK ||
+                tribo_set_param(inst->model, model_name, model_value) != TRIBO_OK) {
                 inst->lifecycle = FMU_LIFECYCLE_FAILED;
                 fmu_error(inst, "%s: %s", fn, tribo_last_error(inst->model));
                 return 0;
             }
+            tribo_param_write(fmu_front_model_scene(&inst->derived), tribo_param_find(model_name),
+                              model_value);
         } else if (tribo_param_read(&inst->scene, p) != value) {
             inst->model_outdated = 1;
         }

@@ -7,15 +7,17 @@
  *
  *   "TRIBOFMU", layout version, FMI version, total size,
  *   lifecycle state, start time, stop time, stop time defined, time, the inputs,
- *   number of parameters, every parameter (in the core table's order),
+ *   number of parameters, every parameter (in the order of the front end's table: the SI
+ *   FMUs save the SI scene),
  *   core instance outdated, tolerances set explicitly (bit 0: rtol, bit 1: atol), size of
  *   the core's state, the core's state (tribo_state_save)
  *
  * A core state size of 0 means there is no core instance to keep: none yet (before
  * initialization), or one made for parameters changed since, which would be remade.
  *
- * Restoring checks every field against what an instance can hold and loads the core's
- * state into a new core instance; the instance changes only once all of it is accepted.
+ * Restoring checks every field against what an instance can hold, derives the model's scene
+ * from the parameters as the front end does (front_end.h) and loads the core's state into a
+ * new core instance of that scene; the instance changes only once all of it is accepted.
  */
 #include "instance_private.h"
 
@@ -51,7 +53,7 @@ fmu_status fmu_state_get(fmu_instance *inst, const char *fn, fmu_state **state)
     if (inst->lifecycle == FMU_LIFECYCLE_FAILED)
         return fmu_error(inst, "%s: the instance failed; there is no consistent state to save", fn);
     size_t n_params;
-    const tribo_param_info *params = tribo_param_table(&n_params);
+    const tribo_param_info *params = fmu_front_params(&n_params);
     /* a core instance made for parameters changed since would be remade: not worth keeping */
     const tribo_model *core = inst->model && !inst->model_outdated ? inst->model : NULL;
     const size_t core_size = core ? tribo_state_size(core) : 0;
@@ -116,7 +118,8 @@ typedef struct restored {
     int64_t lifecycle, stop_time_defined, model_outdated, tolerances_set;
     double start_time, stop_time, time;
     double inputs[TRIBO_INPUT_COUNT];
-    tribo_scene scene;
+    fmu_scene scene;
+    fmu_derived derived; /* the front end's of scene, when there is a core state */
     const unsigned char *core;
     uint64_t core_size;
 } restored;
@@ -142,7 +145,7 @@ static const char *read_restored(const fmu_instance *inst, const fmu_state *s, r
                                  char *msg, size_t msg_size)
 {
     size_t n_params;
-    const tribo_param_info *params = tribo_param_table(&n_params);
+    const tribo_param_info *params = fmu_front_params(&n_params);
     if (s->size < fixed_size(n_params))
         return "the state is too short";
     tribo_reader c = tribo_reader_of(s->bytes + HEADER_SIZE, s->size - HEADER_SIZE);
@@ -151,7 +154,7 @@ static const char *read_restored(const fmu_instance *inst, const fmu_state *s, r
     r->stop_time = tribo_read_double(&c);
     r->stop_time_defined = tribo_read_int(&c);
     r->time = tribo_read_double(&c);
-    const tribo_param_info *inputs = tribo_input_table(NULL);
+    const tribo_param_info *inputs = fmu_front_inputs();
     for (int i = 0; i < TRIBO_INPUT_COUNT; i++) {
         r->inputs[i] = tribo_read_double(&c);
         if (tribo_param_check(&inputs[i], r->inputs[i], msg, msg_size) != TRIBO_OK)
@@ -159,7 +162,7 @@ static const char *read_restored(const fmu_instance *inst, const fmu_state *s, r
     }
     if ((size_t)tribo_read_int(&c) != n_params)
         return "the state has another set of parameters";
-    tribo_scene_defaults(&r->scene);
+    fmu_front_defaults(&r->scene);
     for (size_t i = 0; i < n_params; i++) {
         const double v = tribo_read_double(&c);
         if (tribo_param_check(&params[i], v, msg, msg_size) != TRIBO_OK)
@@ -187,9 +190,9 @@ static const char *read_restored(const fmu_instance *inst, const fmu_state *s, r
     return NULL;
 }
 
-/* A core instance in the saved core state, for the restored parameters; NULL after logging
-   why not. */
-static tribo_model *load_core(fmu_instance *inst, const char *fn, const restored *r)
+/* A core instance in the saved core state, for the restored parameters (r->derived is made
+   of them); NULL after logging why not. */
+static tribo_model *load_core(fmu_instance *inst, const char *fn, restored *r)
 {
     char why[512];
     double t;
@@ -197,13 +200,19 @@ static tribo_model *load_core(fmu_instance *inst, const char *fn, const restored
         fmu_error(inst, "%s: the state is corrupt: its core state is not one", fn);
         return NULL;
     }
-    /* the FMU's time is the start time plus the core's */
-    if (!(fabs(r->time - (r->start_time + t)) <= fmu_rounding_tolerance(r->time))) {
-        fmu_error(inst, "%s: the state is corrupt: its time %.17g is not its start time %.17g "
-                  "plus the core's time %.17g", fn, r->time, r->start_time, t);
+    if (fmu_front_derive(&r->scene, &r->derived, why, sizeof why) != TRIBO_OK) {
+        fmu_error(inst, "%s: the state is corrupt: its parameters make no model: %s", fn, why);
         return NULL;
     }
-    tribo_model *m = tribo_create(&r->scene, why, sizeof why);
+    /* the FMU's time is the start time plus the core's, in the front end's unit */
+    const double unit = fmu_front_time_unit(&r->derived);
+    if (!(fabs(r->time - (r->start_time + unit * t)) <= fmu_rounding_tolerance(r->time))) {
+        fmu_error(inst, "%s: the state is corrupt: its time %.17g is not its start time %.17g "
+                  "plus the core's time %.17g (times %.17g)", fn, r->time, r->start_time, t, unit);
+        return NULL;
+    }
+    const tribo_scene *scene = fmu_front_model_scene(&r->derived);
+    tribo_model *m = tribo_create(scene, why, sizeof why);
     if (!m) {
         fmu_error(inst, "%s: the model cannot be created: %s", fn, why);
         return NULL;
@@ -218,11 +227,11 @@ static tribo_model *load_core(fmu_instance *inst, const char *fn, const restored
     size_t n_params;
     const tribo_param_info *params = tribo_param_table(&n_params);
     for (size_t i = 0; i < n_params && !differs; i++)
-        if (tribo_param_read(&r->scene, &params[i]) != tribo_param_read(tribo_get_scene(m), &params[i]))
+        if (tribo_param_read(scene, &params[i]) != tribo_param_read(tribo_get_scene(m), &params[i]))
             differs = &params[i];
     if (differs) {
-        fmu_error(inst, "%s: the state is corrupt: it has %s = %.17g, its core state %.17g", fn,
-                  differs->name, tribo_param_read(&r->scene, differs),
+        fmu_error(inst, "%s: the state is corrupt: its parameters make %s = %.17g, its core state "
+                  "has %.17g", fn, differs->name, tribo_param_read(scene, differs),
                   tribo_param_read(tribo_get_scene(m), differs));
         tribo_free(m);
         return NULL;
@@ -259,6 +268,8 @@ fmu_status fmu_state_set(fmu_instance *inst, const char *fn, const fmu_state *s)
     /* all accepted: the instance becomes the state */
     tribo_free(inst->model);
     inst->model = model;
+    if (model)
+        inst->derived = r.derived;
     inst->model_outdated = r.model_outdated != 0;
     inst->rtol_set = (r.tolerances_set & 1) != 0;
     inst->atol_set = (r.tolerances_set & 2) != 0;

@@ -2,6 +2,7 @@
 #ifndef TRIBO_FMU_INSTANCE_PRIVATE_H
 #define TRIBO_FMU_INSTANCE_PRIVATE_H
 
+#include "front_end.h"
 #include "instance.h"
 
 /* The states of FMI 2.0 / 3.0 co-simulation that this FMU has. FMI 2.0 has no
@@ -31,14 +32,16 @@ struct fmu_instance {
     int log_enabled[FMU_LOG_CATEGORY_COUNT];
 
     fmu_lifecycle lifecycle;
-    /* The parameters as the importer sees them; once running, also the model's scene
-       (tunable changes go to both). */
-    tribo_scene scene;
-    double inputs[TRIBO_INPUT_COUNT];
+    /* The parameters as the importer sees them (the front end's table); tunable changes
+       while running go to the model too. */
+    fmu_scene scene;
+    double inputs[TRIBO_INPUT_COUNT]; /* the importer's, in the front end's units */
     /* The core instance: made when first needed after initialization starts, remade
-       when a parameter changed since (model_outdated). */
+       when a parameter changed since (model_outdated), from `derived`: what the front end
+       made of `scene` then (the model's scene and the units of the outputs). */
     tribo_model *model;
     int model_outdated;
+    fmu_derived derived;
 
     /* rtol, atol set by the importer (they win over the experiment's tolerance) */
     int rtol_set, atol_set;
@@ -70,8 +73,13 @@ const char *fmu_lifecycle_name(fmu_lifecycle state);
 int fmu_lifecycle_allows(fmu_instance *inst, const char *fn, unsigned states);
 
 /* Make the core instance from the current parameters if there is none or it is
-   outdated. */
+   outdated: the front end derives the model's scene (its refusal is logged as the
+   dimensionless scene's is). */
 fmu_status fmu_ensure_model(fmu_instance *inst, const char *fn);
+/* Pass the importer's inputs, converted by the front end, to the core instance. */
+fmu_status fmu_pass_inputs(fmu_instance *inst, const char *fn);
+/* A parameter of the front end's scene. */
+double fmu_scene_value(const fmu_instance *inst, const char *name);
 /* Drop the core instance and put every variable back to its start value. */
 void fmu_restore_start_values(fmu_instance *inst);
 /* Note that the importer set parameter p (the tolerance does not override it). */

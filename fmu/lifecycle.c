@@ -34,7 +34,7 @@ void fmu_restore_start_values(fmu_instance *inst)
     tribo_free(inst->model);
     inst->model = NULL;
     inst->model_outdated = 0;
-    tribo_scene_defaults(&inst->scene);
+    fmu_front_defaults(&inst->scene);
     inst->rtol_set = inst->atol_set = 0;
     for (int i = 0; i < TRIBO_INPUT_COUNT; i++)
         inst->inputs[i] = 0.0;
@@ -126,6 +126,11 @@ void fmu_note_parameter_set(fmu_instance *inst, const tribo_param_info *p)
         inst->atol_set = 1;
 }
 
+double fmu_scene_value(const fmu_instance *inst, const char *name)
+{
+    return tribo_param_read(&inst->scene, fmu_front_param_find(name));
+}
+
 static void set_parameter(fmu_instance *inst, const tribo_param_info *p, double value)
 {
     if (tribo_param_read(&inst->scene, p) != value)
@@ -140,11 +145,11 @@ static void set_parameter(fmu_instance *inst, const tribo_param_info *p, double 
    (dt sets its accuracy). */
 static fmu_status use_tolerance(fmu_instance *inst, const char *fn, double tolerance)
 {
-    const tribo_param_info *rtol = tribo_param_find("rtol"), *atol = tribo_param_find("atol");
+    const tribo_param_info *rtol = fmu_front_param_find("rtol"), *atol = fmu_front_param_find("atol");
     if (inst->rtol_set && inst->atol_set) {
         fmu_log(inst, FMU_OK, FMU_LOG_CALLS,
                 "%s: tolerance = %g not used: rtol = %g and atol = %g were set explicitly", fn,
-                tolerance, inst->scene.rtol, inst->scene.atol);
+                tolerance, fmu_scene_value(inst, "rtol"), fmu_scene_value(inst, "atol"));
         return FMU_OK;
     }
     const double atol_value = atol->start * (tolerance / rtol->start);
@@ -160,10 +165,10 @@ static fmu_status use_tolerance(fmu_instance *inst, const char *fn, double toler
     if (!inst->atol_set)
         set_parameter(inst, atol, atol_value);
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s: tolerance = %g: rtol = %g (%s), atol = %g (%s)%s",
-            fn, tolerance, inst->scene.rtol,
-            inst->rtol_set ? "set explicitly" : "the tolerance", inst->scene.atol,
+            fn, tolerance, fmu_scene_value(inst, "rtol"),
+            inst->rtol_set ? "set explicitly" : "the tolerance", fmu_scene_value(inst, "atol"),
             inst->atol_set ? "set explicitly" : "from the tolerance",
-            inst->scene.integrator == TRIBO_INTEGRATOR_FIXED_STEP
+            fmu_scene_value(inst, "integrator") == TRIBO_INTEGRATOR_FIXED_STEP
                 ? "; the fixed-step integrator uses neither: dt sets its accuracy"
                 : "");
     return FMU_OK;
@@ -223,13 +228,27 @@ fmu_status fmu_ensure_model(fmu_instance *inst, const char *fn)
     if (inst->model && !inst->model_outdated)
         return FMU_OK;
     char why[512];
-    tribo_model *model = tribo_create(&inst->scene, why, sizeof why);
-    if (!model)
+    fmu_derived derived;
+    tribo_model *model = NULL;
+    if (fmu_front_derive(&inst->scene, &derived, why, sizeof why) != TRIBO_OK ||
+        !(model = tribo_create(fmu_front_model_scene(&derived), why, sizeof why)))
         return fmu_error(inst, "%s: the model cannot be created: %s", fn, why);
     tribo_free(inst->model);
     inst->model = model;
+    inst->derived = derived;
     inst->model_outdated = 0;
     tribo_set_logger(model, fmu_core_logger, inst);
+    return FMU_OK;
+}
+
+fmu_status fmu_pass_inputs(fmu_instance *inst, const char *fn)
+{
+    double model_inputs[TRIBO_INPUT_COUNT];
+    char why[512];
+    if (fmu_front_model_inputs(&inst->derived, inst->inputs, model_inputs, why, sizeof why) != TRIBO_OK)
+        return fmu_error(inst, "%s: %s", fn, why);
+    if (tribo_set_inputs(inst->model, model_inputs) != TRIBO_OK)
+        return fmu_error(inst, "%s: %s", fn, tribo_last_error(inst->model));
     return FMU_OK;
 }
 
@@ -239,10 +258,8 @@ fmu_status fmu_exit_initialization(fmu_instance *inst, const char *fn)
         return FMU_ERROR;
     /* on failure the instance stays in Initialization Mode, where parameters can
        still be changed */
-    if (fmu_ensure_model(inst, fn) != FMU_OK)
+    if (fmu_ensure_model(inst, fn) != FMU_OK || fmu_pass_inputs(inst, fn) != FMU_OK)
         return FMU_ERROR;
-    if (tribo_set_inputs(inst->model, inst->inputs) != TRIBO_OK)
-        return fmu_error(inst, "%s: %s", fn, tribo_last_error(inst->model));
     inst->lifecycle = FMU_LIFECYCLE_STEP;
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s() at time %.17g", fn, inst->time);
     return FMU_OK;

@@ -75,16 +75,18 @@ fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, 
                          "set at initialization",
                          fn, current_time, step, end, inst->stop_time);
 
-    /* inputs set since the last step hold from this communication point on */
+    /* inputs set since the last step hold from this communication point on (checked when
+       set: a refusal here changes nothing) */
+    if (fmu_pass_inputs(inst, fn) != FMU_OK)
+        return FMU_ERROR;
     tribo_model *m = inst->model;
-    tribo_status st = tribo_set_inputs(m, inst->inputs);
-    if (st == TRIBO_OK) {
-        /* the communication point may lie a rounding error before the core's time */
-        const double core_end = fmax(end - inst->start_time, tribo_get(m, TRIBO_Q_TIME));
-        st = tribo_advance(m, core_end);
-    }
+    /* the FMU's time is the start time plus the core's, in the front end's unit */
+    const double unit = fmu_front_time_unit(&inst->derived);
+    /* the communication point may lie a rounding error before the core's time */
+    const double core_end = fmax((end - inst->start_time) / unit, tribo_get(m, TRIBO_Q_TIME));
+    tribo_status st = tribo_advance(m, core_end);
     if (st == TRIBO_INCOMPLETE || st == TRIBO_ENDED) {
-        inst->time = inst->start_time + tribo_get(m, TRIBO_Q_TIME);
+        inst->time = inst->start_time + unit * tribo_get(m, TRIBO_Q_TIME);
         *reached = inst->time;
         return st == TRIBO_ENDED ? exited(inst, fn, end, early_return, terminate)
                                  : ended_early(inst, fn, end, early_return);

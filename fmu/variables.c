@@ -1,8 +1,24 @@
-/* variables.c: the table of the FMU's variables (see variables.h). */
+/* variables.c: the table of the FMU's variables (see variables.h), made from the table of
+   its front end (front_end.h): compiled once per FMU pair, with TRIBO_FMU_SI defined for the
+   SI FMUs (src/si_quantities.def), without it for the dimensionless ones
+   (src/quantities.def). The enumerations and the units "1" and "rad" are always
+   quantities.def's. */
 #include "variables.h"
 
 #include <math.h>
 #include <string.h>
+
+#include "front_end.h"
+
+#ifdef TRIBO_FMU_SI
+#define FMU_TABLE "si_quantities.def"
+#define QUANTITY(id) TRIBO_SI_Q_##id
+#define INPUT(id) TRIBO_SI_INPUT_##id
+#else
+#define FMU_TABLE "quantities.def"
+#define QUANTITY(id) TRIBO_Q_##id
+#define INPUT(id) TRIBO_INPUT_##id
+#endif
 
 
 /* What each type of the core's table is in the FMUs (an ENUM(<id>) type names its
@@ -31,11 +47,11 @@
 #define VARIABILITY_OF_FIXED FMU_VARIABILITY_FIXED
 #define VARIABILITY_OF_TUNABLE FMU_VARIABILITY_TUNABLE
 
-/* The index of each parameter in the core's table (tribo_param_table), and of each
+/* The index of each parameter in the front end's table (fmu_front_params), and of each
    enumeration in ENUMERATIONS. */
 enum {
 #define TRIBO_PARAMETER(name, ...) PARAM_##name,
-#include "quantities.def"
+#include FMU_TABLE
 };
 enum {
 #define TRIBO_ENUMERATION(id, ...) ENUMERATION_##id,
@@ -43,7 +59,7 @@ enum {
     N_ENUMERATIONS
 };
 
-/* Every row of the core's table (src/quantities.def), in its order. */
+/* Every row of the front end's table, in its order. */
 static const fmu_variable VARIABLES[] = {
 #define TRIBO_PARAMETER(name, type, vr, unit, min, min_end, max, max_end, start, variability,     \
                         description)                                                             \
@@ -54,21 +70,44 @@ static const fmu_variable VARIABLES[] = {
      FMU_MAPS_TO_TIME, 0, FMU_IN_BOTH, description, unit, -1},
 #define TRIBO_INPUT(id, name, vr, unit, min, max, description)                                   \
     {vr, name, FMU_TYPE_REAL, FMU_CAUSALITY_INPUT, FMU_VARIABILITY_CONTINUOUS, FMU_MAPS_TO_INPUT, \
-     TRIBO_INPUT_##id, FMU_IN_BOTH, description, unit, -1},
+     INPUT(id), FMU_IN_BOTH, description, unit, -1},
 #define TRIBO_OUTPUT(id, name, type, vr, unit, description, value)                               \
     {vr, name, TYPE_##type, FMU_CAUSALITY_OUTPUT, OUTPUT_VARIABILITY_OF_##type,                 \
-     FMU_MAPS_TO_QUANTITY, TRIBO_Q_##id, FMU_IN_BOTH, description, unit, ENUMERATION_OF_##type},
+     FMU_MAPS_TO_QUANTITY, QUANTITY(id), FMU_IN_BOTH, description, unit, ENUMERATION_OF_##type},
+#define TRIBO_CALCULATED(id, name, vr, unit, variability, description, value)                    \
+    {vr, name, FMU_TYPE_REAL, FMU_CAUSALITY_CALCULATED_PARAMETER, VARIABILITY_OF_##variability,  \
+     FMU_MAPS_TO_QUANTITY, QUANTITY(id), FMU_IN_BOTH, description, unit, -1},
 /* arrays exist in FMI 3.0 only */
 #define TRIBO_SEGMENTS(id, name, vr, unit, description)                                          \
     {vr, name, FMU_TYPE_REAL, FMU_CAUSALITY_OUTPUT, FMU_VARIABILITY_CONTINUOUS,                 \
      FMU_MAPS_TO_SEGMENTS, TRIBO_SEGMENTS_##id, FMU_IN_FMI3, description, unit, -1},
-#include "quantities.def"
+#include FMU_TABLE
 };
 
+#define UNIT_ROW(name, quantity, base_unit, display_unit, display_factor, description)           \
+    {name, quantity, base_unit, display_unit, display_factor, description},
 static const fmu_unit UNITS[] = {
-#define TRIBO_UNIT(name, quantity, base_unit, display_unit, display_factor, description)         \
-    {name, base_unit, display_unit, display_factor, description},
+#define TRIBO_UNIT UNIT_ROW
 #include "quantities.def"
+#ifdef TRIBO_FMU_SI
+#define TRIBO_UNIT UNIT_ROW
+#include "si_quantities.def"
+#endif
+};
+
+/* Every display unit: the units' own (TRIBO_UNIT) and the others (TRIBO_DISPLAY_UNIT). */
+#define DISPLAY_OF_UNIT(name, quantity, base_unit, display_unit, display_factor, description)    \
+    {name, display_unit, display_factor},
+#define DISPLAY_ROW(unit, name, factor) {unit, name, factor},
+static const fmu_display_unit DISPLAY_UNITS[] = {
+#define TRIBO_UNIT DISPLAY_OF_UNIT
+#define TRIBO_DISPLAY_UNIT DISPLAY_ROW
+#include "quantities.def"
+#ifdef TRIBO_FMU_SI
+#define TRIBO_UNIT DISPLAY_OF_UNIT
+#define TRIBO_DISPLAY_UNIT DISPLAY_ROW
+#include "si_quantities.def"
+#endif
 };
 
 static const fmu_enumeration ENUMERATIONS[] = {
@@ -122,6 +161,16 @@ const fmu_unit *fmu_units(size_t *count)
     return UNITS;
 }
 
+const fmu_display_unit *fmu_display_units(const char *unit, size_t *index)
+{
+    for (size_t i = *index; i < sizeof DISPLAY_UNITS / sizeof DISPLAY_UNITS[0]; i++)
+        if (DISPLAY_UNITS[i].name && strcmp(DISPLAY_UNITS[i].unit, unit) == 0) {
+            *index = i + 1;
+            return &DISPLAY_UNITS[i];
+        }
+    return NULL;
+}
+
 const fmu_unit *fmu_unit_find(const char *name)
 {
     for (size_t u = 0; u < sizeof UNITS / sizeof UNITS[0]; u++)
@@ -146,8 +195,8 @@ const fmu_variable *fmu_variable_find(fmu_vr vr, int fmi_version)
 const tribo_param_info *fmu_variable_param(const fmu_variable *v)
 {
     switch (v->maps_to) {
-    case FMU_MAPS_TO_PARAMETER: return &tribo_param_table(NULL)[v->index];
-    case FMU_MAPS_TO_INPUT: return &tribo_input_table(NULL)[v->index];
+    case FMU_MAPS_TO_PARAMETER: return &fmu_front_params(NULL)[v->index];
+    case FMU_MAPS_TO_INPUT: return &fmu_front_inputs()[v->index];
     default: return NULL;
     }
 }
@@ -183,6 +232,7 @@ const char *fmu_causality_name(fmu_causality causality, int fmi_version)
         return fmi_version == 2 ? "parameter" : "structuralParameter";
     case FMU_CAUSALITY_INPUT: return "input";
     case FMU_CAUSALITY_OUTPUT: return "output";
+    case FMU_CAUSALITY_CALCULATED_PARAMETER: return "calculatedParameter";
     }
     return "?";
 }

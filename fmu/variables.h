@@ -1,11 +1,11 @@
 /*
  * variables.h: the FMU's variables, one table for FMI 2.0 and FMI 3.0, made from the
- * core's table of quantities (src/quantities.def), row for row.
+ * front end's table (src/quantities.def or src/si_quantities.def: front_end.h), row for row.
  *
  * Each row says what the importer sees (value reference, name, type, causality,
- * variability, description, unit) and what it maps to in the core (a parameter of the
- * scene, a quantity of tribo_get, an input, a segment-charge array). Parameters' ranges
- * and start values are the core's (tribo_param_table). The modelDescription files are
+ * variability, description, unit) and what it maps to (a parameter of the front end's
+ * scene, a quantity of the front end (fmu_front_get), an input, a segment-charge array).
+ * Parameters' ranges and start values are the front end's table's (fmu_front_params). The modelDescription files are
  * generated from this table at build time (tools/model_description.c).
  */
 #ifndef TRIBO_FMU_VARIABLES_H
@@ -32,7 +32,9 @@ typedef enum fmu_causality {
     /* FMI 3.0 structuralParameter (it sizes arrays); a plain parameter in FMI 2.0 */
     FMU_CAUSALITY_STRUCTURAL_PARAMETER,
     FMU_CAUSALITY_INPUT,
-    FMU_CAUSALITY_OUTPUT
+    FMU_CAUSALITY_OUTPUT,
+    /* a number derived from the parameters alone (TRIBO_CALCULATED rows) */
+    FMU_CAUSALITY_CALCULATED_PARAMETER
 } fmu_causality;
 
 typedef enum fmu_variability {
@@ -46,7 +48,7 @@ typedef enum fmu_mapping {
     FMU_MAPS_TO_TIME,       /* the FMU's time: start time + the core's time */
     FMU_MAPS_TO_PARAMETER,  /* the scene parameter of the same name         */
     FMU_MAPS_TO_INPUT,      /* index: FMU_INPUT_*                           */
-    FMU_MAPS_TO_QUANTITY,   /* index: tribo_quantity                        */
+    FMU_MAPS_TO_QUANTITY,   /* index: the front end's quantity (fmu_front_get) */
     FMU_MAPS_TO_SEGMENTS    /* index: tribo_segment_charge, n_segments values */
 } fmu_mapping;
 
@@ -61,21 +63,28 @@ typedef struct fmu_variable {
     fmu_causality causality;
     fmu_variability variability;
     fmu_mapping maps_to;
-    int index;          /* see fmu_mapping; for parameters, the row in tribo_param_table */
+    int index;          /* see fmu_mapping; for parameters, the row in fmu_front_params */
     unsigned versions;  /* FMU_IN_* */
     const char *description;
     const char *unit;
     int enumeration;    /* FMU_TYPE_ENUMERATION: its index in fmu_enumerations; else -1 */
 } fmu_variable;
 
-/* The units the variables name (quantities.def's TRIBO_UNIT rows). */
+/* The units the variables name (the TRIBO_UNIT rows). */
 typedef struct fmu_unit {
     const char *name;
+    const char *quantity;     /* the FMI quantity of its variables; "" for none */
     const char *base_unit;    /* FMI BaseUnit attributes; "" for a dimensionless unit */
     const char *display_unit; /* NULL: displayed as itself */
     double display_factor;    /* display value = display_factor * value */
     const char *description;
 } fmu_unit;
+
+/* A unit importers may display a unit's values in (display value = factor * value). */
+typedef struct fmu_display_unit {
+    const char *unit, *name;
+    double factor;
+} fmu_display_unit;
 
 /* The enumeration types (TRIBO_ENUMERATION rows) and their items (TRIBO_ENUM_ITEM). */
 typedef struct fmu_enum_item {
@@ -93,6 +102,9 @@ const fmu_variable *fmu_variables(size_t *count);
 const fmu_unit *fmu_units(size_t *count);
 /* The unit named `name`, or NULL. */
 const fmu_unit *fmu_unit_find(const char *name);
+/* The display units of `unit`, one per call from *index on (start at 0), or NULL after
+   the last. */
+const fmu_display_unit *fmu_display_units(const char *unit, size_t *index);
 const fmu_enumeration *fmu_enumerations(size_t *count);
 /* The items of the enumeration with index `enumeration`, in increasing value. */
 const fmu_enum_item *fmu_enum_items(int enumeration, size_t *count);
@@ -100,7 +112,7 @@ const fmu_enum_item *fmu_enum_items(int enumeration, size_t *count);
 const fmu_variable *fmu_variable_find(fmu_vr vr, int fmi_version);
 int fmu_variable_in_version(const fmu_variable *v, int fmi_version);
 
-/* The core's entry of a parameter or an input row: its range, start value, ... (NULL for
+/* The front end's entry of a parameter or an input row: its range, start value, ... (NULL for
    other rows). */
 const tribo_param_info *fmu_variable_param(const fmu_variable *v);
 /* The parameter that sizes an array row (NULL for scalars). */

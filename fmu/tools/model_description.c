@@ -1,6 +1,7 @@
 /*
  * model_description: writes the modelDescription.xml of the FMI 2.0 or 3.0 FMU from the
- * FMU's variable table (variables.c, made from src/quantities.def), at build time.
+ * FMU's variable table (variables.c, made from its front end's table: src/quantities.def
+ * or src/si_quantities.def), at build time. Built once per front end, like the FMUs.
  *
  *   tribo_model_description <2|3> <version> <source date epoch> > modelDescription.xml
  *
@@ -14,6 +15,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "front_end.h"
 #include "instance.h"
 #include "variables.h"
 
@@ -102,10 +104,11 @@ static int write_units(void)
         attr("name", units[u].name);
         /* an empty BaseUnit: dimensionless, which a Unit without one would not say */
         printf(">\n      <BaseUnit%s%s/>\n", *units[u].base_unit ? " " : "", units[u].base_unit);
-        if (units[u].display_unit) {
+        size_t next = 0;
+        for (const fmu_display_unit *d; (d = fmu_display_units(units[u].name, &next));) {
             printf("      <DisplayUnit");
-            attr("name", units[u].display_unit);
-            attr_number("factor", units[u].display_factor);
+            attr("name", d->name);
+            attr_number("factor", d->factor);
             puts("/>");
         }
         puts("    </Unit>");
@@ -162,13 +165,15 @@ static void attr_range(const tribo_param_info *p)
         attr_number("max", p->max_inclusive ? p->max : nextafter(p->max, -INFINITY));
 }
 
-/* The attributes of a variable's value: unit (reals only), range and start. */
+/* The attributes of a variable's value: quantity and unit (reals only), range and start. */
 static void attr_value(const fmu_variable *v, int fmi_version)
 {
     const tribo_param_info *p = fmu_variable_param(v);
     if (v->type == FMU_TYPE_REAL) {
-        attr("unit", v->unit);
         const fmu_unit *unit = fmu_unit_find(v->unit);
+        if (*unit->quantity)
+            attr("quantity", unit->quantity);
+        attr("unit", v->unit);
         if (unit->display_unit)
             attr("displayUnit", unit->display_unit);
     }
@@ -188,6 +193,10 @@ static void variable_head(const fmu_variable *v, int fmi_version)
     attr("description", v->description);
     attr("causality", fmu_causality_name(v->causality, fmi_version));
     attr("variability", fmu_variability_name(v->variability));
+    /* computed from the parameters at initialization (FMI's default for a calculated
+       parameter, said explicitly) */
+    if (v->causality == FMU_CAUSALITY_CALCULATED_PARAMETER)
+        attr("initial", "calculated");
 }
 
 /* The index (FMI 2.0: 1-based position; FMI 3.0: value reference) of a variable. */
@@ -212,7 +221,8 @@ static int is_parameter(const fmu_variable *v)
    inputs act over the next step only (setting one changes no output until then), so
    every output declares an empty list, and importers see no algebraic loop through the
    FMU. At initialization an output depends on the parameters (the initial state comes
-   from them), not on the inputs. */
+   from them), not on the inputs; so does a calculated parameter, which FMI lists among
+   the initial unknowns only. */
 static void write_model_structure(int fmi_version)
 {
     size_t n;
@@ -223,7 +233,9 @@ static void write_model_structure(int fmi_version)
         if (fmi_version == 2)
             puts(section ? "    <InitialUnknowns>" : "    <Outputs>");
         for (size_t i = 0; i < n; i++) {
-            if (!fmu_variable_in_version(&v[i], fmi_version) || v[i].causality != FMU_CAUSALITY_OUTPUT)
+            const int initial_only = v[i].causality == FMU_CAUSALITY_CALCULATED_PARAMETER;
+            if (!fmu_variable_in_version(&v[i], fmi_version) ||
+                !(v[i].causality == FMU_CAUSALITY_OUTPUT || (section == 1 && initial_only)))
                 continue;
             printf("%s %s=\"%lu\" dependencies=\"", element[fmi_version == 3][section],
                    fmi_version == 2 ? "index" : "valueReference", reference(&v[i], fmi_version));
@@ -301,18 +313,20 @@ int main(int argc, char **argv)
         fputs("model_description: the source date epoch is out of range\n", stderr);
         return 2;
     }
-    const tribo_param_info *rtol = tribo_param_find("rtol");
+    const tribo_param_info *rtol = fmu_front_param_find("rtol");
 
     puts("<?xml version=\"1.0\" encoding=\"UTF-8\"?>");
     /* (no double hyphen may stand in an XML comment) */
-    printf("<!-- The FMI %d.0 description of tribo_fmi%d.fmu, generated from src/quantities.def by\n"
+    printf("<!-- The FMI %d.0 description of %s_fmi%d.fmu, generated from %s by\n"
            "     fmu/tools/model_description.c. Do not edit: change the table, then build the\n"
            "     target update_model_descriptions and review the diff. -->\n",
-           version, version);
+           version, fmu_front_prefix, version, fmu_front_table_file);
     puts("<fmiModelDescription");
-    printf("  fmiVersion=\"%d.0\"\n  modelName=\"tribo\"\n", version);
+    printf("  fmiVersion=\"%d.0\"\n  modelName=\"%s\"\n", version, fmu_front_prefix);
     printf("  %s=\"" TOKEN_PLACEHOLDER "\"\n", version == 2 ? "guid" : "instantiationToken");
-    puts("  description=\"A 2D elliptical particle tribocharging on a tilted plate (after Ireland 2012; the equations: documentation/index.html)\"");
+    printf("  description=\"");
+    put_escaped(fmu_front_description);
+    puts("\"");
     printf("  version=\"%s\"\n", tool_version);
     puts("  author=\"" TRIBO_AUTHOR "\"");
     puts("  copyright=\"" TRIBO_COPYRIGHT "\"");
@@ -320,9 +334,9 @@ int main(int argc, char **argv)
     printf("  generationTool=\"tribo model_description %s\"\n", tool_version);
     printf("  generationDateAndTime=\"%s\"\n", date);
     printf("  variableNamingConvention=\"flat\"%s>\n", version == 2 ? "\n  numberOfEventIndicators=\"0\"" : "");
-    printf("  <CoSimulation\n    modelIdentifier=\"tribo_fmi%d\"\n"
+    printf("  <CoSimulation\n    modelIdentifier=\"%s_fmi%d\"\n"
            "    canHandleVariableCommunicationStepSize=\"true\"\n",
-           version);
+           fmu_front_prefix, version);
     if (version == 2)
         puts("    canNotUseMemoryManagementFunctions=\"true\"\n"
              "    canGetAndSetFMUstate=\"true\"\n    canSerializeFMUstate=\"true\"/>");
@@ -341,9 +355,11 @@ int main(int argc, char **argv)
     }
     puts("  </LogCategories>");
     /* the default tolerance is the default of rtol, the parameter that sets it */
-    printf("  <DefaultExperiment startTime=\"0\" stopTime=\"1000\"");
+    printf("  <DefaultExperiment startTime=\"0\"");
+    attr_number("stopTime", fmu_front_default_experiment.stop_time);
     attr_number("tolerance", rtol->start);
-    puts(" stepSize=\"0.1\"/>");
+    attr_number("stepSize", fmu_front_default_experiment.step_size);
+    puts("/>");
     if (version == 2)
         write_fmi2_variables();
     else

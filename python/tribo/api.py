@@ -26,7 +26,7 @@ def scene_of(scene: str | dict | None = None, **parameters) -> dict:
 
 def run(scene: str | dict | None = None, *, t_end: float = 100.0, record_interval: float = 1.0,
         outputs: list[str] | None = None, fmu: str | int | None = None,
-        **parameters) -> pd.DataFrame:
+        variant: str = "dimensionless", **parameters) -> pd.DataFrame:
     """Run one particle and return its outputs as a DataFrame: a column "time" (tau for
     the dimensionless FMU), then one column per output, a row every `record_interval`
     from 0 to t_end (fewer if the FMU ends the run early).
@@ -35,8 +35,9 @@ def run(scene: str | dict | None = None, *, t_end: float = 100.0, record_interva
     add to it. Parameters not given keep the FMU's start values (docs/model.md section 7
     at epsilon 0.5, mu = nu = 0.1), the tolerances included. outputs: the names to record
     (default: every scalar output). fmu: a path, or 2 / 3 for the build's FMI 2.0 / 3.0
-    FMU (default 3)."""
-    image = FmuImage.load(find_fmu(fmu))
+    FMU (default 3); variant: "dimensionless" (tribo_fmi<v>) or "si" (tribo_si_fmi<v>, in
+    SI units: time and t_end in seconds)."""
+    image = FmuImage.load(find_fmu(fmu, variant))
     md = image.model_description()
     params = scene_of(scene, **parameters)
     check_values(image, {name: [value] for name, value in params.items()})

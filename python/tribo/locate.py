@@ -5,21 +5,26 @@ import os
 
 PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
 CHECKOUT = os.path.dirname(os.path.dirname(PACKAGE_DIR))
-FMU_NAMES = {2: "tribo_fmi2.fmu", 3: "tribo_fmi3.fmu"}
+# the FMUs' modelIdentifiers by variant: the dimensionless model, or the SI front end
+# (physical units, docs/model.md section 8)
+VARIANTS = {"dimensionless": "tribo", "si": "tribo_si"}
 
 
 def build_dir() -> str:
     return os.path.abspath(os.environ.get("TRIBO_BUILD_DIR", os.path.join(CHECKOUT, "build")))
 
 
-def find_fmu(fmu: str | int | None = None) -> str:
+def find_fmu(fmu: str | int | None = None, variant: str = "dimensionless") -> str:
     """The path of an FMU: `fmu` itself if it is a path, else the FMI 2.0 (2) or 3.0 (3,
-    the default) FMU of the build directory. FileNotFoundError, saying what to do, if it
-    is not there."""
+    the default) FMU of the build directory, of the variant "dimensionless" (tribo_fmi<v>)
+    or "si" (tribo_si_fmi<v>). FileNotFoundError, saying what to do, if it is not there."""
     if isinstance(fmu, str):
         path = fmu
     else:
-        path = os.path.join(build_dir(), "fmu", FMU_NAMES[3 if fmu is None else fmu])
+        if variant not in VARIANTS:
+            raise ValueError(f"variant {variant!r}: one of {', '.join(VARIANTS)}")
+        name = f"{VARIANTS[variant]}_fmi{3 if fmu is None else fmu}.fmu"
+        path = os.path.join(build_dir(), "fmu", name)
     if not os.path.isfile(path):
         raise FileNotFoundError(f"{path} not found: build the FMUs (scripts/setup.sh), set "
                                 f"TRIBO_BUILD_DIR to the build directory, or give the FMU's path")

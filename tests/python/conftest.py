@@ -24,21 +24,24 @@ def built(*parts):
 
 @pytest.fixture(scope="session")
 def fmu_file():
-    return lambda version: built("fmu", f"tribo_fmi{version}.fmu")
+    """The .fmu of an FMI version; prefix "tribo" (dimensionless) or "tribo_si" (SI)."""
+    return lambda version, prefix="tribo": built("fmu", f"{prefix}_fmi{version}.fmu")
 
 
 @pytest.fixture(scope="session")
 def fmu_dir(tmp_path_factory):
-    """The unpacked FMU of an FMI version (unpacked once per session)."""
+    """The unpacked FMU of an FMI version (unpacked once per session); prefix as for
+    fmu_file."""
     dirs = {}
 
-    def unpack(version):
-        if version not in dirs:
-            target = tmp_path_factory.mktemp(f"tribo_fmi{version}")
-            with zipfile.ZipFile(built("fmu", f"tribo_fmi{version}.fmu")) as z:
+    def unpack(version, prefix="tribo"):
+        key = (prefix, version)
+        if key not in dirs:
+            target = tmp_path_factory.mktemp(f"{prefix}_fmi{version}")
+            with zipfile.ZipFile(built("fmu", f"{prefix}_fmi{version}.fmu")) as z:
                 z.extractall(target)
-            dirs[version] = str(target)
-        return dirs[version]
+            dirs[key] = str(target)
+        return dirs[key]
 
     return unpack
 

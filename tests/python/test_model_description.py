@@ -1,5 +1,6 @@
-"""The modelDescription files are generated from the core's table (src/quantities.def) at
-build time. Here: the generated ones are the reviewed ones committed in modelDescription/,
+"""The modelDescription files are generated from the core's table (src/quantities.def; the
+SI FMUs' from src/si_quantities.def) at build time. Here: the generated ones are the
+reviewed ones committed in modelDescription/,
 their instantiation token is a hash of the description itself, fmpy finds nothing wrong
 with either FMU, and what they declare is what the binaries do (every declared range is
 the range the FMU accepts; the outputs are the core's quantities)."""
@@ -17,20 +18,25 @@ from fmpy.validation import validate_fmu
 
 from tribo_fmu import BUILD_DIR, ERROR, OK, ROOT, VERSIONS, Slave, core_run, status_of
 
-GOLDEN = {v: os.path.join(ROOT, "modelDescription", f"fmi{v}.xml") for v in VERSIONS}
+# the dimensionless FMUs (tribo_fmi<v>) and the SI ones (tribo_si_fmi<v>)
+PREFIXES = ("tribo", "tribo_si")
+GOLDEN_NAMES = {("tribo", v): f"fmi{v}.xml" for v in VERSIONS} | \
+    {("tribo_si", v): f"tribo_si_fmi{v}.xml" for v in VERSIONS}
+GOLDEN = {key: os.path.join(ROOT, "modelDescription", name) for key, name in GOLDEN_NAMES.items()}
+GOLDEN.update({v: GOLDEN[("tribo", v)] for v in VERSIONS})
 PLACEHOLDER = "@INSTANTIATION_TOKEN@"
 TOKEN_ATTRIBUTE = {2: "guid", 3: "instantiationToken"}
 
 
-def packed_text(fmu_dir, version):
-    with open(os.path.join(fmu_dir(version), "modelDescription.xml"), encoding="utf-8") as f:
+def packed_text(fmu_dir, version, prefix="tribo"):
+    with open(os.path.join(fmu_dir(version, prefix), "modelDescription.xml"), encoding="utf-8") as f:
         return f.read()
 
 
-def raw_variables(fmu_dir, version):
+def raw_variables(fmu_dir, version, prefix="tribo"):
     """Each variable's XML attributes (FMI 2.0: with those of its type element) and type,
     read without fmpy, which skips some (min / max of UInt64)."""
-    root = ET.fromstring(packed_text(fmu_dir, version).encode())
+    root = ET.fromstring(packed_text(fmu_dir, version, prefix).encode())
     out = []
     for element in root.find("ModelVariables"):
         a = dict(element.attrib)
@@ -41,9 +47,10 @@ def raw_variables(fmu_dir, version):
     return out
 
 
+@pytest.mark.parametrize("prefix", PREFIXES)
 @pytest.mark.parametrize("version", VERSIONS)
-def test_fmpy_validation_finds_no_problem(fmu_file, version):
-    assert validate_fmu(fmu_file(version)) == []
+def test_fmpy_validation_finds_no_problem(fmu_file, version, prefix):
+    assert validate_fmu(fmu_file(version, prefix)) == []
 
 
 def without_date_and_token(text):
@@ -53,19 +60,23 @@ def without_date_and_token(text):
     return re.sub(r'(guid|instantiationToken)="[^"]*"', r'\1=""', text)
 
 
+@pytest.mark.parametrize("prefix", PREFIXES)
 @pytest.mark.parametrize("version", VERSIONS)
-def test_generated_description_is_the_reviewed_one(fmu_dir, version):
-    with open(GOLDEN[version], encoding="utf-8") as f:
+def test_generated_description_is_the_reviewed_one(fmu_dir, version, prefix):
+    with open(GOLDEN[(prefix, version)], encoding="utf-8") as f:
         golden = f.read()
-    assert without_date_and_token(packed_text(fmu_dir, version)) == without_date_and_token(golden), (
-        "the table (src/quantities.def) or the generator changed the modelDescription: run "
-        "`cmake --build build --target update_model_descriptions` and review the diff")
+    assert without_date_and_token(packed_text(fmu_dir, version, prefix)) == \
+        without_date_and_token(golden), (
+        "the table (src/quantities.def, src/si_quantities.def) or the generator changed the "
+        "modelDescription: run `cmake --build build --target update_model_descriptions` and "
+        "review the diff")
 
 
+@pytest.mark.parametrize("prefix", PREFIXES)
 @pytest.mark.parametrize("version", VERSIONS)
-def test_description_is_reproducible_from_the_source_date(version):
+def test_description_is_reproducible_from_the_source_date(version, prefix):
     """The same sources and SOURCE_DATE_EPOCH give the same bytes; the date is the epoch's."""
-    generator = os.path.join(BUILD_DIR, "fmu", "tribo_model_description")
+    generator = os.path.join(BUILD_DIR, "fmu", f"{prefix}_model_description")
     runs = [subprocess.run([generator, str(version), "0.1.0", str(epoch)], capture_output=True,
                            text=True, check=True).stdout for epoch in (1700000000, 1700000000, 1)]
     assert runs[0] == runs[1]
@@ -74,28 +85,32 @@ def test_description_is_reproducible_from_the_source_date(version):
     assert without_date_and_token(runs[0]) == without_date_and_token(runs[2])
 
 
+@pytest.mark.parametrize("prefix", PREFIXES)
 @pytest.mark.parametrize("version", VERSIONS)
-def test_token_is_a_hash_of_the_description(fmu_dir, version):
-    text = packed_text(fmu_dir, version)
+def test_token_is_a_hash_of_the_description(fmu_dir, version, prefix):
+    text = packed_text(fmu_dir, version, prefix)
     token = re.search(rf'{TOKEN_ATTRIBUTE[version]}="([^"]+)"', text).group(1)
     h = hashlib.sha256(text.replace(token, PLACEHOLDER).encode()).hexdigest()
     assert token == "{%s-%s-%s-%s-%s}" % (h[:8], h[8:12], h[12:16], h[16:20], h[20:32])
-    # and the two descriptions, which differ, have different tokens
-    other = packed_text(fmu_dir, 5 - version)
-    assert token not in other
+    # and the other descriptions, which differ, have other tokens
+    for other_prefix in PREFIXES:
+        for other_version in VERSIONS:
+            if (other_prefix, other_version) != (prefix, version):
+                assert token not in packed_text(fmu_dir, other_version, other_prefix)
 
 
+@pytest.mark.parametrize("prefix", PREFIXES)
 @pytest.mark.parametrize("version", VERSIONS)
-def test_declared_ranges_are_what_the_fmu_accepts(fmu_dir, version):
+def test_declared_ranges_are_what_the_fmu_accepts(fmu_dir, version, prefix):
     """Every declared min and max is accepted, the nearest value beyond it is refused (an
     open end is declared as the nearest value inside it), and a parameter without a bound
     accepts any finite value there."""
-    for a in raw_variables(fmu_dir, version):
+    for a in raw_variables(fmu_dir, version, prefix):
         if a["causality"] not in ("parameter", "structuralParameter"):
             continue
         name, is_real = a["name"], a["type"] in ("Real", "Float64")
         for bound, outward in (("min", -math.inf), ("max", math.inf)):
-            s = Slave(fmu_dir(version), version)
+            s = Slave(fmu_dir(version, prefix), version)
             if bound in a:
                 inside = float(a[bound]) if is_real else int(a[bound])
                 outside = math.nextafter(inside, outward) if is_real else inside + int(math.copysign(1, outward))
@@ -169,9 +184,10 @@ def test_units_log_categories_and_experiment(fmu_dir, version):
     assert float(e.tolerance) == float(rtol.start)
 
 
+@pytest.mark.parametrize("prefix", PREFIXES)
 @pytest.mark.parametrize("version", VERSIONS)
-def test_every_variable_is_described_and_value_references_are_unique(fmu_dir, version):
-    md = read_model_description(fmu_dir(version), validate=False)
+def test_every_variable_is_described_and_value_references_are_unique(fmu_dir, version, prefix):
+    md = read_model_description(fmu_dir(version, prefix), validate=False)
     assert all(v.description for v in md.modelVariables)
     vrs = [v.valueReference for v in md.modelVariables]
     assert len(vrs) == len(set(vrs))

@@ -106,3 +106,9 @@ def test_find_fmu(tmp_path, monkeypatch):
     (tmp_path / "fmu" / "tribo_fmi2.fmu").write_bytes(b"")
     assert tribo.find_fmu(2) == str(tmp_path / "fmu" / "tribo_fmi2.fmu")
     assert tribo.find_fmu(str(tmp_path / "fmu" / "tribo_fmi2.fmu")) == str(tmp_path / "fmu" / "tribo_fmi2.fmu")
+    (tmp_path / "fmu" / "tribo_si_fmi3.fmu").write_bytes(b"")
+    assert tribo.find_fmu(variant="si") == str(tmp_path / "fmu" / "tribo_si_fmi3.fmu")
+    with pytest.raises(FileNotFoundError):
+        tribo.find_fmu(2, variant="si")
+    with pytest.raises(ValueError, match="variant"):
+        tribo.find_fmu(variant="metric")

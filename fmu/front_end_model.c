@@ -1,0 +1,70 @@
+/* front_end_model.c: the dimensionless FMUs' front end (front_end.h): the core's own table,
+   every value passed on as it is. */
+#include "front_end.h"
+
+const char fmu_front_prefix[] = "tribo";
+const char fmu_front_table_file[] = "src/quantities.def";
+const char fmu_front_description[] =
+    "A 2D elliptical particle tribocharging on a tilted plate (after Ireland 2012; the "
+    "equations: documentation/index.html)";
+
+const struct fmu_default_experiment fmu_front_default_experiment = {1000, 0.1};
+
+const tribo_param_info *fmu_front_params(size_t *count) { return tribo_param_table(count); }
+
+const tribo_param_info *fmu_front_param_find(const char *name) { return tribo_param_find(name); }
+
+const tribo_param_info *fmu_front_inputs(void) { return tribo_input_table(NULL); }
+
+void fmu_front_defaults(fmu_scene *scene) { tribo_scene_defaults(&scene->model); }
+
+tribo_status fmu_front_derive(const fmu_scene *scene, fmu_derived *d, char *msg, size_t msg_size)
+{
+    d->model = scene->model;
+    return tribo_scene_validate(&d->model, msg, msg_size);
+}
+
+tribo_scene *fmu_front_model_scene(fmu_derived *d) { return &d->model; }
+
+tribo_status fmu_front_tunable(const fmu_derived *d, const tribo_param_info *p, double value,
+                               const char **model_name, double *model_value, char *msg,
+                               size_t msg_size)
+{
+    (void)d;
+    *model_name = p->name;
+    *model_value = value;
+    return tribo_param_check(p, value, msg, msg_size);
+}
+
+tribo_status fmu_front_model_inputs(const fmu_derived *d, const double values[TRIBO_INPUT_COUNT],
+                                    double model_values[TRIBO_INPUT_COUNT], char *msg,
+                                    size_t msg_size)
+{
+    (void)d;
+    const tribo_param_info *inputs = tribo_input_table(NULL);
+    for (int i = 0; i < TRIBO_INPUT_COUNT; i++) {
+        if (tribo_param_check(&inputs[i], values[i], msg, msg_size) != TRIBO_OK)
+            return TRIBO_ERR_INVALID_ARGUMENT;
+        model_values[i] = values[i];
+    }
+    return TRIBO_OK;
+}
+
+double fmu_front_time_unit(const fmu_derived *d)
+{
+    (void)d;
+    return 1.0;
+}
+
+double fmu_front_get(const fmu_derived *d, tribo_model *m, int quantity)
+{
+    (void)d;
+    return tribo_get(m, (tribo_quantity)quantity);
+}
+
+double fmu_front_segment_factor(const fmu_derived *d, tribo_segment_charge which)
+{
+    (void)d;
+    (void)which;
+    return 1.0;
+}
