@@ -6,10 +6,14 @@ The API (each function documented where it is defined, in tribo/api.py):
     import tribo
     df = tribo.run(epsilon=0.3, mu=1.0, nu=1.0, t_end=200)       # one particle -> DataFrame
     df = tribo.run("epsilon=0.3 mu=1 nu=1", t_end=200)           # the same, as a scene text
+    df = tribo.run_si("PE", "steel", semi_major_axis=0.5e-3, chute_length=0.3)
+                                                                  # a real particle, SI units
     res = tribo.sweep({"epsilon": [0.3, 0.6, 1.0], "mu": [0.1, 1.0]}, t_end=500,
                       out="out/sweep/results.csv")                # a parameter sweep
     res = tribo.load_results("out/sweep/results.csv")             # its results file
     path = tribo.find_fmu()                                       # the FMU used by default
+    start = tribo.materials.start_values("PE", "steel", semi_major_axis=0.5e-3)
+                                                                  # SI start values of a pair
 
 The commands: tribo-study (the paper's study) and tribo-sweep (parameter sweeps), each
 with --help. The FMUs are those of the build directory (build/, or $TRIBO_BUILD_DIR) or
@@ -33,10 +37,13 @@ Modules, one responsibility each:
     study       the paper's study (docs/model.md section 7): runs, eps_t, figures, tables
     figures     the study's figures; sweep_plot: a sweep's; plotting: what they share
     tables      the study's tables (CSV and markdown)
+    materials   the materials table (data/materials.toml): a particle/wall pair as the SI
+                FMU's start values
     cli         the commands
 """
 
-from .api import load_results, run, sweep
+from . import materials
+from .api import load_results, run, run_si, sweep
 from .locate import find_fmu
 
-__all__ = ["run", "sweep", "load_results", "find_fmu"]
+__all__ = ["run", "run_si", "sweep", "load_results", "find_fmu", "materials"]

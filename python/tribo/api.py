@@ -6,6 +6,7 @@ from .executors import DaskExecutor, SerialExecutor
 from .fmu import FmuImage
 from .grid import PAPER_BASE, build_specs, values_of
 from .locate import find_fmu
+from .materials import start_values
 from .parameters import check_names, check_values, integer_names
 from .particle import simulate
 from .results import read_results
@@ -40,6 +41,30 @@ def run(scene: str | dict | None = None, *, t_end: float = 100.0, record_interva
     image = FmuImage.load(find_fmu(fmu, variant))
     md = image.model_description()
     params = scene_of(scene, **parameters)
+    check_values(image, {name: [value] for name, value in params.items()})
+    if outputs is None:
+        outputs = [v.name for v in md.modelVariables if v.causality == "output" and not v.dimensions]
+    return simulate(image, params, t_end, record_interval, outputs).series
+
+
+def run_si(particle: str | None = None, wall: str | None = None, *, t_end: float = 10.0,
+           record_interval: float = 1e-4, outputs: list[str] | None = None,
+           fmu: str | int | None = None, **parameters) -> pd.DataFrame:
+    """Run one real particle through the SI FMU (docs/model.md section 8) and return its
+    outputs in SI units as a DataFrame: "time" in s, then one column per output, a row
+    every `record_interval` seconds until t_end or the chute's exit (the last row is the
+    exit: the FMU ends the run there).
+
+    particle, wall: names of the materials table (tribo.materials), whose elastic
+    constants, density and sigma0 become start values; keyword arguments are SI parameters
+    by name (semi_major_axis=0.5e-3, chute_length=0.3, ...) and win. Without materials,
+    parameters not given keep the SI FMU's start values (the reference case, on an endless
+    chute). fmu: a path, or 2 / 3 for the build's SI FMU (default 3)."""
+    if (particle is None) != (wall is None):
+        raise ValueError("give both a particle and a wall material, or neither")
+    params = start_values(particle, wall, **parameters) if particle else dict(parameters)
+    image = FmuImage.load(find_fmu(fmu, si=True))
+    md = image.model_description()
     check_values(image, {name: [value] for name, value in params.items()})
     if outputs is None:
         outputs = [v.name for v in md.modelVariables if v.causality == "output" and not v.dimensions]

@@ -1,6 +1,8 @@
 /* matrix.c: the stability matrix (see matrix.h). */
 #include "matrix.h"
 
+#include "si.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -71,7 +73,14 @@ void stability_run(const stability_case *c, int integrator, double t_end, double
     if (tribo_scene_apply(&s, c->settings, r->error, sizeof r->error) != TRIBO_OK)
         return;
     s.integrator = integrator;
-    tribo_model *m = tribo_create(&s, r->error, sizeof r->error);
+    stability_run_scene(&s, NULL, t_end, every, r);
+}
+
+void stability_run_scene(const tribo_scene *s, const tribo_si_derived *si, double t_end,
+                         double every, stability_result *r)
+{
+    memset(r, 0, sizeof *r);
+    tribo_model *m = tribo_create(s, r->error, sizeof r->error);
     if (!m)
         return;
     const double start = cpu_now();
@@ -81,19 +90,25 @@ void stability_run(const stability_case *c, int integrator, double t_end, double
     double q_prev = 0.0;
     int k = 1;
     for (; k * every <= t_end + 1e-9; k++) {
-        if (tribo_advance_fully(m, k * every) != TRIBO_OK) {
+        const tribo_status st = tribo_advance_fully(m, k * every);
+        if (st == TRIBO_ENDED)
+            r->exited = 1;
+        else if (st != TRIBO_OK) {
             snprintf(r->error, sizeof r->error, "%s", tribo_last_error(m));
             break;
         }
         for (int q = 0; q < TRIBO_Q_COUNT; q++)
             if (!isfinite(tribo_get(m, (tribo_quantity)q)))
                 r->all_finite = 0;
+        for (int q = 0; si && q < TRIBO_SI_Q_COUNT; q++)
+            if (!isfinite(tribo_si_get(si, m, (tribo_si_quantity)q)))
+                r->all_finite = 0;
         const double Q = tribo_get(m, TRIBO_Q_STATIC);
         if (!(Q >= q_prev && Q <= 1.0))
             r->charge_ok = 0;
         q_prev = Q;
         const double dx = tribo_get(m, TRIBO_Q_DELTA_X), psi_n = tribo_get(m, TRIBO_Q_PSI_N);
-        if (fabs(dx) > s.mu * psi_n * (1.0 + 1e-9) + 1e-300)
+        if (fabs(dx) > s->mu * psi_n * (1.0 + 1e-9) + 1e-300)
             r->coulomb_ok = 0;
         /* a located contact switch is exact to rounding of the contact root */
         if (tribo_get(m, TRIBO_Q_IN_CONTACT) == 0.0 && tribo_get(m, TRIBO_Q_DELTA_Y) > 1e-12)
@@ -104,10 +119,13 @@ void stability_run(const stability_case *c, int integrator, double t_end, double
         r->max_residual = fmax(r->max_residual, fabs(E + W - We - E0));
         r->energy_scale = fmax(r->energy_scale, fmax(fabs(E), fmax(fabs(W), 0.5 * (U * U + V * V))));
         r->max_delta_y = fmax(r->max_delta_y, tribo_get(m, TRIBO_Q_DELTA_Y));
+        if (r->exited)
+            break;
     }
-    r->finished = k * every > t_end + 1e-9;
+    r->finished = r->exited || k * every > t_end + 1e-9;
     r->cpu_seconds = cpu_now() - start;
     tribo_get_stats(m, &r->stats);
+    r->t_reached = tribo_get(m, TRIBO_Q_TIME);
     r->q_static = tribo_get(m, TRIBO_Q_STATIC);
     r->q_sliding = tribo_get(m, TRIBO_Q_SLIDING);
     tribo_free(m);

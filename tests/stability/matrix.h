@@ -22,7 +22,9 @@ extern const int N_STABILITY_INTEGRATORS;
 const char *stability_integrator_name(int integrator);
 
 typedef struct stability_result {
-    int finished;              /* every advance returned TRIBO_OK */
+    int finished;              /* every advance returned TRIBO_OK, or the particle left the
+                                  chute (TRIBO_ENDED: exited) */
+    int exited;                /* the run ended at the chute's end (model.md §9) */
     int all_finite;            /* no quantity NaN or infinite at any sample */
     int charge_ok;             /* 0 <= Q_static <= 1, never decreasing */
     int coulomb_ok;            /* |delta_x| <= mu Psi_N at every sample (model.md §3) */
@@ -32,12 +34,19 @@ typedef struct stability_result {
     double cpu_seconds;
     tribo_stats stats;
     double q_static, q_sliding, max_delta_y;
+    double t_reached;          /* the time the run ended at (the exit time if it exited) */
     char error[512];           /* why it did not finish */
 } stability_result;
 
 /* Run a case to t_end, sampling every `every` time units. */
 void stability_run(const stability_case *c, int integrator, double t_end, double every,
                    stability_result *r);
+
+/* The same checks on any scene, to t_end or the exit; with si (the scene's SI set-up, or
+   NULL) also every SI quantity finite at every sample (all_finite). */
+struct tribo_si_derived;
+void stability_run_scene(const tribo_scene *s, const struct tribo_si_derived *si, double t_end,
+                         double every, stability_result *r);
 
 /* The energy balance holds when the residual is within this fraction of the run's energy
    scale (model.md §6), a balance accumulated over thousands of steps; docs/stability.md lists

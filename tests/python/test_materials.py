@@ -1,0 +1,162 @@
+"""tribo.materials: the table against the SI front end's parameters (src/si_quantities.def),
+the physical bounds on its numbers, and its one-line errors."""
+
+import math
+import pathlib
+import re
+
+import pytest
+
+import tribo
+from tribo import materials
+
+DEF = pathlib.Path(__file__).resolve().parents[2] / "src" / "si_quantities.def"
+EPS0 = 8.8541878128e-12
+
+
+def _expr(text):
+    return eval(text, {"__builtins__": {}}, {"M_PI": math.pi, "INFINITY": math.inf})
+
+
+def si_rows():
+    """name -> (min, max, default) of every TRIBO_PARAMETER row of si_quantities.def."""
+    text = DEF.read_text()
+    rows = {}
+    pattern = re.compile(r"TRIBO_PARAMETER\((\w+),\s*[\w()]+,\s*\d+,\s*\"[^\"]*\",\s*([^,]+),"
+                         r"\s*\w+,\s*([^,]+),\s*\w+,\s*([^,]+),")
+    for m in pattern.finditer(text):
+        rows[m.group(1)] = tuple(_expr(g) for g in m.group(2, 3, 4))
+    return rows
+
+
+def test_the_si_parameter_names_are_the_tables():
+    assert list(si_rows()) == list(materials.SI_PARAMETERS)
+
+
+def test_exported_from_the_package():
+    assert tribo.materials is materials
+    assert "materials" in tribo.__all__
+
+
+def test_the_lists_hold_the_issues_materials():
+    assert set(materials.particles()) >= {"PE", "PP", "PS", "PMMA", "PVC", "nylon", "PTFE",
+                                          "glass"}
+    assert set(materials.walls()) >= {"steel", "aluminium", "PTFE", "glass"}
+
+
+def test_every_material_is_physical():
+    for key in set(materials.particles()) | set(materials.walls()):
+        m = materials.material(key)
+        assert 1e6 < m.youngs_modulus < 1e12, key
+        assert 0.0 < m.poisson_ratio <= 0.5, key
+        assert 500.0 < m.density < 2e4, key
+
+
+def test_every_start_value_is_in_the_si_range():
+    rows = si_rows()
+    for p in materials.particles():
+        for w in materials.walls():
+            values = materials.start_values(p, w, sigma0=-1e-5)
+            for name, value in values.items():
+                lo, hi, _ = rows[name]
+                assert lo <= value <= hi, (p, w, name, value)
+
+
+def test_sigma0_is_bounded_by_air_breakdown():
+    limit = materials.breakdown_limit()
+    # epsilon0 times the breakdown field of air (3 MV/m): 2.66e-5
+    assert limit == pytest.approx(EPS0 * 3e6, rel=0.02)
+    n = 0
+    for p in materials.particles():
+        for w in materials.walls():
+            try:
+                s = materials.pair_sigma0(p, w)
+            except materials.MaterialError:
+                continue
+            n += 1
+            assert 0.0 < abs(s) <= limit, (p, w, s)
+    assert n >= 8
+
+
+def test_sigma0_signs_follow_the_triboelectric_series():
+    # PTFE is at the negative end of the series, so a particle is charged more positively
+    # on a PTFE wall than on a metal; on glass (near the positive end) less positively.
+    def get(p, w):
+        try:
+            return materials.pair_sigma0(p, w)
+        except materials.MaterialError:
+            return None
+
+    checked = 0
+    for p in materials.particles():
+        for metal in ("steel", "aluminium"):
+            s_metal = get(p, metal)
+            if s_metal is None:
+                continue
+            if (s := get(p, "PTFE")) is not None:
+                assert s >= s_metal, (p, metal)
+                checked += 1
+            if (s := get(p, "glass")) is not None:
+                assert s <= s_metal, (p, metal)
+                checked += 1
+    assert checked >= 4
+    assert materials.pair_sigma0("PTFE", "steel") < 0 < materials.pair_sigma0("nylon", "steel")
+
+
+def test_kappa_is_epsilon0_over_the_gap_and_the_si_default():
+    kappa = materials.interface_capacitance()
+    assert kappa == pytest.approx(EPS0 / 0.4e-9, rel=1e-12)
+    assert kappa == pytest.approx(si_rows()["interface_capacitance"][2], rel=1e-12)
+
+
+def test_polyethylene_on_steel_is_the_reference_case():
+    rows = si_rows()
+    values = materials.start_values("PE", "steel")
+    for name in ("youngs_modulus_particle", "poisson_ratio_particle", "density",
+                 "youngs_modulus_wall", "poisson_ratio_wall", "sigma0",
+                 "interface_capacitance"):
+        assert values[name] == pytest.approx(rows[name][2], rel=1e-12), name
+
+
+def test_overrides_win_and_names_are_case_insensitive():
+    values = materials.start_values("pe", "STEEL", semi_major_axis=1e-3, epsilon=0.3,
+                                    chute_length=0.3, drop_height=0.02, density=900.0)
+    assert values["semi_major_axis"] == 1e-3
+    assert values["epsilon"] == 0.3
+    assert values["chute_length"] == 0.3
+    assert values["drop_height"] == 0.02
+    assert values["density"] == 900.0
+    assert values["youngs_modulus_wall"] == materials.material("steel").youngs_modulus
+
+
+def one_line_error(call):
+    with pytest.raises(materials.MaterialError) as info:
+        call()
+    msg = str(info.value)
+    assert "\n" not in msg
+    return msg
+
+
+def test_an_unknown_material_names_it_and_lists_the_known():
+    msg = one_line_error(lambda: materials.start_values("unobtainium", "steel"))
+    assert "unobtainium" in msg and "PE" in msg and "glass" in msg
+    msg = one_line_error(lambda: materials.start_values("PE", "wood"))
+    assert "wood" in msg and "steel" in msg and "aluminium" in msg
+
+
+def test_a_wall_is_not_a_particle():
+    msg = one_line_error(lambda: materials.start_values("steel", "steel"))
+    assert "particle" in msg and "'steel'" in msg and "PE" in msg
+
+
+def test_a_pair_without_sigma0_names_it_and_the_pairs_with_one():
+    msg = one_line_error(lambda: materials.start_values("PMMA", "steel"))
+    assert "PMMA" in msg and "steel" in msg and "PE/steel" in msg and "sigma0=" in msg
+    values = materials.start_values("PMMA", "steel", sigma0=-5e-6)
+    assert values["sigma0"] == -5e-6
+    assert values["density"] == materials.material("PMMA").density
+
+
+def test_an_unknown_parameter_names_it():
+    msg = one_line_error(lambda: materials.start_values("PE", "steel", radius=1e-3))
+    assert "'radius'" in msg and "semi_major_axis" in msg
