@@ -1,0 +1,72 @@
+"""The figure of a population: for each charge model (a row), the q/m histogram, q/m against
+roundness (a colour per size class) and against size (a colour per shape class), and the
+exit speed against the charge (a colour per shape class)."""
+
+import numpy as np
+
+from .plotting import distinct_colours, legend, plt, save
+from .population_summary import class_edges, classes_of
+
+QM_UNIT, QM_FACTOR = "µC/kg", 1e6
+CHARGE_UNIT, CHARGE_FACTOR = "pC", 1e12
+SIZE_UNIT, SIZE_FACTOR = "mm", 1e3
+
+
+def _by_class(results, column, edges, unit_factor, unit):
+    labels = classes_of(results[column], edges)
+    groups = []
+    for i, interval in enumerate(labels.cat.categories):
+        lo, hi = edges[i] * unit_factor, edges[i + 1] * unit_factor
+        name = {"epsilon": f"ε {lo:.2f}–{hi:.2f}", "size": f"size {lo:.2f}–{hi:.2f} {unit}"}[column]
+        groups.append((name, results[labels == interval]))
+    return groups
+
+
+def write_population_figure(results, path: str, shape_edges=None, size_edges=None,
+                            title: str = "") -> str:
+    """results: the population's rows (one per particle)."""
+    shapes = _by_class(results, "epsilon", class_edges(results["epsilon"], shape_edges), 1.0, "")
+    sizes = _by_class(results, "size", class_edges(results["size"], size_edges), SIZE_FACTOR, SIZE_UNIT)
+    shape_colours = distinct_colours(len(shapes))
+    size_colours = distinct_colours(len(sizes))
+    fig, axes = plt.subplots(2, 4, figsize=(20, 9), layout="constrained")
+    for row, model in zip(axes, ("static", "sliding")):
+        qm = results[f"charge_to_mass_{model}"] * QM_FACTOR
+        label = f"q/m, {model} model ({QM_UNIT})"
+        ax = row[0]
+        ax.hist(qm, bins=min(40, max(5, len(qm) // 10)), color="tab:blue", alpha=0.8,
+                label=f"{len(qm)} particles")
+        for p, style in ((5, ":"), (50, "-"), (95, "--")):
+            ax.axvline(np.percentile(qm, p), color="black", ls=style, lw=1, label=f"{p}th percentile")
+        ax.set_xlabel(label)
+        ax.set_ylabel("particles")
+        ax.set_title(f"q/m distribution, {model} model")
+        legend(ax)
+        ax = row[1]
+        for colour, (name, g) in zip(size_colours, sizes):
+            ax.scatter(g["epsilon"], g[f"charge_to_mass_{model}"] * QM_FACTOR, s=10, color=colour,
+                       label=f"{name} ({len(g)})")
+        ax.set_xlabel("roundness ε = b/a")
+        ax.set_ylabel(label)
+        ax.set_title("q/m against roundness")
+        legend(ax)
+        ax = row[2]
+        for colour, (name, g) in zip(shape_colours, shapes):
+            ax.scatter(g["size"] * SIZE_FACTOR, g[f"charge_to_mass_{model}"] * QM_FACTOR, s=10,
+                       color=colour, label=f"{name} ({len(g)})")
+        ax.set_xlabel(f"size, long diameter 2a ({SIZE_UNIT})")
+        ax.set_ylabel(label)
+        ax.set_title("q/m against size")
+        legend(ax)
+        ax = row[3]
+        for colour, (name, g) in zip(shape_colours, shapes):
+            ax.scatter(g[f"charge_{model}"] * CHARGE_FACTOR, g["exit_speed"], s=10, color=colour,
+                       label=f"{name} ({len(g)})")
+        ax.set_xlabel(f"charge, {model} model ({CHARGE_UNIT}, cylinder of the depth set)")
+        ax.set_ylabel("speed at the exit (m/s)")
+        ax.set_title("exit speed against charge")
+        legend(ax)
+        for ax in row:
+            ax.grid(alpha=0.3)
+    fig.suptitle(title or f"population of {len(results)} particles")
+    return save(fig, path)
