@@ -1,6 +1,8 @@
 """The figure of a population: for each charge model (a row), the q/m histogram, q/m against
 roundness (a colour per size class) and against size (a colour per shape class), and the
-exit speed against the charge (a colour per shape class)."""
+exit speed against the charge (a colour per shape class). Charges are drawn as magnitudes
+on log axes (their sign is sigma0's, the same for every particle of a pair), since a
+population's q/m spans decades."""
 
 import numpy as np
 
@@ -31,11 +33,14 @@ def write_population_figure(results, path: str, shape_edges=None, size_edges=Non
     size_colours = distinct_colours(len(sizes))
     fig, axes = plt.subplots(2, 4, figsize=(20, 9), layout="constrained")
     for row, model in zip(axes, ("static", "sliding")):
-        qm = results[f"charge_to_mass_{model}"] * QM_FACTOR
-        label = f"q/m, {model} model ({QM_UNIT})"
+        qm = results[f"charge_to_mass_{model}"].abs() * QM_FACTOR
+        label = f"|q/m|, {model} model ({QM_UNIT})"
         ax = row[0]
-        ax.hist(qm, bins=min(40, max(5, len(qm) // 10)), color="tab:blue", alpha=0.8,
-                label=f"{len(qm)} particles")
+        positive = qm[qm > 0]
+        bins = np.geomspace(positive.min(), positive.max() * 1.0001, min(40, max(5, len(qm) // 10))) \
+            if len(positive) else 10
+        ax.hist(qm, bins=bins, color="tab:blue", alpha=0.8, label=f"{len(qm)} particles")
+        ax.set_xscale("log")
         for p, style in ((5, ":"), (50, "-"), (95, "--")):
             ax.axvline(np.percentile(qm, p), color="black", ls=style, lw=1, label=f"{p}th percentile")
         ax.set_xlabel(label)
@@ -44,25 +49,28 @@ def write_population_figure(results, path: str, shape_edges=None, size_edges=Non
         legend(ax)
         ax = row[1]
         for colour, (name, g) in zip(size_colours, sizes):
-            ax.scatter(g["epsilon"], g[f"charge_to_mass_{model}"] * QM_FACTOR, s=10, color=colour,
+            ax.scatter(g["epsilon"], g[f"charge_to_mass_{model}"].abs() * QM_FACTOR, s=10, color=colour,
                        label=f"{name} ({len(g)})")
         ax.set_xlabel("roundness ε = b/a")
         ax.set_ylabel(label)
+        ax.set_yscale("log")
         ax.set_title("q/m against roundness")
         legend(ax)
         ax = row[2]
         for colour, (name, g) in zip(shape_colours, shapes):
-            ax.scatter(g["size"] * SIZE_FACTOR, g[f"charge_to_mass_{model}"] * QM_FACTOR, s=10,
+            ax.scatter(g["size"] * SIZE_FACTOR, g[f"charge_to_mass_{model}"].abs() * QM_FACTOR, s=10,
                        color=colour, label=f"{name} ({len(g)})")
         ax.set_xlabel(f"size, long diameter 2a ({SIZE_UNIT})")
         ax.set_ylabel(label)
+        ax.set_yscale("log")
         ax.set_title("q/m against size")
         legend(ax)
         ax = row[3]
         for colour, (name, g) in zip(shape_colours, shapes):
-            ax.scatter(g[f"charge_{model}"] * CHARGE_FACTOR, g["exit_speed"], s=10, color=colour,
+            ax.scatter(g[f"charge_{model}"].abs() * CHARGE_FACTOR, g["exit_speed"], s=10, color=colour,
                        label=f"{name} ({len(g)})")
-        ax.set_xlabel(f"charge, {model} model ({CHARGE_UNIT}, cylinder of the depth set)")
+        ax.set_xlabel(f"|charge|, {model} model ({CHARGE_UNIT}, cylinder of the depth set)")
+        ax.set_xscale("log")
         ax.set_ylabel("speed at the exit (m/s)")
         ax.set_title("exit speed against charge")
         legend(ax)
