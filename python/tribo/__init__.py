@@ -45,17 +45,17 @@ Modules, one responsibility each:
     materials   the materials table (data/materials.toml): a particle/wall pair as the SI
                 FMU's start values
     distributions  a feed variable's distribution, as text, drawn with a seed
-    population  a feed, its seeded draw, one particle's run down the chute (SI FMU)
+    population_feed  a feed, its seeded draw, one particle's run down the chute (SI FMU)
     population_runner, population_summary, population_plot: a population into a folder,
                 its q/m statistics by class, its figure
     impact      one impact episode (run_end = first_liftoff) and a map's grid
-    impact_map  a map's runs, table, metadata and the lookup ImpactMap; impact_plot: its figure
+    impact_table  a map's runs, table, metadata and the lookup ImpactMap; impact_plot: its figure
     cli         the commands
 """
 
 from . import materials
 from .api import impact_map, load_results, population, run, run_si, sweep
-from .impact_map import ImpactMap
+from .impact_table import ImpactMap
 from .locate import find_fmu
 
 __all__ = ["run", "run_si", "sweep", "load_results", "find_fmu", "materials", "population",

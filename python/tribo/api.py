@@ -119,7 +119,7 @@ def population(n: int, *, seed: int = 0, particle: str = "PE", wall: str = "stee
     parameter. Results go into the folder `out` (particles.csv, summary.csv,
     population.png); an interrupted population resumes. Returns the report: .results (a
     row per particle), .summary (q/m statistics overall, per shape and size class)."""
-    from .population import DEFAULT_CHUTE, Feed, check_measured, read_measured
+    from .population_feed import DEFAULT_CHUTE, Feed, check_measured, read_measured
     from .population_runner import run_population
 
     if isinstance(measured, str):
@@ -150,7 +150,7 @@ def impact_map(*, speed, angle, phi0, epsilon, particle: str = "PE", wall: str =
     other SI parameters (semi_major_axis, ...). Written into `out` (impact_map.csv,
     impact_map.json, impact_map.png), resumable; returns tribo.ImpactMap for lookups."""
     from .impact import DEFAULT_LIMIT
-    from .impact_map import ImpactMap, run_impact_map
+    from .impact_table import ImpactMap, run_impact_map
     from .impact import Grid
 
     grid = Grid.of(speed=speed, angle=angle, phi0=phi0, epsilon=epsilon)

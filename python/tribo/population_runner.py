@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import pandas as pd
 
 from .fmu import FmuImage
-from .population import RESULT_COLUMNS, Feed, run_particle, specs_of
+from .population_feed import RESULT_COLUMNS, Feed, run_particle, specs_of
 from .population_summary import summarize_population
 from .sweep import run_sweep
 

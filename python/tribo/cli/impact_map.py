@@ -30,7 +30,7 @@ import numpy as np
 from ..executors import ClusterUnreachable
 from ..fmu import FmuImage
 from ..impact import DEFAULT_LIMIT, Grid
-from ..impact_map import EPISODES, prepare_map, run_impact_map
+from ..impact_table import EPISODES, prepare_map, run_impact_map
 from ..locate import find_fmu
 from ..materials import MaterialError
 from ..sweep import keys_of, kept

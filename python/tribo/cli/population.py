@@ -6,7 +6,7 @@ particles drawn from a feed with a seed, one row per particle, the q/m summary a
         --size lognormal:1e-3:0.3 --chute-length 0.5 --set tilt=0.6
     tribo-population -n 500 --measured sieve.csv      # rows of measured values, drawn
 
-The feed variables (docs: tribo/population.py) take a number or a distribution: uniform:LOW:HIGH,
+The feed variables (tribo/population_feed.py) take a number or a distribution: uniform:LOW:HIGH,
 normal:MEAN:SD, lognormal:MEDIAN:SIGMA, choice:V1,V2,...; --measured CSV gives columns of
 measured values (any of epsilon, size, phi0, omega0, drop_height, drop_speed, drop_angle),
 whose rows are drawn with replacement instead. Defaults: the SI reference case's feed
@@ -32,7 +32,7 @@ from ..executors import ClusterUnreachable
 from ..fmu import FmuImage
 from ..locate import find_fmu
 from ..materials import MaterialError
-from ..population import DEFAULT_CHUTE, FEED_VARIABLES, Feed, read_measured
+from ..population_feed import DEFAULT_CHUTE, FEED_VARIABLES, Feed, read_measured
 from ..population_runner import PARTICLES, prepare_population, run_population
 from ..sweep import keys_of, kept
 from .common import OneLineParser, add_execution_options, check_writable_dir, executor_of, fail
