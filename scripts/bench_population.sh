@@ -10,6 +10,7 @@ shift || true
 workers=("${@:-1 2}")
 for w in ${workers[@]}; do
   out=out/bench_population/workers-$w
+  mkdir -p "$out"
   start=$(date +%s.%N)
   .venv/bin/tribo-population -n "$n" --seed 1 --workers "$w" --out "$out" --fresh --no-progress --no-plot > "$out.log" 2>&1 \
     || { cat "$out.log"; exit 1; }
