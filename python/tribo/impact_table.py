@@ -46,14 +46,11 @@ class MapReport:
 def prepare_map(grid: Grid, particle: str, wall: str, settings: dict, limit: float,
                 image: FmuImage, omega0: float = 0.0):
     """The episodes' runs, every value checked by the FMU before anything runs."""
+    from .grid import values_of
     from .parameters import check_values
 
     specs = episode_specs(grid, particle, wall, settings, limit, omega0)
-    values = {}
-    for s in specs:
-        for name, value in s.params.items():
-            values.setdefault(name, []).append(value)
-    check_values(image, values)
+    check_values(image, values_of(specs))
     return specs
 
 

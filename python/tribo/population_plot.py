@@ -24,6 +24,20 @@ def _by_class(results, column, edges, unit_factor, unit):
     return groups
 
 
+def _scatter(ax, groups, colours, x, y, xlabel, ylabel, title, logx=False, logy=False):
+    """A panel of y(g) against x(g), a colour and a legend entry per group."""
+    for colour, (name, g) in zip(colours, groups):
+        ax.scatter(x(g), y(g), s=10, color=colour, label=f"{name} ({len(g)})")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    if logx:
+        ax.set_xscale("log")
+    if logy:
+        ax.set_yscale("log")
+    legend(ax)
+
+
 def write_population_figure(results, path: str, shape_edges=None, size_edges=None,
                             title: str = "") -> str:
     """results: the population's rows (one per particle)."""
@@ -47,33 +61,15 @@ def write_population_figure(results, path: str, shape_edges=None, size_edges=Non
         ax.set_ylabel("particles")
         ax.set_title(f"q/m distribution, {model} model")
         legend(ax)
-        ax = row[1]
-        for colour, (name, g) in zip(size_colours, sizes):
-            ax.scatter(g["epsilon"], g[f"charge_to_mass_{model}"].abs() * QM_FACTOR, s=10, color=colour,
-                       label=f"{name} ({len(g)})")
-        ax.set_xlabel("roundness ε = b/a")
-        ax.set_ylabel(label)
-        ax.set_yscale("log")
-        ax.set_title("q/m against roundness")
-        legend(ax)
-        ax = row[2]
-        for colour, (name, g) in zip(shape_colours, shapes):
-            ax.scatter(g["size"] * SIZE_FACTOR, g[f"charge_to_mass_{model}"].abs() * QM_FACTOR, s=10,
-                       color=colour, label=f"{name} ({len(g)})")
-        ax.set_xlabel(f"size, long diameter 2a ({SIZE_UNIT})")
-        ax.set_ylabel(label)
-        ax.set_yscale("log")
-        ax.set_title("q/m against size")
-        legend(ax)
-        ax = row[3]
-        for colour, (name, g) in zip(shape_colours, shapes):
-            ax.scatter(g[f"charge_{model}"].abs() * CHARGE_FACTOR, g["exit_speed"], s=10, color=colour,
-                       label=f"{name} ({len(g)})")
-        ax.set_xlabel(f"|charge|, {model} model ({CHARGE_UNIT}, cylinder of the depth set)")
-        ax.set_xscale("log")
-        ax.set_ylabel("speed at the exit (m/s)")
-        ax.set_title("exit speed against charge")
-        legend(ax)
+        qm_of = lambda g: g[f"charge_to_mass_{model}"].abs() * QM_FACTOR  # noqa: E731
+        _scatter(row[1], sizes, size_colours, lambda g: g["epsilon"], qm_of,
+                 "roundness ε = b/a", label, "q/m against roundness", logy=True)
+        _scatter(row[2], shapes, shape_colours, lambda g: g["size"] * SIZE_FACTOR, qm_of,
+                 f"size, long diameter 2a ({SIZE_UNIT})", label, "q/m against size", logy=True)
+        _scatter(row[3], shapes, shape_colours, lambda g: g[f"charge_{model}"].abs() * CHARGE_FACTOR,
+                 lambda g: g["exit_speed"],
+                 f"|charge|, {model} model ({CHARGE_UNIT}, cylinder of the depth set)",
+                 "speed at the exit (m/s)", "exit speed against charge", logx=True)
         for ax in row:
             ax.grid(alpha=0.3)
     fig.suptitle(title or f"population of {len(results)} particles")

@@ -39,14 +39,11 @@ class PopulationReport:
 
 def prepare_population(feed: Feed, n: int, seed: int, t_end: float, image: FmuImage):
     """The runs, every value checked by the FMU before anything runs."""
+    from .grid import values_of
     from .parameters import check_values
 
     specs = specs_of(feed, n, seed, t_end)
-    values = {}
-    for s in specs:
-        for name, value in s.params.items():
-            values.setdefault(name, []).append(value)
-    check_values(image, values)
+    check_values(image, values_of(specs))
     return specs
 
 

@@ -155,15 +155,6 @@ Test(liftoff, a_tilted_elongated_drop_ends_at_its_first_liftoff_too)
     tribo_free(cvode);
 }
 
-/* Where a state keeps why its run has ended (state_io.c's layout): after the header, the
-   parameters, F_T, F_N, the output time and the six work counters. */
-static size_t ended_offset(void)
-{
-    size_t n_params;
-    tribo_param_table(&n_params);
-    return 8 + 2 * 8 + n_params * 8 + 3 * 8 + 6 * 8;
-}
-
 Test(liftoff, states_save_and_load_at_the_liftoff)
 {
     for (int k = 0; k < 2; k++) {
@@ -173,7 +164,7 @@ Test(liftoff, states_save_and_load_at_the_liftoff)
         size_t size;
         unsigned char *bytes = saved_state(ref, &size);
         int64_t flag;
-        memcpy(&flag, bytes + ended_offset(), sizeof flag);
+        memcpy(&flag, bytes + state_ended_offset(), sizeof flag);
         cr_assert_eq(flag, TRIBO_END_LIFTOFF, "the layout moved: fix ended_offset");
         cr_assert_eq(tribo_state_load(m, bytes, size), TRIBO_OK, "%s", tribo_last_error(m));
         cr_expect_eq(tribo_get(m, TRIBO_Q_LIFTED_OFF), 1.0);
