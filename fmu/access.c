@@ -147,8 +147,11 @@ static int read_variable(fmu_instance *inst, const char *fn, const fmu_variable 
         if (!model_readable(inst, fn, v))
             return 0;
         const double value = fmu_front_get(&inst->derived, inst->model, v->index);
-        /* after a failed step the core may hold what is not a number: never with OK */
-        if (!isfinite(value)) {
+        /* after a failed step the core may hold what is not a number: never with OK (a
+           calculated parameter of a parameter that may be INF may be INF: the chute's
+           length with no end) */
+        const int no_end = value == INFINITY && v->causality == FMU_CAUSALITY_CALCULATED_PARAMETER;
+        if (!isfinite(value) && !no_end) {
             fmu_error(inst, "%s: %s = %g is not a finite number (the core failed: %s)", fn,
                       v->name, value, tribo_last_error(inst->model));
             return 0;

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The FMUs for every platform this project ships, one .fmu per FMI version:
-#   build-fmus/tribo_fmi2.fmu, build-fmus/tribo_fmi3.fmu
+# The FMUs for every platform this project ships, one .fmu per front end and FMI version:
+#   build-fmus/tribo_fmi2.fmu, build-fmus/tribo_fmi3.fmu         (dimensionless)
+#   build-fmus/tribo_si_fmi2.fmu, build-fmus/tribo_si_fmi3.fmu   (SI units)
 # each with the Linux x86-64 binary (the native build, build/), the Windows x86-64 binary
 # (cross-compiled with Debian's MinGW-w64, CVODE built from Debian's source package of
 # SUNDIALS, the same version as the native build links), sources/ (the core, the FMI
@@ -69,15 +70,20 @@ fi
 cmake --build "$OUT/win64"
 
 # ---- sources/: what a C compiler needs to build the FMU anywhere ------------------------------
-make_sources() { # make_sources <fmi version> <folder>
-  local v=$1 dir=$2 sun="$2/sundials"
+description_name() { # description_name <prefix> <fmi version>: as fmu/CMakeLists.txt names it
+  if [ "$1" = tribo ]; then echo "fmi$2"; else echo "$1_fmi$2"; fi
+}
+make_sources() { # make_sources <prefix> <fmi version> <folder>
+  local prefix=$1 v=$2 dir=$3 sun="$3/sundials" front=front_end_model
+  [ "$prefix" = tribo ] || front=front_end_si
   rm -rf "$dir"
   mkdir -p "$dir/tribo/src" "$dir/tribo/fmu" "$sun/include" "$sun/src"
-  cp "$ROOT/src"/*.c "$ROOT/src"/*.h "$ROOT/src/quantities.def" "$dir/tribo/src/"
-  for f in variables logging lifecycle step access fmu_state "fmi$v"; do
+  cp "$ROOT/src"/*.c "$ROOT/src"/*.h "$ROOT/src"/*.def "$dir/tribo/src/"
+  for f in variables logging lifecycle step access fmu_state "$front" "fmi$v"; do
     cp "$ROOT/fmu/$f.c" "$dir/tribo/fmu/"
   done
-  cp "$ROOT/fmu"/*.h "$ROOT/build/fmu/generated/fmi$v/instantiation_token.h" "$dir/tribo/fmu/"
+  cp "$ROOT/fmu"/*.h "$ROOT/build/fmu/generated/$(description_name "$prefix" "$v")/instantiation_token.h" \
+     "$dir/tribo/fmu/"
   cp "$ROOT/LICENSE" "$dir/tribo/"
   # CVODE: the sources of the objects in the static library the Windows build links (it
   # bundles the dense matrix, linear and nonlinear solvers), their private headers, the
@@ -96,20 +102,23 @@ make_sources() { # make_sources <fmi version> <folder>
     cp "$SUNDIALS_SRC/$(dirname "$c")"/*.h "$sun/$(dirname "$c")/" 2>/dev/null || true
   done
   cp "$SUNDIALS_SRC/LICENSE" "$SUNDIALS_SRC/NOTICE" "$sun/"
-  "$PYTHON" "$ROOT/fmu/tools/build_description.py" "$v" "$dir" > "$dir/buildDescription.xml"
+  "$PYTHON" "$ROOT/fmu/tools/build_description.py" "$prefix" "$v" "$dir" > "$dir/buildDescription.xml"
 }
 
-for v in 2 3; do
-  if [ "$v" = 2 ]; then linux=linux64 windows=win64; else linux=x86_64-linux windows=x86_64-windows; fi
-  token=$(sed -n 's/.*"\({[0-9a-f-]*}\)".*/\1/p' "$ROOT/build/fmu/generated/fmi$v/instantiation_token.h")
-  grep -q "$token" "$OUT/win64/fmu/lib/tribo_fmi$v.dll" ||
-    { echo "build_fmus: the Windows binary does not carry the description's token $token" >&2; exit 1; }
-  make_sources "$v" "$OUT/sources$v"
-  "$PYTHON" "$ROOT/fmu/tools/pack_fmu.py" --out "$OUT/tribo_fmi$v.fmu" \
-    --description "$ROOT/build/fmu/fmi$v.xml" --model-doc "$ROOT/docs/model.md" \
-    --binary "$linux=$ROOT/build/fmu/lib/tribo_fmi$v.so" \
-    --binary "$windows=$OUT/win64/fmu/lib/tribo_fmi$v.dll" \
-    --license license.txt="$ROOT/LICENSE" --license SUNDIALS-LICENSE="$SUNDIALS_SRC/LICENSE" \
-    --sources "$OUT/sources$v" --epoch "$SOURCE_DATE_EPOCH"
-  echo "build_fmus: $OUT/tribo_fmi$v.fmu"
+for prefix in tribo tribo_si; do
+  for v in 2 3; do
+    if [ "$v" = 2 ]; then linux=linux64 windows=win64; else linux=x86_64-linux windows=x86_64-windows; fi
+    id=${prefix}_fmi$v name=$(description_name "$prefix" "$v")
+    token=$(sed -n 's/.*"\({[0-9a-f-]*}\)".*/\1/p' "$ROOT/build/fmu/generated/$name/instantiation_token.h")
+    grep -q "$token" "$OUT/win64/fmu/lib/$id.dll" ||
+      { echo "build_fmus: the Windows binary does not carry the description's token $token" >&2; exit 1; }
+    make_sources "$prefix" "$v" "$OUT/sources_$id"
+    "$PYTHON" "$ROOT/fmu/tools/pack_fmu.py" --out "$OUT/$id.fmu" \
+      --description "$ROOT/build/fmu/$name.xml" --model-doc "$ROOT/docs/model.md" \
+      --binary "$linux=$ROOT/build/fmu/lib/$id.so" \
+      --binary "$windows=$OUT/win64/fmu/lib/$id.dll" \
+      --license license.txt="$ROOT/LICENSE" --license SUNDIALS-LICENSE="$SUNDIALS_SRC/LICENSE" \
+      --sources "$OUT/sources_$id" --epoch "$SOURCE_DATE_EPOCH"
+    echo "build_fmus: $OUT/$id.fmu"
+  done
 done

@@ -3,7 +3,10 @@ into the FMI 2.0 FMU, whose importers ignore it): every C file to compile, the i
 directories, the preprocessor definitions. Compiling the listed files into a shared
 library (and linking the C maths library on Unix) gives the FMU's binary.
 
-    python build_description.py <2|3> <sources folder> > buildDescription.xml
+    python build_description.py <tribo|tribo_si> <2|3> <sources folder> > buildDescription.xml
+
+The first argument is the FMU pair's prefix (its modelIdentifier is <prefix>_fmi<version>):
+the SI FMUs' variable table is compiled with TRIBO_FMU_SI (fmu/variables.c).
 """
 
 import os
@@ -18,7 +21,9 @@ DEFINITIONS = [
 
 
 def main():
-    version, folder = int(sys.argv[1]), sys.argv[2]
+    prefix, version, folder = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+    definitions = DEFINITIONS + ([("TRIBO_FMU_SI", "the variable table of the SI front end "
+                                   "(src/si_quantities.def)")] if prefix == "tribo_si" else [])
     sources, includes = [], set()
     for directory, _, files in sorted(os.walk(folder)):
         relative = os.path.relpath(directory, folder).replace(os.sep, "/")
@@ -31,12 +36,12 @@ def main():
     includes = {i for i in includes if not i.startswith("sundials/include/")} | {"sundials/include"}
     out = ['<?xml version="1.0" encoding="UTF-8"?>',
            '<fmiBuildDescription fmiVersion="3.0">',
-           f'  <BuildConfiguration modelIdentifier="tribo_fmi{version}" '
+           f'  <BuildConfiguration modelIdentifier="{prefix}_fmi{version}" '
            f'description="the FMU as one shared library (link the C maths library on Unix)">',
            '    <SourceFileSet language="C11">']
     out += [f"      <SourceFile name={quoteattr(s)}/>" for s in sources]
     out += [f"      <PreprocessorDefinition name={quoteattr(n)} description={quoteattr(d)}/>"
-            for n, d in DEFINITIONS]
+            for n, d in definitions]
     out += [f"      <IncludeDirectory name={quoteattr(i)}/>" for i in sorted(includes)]
     out += ["    </SourceFileSet>", "  </BuildConfiguration>", "</fmiBuildDescription>"]
     print("\n".join(out))

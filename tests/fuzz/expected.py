@@ -13,6 +13,7 @@ import os
 import xml.etree.ElementTree as ET
 
 from fmi_calls import DISCARD, ERROR, OK, function_type
+from front_ends import front_end_of
 
 INSTANTIATED = "Instantiated"
 CONFIGURATION = "Configuration Mode"
@@ -79,6 +80,8 @@ class Model:
         self.variables = [Variable(v, version, attributes[v.valueReference])
                           for v in md.modelVariables]
         self.by_vr = {v.vr: v for v in self.variables}
+        # the dimensionless model's variables, or the SI front end's (front_ends.py)
+        self.front = front_end_of(md.coSimulation.modelIdentifier)
         self.reset()
 
     def reset(self):
@@ -94,10 +97,15 @@ class Model:
     # ---- values ------------------------------------------------------------------------
 
     def scene_valid(self):
-        """Whether the parameters, each valid, also go together (the core's combinations):
-        the drop lies on the chute. Otherwise the model cannot be made: initialization
-        and the outputs are refused."""
-        return self.values["X0"] < self.values["chute_length"]
+        """Whether the parameters, each valid, also go together (the core's combinations:
+        the drop lies on the chute; the SI FMU's: what they derive is in the model's
+        ranges). Otherwise the model cannot be made: initialization and the outputs are
+        refused."""
+        return self.front.scene_valid(self.values)
+
+    def initialization_valid(self):
+        """Whether initialization ends: the scene makes a model and it takes the inputs."""
+        return self.scene_valid() and self.front.inputs_valid(self.values)
 
     def count(self, v):
         return int(self.values[self.by_vr[v.dimension].name]) if v.dimension is not None else 1
@@ -125,7 +133,8 @@ class Model:
         variables = self._resolved(ftype, vrs, n_values)
         if variables is None:
             return {ERROR}
-        if any(v.causality == "output" for v in variables):
+        # outputs and calculated parameters are computed from Initialization Mode on
+        if any(v.causality in ("output", "calculatedParameter") for v in variables):
             if self.lifecycle not in READABLE:
                 return {ERROR}
             if self.lifecycle == INITIALIZATION and not self.scene_valid():
@@ -141,6 +150,10 @@ class Model:
             return ERROR, None
         for v, value in zip(variables, values):
             if not v.settable or not v.valid(float(value)) or not self._settable_now(v):
+                return ERROR, None
+            # the running model must take it too (the SI front end's conversion)
+            if self.lifecycle == STEP and \
+                    not self.front.accepts_while_running(v.name, float(value), self.values):
                 return ERROR, None
         return OK, list(zip(variables, values))
 
@@ -170,7 +183,7 @@ class Model:
             return ERROR
         if self.stop is not None and end > self.stop + rounding_tolerance(self.stop):
             return ERROR
-        core_end = max(end - self.start, self.core_time)
+        core_end = max((end - self.start) / self.front.time_unit(self.values), self.core_time)
         if core_end > TIME_MAX:
             return ERROR
         if self.values["integrator"] == 0 and not core_end / self.values["dt"] < GRID_MAX_STEPS:
@@ -193,14 +206,14 @@ class Model:
             if not (min(current, self.time) <= reached <= end):
                 return False
             self.time = reached
-            self.core_time = reached - self.start
+            self.core_time = (reached - self.start) / self.front.time_unit(self.values)
             self.lifecycle = EXITED
             return True
         if status == OK and not early:
             if reached != end:
                 return False
             self.time = end
-            self.core_time = max(end - self.start, self.core_time)
+            self.core_time = max((end - self.start) / self.front.time_unit(self.values), self.core_time)
             return True
         ended_early = (status == OK and early and self.early_return) or \
             (status == DISCARD and not early)
@@ -209,7 +222,7 @@ class Model:
         if not ended_early or not (min(current, self.time) <= reached < end):
             return False
         self.time = reached
-        self.core_time = reached - self.start
+        self.core_time = (reached - self.start) / self.front.time_unit(self.values)
         if status == DISCARD and self.version == 2:
             self.lifecycle = DISCARDED
         return True

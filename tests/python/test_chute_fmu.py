@@ -10,7 +10,7 @@ import math
 import pytest
 from fmpy import read_model_description, simulate_fmu
 
-from tribo_fmu import DISCARD, ERROR, OK, VERSIONS, Slave, core_run, status_of
+from tribo_fmu import DISCARD, ERROR, OK, VERSIONS, Slave, core_run, libcosim_run, status_of
 
 CHUTE = {"chute_length": 3.0, "n_segments": 64}  # the paper's drop slides off at tau ~ 75
 OUTPUTS = ["X", "U", "Q_static", "Q_sliding", "exit_time", "impacts"]
@@ -121,30 +121,14 @@ def test_libcosim_reads_inf_and_stops_at_the_exit(fmu_file):
     """libcosim (FMI 2.0) takes the INF start value, and a run that leaves the chute ends
     at the exit step: simulate_until returns false there, with the last whole step's
     values observed (libcosim treats fmi2Discard as the end)."""
-    from libcosimpy.CosimExecution import CosimExecution
-    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
-    from libcosimpy.CosimObserver import CosimObserver
-    from libcosimpy.CosimSlave import CosimLocalSlave
-
-    log_output_level(CosimLogLevel.ERROR)
     fmu = fmu_file(2)
-    vr = {v.name: v.valueReference for v in read_model_description(fmu).modelVariables}
-    results = {}
-    for length in (None, 3.0):
-        execution = CosimExecution.from_step_size(step_size=int(1e9))  # steps of 1
-        index = execution.add_local_slave(local_slave=CosimLocalSlave(fmu_path=fmu, instance_name="tribo"))
-        observer = CosimObserver.create_last_value()
-        execution.add_observer(observer=observer)
-        execution.integer_initial_value(index, vr["n_segments"], 64)
-        if length is not None:
-            execution.real_initial_value(index, vr["chute_length"], length)
-        done = execution.simulate_until(target_time=int(100e9))
-        results[length] = (done, execution.status().current_time,
-                           observer.last_real_values(index, [vr["chute_length"], vr["X"]]))
+    results = {length: libcosim_run(fmu, 1.0, 100.0, {} if length is None else {"chute_length": length},
+                                    {"n_segments": 64}, ["chute_length", "X"])
+               for length in (None, 3.0)}
     done, now, (L, X) = results[None]
-    assert done and now == int(100e9) and L == math.inf and X > 3.0
+    assert done and now == 100.0 and L == math.inf and X > 3.0
     done, now, (L, X) = results[3.0]
-    assert not done and now == int(75e9) and L == 3.0 and X < 3.0
+    assert not done and now == 75.0 and L == 3.0 and X < 3.0
 
 
 @pytest.mark.parametrize("version", VERSIONS)

@@ -1,4 +1,5 @@
-"""The fuzz suite (tests/fuzz/fuzz_fmu.py) over both FMUs: random call sequences checked
+"""The fuzz suite (tests/fuzz/fuzz_fmu.py) over the FMUs (the dimensionless pair, and fewer
+sequences on the SI pair): random call sequences checked
 against a model of the expected statuses, and mutated FMU states, with fixed seeds and a
 timeout per call. Once on the Release build and once on the sanitizer build (build-sanitize:
 AddressSanitizer and UndefinedBehaviorSanitizer with float-cast-overflow; the FMU's library
@@ -19,12 +20,16 @@ SANITIZE_DIR = os.path.abspath(os.environ.get("TRIBO_SANITIZE_BUILD_DIR",
                                               os.path.join(ROOT, "build-sanitize")))
 FUZZ = os.path.join(ROOT, "tests", "fuzz", "fuzz_fmu.py")
 
-# (build, FMI version, seed, sequences, states mutated, values per field, seconds per call)
+# (build, FMU, seed, sequences, states mutated, values per field, seconds per call)
 RUNS = [
-    (BUILD_DIR, 2, 11, 500, 8, 4, 20),
-    (BUILD_DIR, 3, 12, 500, 8, 4, 20),
-    (SANITIZE_DIR, 2, 13, 80, 3, 2, 120),
-    (SANITIZE_DIR, 3, 14, 80, 3, 2, 120),
+    (BUILD_DIR, "tribo_fmi2", 11, 500, 8, 4, 20),
+    (BUILD_DIR, "tribo_fmi3", 12, 500, 8, 4, 20),
+    (SANITIZE_DIR, "tribo_fmi2", 13, 80, 3, 2, 120),
+    (SANITIZE_DIR, "tribo_fmi3", 14, 80, 3, 2, 120),
+    (BUILD_DIR, "tribo_si_fmi2", 15, 60, 3, 2, 20),
+    (BUILD_DIR, "tribo_si_fmi3", 16, 60, 3, 2, 20),
+    (SANITIZE_DIR, "tribo_si_fmi2", 17, 15, 2, 1, 120),
+    (SANITIZE_DIR, "tribo_si_fmi3", 18, 15, 2, 1, 120),
 ]
 
 
@@ -41,9 +46,9 @@ def sanitizer_runtime():
 
 
 def fuzz(run):
-    build, version, seed, sequences, bases, per_field, timeout = run
-    fmu = os.path.join(build, "fmu", f"tribo_fmi{version}.fmu")
-    summary = os.path.join(build, "fuzz", f"fmi{version}_seed{seed}.json")
+    build, name, seed, sequences, bases, per_field, timeout = run
+    fmu = os.path.join(build, "fmu", f"{name}.fmu")
+    summary = os.path.join(build, "fuzz", f"{name}_seed{seed}.json")
     os.makedirs(os.path.dirname(summary), exist_ok=True)
     if os.path.exists(summary):
         os.remove(summary)
@@ -59,17 +64,16 @@ def fuzz(run):
     return run, summary, done
 
 
-def test_fuzz_both_fmus_release_and_sanitized():
-    for build in (BUILD_DIR, SANITIZE_DIR):
-        for version in (2, 3):
-            if not os.path.exists(os.path.join(build, "fmu", f"tribo_fmi{version}.fmu")):
-                pytest.fail(f"{build}/fmu/tribo_fmi{version}.fmu is missing: build it "
-                            f"(scripts/test.sh builds build-sanitize with the FMUs)")
+def test_fuzz_every_fmu_release_and_sanitized():
+    for build, name, *_ in RUNS:
+        if not os.path.exists(os.path.join(build, "fmu", f"{name}.fmu")):
+            pytest.fail(f"{build}/fmu/{name}.fmu is missing: build it "
+                        f"(scripts/test.sh builds build-sanitize with the FMUs)")
     with ThreadPoolExecutor(max_workers=2) as pool:
         results = list(pool.map(fuzz, RUNS))
     failures = []
     for run, summary, done in results:
-        what = f"{os.path.basename(run[0])} FMI {run[1]}.0 (seed {run[2]})"
+        what = f"{os.path.basename(run[0])} {run[1]} (seed {run[2]})"
         # a crash, a sanitizer report or a timeout ends the process otherwise than by 0 / 1
         if done.returncode not in (0, 1) or not os.path.exists(summary):
             failures.append(f"{what}: exit {done.returncode}\n{done.stderr[-4000:]}")

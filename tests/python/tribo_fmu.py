@@ -50,3 +50,28 @@ def core_run(exe, params, script, segments=False):
     if not segments:
         return records
     return [dict(q, segments=s) for q, s in zip(records[0::2], records[1::2])]
+
+
+def libcosim_run(fmu, step_size, stop_time, reals=None, integers=None, observed=()):
+    """One run of an FMI 2.0 FMU in libcosim from 0 (times in seconds, as libcosim's
+    nanoseconds): (whether simulate_until reached stop_time, the time reached, the last
+    values of the observed reals)."""
+    from fmpy import read_model_description
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimObserver import CosimObserver
+    from libcosimpy.CosimSlave import CosimLocalSlave
+
+    log_output_level(CosimLogLevel.ERROR)
+    vr = {v.name: v.valueReference for v in read_model_description(fmu).modelVariables}
+    execution = CosimExecution.from_step_size(step_size=round(step_size * 1e9))
+    index = execution.add_local_slave(local_slave=CosimLocalSlave(fmu_path=fmu, instance_name="tribo"))
+    observer = CosimObserver.create_last_value()
+    execution.add_observer(observer=observer)
+    for name, value in (integers or {}).items():
+        execution.integer_initial_value(index, vr[name], value)
+    for name, value in (reals or {}).items():
+        execution.real_initial_value(index, vr[name], value)
+    done = execution.simulate_until(target_time=round(stop_time * 1e9))
+    return (done, execution.status().current_time / 1e9,
+            observer.last_real_values(index, [vr[name] for name in observed]))

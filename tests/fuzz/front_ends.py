@@ -1,0 +1,120 @@
+"""What the fuzz model needs to know of an FMU's front end (fmu/front_end.h): whether its
+parameters make a model, whether the running model takes an input or a tunable value, and
+the unit of the FMU's time in the model's.
+
+The dimensionless FMUs pass everything on as it is. The SI FMUs map a physical set-up onto
+the model by docs/model.md section 8: written here again from that section (not from
+src/si.c), with the model's ranges read from the dimensionless FMU's reviewed description
+(modelDescription/fmi3.xml), so that the fuzz suite checks the SI FMU's refusals against an
+independent statement of the mapping."""
+
+import math
+import os
+import xml.etree.ElementTree as ET
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+MODEL_DESCRIPTION = os.path.join(ROOT, "modelDescription", "fmi3.xml")
+
+
+class Dimensionless:
+    """The model's own variables."""
+
+    def scene_valid(self, values):
+        """The drop lies on the chute (the core's one combination)."""
+        return values["X0"] < values["chute_length"]
+
+    def inputs_valid(self, values):
+        return True
+
+    def time_unit(self, values):
+        return 1.0
+
+    def accepts_while_running(self, name, value, values):
+        return True
+
+
+def model_ranges():
+    """The model's parameters and inputs: name -> (min, max, max given)."""
+    root = ET.parse(MODEL_DESCRIPTION).getroot()
+    out = {}
+    for element in root.find("ModelVariables"):
+        a = element.attrib
+        if a.get("causality") in ("parameter", "structuralParameter", "input"):
+            out[a["name"]] = (float(a.get("min", -math.inf)), float(a.get("max", math.inf)),
+                              "max" in a)
+    return out
+
+
+class SI:
+    """docs/model.md section 8."""
+
+    # SI parameter -> (model parameter, conversion)
+    MAP = {"epsilon": ("epsilon", "same"), "mu": ("mu", "same"), "nu": ("nu", "same"),
+           "eta": ("eta", "same"), "tilt": ("beta", "same"), "charging_time": ("tau0", "time"),
+           "backflow_time": ("tau_r", "time"), "sigma0": ("Sigma0", "density"),
+           "chute_length": ("chute_length", "length"), "drop_height": ("gap0", "length"),
+           "drop_speed": ("drop_speed", "speed"), "drop_angle": ("drop_angle", "same"),
+           "x0": ("X0", "length"), "phi0": ("phi0", "same"), "omega0": ("Omega0", "rate"),
+           "n_segments": ("n_segments", "same"), "charge_model": ("charge_model", "same"),
+           "integrator": ("integrator", "same"), "dt": ("dt", "same"), "rtol": ("rtol", "same"),
+           "atol": ("atol", "same"), "v_reg": ("v_reg", "same"),
+           "damping_point": ("damping_point", "same"), "work_limit": ("work_limit", "same")}
+    INPUTS = {"F_T_ext": "F_T_ext", "F_N_ext": "F_N_ext"}
+
+    def __init__(self):
+        self.ranges = model_ranges()
+
+    @staticmethod
+    def units(v):
+        """The set-up's units (model.md section 8), each computed as the SI FMU does."""
+        a = v["semi_major_axis"]
+        if v["contact_stiffness"] > 0.0:
+            k = v["contact_stiffness"]
+        else:
+            nu_p, nu_w = v["poisson_ratio_particle"], v["poisson_ratio_wall"]
+            e_star = 1.0 / ((1.0 - nu_p * nu_p) / v["youngs_modulus_particle"] +
+                            (1.0 - nu_w * nu_w) / v["youngs_modulus_wall"])
+            k = (math.pi / 4.0) * e_star
+        m = v["density"] * math.pi * a * a * v["epsilon"]
+        t_star = math.sqrt(m / k)
+        return {"a": a, "t_star": t_star, "velocity": a / t_star, "force": k * a,
+                "sigma": math.sqrt(v["interface_capacitance"] * k * a), "mass": m}
+
+    @staticmethod
+    def convert(u, how, x):
+        return {"same": lambda: x, "length": lambda: x / u["a"], "time": lambda: x / u["t_star"],
+                "speed": lambda: x / u["velocity"], "rate": lambda: x * u["t_star"],
+                "density": lambda: abs(x) / u["sigma"]}[how]()
+
+    def in_range(self, model_name, x):
+        lo, hi, bounded = self.ranges[model_name]
+        if x == math.inf and not bounded:
+            return True
+        return math.isfinite(x) and lo <= x <= hi
+
+    def scene_valid(self, values):
+        if not values["x0"] < values["chute_length"]:
+            return False
+        u = self.units(values)
+        for si, (model, how) in self.MAP.items():
+            if not self.in_range(model, self.convert(u, how, values[si])):
+                return False
+        return self.in_range("Gamma", u["mass"] * values["gravity"] / u["force"])
+
+    def inputs_valid(self, values):
+        u = self.units(values)
+        return all(self.in_range(model, values[si] / u["force"]) for si, model in self.INPUTS.items())
+
+    def time_unit(self, values):
+        return self.units(values)["t_star"]
+
+    def accepts_while_running(self, name, value, values):
+        u = self.units(values)
+        if name in self.INPUTS:
+            return self.in_range(self.INPUTS[name], value / u["force"])
+        model, how = self.MAP[name]
+        return self.in_range(model, self.convert(u, how, value))
+
+
+def front_end_of(model_identifier):
+    return SI() if model_identifier.startswith("tribo_si_") else Dimensionless()
