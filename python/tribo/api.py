@@ -63,7 +63,7 @@ def run_si(particle: str | None = None, wall: str | None = None, *, t_end: float
     if (particle is None) != (wall is None):
         raise ValueError("give both a particle and a wall material, or neither")
     params = start_values(particle, wall, **parameters) if particle else dict(parameters)
-    image = FmuImage.load(find_fmu(fmu, si=True))
+    image = FmuImage.load(find_fmu(fmu, variant="si"))
     md = image.model_description()
     check_values(image, {name: [value] for name, value in params.items()})
     if outputs is None:

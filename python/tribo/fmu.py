@@ -122,6 +122,7 @@ class Instance:
         self.instantiate(logging_on)
         self.t = 0.0
         self.ended = False  # the FMU ended the run before the time asked for (see step_to)
+        self.work_limit_returns = 0  # FMI 3.0 steps cut by the work limit and continued
 
     def __enter__(self):
         return self
@@ -180,7 +181,10 @@ class Instance:
     def step_to(self, t) -> bool:
         """One communication step to t. False if the FMU ended the run before t: then
         `self.t` is the last time it reached, `self.ended` is set, and the outputs are
-        those of that time."""
+        those of that time. With FMI 3.0, a step cut short by the FMU's work limit
+        (`work_limit`) is continued from where it stopped until it reaches t (counted in
+        `work_limit_returns`); with FMI 2.0 that leaves the instance in stepFailed, and the
+        call raises."""
         if self.version == 2:
             try:
                 self._explained(self.fmu.doStep, self.t, t - self.t)
@@ -190,13 +194,23 @@ class Instance:
                 return self._end(self.fmu.getRealStatus(fmi2LastSuccessfulTime))
             self.t = t
             return True
-        status, terminate, _, reached = self._do_step3(self.t, t - self.t)
-        if status > WARNING and not (status == DISCARD and terminate):
-            raise FMICallException(f"fmi3DoStep (the FMU logged: {self.errors()})", status)
-        if terminate:
-            return self._end(reached)
-        self.t = t
-        return True
+        while True:
+            status, terminate, early, reached = self._do_step3(self.t, t - self.t)
+            if status > WARNING and status != DISCARD:
+                raise FMICallException(f"fmi3DoStep (the FMU logged: {self.errors()})", status)
+            if terminate:
+                return self._end(reached)
+            if status == OK and not early:
+                self.t = t
+                return True
+            # the step's work limit was spent (Discard, or an early return): the FMU stays
+            # in Step Mode at the time reached, and the run goes on from there unchanged
+            # (fmu/README.md, "Work limit"); a return without progress would loop for ever
+            if not reached > self.t:
+                raise FMICallException(f"fmi3DoStep made no progress from time {self.t!r} "
+                                       f"(the FMU logged: {self.errors()})", status)
+            self.t = reached
+            self.work_limit_returns += 1
 
     def _do_step3(self, t, h):
         """fmi3DoStep called directly: fmpy raises on Discard and so loses the step's

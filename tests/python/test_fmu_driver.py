@@ -1,6 +1,7 @@
 """The package's fmpy driver (tribo.fmu), which the tests use too: a run the FMU ends
 early (a doStep that returns Discard and asks to terminate, as a particle leaving a chute
-does) is recorded up to where it ended, rows kept; a Discard without that is an error.
+does) is recorded up to where it ended, rows kept; a Discard without that is an error with
+FMI 2.0, and with FMI 3.0 (the work limit: the FMU stays in Step Mode) the step goes on.
 The FMUs here never end early, so the end is played by wrapping the FMU's doStep: the
 real step to the end time, then the FMI status and flags an ending FMU gives."""
 
@@ -65,15 +66,30 @@ def test_a_run_the_fmu_ends_early_keeps_its_rows(fmu_dir, version):
     assert not np.array_equal(rows[3], full[3])
 
 
-@pytest.mark.parametrize("version", [2, 3])
-def test_a_discard_without_terminate_is_an_error(fmu_dir, version):
-    with Instance(fmu_dir(version)) as s:
+def test_an_fmi2_discard_without_terminate_is_an_error(fmu_dir):
+    """FMI 2.0 leaves the instance in stepFailed after a Discard: it cannot go on."""
+    with Instance(fmu_dir(2)) as s:
         s.init(n_segments=64)
         ending_at(s, END, terminate=False)
         s.step_to(1.0)
         with pytest.raises(FMICallException) as e:
             s.step_to(3.0)
         assert e.value.status == DISCARD and not s.ended
+
+
+@pytest.mark.parametrize("early_return", [False, True])
+def test_fmi3_steps_cut_by_the_work_limit_go_on_to_the_same_run(fmu_dir, early_return):
+    """A work limit of 40 CVODE steps per doStep cuts the paper's case's steps many times
+    (Discard, or an early return where allowed); step_to goes on from the time reached,
+    and the run is the one without the limit, bit for bit (fmu/README.md, "Work limit")."""
+    times = [0.0, 10.0, 20.0, 30.0, 40.0, 50.0]
+    _, full = reference(fmu_dir(3), times)
+    with Instance(fmu_dir(3), early_return=early_return) as s:
+        s.init(n_segments=64, work_limit=2000)
+        reached, rows = record(s, times, NAMES)
+        assert s.work_limit_returns >= 5 and not s.ended
+    assert list(reached) == times
+    assert np.array_equal(rows, full)
 
 
 def test_fmi3_terminate_with_ok_ends_the_run_too(fmu_dir):
