@@ -506,6 +506,13 @@ static tribo_status close_step(cvode_integrator *c)
     tribo_commit(m, &next);
     c->open = 0;
 
+    if (!c->ends_at_root && !(c->y_end[TRIBO_IX] < c->dyn->chute_length)) {
+        /* past the end without the exit root: the root finding cannot resolve L - X where
+           it is below its resolution (a chute of 5e-324): the run ends at the step's end */
+        c->ending = TRIBO_STOP_EXIT;
+        st = restart_at(c, c->t_end, tribo_committed(m)->y, &c->phase);
+        return st == TRIBO_OK ? TRIBO_ENDED : st;
+    }
     if (!c->ends_at_root) {
         c->events_in_a_row = 0;
         if (c->steps_since_restart >= STEPS_PER_RESTART)

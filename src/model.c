@@ -127,7 +127,10 @@ tribo_status tribo_stop_early(tribo_model *m, tribo_stop_reason why)
     tribo_output_begin(m);
     tribo_output_set(m, &m->committed);
     if (why == TRIBO_STOP_EXIT || why == TRIBO_STOP_LIFTOFF) {
-        m->ended = why == TRIBO_STOP_EXIT ? TRIBO_END_EXIT : TRIBO_END_LIFTOFF;
+        /* a lift-off found at or past the end of the chute (both within one step, or within
+           the root finding's tolerance of each other) is the exit: the particle has left */
+        const int past = !(m->committed.y[TRIBO_IX] < m->scene.chute_length);
+        m->ended = why == TRIBO_STOP_EXIT || past ? TRIBO_END_EXIT : TRIBO_END_LIFTOFF;
         return ended(m);
     }
     return tribo_fail(m, TRIBO_INCOMPLETE,
