@@ -256,9 +256,11 @@ fmu_status fmu_state_set(fmu_instance *inst, const char *fn, const fmu_state *s)
     tribo_model *model = NULL;
     if (r.core_size && !(model = load_core(inst, fn, &r)))
         return FMU_ERROR;
-    /* the FMU is in its exited state exactly when the core's run is over (model.md §9), or
-       has been terminated */
-    const int over = model && tribo_get(model, TRIBO_Q_EXITED) != 0.0;
+    /* the FMU is in its exited state exactly when the core's run is over (model.md §9: the
+       particle left the chute, or lifted off with run_end = first_liftoff), or has been
+       terminated */
+    const int over = model && (tribo_get(model, TRIBO_Q_EXITED) != 0.0 ||
+                               tribo_get(model, TRIBO_Q_LIFTED_OFF) != 0.0);
     if (model && r.lifecycle != FMU_LIFECYCLE_TERMINATED && over != (r.lifecycle == FMU_LIFECYCLE_EXITED)) {
         tribo_free(model);
         return fmu_error(inst, "%s: the state is corrupt: its run %s over, but its FMI state is %s",

@@ -36,6 +36,7 @@ typedef struct tribo_dyn_params {
                             cannot tell which side of a switch it is on */
     double F_T, F_N;     /* external force (inputs) */
     double chute_length; /* X where the chute ends (model.md §9); INFINITY: none */
+    int end_at_liftoff;  /* the run ends at the first lift-off (run_end = first_liftoff) */
 } tribo_dyn_params;
 
 /* The normal velocity the dashpot opposes (model.md §3): the contact point's

@@ -103,7 +103,9 @@ int tribo_work_spent(const tribo_model *m);
 /* Why an advance ends before the asked time. */
 typedef enum tribo_stop_reason {
     TRIBO_STOP_WORK_LIMIT, /* the advance spent its work limit: TRIBO_INCOMPLETE */
-    TRIBO_STOP_EXIT        /* the committed point is the exit from the chute: TRIBO_ENDED */
+    TRIBO_STOP_EXIT,       /* the committed point is the exit from the chute: TRIBO_ENDED */
+    TRIBO_STOP_LIFTOFF     /* the committed point is the first lift-off (run_end =
+                              first_liftoff): TRIBO_ENDED */
 } tribo_stop_reason;
 /* End the advance under way at the committed point: it becomes the output point; returns
    the status of the reason, with a message. */

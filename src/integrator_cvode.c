@@ -33,7 +33,8 @@
  *
  * On a chute of finite length (model.md §9) the centre passing its end is one more root
  * (TRIBO_SWITCH_EXIT): the step that reaches it is committed, CVODE is restarted there (so
- * that the saved state is the exit point) and the run ends.
+ * that the saved state is the exit point) and the run ends. With run_end = first_liftoff the
+ * first switch from contact to flight ends the run the same way, at the located switch.
  */
 #include "integrator.h"
 
@@ -96,6 +97,7 @@ typedef struct cvode_integrator {
     double y_end[TRIBO_NSTATE_MAX];
     int ends_at_root;
     int roots[N_ROOTS];
+    tribo_stop_reason ending; /* why close_step ended the run (when it returns TRIBO_ENDED) */
 
     /* runaway guards */
     double last_event_t;
@@ -504,6 +506,13 @@ static tribo_status close_step(cvode_integrator *c)
     tribo_commit(m, &next);
     c->open = 0;
 
+    if (!c->ends_at_root && !(c->y_end[TRIBO_IX] < c->dyn->chute_length)) {
+        /* past the end without the exit root: the root finding cannot resolve L - X where
+           it is below its resolution (a chute of 5e-324): the run ends at the step's end */
+        c->ending = TRIBO_STOP_EXIT;
+        st = restart_at(c, c->t_end, tribo_committed(m)->y, &c->phase);
+        return st == TRIBO_OK ? TRIBO_ENDED : st;
+    }
     if (!c->ends_at_root) {
         c->events_in_a_row = 0;
         if (c->steps_since_restart >= STEPS_PER_RESTART)
@@ -513,6 +522,7 @@ static tribo_status close_step(cvode_integrator *c)
 
     /* the end of the run: no phase follows (model.md §9) */
     if (c->roots[TRIBO_SWITCH_EXIT]) {
+        c->ending = TRIBO_STOP_EXIT;
         st = restart_at(c, c->t_end, tribo_committed(m)->y, &c->phase);
         return st == TRIBO_OK ? TRIBO_ENDED : st;
     }
@@ -531,11 +541,16 @@ static tribo_status close_step(cvode_integrator *c)
     double y[TRIBO_NSTATE_MAX];
     memcpy(y, c->y_end, sizeof y);
     const phase ph = tribo_phase_after(c->dyn, &c->phase, y, c->roots);
+    const int lift_off = tribo_touching(&c->phase) && !tribo_touching(&ph);
     tribo_count(m, TRIBO_COUNT_EVENTS, 1);
     st = restart_at(c, t, y, &ph);
     if (st != TRIBO_OK)
         return st;
     commit_again(c, t, y);
+    if (lift_off && c->dyn->end_at_liftoff) { /* the run's end, like the chute's exit */
+        c->ending = TRIBO_STOP_LIFTOFF;
+        return TRIBO_ENDED;
+    }
     return TRIBO_OK;
 }
 
@@ -567,7 +582,7 @@ static tribo_status advance(tribo_model *m, void *data, double t)
         if (c->open && t <= c->t_end)
             break;
         if (c->open && (st = close_step(c)) != TRIBO_OK)
-            return st == TRIBO_ENDED ? tribo_stop_early(m, TRIBO_STOP_EXIT) : st;
+            return st == TRIBO_ENDED ? tribo_stop_early(m, c->ending) : st;
         if (t <= tribo_committed(m)->t)
             break;
         if (tribo_work_spent(m))

@@ -21,7 +21,9 @@
  * work of a step that ends in flight is still booked into Sigma_s (model.md §5b).
  *
  * On a chute of finite length (model.md §9) a step that would carry the centre past its end
- * is cut where it crosses X = chute_length (leave_chute): the run ends there.
+ * is cut where it crosses X = chute_length (end_run): the run ends there. With run_end =
+ * first_liftoff a step from a point in contact to one in flight is cut the same way where the
+ * lowest point's clearance Y - h crosses 0, and the run ends there.
  */
 #include "integrator.h"
 
@@ -147,32 +149,47 @@ static void step(tribo_model *m, const tribo_point *p, double h, tribo_point *ne
     tribo_charge_step(m, p, next, h, sample);
 }
 
-/* Whether a step ends past the end of the chute. */
-static int past_the_end(const tribo_model *m, const tribo_point *p)
+/* The ends of a run within a step (model.md §9), each a function of the point that crosses
+   from below 0 to 0 or above there: the centre passing the end of the chute, X - L; the
+   contact lost, the lowest point's clearance Y - h (the contact is geometric: delta_y > 0). */
+typedef double (*end_function)(const tribo_model *m, const tribo_point *p);
+
+static double past_the_end(const tribo_model *m, const tribo_point *p)
 {
-    return p->y[TRIBO_IX] >= tribo_dynamics(m)->chute_length;
+    return p->y[TRIBO_IX] - tribo_dynamics(m)->chute_length;
 }
 
-/* The step from p that ends where the centre crosses X = chute_length, given that one of
-   length h_past ends past it (model.md §9): its length is bracketed, by false position with
-   the Illinois rule, to the rounding of the time, between a step that ends before the end and
-   one that ends at or past it; the latter is the step taken. Deterministic: the same for
-   every advance that meets it. */
-static double crossing_step(tribo_model *m, const tribo_point *p, double h_past)
+static double clearance(const tribo_model *m, const tribo_point *p)
 {
-    const double L = tribo_dynamics(m)->chute_length;
+    (void)m;
+    return p->y[TRIBO_IY] - p->contact.pose.h;
+}
+
+/* Whether the run may end within any step: a step is then booked only once it is known not to. */
+static int run_can_end(const tribo_model *m)
+{
+    return isfinite(tribo_dynamics(m)->chute_length) || tribo_dynamics(m)->end_at_liftoff;
+}
+
+/* The step from p that ends where f crosses 0, given that one of length h_past ends at or
+   past it: its length is bracketed, by false position with the Illinois rule, to the
+   rounding of the time, between a step that ends before the crossing and one that ends at
+   or past it; the latter is the step taken. Deterministic: the same for every advance that
+   meets it. */
+static double crossing_step(tribo_model *m, const tribo_point *p, double h_past, end_function fn)
+{
     tribo_point probe;
     tribo_contact_sample sample;
-    double lo = 0.0, hi = h_past, f_lo = p->y[TRIBO_IX] - L;
+    double lo = 0.0, hi = h_past, f_lo = fn(m, p);
     step(m, p, h_past, &probe, &sample, 0);
-    double f_hi = probe.y[TRIBO_IX] - L;
+    double f_hi = fn(m, &probe);
     int side = 0; /* which end the last two updates kept */
     for (int it = 0; it < 200 && f_hi > 0.0 && hi - lo > 2e-16 * (p->t + hi); it++) {
         double h = hi - f_hi * (hi - lo) / (f_hi - f_lo);
         if (!(h > lo && h < hi))
             h = 0.5 * (lo + hi);
         step(m, p, h, &probe, &sample, 0);
-        const double f = probe.y[TRIBO_IX] - L;
+        const double f = fn(m, &probe);
         if (f >= 0.0) {
             hi = h, f_hi = f;
             if (side == +1)
@@ -188,21 +205,41 @@ static double crossing_step(tribo_model *m, const tribo_point *p, double h_past)
     return hi;
 }
 
-/* Cut the step from the committed point at the crossing, commit it and end the run. */
-static tribo_status leave_chute(tribo_model *m, fixed_step *f, double h_past)
+/* Where a step of length h_past from p to next ends the run, if it does: the length of the
+   step to the first end it crosses (*why says which), or 0 if it crosses none. */
+static double end_within(tribo_model *m, const tribo_point *p, const tribo_point *next,
+                         double h_past, tribo_stop_reason *why)
+{
+    double h = 0.0;
+    if (past_the_end(m, next) >= 0.0) {
+        h = crossing_step(m, p, h_past, past_the_end);
+        *why = TRIBO_STOP_EXIT;
+    }
+    if (tribo_dynamics(m)->end_at_liftoff && p->contact.in_contact && !next->contact.in_contact) {
+        const double h_lift = crossing_step(m, p, h_past, clearance);
+        if (h == 0.0 || h_lift < h) {
+            h = h_lift;
+            *why = TRIBO_STOP_LIFTOFF;
+        }
+    }
+    return h;
+}
+
+/* Cut the step from the committed point at the end of the run found by end_within (length
+   h, why), commit it and end the run. */
+static tribo_status end_run(tribo_model *m, fixed_step *f, double h, tribo_stop_reason why)
 {
     const tribo_point *p = tribo_committed(m);
-    const double h = crossing_step(m, p, h_past);
     tribo_point end;
     tribo_contact_sample sample;
     step(m, p, h, &end, &sample, 1);
     tribo_commit(m, &end);
     tribo_charge_sample(m, &sample, TRIBO_CHARGE_COMMIT);
     tribo_count(m, TRIBO_COUNT_STEPS, 1);
-    /* the grid starts at the exit, so that a saved state's committed point is on it */
+    /* the grid starts at the end, so that a saved state's committed point is on it */
     f->t_base = end.t;
     f->k = 0;
-    return tribo_stop_early(m, TRIBO_STOP_EXIT);
+    return tribo_stop_early(m, why);
 }
 
 static tribo_status create(tribo_model *m, void **data)
@@ -246,17 +283,19 @@ static tribo_status advance(tribo_model *m, void *data, double t)
                           t, dt);
     tribo_contact_sample sample;
     tribo_point next;
-    const int chute = isfinite(tribo_dynamics(m)->chute_length);
+    tribo_stop_reason why;
+    const int can_end = run_can_end(m);
 
-    /* commit every grid point up to t, none after it; on a chute, a step is booked (its
-       assumption check counted) only once it is known not to leave it */
+    /* commit every grid point up to t, none after it; where the run can end, a step is
+       booked (its assumption check counted) only once it is known not to end it */
     while (grid(f, f->k + 1, dt) <= t) {
         if (tribo_work_spent(m))
             return tribo_stop_early(m, TRIBO_STOP_WORK_LIMIT);
-        step(m, tribo_committed(m), dt, &next, &sample, !chute);
-        if (chute) {
-            if (past_the_end(m, &next))
-                return leave_chute(m, f, dt);
+        step(m, tribo_committed(m), dt, &next, &sample, !can_end);
+        if (can_end) {
+            const double h = end_within(m, tribo_committed(m), &next, dt, &why);
+            if (h > 0.0)
+                return end_run(m, f, h, why);
             tribo_book_interval(m, tribo_committed(m), &next, 1);
         }
         f->k++;
@@ -266,12 +305,13 @@ static tribo_status advance(tribo_model *m, void *data, double t)
         tribo_count(m, TRIBO_COUNT_STEPS, 1);
     }
 
-    /* the exit may lie within the next grid step, before t: the grid step tells */
-    if (chute && t > tribo_committed(m)->t) {
+    /* the end may lie within the next grid step, before t: the grid step tells */
+    if (can_end && t > tribo_committed(m)->t) {
         const tribo_point *p = tribo_committed(m);
         step(m, p, dt, &next, &sample, 0);
-        if (past_the_end(m, &next) && p->t + crossing_step(m, p, dt) <= t)
-            return leave_chute(m, f, dt);
+        const double h = end_within(m, p, &next, dt, &why);
+        if (h > 0.0 && p->t + h <= t)
+            return end_run(m, f, h, why);
     }
 
     tribo_output_begin(m);

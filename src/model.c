@@ -45,6 +45,7 @@ void tribo_derive_params(tribo_model *m)
     d->rtol = s->rtol;
     d->atol = s->atol;
     d->chute_length = s->chute_length;
+    d->end_at_liftoff = s->run_end == TRIBO_RUN_END_FIRST_LIFTOFF;
 }
 
 /* The initial point of the scene (model.md §7 by default); its contact is evaluated by the
@@ -99,9 +100,15 @@ void tribo_count(tribo_model *m, tribo_counter which, long long n)
     }
 }
 
-/* The run is over: the particle left the chute (model.md §9). */
+/* The run is over: the particle left the chute, or lifted off (model.md §9). */
 static tribo_status ended(tribo_model *m)
 {
+    if (m->ended == TRIBO_END_LIFTOFF)
+        return tribo_fail(m, TRIBO_ENDED,
+                          "the particle lifted off the plate at t = %.17g (run_end = "
+                          "first_liftoff: the run ends at the first contact lost): the run is "
+                          "over there; reset to run again",
+                          m->out.t);
     return tribo_fail(m, TRIBO_ENDED,
                       "the particle left the chute at t = %.17g (its centre passed X = "
                       "chute_length = %.17g): the run is over there; reset to run again",
@@ -119,8 +126,11 @@ tribo_status tribo_stop_early(tribo_model *m, tribo_stop_reason why)
 {
     tribo_output_begin(m);
     tribo_output_set(m, &m->committed);
-    if (why == TRIBO_STOP_EXIT) {
-        m->ended = 1;
+    if (why == TRIBO_STOP_EXIT || why == TRIBO_STOP_LIFTOFF) {
+        /* a lift-off found at or past the end of the chute (both within one step, or within
+           the root finding's tolerance of each other) is the exit: the particle has left */
+        const int past = !(m->committed.y[TRIBO_IX] < m->scene.chute_length);
+        m->ended = why == TRIBO_STOP_EXIT || past ? TRIBO_END_EXIT : TRIBO_END_LIFTOFF;
         return ended(m);
     }
     return tribo_fail(m, TRIBO_INCOMPLETE,

@@ -235,14 +235,19 @@ static const char *point_problem(const tribo_model *m, const tribo_point *p, dou
 }
 
 /* Whether the run has ended where the state says (model.md §9): an ended run's committed
-   point is the exit, at or past the end of the chute, and its output point; a run that goes
-   on has its committed point before the end. */
+   point is its output point, and the exit, at or past the end of the chute, or a lift-off of
+   a scene that ends there (before the end); a run that goes on has its committed point
+   before the end. */
 static const char *end_problem(const loaded *l)
 {
     const double L = l->scene.chute_length, X = l->committed.y[TRIBO_IX];
-    if (l->ended != 0 && l->ended != 1)
+    if (l->ended != 0 && l->ended != TRIBO_END_EXIT && l->ended != TRIBO_END_LIFTOFF)
         return "whether the run has ended";
-    if (l->ended ? !(X >= L && l->t_out == l->committed.t) : !(X < L))
+    if (l->ended == TRIBO_END_LIFTOFF && l->scene.run_end != TRIBO_RUN_END_FIRST_LIFTOFF)
+        return "whether the run has ended";
+    if (l->ended && l->t_out != l->committed.t)
+        return "the end of the run";
+    if (l->ended == TRIBO_END_EXIT ? !(X >= L) : !(X < L))
         return "the end of the run";
     return NULL;
 }

@@ -65,6 +65,12 @@ typedef enum tribo_integrator_kind {
     TRIBO_INTEGRATOR_CVODE_BDF = 2   /* the same with BDF (for stiff scenes)        */
 } tribo_integrator_kind;
 
+/* Where a run ends before the time asked for (parameter run_end, docs/model.md §9). */
+typedef enum tribo_run_end {
+    TRIBO_RUN_END_CHUTE_EXIT = 0,   /* only where the particle leaves the chute (default)  */
+    TRIBO_RUN_END_FIRST_LIFTOFF = 1 /* also where the first contact made is lost again   */
+} tribo_run_end;
+
 /* Where the normal dashpot takes its velocity (parameter damping_point, docs/model.md §3). */
 typedef enum tribo_damping_point {
     TRIBO_DAMPING_CONTACT_POINT = 0, /* vn = V + cx Omega, the indentation rate (default)  */

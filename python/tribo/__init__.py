@@ -14,8 +14,13 @@ The API (each function documented where it is defined, in tribo/api.py):
     path = tribo.find_fmu()                                       # the FMU used by default
     start = tribo.materials.start_values("PE", "steel", semi_major_axis=0.5e-3)
                                                                   # SI start values of a pair
+    pop = tribo.population(1000, seed=1, out="out/population")   # a feed down the chute
+    pop.summary                                                   # q/m by shape, size class
+    m = tribo.impact_map(speed=[1, 5], angle=[30, 90], phi0=[0, 45], epsilon=[0.5, 1])
+    m("charge_static", speed=3, angle=60, phi0=20, epsilon=0.7)  # C per impact
 
-The commands: tribo-study (the paper's study) and tribo-sweep (parameter sweeps), each
+The commands: tribo-study (the paper's study), tribo-sweep (parameter sweeps),
+tribo-population (particle populations) and tribo-impact-map (charge-per-impact maps), each
 with --help. The FMUs are those of the build directory (build/, or $TRIBO_BUILD_DIR) or
 the one given by path (fmu=...).
 
@@ -39,11 +44,19 @@ Modules, one responsibility each:
     tables      the study's tables (CSV and markdown)
     materials   the materials table (data/materials.toml): a particle/wall pair as the SI
                 FMU's start values
+    distributions  a feed variable's distribution, as text, drawn with a seed
+    population_feed  a feed, its seeded draw, one particle's run down the chute (SI FMU)
+    population_runner, population_summary, population_plot: a population into a folder,
+                its q/m statistics by class, its figure
+    impact      one impact episode (run_end = first_liftoff) and a map's grid
+    impact_table  a map's runs, table, metadata and the lookup ImpactMap; impact_plot: its figure
     cli         the commands
 """
 
 from . import materials
-from .api import load_results, run, run_si, sweep
+from .api import impact_map, load_results, population, run, run_si, sweep
+from .impact_table import ImpactMap
 from .locate import find_fmu
 
-__all__ = ["run", "run_si", "sweep", "load_results", "find_fmu", "materials"]
+__all__ = ["run", "run_si", "sweep", "load_results", "find_fmu", "materials", "population",
+           "impact_map", "ImpactMap"]

@@ -103,3 +103,63 @@ def sweep(grid: dict, *, t_end: float, out: str, record_interval: float = 1.0,
 def load_results(path: str) -> pd.DataFrame:
     """A results file of a sweep or a study (runs/results.csv), floats exactly as written."""
     return read_results(path)
+
+
+def population(n: int, *, seed: int = 0, particle: str = "PE", wall: str = "steel",
+               distributions: dict | None = None, measured: str | pd.DataFrame | None = None,
+               chute: dict | None = None, settings: dict | None = None, t_end: float = 5.0,
+               out: str = "out/population", fmu: str | int | None = None,
+               scheduler: str | None = None, workers: int | None = None, serial: bool = False,
+               fresh: bool = False, progress: bool = False, shape_edges=None, size_edges=None):
+    """Draw n particles from a feed with the seed and run each down the chute through the
+    SI FMU (tribo.population: the feed variables epsilon, size, phi0, omega0, drop_height,
+    drop_speed, drop_angle, each a distribution text like "uniform:0.3:1" or a number;
+    measured: a CSV path or DataFrame of measured values whose rows are drawn instead).
+    chute: SI chute parameters (default chute_length 0.3 m); settings: any other SI
+    parameter. Results go into the folder `out` (particles.csv, summary.csv,
+    population.png); an interrupted population resumes. Returns the report: .results (a
+    row per particle), .summary (q/m statistics overall, per shape and size class)."""
+    from .population_feed import DEFAULT_CHUTE, Feed, check_measured, read_measured
+    from .population_runner import run_population
+
+    if isinstance(measured, str):
+        measured = read_measured(measured)
+    elif measured is not None:
+        measured = check_measured(measured)
+    feed = Feed(particle, wall, dict(distributions or {}), dict(chute or DEFAULT_CHUTE),
+                dict(settings or {}), measured)
+    image = FmuImage.load(find_fmu(fmu, "si"))
+    executor = SerialExecutor() if serial else DaskExecutor(scheduler, workers)
+    report = run_population(feed, n, seed, t_end, image, out, executor, resume=not fresh,
+                            progress=progress, shape_edges=shape_edges, size_edges=size_edges)
+    if report.failed:
+        spec, error = report.failed[0]
+        raise RuntimeError(f"{len(report.failed)} particle(s) failed, e.g.: {error}")
+    return report
+
+
+def impact_map(*, speed, angle, phi0, epsilon, particle: str = "PE", wall: str = "steel",
+               settings: dict | None = None, limit: float | None = None, omega0: float = 0.0,
+               out: str = "out/impact_map", fmu: str | int | None = None,
+               scheduler: str | None = None, workers: int | None = None, serial: bool = False,
+               fresh: bool = False, progress: bool = False):
+    """The charge-per-impact map of a materials pair over the grid of impact speeds (m/s),
+    angles (deg from the plate's surface, 90 head-on), orientations phi0 (deg) and
+    roundness values (tribo.impact): one SI FMU episode per point, from first contact to
+    the lift-off or the time limit (`limit` in t*; default impact.DEFAULT_LIMIT). settings:
+    other SI parameters (semi_major_axis, ...). Written into `out` (impact_map.csv,
+    impact_map.json, impact_map.png), resumable; returns tribo.ImpactMap for lookups."""
+    from .impact import DEFAULT_LIMIT
+    from .impact_table import ImpactMap, run_impact_map
+    from .impact import Grid
+
+    grid = Grid.of(speed=speed, angle=angle, phi0=phi0, epsilon=epsilon)
+    image = FmuImage.load(find_fmu(fmu, "si"))
+    executor = SerialExecutor() if serial else DaskExecutor(scheduler, workers)
+    report = run_impact_map(grid, particle, wall, dict(settings or {}),
+                            DEFAULT_LIMIT if limit is None else limit, image, out, executor,
+                            omega0=omega0, resume=not fresh, progress=progress)
+    if report.failed:
+        spec, error = report.failed[0]
+        raise RuntimeError(f"{len(report.failed)} episode(s) failed, e.g.: {error}")
+    return ImpactMap.load(out)

@@ -14,10 +14,12 @@ def build_dir() -> str:
     return os.path.abspath(os.environ.get("TRIBO_BUILD_DIR", os.path.join(CHECKOUT, "build")))
 
 
-def find_fmu(fmu: str | int | None = None, variant: str = "dimensionless") -> str:
+def find_fmu(fmu: str | int | None = None, variant: str = "dimensionless", si: bool = False) -> str:
     """The path of an FMU: `fmu` itself if it is a path, else the FMI 2.0 (2) or 3.0 (3,
     the default) FMU of the build directory, of the variant "dimensionless" (tribo_fmi<v>)
-    or "si" (tribo_si_fmi<v>). FileNotFoundError, saying what to do, if it is not there."""
+    or "si" (tribo_si_fmi<v>; si=True says the same). FileNotFoundError, saying what to do,
+    if it is not there."""
+    variant = "si" if si else variant
     if isinstance(fmu, str):
         path = fmu
     else:

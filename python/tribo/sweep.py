@@ -39,11 +39,14 @@ class SweepReport:
         return len(self.results) == len(self.keys)
 
 
-def sweep_columns(specs: list[RunSpec]) -> list[str]:
+def sweep_columns(specs: list[RunSpec], result_columns: list[str] | None = None) -> list[str]:
+    """The results file's header: the key, the parameters, the run's set-up, the result
+    columns (default: the study's summary) and the timings."""
     names = list(specs[0].params)
     if any(list(s.params) != names for s in specs):
         raise ValueError("the runs of one sweep must set the same parameters")
-    return [KEY] + names + RUN_COLUMNS + summary_columns() + TIMING_COLUMNS
+    results = summary_columns() if result_columns is None else list(result_columns)
+    return [KEY] + names + RUN_COLUMNS + results + TIMING_COLUMNS
 
 
 def keys_of(specs: list[RunSpec], image: FmuImage) -> list[str]:
@@ -63,15 +66,17 @@ def kept(results_path: str, keys: list[str]) -> int:
 
 def run_sweep(specs: list[RunSpec], image: FmuImage, results_path: str, executor, *,
               resume: bool = True, series_dir: str | None = None, max_runs: int | None = None,
-              progress: bool = True, desc: str = "runs", run=run_fmu) -> SweepReport:
+              progress: bool = True, desc: str = "runs", run=run_fmu,
+              result_columns: list[str] | None = None) -> SweepReport:
     """Run `specs` (skipping finished ones if `resume`), appending a row per finished run
     to `results_path` and, if `series_dir` is given, writing each run's time series to
     <series_dir>/<key>.csv. `max_runs` caps the runs this call executes (the rest stay
-    to be done). `run(image, spec)` -> RunResult is the function the executor runs."""
+    to be done). `run(image, spec)` -> RunResult is the function the executor runs;
+    `result_columns` the names of its row (default: the study's summary)."""
     keys = [run_key(s, image.sha256) for s in specs]
     unique = list(dict.fromkeys(keys))
     spec_of = dict(zip(keys, specs))
-    results = ResultsFile(results_path, sweep_columns(specs), fresh=not resume)
+    results = ResultsFile(results_path, sweep_columns(specs, result_columns), fresh=not resume)
     backup = results.backup
     if series_dir:
         os.makedirs(series_dir, exist_ok=True)

@@ -35,6 +35,15 @@ static inline void advance_both(tribo_model *a, tribo_model *b, double t)
     cr_assert_eq(tribo_advance_fully(b, t), TRIBO_OK, "%s", tribo_last_error(b));
 }
 
+/* Where a state keeps whether (and why) its run has ended (state_io.c's layout): after the
+   header, the parameters, F_T, F_N, the output time and the six work counters. */
+static inline size_t state_ended_offset(void)
+{
+    size_t n_params;
+    tribo_param_table(&n_params);
+    return 8 + 2 * 8 + n_params * 8 + 3 * 8 + 6 * 8;
+}
+
 /* The instance's whole state, saved into a new buffer of *size bytes (free it). */
 static inline unsigned char *saved_state(const tribo_model *m, size_t *size)
 {

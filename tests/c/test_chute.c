@@ -185,15 +185,6 @@ static void expect_same_outputs(tribo_model *a, tribo_model *b, const char *what
                   tribo_quantity_name((tribo_quantity)q));
 }
 
-/* Where a state keeps whether its run has ended (state_io.c's layout): after the header, the
-   parameters, F_T, F_N, the output time and the six work counters. */
-static size_t ended_offset(void)
-{
-    size_t n_params;
-    tribo_param_table(&n_params);
-    return 8 + 2 * 8 + n_params * 8 + 3 * 8 + 6 * 8;
-}
-
 Test(chute, states_save_and_load_before_and_after_the_exit)
 {
     for (int k = 0; k < 2; k++) {
@@ -221,17 +212,17 @@ Test(chute, states_save_and_load_before_and_after_the_exit)
         /* a state that says otherwise is refused, and changes nothing */
         tribo_model *fresh = make(&s);
         int64_t flag;
-        memcpy(&flag, bytes + ended_offset(), sizeof flag);
+        memcpy(&flag, bytes + state_ended_offset(), sizeof flag);
         cr_assert_eq(flag, 1, "the layout moved: fix ended_offset");
         flag = 0;
-        memcpy(bytes + ended_offset(), &flag, sizeof flag);
+        memcpy(bytes + state_ended_offset(), &flag, sizeof flag);
         cr_expect_eq(tribo_state_load(fresh, bytes, size), TRIBO_ERR_STATE);
         cr_expect(strstr(tribo_last_error(fresh), "end of the run"), "%s", tribo_last_error(fresh));
         cr_expect_eq(tribo_get(fresh, TRIBO_Q_TIME), 0.0);
         free(bytes);
         /* and so is one that has not ended with its committed point past the end */
         bytes = saved_state(fresh, &size);
-        memcpy(&flag, bytes + ended_offset(), sizeof flag);
+        memcpy(&flag, bytes + state_ended_offset(), sizeof flag);
         cr_assert_eq(flag, 0);
         tribo_model *far = make(&s);
         cr_assert_eq(tribo_advance_fully(far, 20.0), TRIBO_OK);
@@ -271,6 +262,33 @@ Test(chute, impacts_count_the_contacts_made)
         cr_expect(seen >= 5, "%lld contacts", seen);
         cr_expect_eq(tribo_get(m, TRIBO_Q_IMPACTS), (double)seen, "integrator %d: %g impacts, %lld seen",
                      s.integrator, tribo_get(m, TRIBO_Q_IMPACTS), seen);
+        tribo_free(m);
+    }
+}
+
+Test(chute, a_chute_below_the_root_findings_resolution_still_ends_the_run)
+{
+    /* chute_length = 5e-324 on a plate tilted by 2e-308: L - X is below what CVODE's root
+       finding resolves, and the centre passed it without the exit root (found by the fuzz
+       suite: the state saved there was refused as corrupt). The run ends at the first step
+       past the end, exited, and its state loads. */
+    for (int k = 0; k < 3; k++) {
+        tribo_scene s = scene_of("n_segments=64 dt=1e-3");
+        s.integrator = INTEGRATORS[k];
+        s.beta = 2.2250738585072014e-308;
+        s.chute_length = 5e-324;
+        tribo_model *m = make(&s);
+        const tribo_status st = tribo_advance_fully(m, 0.1);
+        cr_assert_eq(st, TRIBO_ENDED, "integrator %d: %s", s.integrator, tribo_last_error(m));
+        cr_expect_eq(tribo_get(m, TRIBO_Q_EXITED), 1.0);
+        cr_expect(tribo_get(m, TRIBO_Q_X) >= 5e-324);
+        size_t size;
+        unsigned char *bytes = saved_state(m, &size);
+        tribo_model *other = make(&s);
+        cr_expect_eq(tribo_state_load(other, bytes, size), TRIBO_OK, "integrator %d: %s", s.integrator,
+                     tribo_last_error(other));
+        free(bytes);
+        tribo_free(other);
         tribo_free(m);
     }
 }

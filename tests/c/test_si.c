@@ -76,7 +76,7 @@ Test(si, the_shared_dimensionless_parameters_are_the_models)
                       si[i].variability == model->variability,
                   "%s differs from the model's", si[i].name);
     }
-    cr_expect_eq(shared, 15);
+    cr_expect_eq(shared, 16); /* run_end (issue 13) is the 16th */
 }
 
 Test(si, every_si_value_out_of_range_is_refused_with_its_message)
@@ -200,5 +200,37 @@ Test(si, the_outputs_are_the_models_in_si_units)
     const tribo_si_derived deep = derived_of(&s);
     cr_expect_eq(tribo_si_get(&deep, m, TRIBO_SI_Q_Q_PER_M_STATIC), tribo_si_get(&d, m, TRIBO_SI_Q_Q_PER_M_STATIC));
     cr_expect_eq(tribo_si_get(&deep, m, TRIBO_SI_Q_CHARGE_STATIC), 0.25 * per_length);
+    tribo_free(m);
+}
+
+Test(si, an_impact_episode_ends_at_its_liftoff_and_the_motion_fractions_pass_through)
+{
+    /* the reference grain thrown straight down at 2 m/s onto the chute (tilted 30 degrees), with
+       run_end = first_liftoff: the run ends in flight after one contact; lifted_off, impacts
+       and the motion-class fractions are the model's */
+    tribo_si_scene s = si_of("drop_height=0 drop_speed=2 run_end=1 "
+                             "n_segments=200");
+    const tribo_si_derived d = derived_of(&s);
+    cr_expect_eq(d.scene.run_end, TRIBO_RUN_END_FIRST_LIFTOFF);
+    tribo_model *m = make(&d.scene);
+    const tribo_status st = tribo_advance_fully(m, 1e4);
+    cr_assert_eq(st, TRIBO_ENDED, "status %d: %s, t = %g", st, tribo_last_error(m), tribo_get(m, TRIBO_Q_TIME));
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_LIFTED_OFF), 1.0);
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_EXITED), 0.0);
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_IMPACTS), 1.0);
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_IN_CONTACT), 0.0);
+    cr_expect(tribo_si_get(&d, m, TRIBO_SI_Q_V) > 0.0, "rebound v = %g", tribo_si_get(&d, m, TRIBO_SI_Q_V));
+    const tribo_si_quantity si_fractions[] = {TRIBO_SI_Q_FRACTION_FLIGHT, TRIBO_SI_Q_FRACTION_ROCKING,
+                                              TRIBO_SI_Q_FRACTION_ROLLING, TRIBO_SI_Q_FRACTION_TUMBLING,
+                                              TRIBO_SI_Q_FRACTION_BOUNCING};
+    const tribo_quantity fractions[] = {TRIBO_Q_FRACTION_FLIGHT, TRIBO_Q_FRACTION_ROCKING,
+                                        TRIBO_Q_FRACTION_ROLLING, TRIBO_Q_FRACTION_TUMBLING,
+                                        TRIBO_Q_FRACTION_BOUNCING};
+    double sum = 0.0;
+    for (int i = 0; i < 5; i++) {
+        cr_expect_eq(tribo_si_get(&d, m, si_fractions[i]), tribo_get(m, fractions[i]));
+        sum += tribo_si_get(&d, m, si_fractions[i]);
+    }
+    cr_expect(fabs(sum - 1.0) < 1e-12, "fractions sum to %.17g", sum);
     tribo_free(m);
 }

@@ -16,7 +16,7 @@ CHEAP = {"n_segments": [16, 64, 500, 2000], "dt": [1e-3, 8e-5, 0.1], "work_limit
 # the expensive ends of those ranges, now and then
 COSTLY = {"n_segments": [100000], "dt": [1e-9], "nu": [1e3]}
 
-UNKNOWN_VRS = [26, 99, 103, 200, 234, 300, 303, 999, 2**31, 2**32 - 1]
+UNKNOWN_VRS = [27, 99, 103, 200, 235, 300, 303, 999, 2**31, 2**32 - 1]
 
 
 def valid_value(rng, v):

@@ -35,7 +35,10 @@
    - issue 12, the chute (model.md §9) and the outputs exited, exit_time and impacts (vr
      231-233): every "hash" line changes and each run gains their lines; nothing else moved
      (the record with a hash that leaves them out reproduced the previous golden.txt byte for
-     byte). */
+     byte).
+   - issue 13, the output lifted_off (vr 234, with the parameter run_end): every "hash" line
+     changes and each run gains its line; nothing else moved (the record with a hash that
+     leaves it out reproduced the previous golden.txt byte for byte). */
 #include <inttypes.h>
 #include <stdint.h>
 #include <stdio.h>

@@ -1,0 +1,124 @@
+"""tribo-impact-map: the charge one wall impact transfers, as a map over impact speed,
+impact angle, orientation and roundness for a materials pair, through the SI FMU on Dask.
+
+    tribo-impact-map --speed 0.5:10:5 --angle 15:90:6 --phi0 0:90:4 --epsilon 0.4,0.7,1 \\
+        --particle PE --wall steel --out out/impact_map
+
+Each grid point is one impact episode (tribo/impact.py): the particle arrives with its lowest
+point touching a level plate, at the speed (m/s) and angle (degrees from the plate's surface;
+90 is head-on), orientation phi0 (degrees) and spin --omega0 (rad/s); the SI FMU runs it
+with run_end = first_liftoff and ends it exactly where it leaves the plate, or at the time
+limit (--limit, in t*, default 200: counted as sustained contact, lifted_off = 0). VALUES:
+a:b:n (n values from a to b), v1,v2,... or one value.
+
+Writes into --out: impact_map.csv (speed, angle, phi0, epsilon, then charge_static,
+charge_sliding (C per impact on the cylinder of the depth set), charge_to_mass_static,
+charge_to_mass_sliding (C/kg), rebound_u, rebound_v, rebound_speed (m/s), rebound_angle
+(deg), rebound_omega (rad/s), contact_time (s), lifted_off, time_end, t_star),
+impact_map.json (materials, settings, grid, time limit, the FMU and package versions),
+impact_map.png and episodes.csv (the runs as they finish: an interrupted map resumes when
+the same command is run again). A wall model looks charges up with tribo.ImpactMap.load(out).
+Dask: as tribo-sweep (a local cluster on 127.0.0.1 without dashboard, or --scheduler).
+"""
+
+import argparse
+import os
+import sys
+
+import numpy as np
+
+from ..executors import ClusterUnreachable
+from ..fmu import FmuImage
+from ..impact import DEFAULT_LIMIT, Grid
+from ..impact_table import EPISODES, prepare_map, run_impact_map
+from ..locate import find_fmu
+from ..materials import MaterialError
+from ..sweep import keys_of, kept
+from .common import OneLineParser, add_execution_options, check_writable_dir, executor_of, fail
+from .population import name_value
+
+PROG = "tribo-impact-map"
+
+
+def values(text: str) -> list:
+    try:
+        if ":" in text:
+            a, b, n = text.split(":")
+            if not float(n).is_integer() or int(float(n)) < 1:
+                raise ValueError
+            return [float(v) for v in np.linspace(float(a), float(b), int(float(n)))]
+        return [float(v) for v in text.split(",")]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected a:b:n, v1,v2,... or a number") from None
+
+
+def parse_args(argv=None):
+    p = OneLineParser(prog=PROG, description=__doc__.split("\n\n")[0],
+                      formatter_class=argparse.RawDescriptionHelpFormatter,
+                      epilog=__doc__.split("\n\n", 1)[1])
+    p.add_argument("--speed", type=values, required=True, metavar="VALUES", help="impact speeds, m/s")
+    p.add_argument("--angle", type=values, required=True, metavar="VALUES",
+                   help="impact angles, degrees from the plate's surface (90: head-on)")
+    p.add_argument("--phi0", type=values, default=[0.0], metavar="VALUES",
+                   help="orientations of the long axis, degrees (default 0)")
+    p.add_argument("--epsilon", type=values, default=[0.6], metavar="VALUES",
+                   help="roundness values b/a (default 0.6)")
+    p.add_argument("--omega0", type=float, default=0.0, help="spin at the impact, rad/s (default 0)")
+    p.add_argument("--particle", default="PE", help="particle material (default PE)")
+    p.add_argument("--wall", default="steel", help="wall material (default steel)")
+    p.add_argument("--set", type=name_value, action="append", default=[], metavar="NAME=VALUE",
+                   help="any other SI parameter (semi_major_axis=2e-4, mu=0.5, ...)")
+    p.add_argument("--limit", type=float, default=DEFAULT_LIMIT,
+                   help=f"time limit of an episode in t* (default {DEFAULT_LIMIT:g})")
+    p.add_argument("--out", default=os.path.join("out", "impact_map"), help="output folder")
+    p.add_argument("--fmu", help="the SI FMU (default: tribo_si_fmi3.fmu of the build)")
+    add_execution_options(p)
+    p.add_argument("--fresh", action="store_true", help="start over (the old file is kept as a backup)")
+    p.add_argument("--max-runs", type=int, help="run at most this many episodes now (the rest later)")
+    p.add_argument("--no-plot", action="store_true", help="no figure")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    return p.parse_args(argv)
+
+
+def main(argv=None) -> int:
+    args = parse_args(argv)
+    keys = []
+    path = os.path.join(args.out, EPISODES)
+    try:
+        try:
+            grid = Grid.of(speed=args.speed, angle=args.angle, phi0=args.phi0, epsilon=args.epsilon)
+            image = FmuImage.load(find_fmu(args.fmu, "si"))
+            settings = dict(args.set)
+            specs = prepare_map(grid, args.particle, args.wall, settings, args.limit, image, args.omega0)
+            if args.max_runs is not None and args.max_runs < 0:
+                raise ValueError(f"--max-runs {args.max_runs}: at least 0")
+            check_writable_dir(args.out)
+            executor = executor_of(args)
+            keys = keys_of(specs, image)
+        except (ValueError, OSError, MaterialError) as e:
+            return fail(PROG, str(e))
+        print(f"impact map: {len(specs)} episodes of {args.particle} on {args.wall} into "
+              f"{args.out}", flush=True)
+        report = run_impact_map(grid, args.particle, args.wall, settings, args.limit, image,
+                                args.out, executor, omega0=args.omega0, resume=not args.fresh,
+                                max_runs=args.max_runs, progress=not args.no_progress,
+                                figure=not args.no_plot, specs=specs)
+    except ClusterUnreachable as e:
+        return fail(PROG, str(e))
+    except KeyboardInterrupt:
+        print(f"{PROG}: interrupted: {kept(path, keys)} of {len(keys)} episodes kept in {path}; "
+              f"run the same command to resume", file=sys.stderr, flush=True)
+        return 130
+    if report.backup:
+        print(f"impact map: the earlier episodes are kept in {report.backup}")
+    print(f"impact map: {report.executed} run, {report.skipped} already in the file, "
+          f"{len(report.failed)} failed; {report.total} episodes")
+    if report.table is not None:
+        sustained = int((report.table["lifted_off"] == 0).sum())
+        print(f"impact map: {sustained} of {len(report.table)} episodes in sustained contact at the "
+              f"time limit; wrote {', '.join(report.files)}")
+    return 1 if report.failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

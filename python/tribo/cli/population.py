@@ -1,0 +1,147 @@
+"""tribo-population: a particle population down the chute through the SI FMU, on Dask: N
+particles drawn from a feed with a seed, one row per particle, the q/m summary and figure.
+
+    tribo-population -n 1000 --seed 1 --out out/population
+    tribo-population -n 200 --particle PP --wall glass --epsilon uniform:0.5:1 \\
+        --size lognormal:1e-3:0.3 --chute-length 0.5 --set tilt=0.6
+    tribo-population -n 500 --measured sieve.csv      # rows of measured values, drawn
+
+The feed variables (tribo/population_feed.py) take a number or a distribution: uniform:LOW:HIGH,
+normal:MEAN:SD, lognormal:MEDIAN:SIGMA, choice:V1,V2,...; --measured CSV gives columns of
+measured values (any of epsilon, size, phi0, omega0, drop_height, drop_speed, drop_angle),
+whose rows are drawn with replacement instead. Defaults: the SI reference case's feed
+(epsilon uniform 0.3-1, size = the long diameter 2a uniform 0.2-2 mm, phi0 uniform 0-pi,
+dropped at rest from 10 mm onto 0.3 m of steel tilted 30 degrees).
+
+Writes into --out: particles.csv (one row per particle: its parameters, exited,
+exit_time, u, v, exit_speed, omega, charge_static, charge_sliding (C), charge_to_mass_static,
+charge_to_mass_sliding (C/kg), contact_fraction, impacts (contacts made after a flight, the
+drop's first contact included), fraction_flight ... fraction_bouncing, cpu_s, wall_s),
+summary.csv (q/m: n, mean, std, percentiles 5 25 50 75 95, overall and per shape and size
+class), population.png and population.json. An interrupted population (Ctrl-C) resumes when
+the same command is run again; --fresh starts over, keeping the old particles.csv as a backup.
+Dask: as tribo-sweep (a local cluster on 127.0.0.1 without dashboard, or --scheduler).
+"""
+
+import argparse
+import os
+import sys
+
+from ..distributions import DistributionError
+from ..executors import ClusterUnreachable
+from ..fmu import FmuImage
+from ..locate import find_fmu
+from ..materials import MaterialError
+from ..population_feed import DEFAULT_CHUTE, FEED_VARIABLES, Feed, read_measured
+from ..population_runner import PARTICLES, prepare_population, run_population
+from ..sweep import keys_of, kept
+from .common import OneLineParser, add_execution_options, check_writable_dir, executor_of, fail
+
+PROG = "tribo-population"
+
+
+def name_value(text: str):
+    name, sep, value = text.partition("=")
+    if not sep or not name:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected NAME=VALUE")
+    try:
+        return name, float(value)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: {value!r} is not a number") from None
+
+
+def floats(text: str):
+    try:
+        return [float(x) for x in text.split(",")]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected numbers separated by commas") from None
+
+
+def parse_args(argv=None):
+    p = OneLineParser(prog=PROG, description=__doc__.split("\n\n")[0],
+                      formatter_class=argparse.RawDescriptionHelpFormatter,
+                      epilog=__doc__.split("\n\n", 1)[1])
+    p.add_argument("-n", "--particles", type=int, required=True, help="how many particles")
+    p.add_argument("--seed", type=int, default=0, help="the draw's seed (default 0)")
+    p.add_argument("--particle", default="PE", help="particle material (default PE)")
+    p.add_argument("--wall", default="steel", help="wall material (default steel)")
+    for name in FEED_VARIABLES:
+        p.add_argument(f"--{name.replace('_', '-')}", dest=name, metavar="DIST",
+                       help=f"distribution of {name}")
+    p.add_argument("--measured", metavar="CSV", help="measured values, a column per feed variable")
+    p.add_argument("--chute-length", type=float, default=DEFAULT_CHUTE["chute_length"],
+                   help="length of the chute, m (default 0.3)")
+    p.add_argument("--set", type=name_value, action="append", default=[], metavar="NAME=VALUE",
+                   help="any other SI parameter (tilt=0.6, mu=0.5, n_segments=500, ...)")
+    p.add_argument("--t-end", type=float, default=5.0, help="horizon of each particle, s (default 5)")
+    p.add_argument("--shape-classes", type=floats, metavar="E0,E1,...",
+                   help="edges of the shape classes (default: 4 equal classes over the range)")
+    p.add_argument("--size-classes", type=floats, metavar="S0,S1,...",
+                   help="edges of the size classes, m (default: 4 equal classes over the range)")
+    p.add_argument("--out", default=os.path.join("out", "population"), help="output folder")
+    p.add_argument("--fmu", help="the SI FMU (default: tribo_si_fmi3.fmu of the build)")
+    add_execution_options(p)
+    p.add_argument("--fresh", action="store_true", help="start over (the old file is kept as a backup)")
+    p.add_argument("--max-runs", type=int, help="run at most this many particles now (the rest later)")
+    p.add_argument("--no-plot", action="store_true", help="no figure")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    return p.parse_args(argv)
+
+
+def prepare(args):
+    """Everything checked before any cluster starts: the feed, every particle's values (by
+    the FMU), the horizon and the output folder."""
+    measured = read_measured(args.measured) if args.measured else None
+    distributions = {n: getattr(args, n) for n in FEED_VARIABLES if getattr(args, n) is not None}
+    settings = dict(args.set)
+    feed = Feed(args.particle, args.wall, distributions, {"chute_length": args.chute_length},
+                settings, measured)
+    image = FmuImage.load(find_fmu(args.fmu, "si"))
+    specs = prepare_population(feed, args.particles, args.seed, args.t_end, image)
+    if args.max_runs is not None and args.max_runs < 0:
+        raise ValueError(f"--max-runs {args.max_runs}: at least 0")
+    check_writable_dir(args.out)
+    return feed, image, specs, executor_of(args)
+
+
+def main(argv=None) -> int:
+    args = parse_args(argv)
+    path = os.path.join(args.out, PARTICLES)
+    keys = []
+    try:
+        try:
+            feed, image, specs, executor = prepare(args)
+            keys = keys_of(specs, image)
+        except (ValueError, OSError, DistributionError, MaterialError) as e:
+            return fail(PROG, str(e))
+        print(f"population: {args.particles} particles of {feed.particle} on {feed.wall} "
+              f"(seed {args.seed}) into {args.out}", flush=True)
+        report = run_population(feed, args.particles, args.seed, args.t_end, image, args.out,
+                                executor, resume=not args.fresh, max_runs=args.max_runs,
+                                progress=not args.no_progress, figure=not args.no_plot,
+                                shape_edges=args.shape_classes, size_edges=args.size_classes,
+                                specs=specs)
+    except ClusterUnreachable as e:
+        return fail(PROG, str(e))
+    except KeyboardInterrupt:
+        n = kept(path, keys)
+        print(f"{PROG}: interrupted: {n} of {args.particles} particles kept in {path}; run the "
+              f"same command to resume", file=sys.stderr, flush=True)
+        return 130
+    if report.backup:
+        print(f"population: the earlier results are kept in {report.backup}")
+    print(f"population: {report.executed} run, {report.skipped} already in the file, "
+          f"{len(report.failed)} failed; {len(report.results)} of {report.total} done")
+    if report.summary is not None:
+        table = report.summary.copy()
+        for c in table.columns[5:]:
+            if c != "n":
+                table[c] = table[c] * 1e6
+        print("q/m (µC/kg):")
+        print(table.drop(columns=["low", "high"]).to_string(index=False, float_format=lambda v: f"{v:.4g}"))
+        print(f"population: wrote {', '.join(report.files)}")
+    return 1 if report.failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

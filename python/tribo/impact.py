@@ -1,0 +1,135 @@
+"""Charge per impact: one impact episode of the SI FMU, and the episodes of a map's grid.
+
+An episode is a particle arriving at a level plate (tilt 0) with its lowest point touching
+it (drop_height 0) at `speed`, at `angle` from the plate's surface (90 degrees: head-on;
+towards +x), with orientation phi0 and spin omega0, run with run_end = first_liftoff: the
+FMU ends the run where the contact made is lost (located exactly, docs/model.md section 9),
+or at the time limit (`limit` contact periods' worth of t*, read from the FMU): a sustained
+contact, `lifted_off` = 0. Gravity stays on (its effect over an impact of microseconds is
+the model's, not removed).
+
+Its results (EPISODE_COLUMNS): the charge each model transferred (C on the cylinder of the
+depth set, and per unit mass), the rebound (velocity along and normal to the plate, speed,
+angle from the surface, spin), the contact time and whether it lifted off.
+
+A map's grid point is (speed m/s, angle deg, phi0 deg, epsilon); the angles are in degrees
+here (the table's columns), in radians in the FMU.
+"""
+
+import itertools
+import math
+import time
+from dataclasses import dataclass
+
+from fmpy.fmi1 import FMICallException
+
+from .fmu import ERROR, FmuImage, Instance, unpacked
+from .materials import start_values
+from .particle import RunResult
+from .specs import RunSpec
+
+AXES = ("speed", "angle", "phi0", "epsilon")
+AXIS_UNITS = {"speed": "m/s", "angle": "deg from the plate's surface (90: head-on)",
+              "phi0": "deg, long axis from the plate", "epsilon": "b/a"}
+AXIS_RANGES = {"speed": (0.0, 1e3, False), "angle": (0.0, 90.0, False), "phi0": (-180.0, 180.0, True),
+               "epsilon": (1e-3, 1.0, True)}  # low, high, low end included
+EPISODE_OUTPUTS = ["charge_static", "charge_sliding", "charge_to_mass_static",
+                   "charge_to_mass_sliding", "u", "v", "omega", "contact_time", "lifted_off",
+                   "impacts"]
+EPISODE_COLUMNS = ["charge_static", "charge_sliding", "charge_to_mass_static",
+                   "charge_to_mass_sliding", "rebound_u", "rebound_v", "rebound_speed",
+                   "rebound_angle", "rebound_omega", "contact_time", "lifted_off", "time_end",
+                   "t_star"]
+DEFAULT_LIMIT = 200.0  # contact periods' worth of t* before an episode counts as sustained
+
+
+class ImpactError(ValueError):
+    """A grid or an episode the FMU cannot run (the message names the value)."""
+
+
+def episode_parameters(base: dict, speed: float, angle: float, phi0: float, epsilon: float,
+                       omega0: float = 0.0) -> dict:
+    """The SI FMU's parameters of an episode (angles in degrees)."""
+    return dict(base, tilt=0.0, drop_height=0.0, drop_speed=float(speed),
+                drop_angle=math.radians(90.0 - float(angle)), phi0=math.radians(float(phi0)),
+                epsilon=float(epsilon), omega0=float(omega0), run_end=1)
+
+
+def check_axis(name: str, values) -> list[float]:
+    values = [float(v) for v in values]
+    lo, hi, closed = AXIS_RANGES[name]
+    if not values:
+        raise ImpactError(f"{name}: no values")
+    for v in values:
+        if not (math.isfinite(v) and (lo <= v if closed else lo < v) and v <= hi):
+            raise ImpactError(f"{name} = {v:g} ({AXIS_UNITS[name]}): outside "
+                              f"{'[' if closed else '('}{lo:g}, {hi:g}]")
+    if len(set(values)) != len(values) or values != sorted(values):
+        raise ImpactError(f"{name} {values}: the values must increase")
+    return values
+
+
+@dataclass(frozen=True)
+class Grid:
+    speed: tuple
+    angle: tuple
+    phi0: tuple
+    epsilon: tuple
+
+    @classmethod
+    def of(cls, **axes) -> "Grid":
+        missing = [a for a in AXES if a not in axes]
+        unknown = [a for a in axes if a not in AXES]
+        if missing or unknown:
+            raise ImpactError(f"the grid's axes are {', '.join(AXES)}"
+                              + (f"; missing {', '.join(missing)}" if missing else "")
+                              + (f"; unknown {', '.join(unknown)}" if unknown else ""))
+        return cls(**{a: tuple(check_axis(a, axes[a])) for a in AXES})
+
+    def points(self) -> list[tuple]:
+        return list(itertools.product(self.speed, self.angle, self.phi0, self.epsilon))
+
+    def axes(self) -> dict:
+        return {a: list(getattr(self, a)) for a in AXES}
+
+
+def episode_specs(grid: Grid, particle: str, wall: str, settings: dict, limit: float,
+                  omega0: float = 0.0) -> list[RunSpec]:
+    """One run per grid point, in the grid's order (speed slowest, epsilon fastest). Its
+    t_end is the time limit in units of t* (the FMU's, which depends on the point)."""
+    if not (math.isfinite(limit) and limit > 0):
+        raise ImpactError(f"the time limit must be a positive number of t*, got {limit!r}")
+    base = start_values(particle, wall, **settings)
+    return [RunSpec(episode_parameters(base, *point, omega0=omega0), float(limit), float(limit))
+            for point in grid.points()]
+
+
+def run_episode(image: FmuImage, spec: RunSpec) -> RunResult:
+    """One impact episode: its row (EPISODE_COLUMNS)."""
+    wall0, cpu0 = time.perf_counter(), time.thread_time()
+    with unpacked(image) as fmu_dir:
+        instance = Instance(fmu_dir, name="tribo_impact")
+        try:
+            instance.set_parameters(spec.params)
+            instance.init(0.0)
+            t_star = instance.get("t_star")
+            instance.step_to(spec.t_end * t_star)
+            end = instance.get_many(EPISODE_OUTPUTS)
+            reached = instance.t
+            instance.terminate()
+        except FMICallException as e:
+            errors = [m for status, _, m in instance.messages if status >= ERROR]
+            raise RuntimeError(f"the impact episode failed with {spec.params}: {e}; "
+                               f"it logged: {errors}") from e
+        finally:
+            instance.free()
+    row = {"charge_static": end["charge_static"], "charge_sliding": end["charge_sliding"],
+           "charge_to_mass_static": end["charge_to_mass_static"],
+           "charge_to_mass_sliding": end["charge_to_mass_sliding"],
+           "rebound_u": end["u"], "rebound_v": end["v"],
+           "rebound_speed": math.hypot(end["u"], end["v"]),
+           "rebound_angle": math.degrees(math.atan2(end["v"], end["u"])),
+           "rebound_omega": end["omega"], "contact_time": end["contact_time"],
+           "lifted_off": int(end["lifted_off"]), "time_end": reached, "t_star": t_star}
+    row.update(cpu_s=time.thread_time() - cpu0, wall_s=time.perf_counter() - wall0)
+    return RunResult(row, None)

@@ -1,0 +1,33 @@
+"""The figure of a charge-per-impact map: for each charge model (a row), the charge per
+impact against the impact angle (at the map's highest speed) and against the impact speed
+(at its most head-on angle), a line per roundness, each the mean over the orientations."""
+
+from .plotting import distinct_colours, legend, plt, save
+
+CHARGE_UNIT, CHARGE_FACTOR = "pC", 1e12
+
+
+def write_impact_figure(table, path: str, title: str) -> str:
+    """table: the map (impact_map.csv)."""
+    epsilons = sorted(table["epsilon"].unique())
+    colours = distinct_colours(len(epsilons))
+    top_speed, top_angle = table["speed"].max(), table["angle"].max()
+    n_phi = table["phi0"].nunique()
+    fig, axes = plt.subplots(2, 2, figsize=(13, 9), layout="constrained")
+    for row, model in zip(axes, ("static", "sliding")):
+        column = f"charge_{model}"
+        for ax, x, fixed, fixed_value, unit in ((row[0], "angle", "speed", top_speed, "m/s"),
+                                                (row[1], "speed", "angle", top_angle, "deg")):
+            for colour, eps in zip(colours, epsilons):
+                g = table[(table["epsilon"] == eps) & (table[fixed] == fixed_value)]
+                mean = g.groupby(x)[column].mean().abs() * CHARGE_FACTOR
+                ax.plot(mean.index, mean.to_numpy(), "o-", ms=4, color=colour, label=f"ε = {eps:g}")
+            ax.set_xlabel({"angle": "impact angle from the plate's surface (deg; 90: head-on)",
+                           "speed": "impact speed (m/s)"}[x])
+            ax.set_ylabel(f"|charge| per impact, {model} model ({CHARGE_UNIT})")
+            ax.set_title(f"{model} model, {fixed} = {fixed_value:g} {unit}, mean over "
+                         f"{n_phi} orientation{'s' if n_phi > 1 else ''}")
+            ax.grid(alpha=0.3)
+            legend(ax)
+    fig.suptitle(title)
+    return save(fig, path)

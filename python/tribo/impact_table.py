@@ -1,0 +1,164 @@
+"""A charge-per-impact map: the episodes of a grid over (impact speed, impact angle,
+orientation, roundness) for a materials pair, run resumably (sweep.run_sweep), written as a
+table with its metadata, and the lookup a DEM or CFD wall model calls.
+
+    <out>/episodes.csv     the runs, one row each as they finish (resumable)
+    <out>/impact_map.csv   the map: the grid's axes (speed, angle, phi0, epsilon), then the
+                           episode's results (impact.EPISODE_COLUMNS), in the grid's order
+    <out>/impact_map.json  metadata: materials, settings, the time limit, the grid, the FMU
+                           (name, SHA-256, instantiation token, generation tool), the package
+    <out>/impact_map.png   the figure
+
+    m = tribo.ImpactMap.load("out/impact_map")
+    m("charge_static", speed=3.0, angle=45.0, phi0=10.0, epsilon=0.6)   # C per impact
+
+The lookup interpolates linearly (scipy's RegularGridInterpolator) over the axes with more
+than one value; an axis with one value takes only that value. A point outside the grid is
+an error naming the axis and its range, never an extrapolation.
+"""
+
+import json
+import os
+from dataclasses import dataclass
+from importlib import metadata as package_metadata
+
+import numpy as np
+import pandas as pd
+
+from .fmu import FmuImage
+from .impact import AXES, AXIS_UNITS, EPISODE_COLUMNS, Grid, episode_specs, run_episode
+from .sweep import keys_of, run_sweep
+
+EPISODES, TABLE, METADATA, FIGURE = "episodes.csv", "impact_map.csv", "impact_map.json", "impact_map.png"
+
+
+@dataclass
+class MapReport:
+    table: pd.DataFrame | None  # None until every episode has run
+    total: int
+    executed: int
+    skipped: int
+    failed: list
+    files: list
+    backup: str | None = None
+
+
+def prepare_map(grid: Grid, particle: str, wall: str, settings: dict, limit: float,
+                image: FmuImage, omega0: float = 0.0):
+    """The episodes' runs, every value checked by the FMU before anything runs."""
+    from .grid import values_of
+    from .parameters import check_values
+
+    specs = episode_specs(grid, particle, wall, settings, limit, omega0)
+    check_values(image, values_of(specs))
+    return specs
+
+
+def map_metadata(grid: Grid, particle: str, wall: str, settings: dict, limit: float,
+                 omega0: float, image: FmuImage) -> dict:
+    md = image.model_description()
+    try:
+        version = package_metadata.version("tribo")
+    except package_metadata.PackageNotFoundError:
+        version = None
+    return {"particle": particle, "wall": wall, "settings": settings, "omega0_rad_s": omega0,
+            "time_limit_t_star": limit,
+            "grid": {a: {"values": list(getattr(grid, a)), "unit": AXIS_UNITS[a]} for a in AXES},
+            "columns": {c: _unit(c) for c in EPISODE_COLUMNS},
+            "model": {"fmu": image.name, "fmu_sha256": image.sha256,
+                      "instantiation_token": md.guid, "generation_tool": md.generationTool,
+                      "package_version": version}}
+
+
+def _unit(column: str) -> str:
+    return {"charge_static": "C", "charge_sliding": "C", "charge_to_mass_static": "C/kg",
+            "charge_to_mass_sliding": "C/kg", "rebound_u": "m/s", "rebound_v": "m/s",
+            "rebound_speed": "m/s", "rebound_angle": "deg from the surface",
+            "rebound_omega": "rad/s", "contact_time": "s", "lifted_off": "1 (0: sustained contact)",
+            "time_end": "s", "t_star": "s"}[column]
+
+
+def run_impact_map(grid: Grid, particle: str, wall: str, settings: dict, limit: float,
+                   image: FmuImage, out: str, executor, *, omega0: float = 0.0,
+                   resume: bool = True, max_runs: int | None = None, progress: bool = True,
+                   figure: bool = True, specs=None) -> MapReport:
+    specs = specs if specs is not None else prepare_map(grid, particle, wall, settings, limit,
+                                                        image, omega0)
+    os.makedirs(out, exist_ok=True)
+    with executor:
+        report = run_sweep(specs, image, os.path.join(out, EPISODES), executor, resume=resume,
+                           max_runs=max_runs, progress=progress, desc="episodes",
+                           run=run_episode, result_columns=EPISODE_COLUMNS)
+    files = [os.path.join(out, EPISODES)]
+    table = None
+    if report.complete:
+        keys = keys_of(specs, image)
+        by_key = report.results.set_index("key")
+        points = pd.DataFrame(grid.points(), columns=list(AXES))
+        table = pd.concat([points, by_key.loc[keys, EPISODE_COLUMNS].reset_index(drop=True)], axis=1)
+        table.to_csv(os.path.join(out, TABLE), index=False)
+        with open(os.path.join(out, METADATA), "w") as f:
+            json.dump(map_metadata(grid, particle, wall, settings, limit, omega0, image), f, indent=2)
+        files += [os.path.join(out, TABLE), os.path.join(out, METADATA)]
+        if figure:
+            from .impact_plot import write_impact_figure
+            files.append(write_impact_figure(table, os.path.join(out, FIGURE),
+                                             f"charge per impact, {particle} on {wall}"))
+    return MapReport(table, len(report.keys), report.executed, report.skipped, report.failed,
+                     files, report.backup)
+
+
+class ImpactMap:
+    """A map's table and metadata, and the lookup (see the module's text)."""
+
+    def __init__(self, table: pd.DataFrame, metadata: dict):
+        self.table = table
+        self.metadata = metadata
+        self.axes = {a: np.asarray(metadata["grid"][a]["values"], dtype=float) for a in AXES}
+        self.varying = [a for a in AXES if len(self.axes[a]) > 1]
+        shape = tuple(len(self.axes[a]) for a in AXES)
+        if len(table) != int(np.prod(shape)):
+            raise ValueError(f"the table has {len(table)} rows, the grid {int(np.prod(shape))} points")
+        self._values = {c: table[c].to_numpy(dtype=float).reshape(shape) for c in EPISODE_COLUMNS}
+        self._interpolators = {}
+
+    @classmethod
+    def load(cls, folder: str) -> "ImpactMap":
+        """The map written into `folder` by run_impact_map (tribo-impact-map --out)."""
+        with open(os.path.join(folder, METADATA)) as f:
+            meta = json.load(f)
+        return cls(pd.read_csv(os.path.join(folder, TABLE)), meta)
+
+    def _interpolator(self, quantity: str):
+        from scipy.interpolate import RegularGridInterpolator
+
+        if quantity not in self._values:
+            raise KeyError(f"{quantity!r} is not a column of the map ({', '.join(EPISODE_COLUMNS)})")
+        if quantity not in self._interpolators:
+            values = self._values[quantity]
+            index = tuple(slice(None) if a in self.varying else 0 for a in AXES)
+            self._interpolators[quantity] = RegularGridInterpolator(
+                [self.axes[a] for a in self.varying], values[index], method="linear",
+                bounds_error=True) if self.varying else None
+        return self._interpolators[quantity]
+
+    def __call__(self, quantity: str, speed, angle, phi0, epsilon):
+        """The quantity (a column of the map, e.g. "charge_static" in C per impact) at the
+        point(s): scalars or arrays that broadcast together."""
+        point = dict(zip(AXES, np.broadcast_arrays(*(np.asarray(v, dtype=float)
+                                                     for v in (speed, angle, phi0, epsilon)))))
+        for a in AXES:
+            lo, hi = self.axes[a][0], self.axes[a][-1]
+            outside = (point[a] < lo) | (point[a] > hi) | ~np.isfinite(point[a])
+            if np.any(outside):
+                bad = point[a][outside].flat[0]
+                raise ValueError(f"{a} = {bad:g} is outside the map's grid [{lo:g}, {hi:g}] "
+                                 f"({AXIS_UNITS[a]})")
+        interpolator = self._interpolator(quantity)
+        if interpolator is None:
+            value = self._values[quantity].flat[0]
+            return np.full(point["speed"].shape, value) if point["speed"].shape else float(value)
+        shape = point["speed"].shape
+        coords = np.stack([point[a].ravel() for a in self.varying], axis=-1)
+        out = interpolator(coords).reshape(shape)
+        return out if shape else float(out)
