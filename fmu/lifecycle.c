@@ -15,8 +15,8 @@ static const char *const LIFECYCLE_NAMES[] = {
     [FMU_LIFECYCLE_STEP_DISCARDED] =
         "Step Discarded (stepFailed: the last step ended early; terminate, reset or restore a state)",
     [FMU_LIFECYCLE_FAILED] = "Error (after a failure of the core: reset the instance or restore a state)",
-    [FMU_LIFECYCLE_EXITED] = "Exited (the particle left the chute and the run is over: terminate, "
-                             "reset or restore a state)",
+    [FMU_LIFECYCLE_EXITED] = "Exited (the run is over: the particle left the chute, or lifted off "
+                             "where run_end = first_liftoff; terminate, reset or restore a state)",
 };
 
 const char *fmu_lifecycle_name(fmu_lifecycle state) { return LIFECYCLE_NAMES[state]; }

@@ -26,7 +26,8 @@ static fmu_status ended_early(fmu_instance *inst, const char *fn, double end, in
     return FMU_DISCARD;
 }
 
-/* The particle left the chute during the step (model.md §9): the run is over at the exit. */
+/* The run ended during the step (model.md §9): the particle left the chute, or lifted off
+   where run_end = first_liftoff. */
 static fmu_status exited(fmu_instance *inst, const char *fn, double end, int *early_return,
                          int *terminate)
 {
@@ -50,8 +51,11 @@ fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, 
         return FMU_ERROR;
     *reached = inst->time;
     if (inst->lifecycle == FMU_LIFECYCLE_EXITED)
-        return fmu_error(inst, "%s: the particle left the chute at t = %.17g: the run is over "
-                         "(terminate, reset or restore a state)", fn, inst->time);
+        return fmu_error(inst, "%s: the run is over at t = %.17g (the particle %s): terminate, "
+                         "reset or restore a state", fn, inst->time,
+                         tribo_get(inst->model, TRIBO_Q_LIFTED_OFF) != 0.0
+                             ? "lifted off the plate, run_end = first_liftoff"
+                             : "left the chute");
     if (!fmu_lifecycle_allows(inst, fn, FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_STEP)))
         return FMU_ERROR;
     const double tolerance = fmu_rounding_tolerance(inst->time);

@@ -2,6 +2,7 @@
 terminate, as at the chute's exit), lifted_off is set, and a state saved there restores."""
 
 import pytest
+from fmpy.fmi1 import FMICallException
 
 import tribo
 from tribo.fmu import FmuImage, Instance, unpacked
@@ -23,5 +24,8 @@ def test_a_state_saved_at_the_liftoff_restores(version, integrator):
             i.free_state(state)
             i.set_state(i.deserialize(data))  # was refused: "its run is not over"
             assert i.get("lifted_off") and i.get("time") == i.t
+            with pytest.raises(FMICallException):  # a further step: the run is over
+                i.step_to(i.t + 1.0)
+            assert "the particle lifted off the plate" in i.errors()[-1]
         finally:
             i.free()
