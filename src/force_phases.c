@@ -302,6 +302,12 @@ static tribo_force_law next_phase(const tribo_dyn_params *p, const tribo_force_l
 
     if (fired && fired[TRIBO_SWITCH_CONTACT])
         ph.contact = tribo_touching(old) ? TRIBO_CONTACT_OFF : TRIBO_CONTACT_ON;
+    else if (fired && tribo_touching(old) && dy < 0.0)
+        /* another switch where the lowest point is already above the plate: the contact
+           was lost within the root finding's resolution of this switch, and its root,
+           negative from the restart on, would never be seen (the phase would stay in
+           contact with no force, its tangent switch firing at every stretch rounding) */
+        ph.contact = TRIBO_CONTACT_OFF;
     else if (!fired)
         ph.contact = dy > 0.0 || (dy == 0.0 && (ddy > 0.0 || (ddy == 0.0 && pressed_in(p, y))))
                          ? TRIBO_CONTACT_ON
