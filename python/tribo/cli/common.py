@@ -7,6 +7,7 @@ import sys
 import tempfile
 
 from ..executors import DaskExecutor, SerialExecutor
+from ..grid import parse_values
 
 
 class OneLineParser(argparse.ArgumentParser):
@@ -14,6 +15,30 @@ class OneLineParser(argparse.ArgumentParser):
 
     def error(self, message):
         self.exit(2, f"{self.prog}: error: {message} (see --help)\n")
+
+
+def command_parser(prog: str, doc: str) -> OneLineParser:
+    """A command's parser: its description the first paragraph of the module's docstring
+    `doc`, the rest of it the epilogue of --help."""
+    return OneLineParser(prog=prog, description=doc.split("\n\n")[0],
+                         formatter_class=argparse.RawDescriptionHelpFormatter,
+                         epilog=doc.split("\n\n", 1)[1])
+
+
+def numbers(text: str) -> tuple:
+    """argparse type: numbers separated by commas."""
+    try:
+        return tuple(float(x) for x in text.split(","))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected numbers separated by commas") from None
+
+
+def value_list(text: str) -> list:
+    """argparse type: values as a sweep's --param takes them (grid.parse_values)."""
+    try:
+        return parse_values(text)
+    except ValueError as e:
+        raise argparse.ArgumentTypeError(f"{text!r}: {e}") from None
 
 
 def fail(prog: str, message: str, status: int = 2) -> int:

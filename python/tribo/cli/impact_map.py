@@ -21,11 +21,8 @@ the same command is run again). A wall model looks charges up with tribo.ImpactM
 Dask: as tribo-sweep (a local cluster on 127.0.0.1 without dashboard, or --scheduler).
 """
 
-import argparse
 import os
 import sys
-
-import numpy as np
 
 from ..executors import ClusterUnreachable
 from ..fmu import FmuImage
@@ -34,34 +31,22 @@ from ..impact_table import EPISODES, prepare_map, run_impact_map
 from ..locate import find_fmu
 from ..materials import MaterialError
 from ..sweep import keys_of, kept
-from .common import OneLineParser, add_execution_options, check_writable_dir, executor_of, fail
+from .common import (add_execution_options, check_writable_dir, command_parser, executor_of, fail,
+                     value_list)
 from .population import name_value
 
 PROG = "tribo-impact-map"
 
 
-def values(text: str) -> list:
-    try:
-        if ":" in text:
-            a, b, n = text.split(":")
-            if not float(n).is_integer() or int(float(n)) < 1:
-                raise ValueError
-            return [float(v) for v in np.linspace(float(a), float(b), int(float(n)))]
-        return [float(v) for v in text.split(",")]
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r}: expected a:b:n, v1,v2,... or a number") from None
-
 
 def parse_args(argv=None):
-    p = OneLineParser(prog=PROG, description=__doc__.split("\n\n")[0],
-                      formatter_class=argparse.RawDescriptionHelpFormatter,
-                      epilog=__doc__.split("\n\n", 1)[1])
-    p.add_argument("--speed", type=values, required=True, metavar="VALUES", help="impact speeds, m/s")
-    p.add_argument("--angle", type=values, required=True, metavar="VALUES",
+    p = command_parser(PROG, __doc__)
+    p.add_argument("--speed", type=value_list, required=True, metavar="VALUES", help="impact speeds, m/s")
+    p.add_argument("--angle", type=value_list, required=True, metavar="VALUES",
                    help="impact angles, degrees from the plate's surface (90: head-on)")
-    p.add_argument("--phi0", type=values, default=[0.0], metavar="VALUES",
+    p.add_argument("--phi0", type=value_list, default=[0.0], metavar="VALUES",
                    help="orientations of the long axis, degrees (default 0)")
-    p.add_argument("--epsilon", type=values, default=[0.6], metavar="VALUES",
+    p.add_argument("--epsilon", type=value_list, default=[0.6], metavar="VALUES",
                    help="roundness values b/a (default 0.6)")
     p.add_argument("--omega0", type=float, default=0.0, help="spin at the impact, rad/s (default 0)")
     p.add_argument("--particle", default="PE", help="particle material (default PE)")

@@ -35,7 +35,8 @@ from ..materials import MaterialError
 from ..population_feed import DEFAULT_CHUTE, FEED_VARIABLES, Feed, read_measured
 from ..population_runner import PARTICLES, prepare_population, run_population
 from ..sweep import keys_of, kept
-from .common import OneLineParser, add_execution_options, check_writable_dir, executor_of, fail
+from .common import (add_execution_options, check_writable_dir, command_parser, executor_of, fail,
+                     numbers)
 
 PROG = "tribo-population"
 
@@ -50,17 +51,9 @@ def name_value(text: str):
         raise argparse.ArgumentTypeError(f"{text!r}: {value!r} is not a number") from None
 
 
-def floats(text: str):
-    try:
-        return [float(x) for x in text.split(",")]
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r}: expected numbers separated by commas") from None
-
 
 def parse_args(argv=None):
-    p = OneLineParser(prog=PROG, description=__doc__.split("\n\n")[0],
-                      formatter_class=argparse.RawDescriptionHelpFormatter,
-                      epilog=__doc__.split("\n\n", 1)[1])
+    p = command_parser(PROG, __doc__)
     p.add_argument("-n", "--particles", type=int, required=True, help="how many particles")
     p.add_argument("--seed", type=int, default=0, help="the draw's seed (default 0)")
     p.add_argument("--particle", default="PE", help="particle material (default PE)")
@@ -74,9 +67,9 @@ def parse_args(argv=None):
     p.add_argument("--set", type=name_value, action="append", default=[], metavar="NAME=VALUE",
                    help="any other SI parameter (tilt=0.6, mu=0.5, n_segments=500, ...)")
     p.add_argument("--t-end", type=float, default=5.0, help="horizon of each particle, s (default 5)")
-    p.add_argument("--shape-classes", type=floats, metavar="E0,E1,...",
+    p.add_argument("--shape-classes", type=numbers, metavar="E0,E1,...",
                    help="edges of the shape classes (default: 4 equal classes over the range)")
-    p.add_argument("--size-classes", type=floats, metavar="S0,S1,...",
+    p.add_argument("--size-classes", type=numbers, metavar="S0,S1,...",
                    help="edges of the size classes, m (default: 4 equal classes over the range)")
     p.add_argument("--out", default=os.path.join("out", "population"), help="output folder")
     p.add_argument("--fmu", help="the SI FMU (default: tribo_si_fmi3.fmu of the build)")

@@ -31,16 +31,11 @@ from ..particle import communication_points
 from ..results import read_results
 from ..specs import paper_spec
 from ..study import FULL, REDUCED, run_study
-from .common import (OneLineParser, add_execution_options, check_writable_dir, executor_of, fail)
+from .common import (add_execution_options, check_writable_dir, command_parser, executor_of, fail,
+                     numbers)
 
 PROG = "tribo-study"
 
-
-def floats(text: str) -> tuple:
-    try:
-        return tuple(float(x) for x in text.split(","))
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r}: expected numbers separated by commas") from None
 
 
 def integers(text: str) -> tuple:
@@ -51,9 +46,7 @@ def integers(text: str) -> tuple:
 
 
 def parse_args(argv=None):
-    p = OneLineParser(prog=PROG, description=__doc__.split("\n\n")[0],
-                      formatter_class=argparse.RawDescriptionHelpFormatter,
-                      epilog=__doc__.split("\n\n", 1)[1])
+    p = command_parser(PROG, __doc__)
     p.add_argument("--full", action="store_true",
                    help="the paper's study: epsilon 0.1..1.0, tau to 5000 (default: reduced)")
     p.add_argument("--out", help="output directory (default out/study or out/study-full)")
@@ -69,7 +62,7 @@ def parse_args(argv=None):
                    help="normal dashpots (damping_point values, docs/model.md section 3), the "
                         "study's own first: 0 the contact point (default), 1 the centre; e.g. "
                         "0,1 runs the grid with both and compares them")
-    p.add_argument("--epsilons", type=floats, help="override the roundness grid, e.g. 0.2,0.6,1.0")
+    p.add_argument("--epsilons", type=numbers, help="override the roundness grid, e.g. 0.2,0.6,1.0")
     p.add_argument("--t-end", type=float, help="override the horizon")
     p.add_argument("--rtol", type=float, help="CVODE's relative tolerance (default: the FMU's)")
     p.add_argument("--atol", type=float, help="CVODE's absolute tolerance (default: the FMU's)")

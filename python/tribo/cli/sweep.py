@@ -34,7 +34,6 @@ servers listen on all interfaces unless --dashboard-address says otherwise, even
     dask worker tcp://127.0.0.1:8786 --host 127.0.0.1 --dashboard-address 127.0.0.1:0 --no-dashboard
 """
 
-import argparse
 import os
 import sys
 
@@ -45,16 +44,14 @@ from ..grid import PAPER_BASE, build_specs, parse_param, values_of
 from ..locate import find_fmu
 from ..particle import communication_points
 from ..sweep import keys_of, kept, run_sweep
-from .common import (OneLineParser, add_execution_options, check_writable_dir, check_writable_file,
+from .common import (add_execution_options, check_writable_dir, check_writable_file, command_parser,
                      executor_of, fail)
 
 PROG = "tribo-sweep"
 
 
 def parse_args(argv=None):
-    p = OneLineParser(prog=PROG, description=__doc__.split("\n\n")[0],
-                      formatter_class=argparse.RawDescriptionHelpFormatter,
-                      epilog=__doc__.split("\n\n", 1)[1])
+    p = command_parser(PROG, __doc__)
     p.add_argument("--param", action="append", required=True, metavar="NAME=VALUES",
                    help="a swept parameter and its values (repeat for more)")
     p.add_argument("--t-end", type=float, default=1000.0, help="horizon of every run (default 1000)")
