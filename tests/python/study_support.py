@@ -4,10 +4,10 @@ package takes it, the commands as a user runs them."""
 import os
 import sys
 
+from tribo.batch.particle import run_fmu
+from tribo.batch.sweep import TIMING_COLUMNS
 from tribo.fmu import FmuImage
-from tribo.particle import run_fmu
-from tribo.specs import paper_spec
-from tribo.sweep import TIMING_COLUMNS
+from tribo.study.paper import paper_spec
 
 PYTHON = sys.executable
 BIN = os.path.dirname(PYTHON)  # the venv's bin/, where pip put the entry points

@@ -1,4 +1,4 @@
-"""Charge-per-impact maps (tribo.impact, tribo.impact_table, tribo-impact-map): one episode
+"""Charge-per-impact maps (tribo.impact.episode, tribo.impact.map, tribo-impact-map): one episode
 ends at its lift-off or its time limit, the lookup against direct episodes at grid points and
 between them, resuming, bad input in one line, the figure's legends."""
 
@@ -6,12 +6,12 @@ import numpy as np
 import pytest
 
 import tribo
-from tribo import impact_plot
+from tribo.batch.executors import SerialExecutor
 from tribo.cli import impact_map as cli
-from tribo.executors import SerialExecutor
 from tribo.fmu import FmuImage
-from tribo.impact import Grid, ImpactError, episode_specs, run_episode
-from tribo.impact_table import ImpactMap, run_impact_map
+from tribo.impact import plot as impact_plot
+from tribo.impact.episode import Grid, ImpactError, episode_specs, run_episode
+from tribo.impact.map import ImpactMap, run_impact_map
 
 SETTINGS = {"semi_major_axis": 0.5e-3, "n_segments": 400}
 

@@ -16,7 +16,7 @@ from fmpy import simulate_fmu
 
 import tribo
 from study_support import command
-from tribo.parameters import ParameterError
+from tribo.fmu.parameters import ParameterError
 from tribo_fmu import ROOT
 
 

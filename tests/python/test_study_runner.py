@@ -1,13 +1,13 @@
-"""One FMU run as the study makes it (tribo/particle.py and summary.py):
+"""One FMU run as the study makes it (tribo/batch/particle.py and summary.py):
 the recorded series and the summary row agree with each other and with the FMU."""
 
 import numpy as np
 import pytest
 
 from study_support import image_of, short_spec
-from tribo.particle import RECORDED, run_fmu
-from tribo.summary import (MODES, WARMUP, bounce_envelope, report_times, summary_columns,
-                           upper_envelope)
+from tribo.batch.particle import RECORDED, run_fmu
+from tribo.batch.summary import (MODES, WARMUP, bounce_envelope, report_times, summary_columns,
+                                 upper_envelope)
 
 
 @pytest.fixture(scope="module")

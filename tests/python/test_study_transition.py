@@ -1,4 +1,4 @@
-"""The search for the transition roundness (tribo/transition.py): on
+"""The search for the transition roundness (tribo/study/transition.py): on
 synthetic predicates with a known answer, and on short real FMU runs."""
 
 import math
@@ -6,10 +6,10 @@ import math
 import pytest
 
 from study_support import image_of, short_spec
-from tribo.executors import SerialExecutor
-from tribo.particle import run_fmu
-from tribo.sweep import run_sweep
-from tribo.transition import find_transition
+from tribo.batch.executors import SerialExecutor
+from tribo.batch.particle import run_fmu
+from tribo.batch.sweep import run_sweep
+from tribo.study.transition import find_transition
 
 GRID = [round(0.1 * k, 10) for k in range(1, 11)]
 

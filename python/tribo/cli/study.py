@@ -23,14 +23,14 @@ import sys
 import time
 from dataclasses import replace
 
-from .. import parameters
-from ..executors import ClusterUnreachable
+from ..batch.executors import ClusterUnreachable
+from ..batch.particle import communication_points
+from ..batch.results import read_results
 from ..fmu import FmuImage
-from ..locate import CHECKOUT, find_fmu
-from ..particle import communication_points
-from ..results import read_results
-from ..specs import paper_spec
-from ..study import FULL, REDUCED, run_study
+from ..fmu.locate import CHECKOUT, find_fmu
+from ..fmu.parameters import check_values
+from ..study.paper import paper_spec
+from ..study.runner import FULL, REDUCED, run_study
 from .common import (add_execution_options, check_writable_dir, command_parser, executor_of, fail,
                      numbers)
 
@@ -99,7 +99,7 @@ def prepare(args):
     for s in specs:
         for name, value in s.params.items():
             values.setdefault(name, []).append(value)
-    parameters.check_values(image, values)
+    check_values(image, values)
     out = args.out or os.path.join("out", "study-full" if args.full else "study")
     check_writable_dir(out)
     check_writable_dir(os.path.join(out, "runs", "series"))

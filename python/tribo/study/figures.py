@@ -19,12 +19,11 @@ import os
 import numpy as np
 from matplotlib.lines import Line2D
 
-from .plotting import (CHARGE_LABELS, EPSILON_LABEL, HEIGHT_LABEL, SHORT_CHARGE_LABELS, TAU_LABEL,
-                       distinct_colours, legend, plt, save)
-from .specs import dashpot_name
-from .summary import (ENVELOPE_WIDTH, MODES, REPORT_FRACTIONS, TURNED_OVER, WARMUP, bounce_envelope,
-                      charge_column, report_times)
-from .tables import FRICTION_TITLES
+from ..batch.summary import (ENVELOPE_WIDTH, MODES, REPORT_FRACTIONS, TURNED_OVER, WARMUP,
+                             bounce_envelope, charge_column, report_times)
+from ..plotting import (CHARGE_LABELS, EPSILON_LABEL, HEIGHT_LABEL, SHORT_CHARGE_LABELS, TAU_LABEL,
+                        distinct_colours, legend, plt, save)
+from .paper import FRICTION_TITLES, dashpot_name
 
 FIGURES = ["bounce_amplitude.png", "charge_vs_time.png", "charge_vs_epsilon.png",
            "contact_modes.png", "trajectory.png", "segment_charge.png", "transition.png"]

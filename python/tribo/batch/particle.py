@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 from fmpy.fmi1 import FMICallException
 
-from .fmu import ERROR, FmuImage, Instance, record, unpacked
+from ..fmu import ERROR, FmuImage, Instance, record, unpacked
 from .specs import RunSpec
 from .summary import MODES, summarize
 

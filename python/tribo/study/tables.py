@@ -12,12 +12,11 @@ import os
 
 import pandas as pd
 
-from .executors import available_cores
-from .specs import dashpot_name
-from .summary import (ENVELOPE_WIDTH, MODES, REPORT_FRACTIONS, TURNED_OVER, WARMUP, charge_column,
-                      report_times)
-
-FRICTION_TITLES = {"low": "low (mu = nu = 0.1)", "high": "high (mu = nu = 1.0)"}
+from ..batch.executors import available_cores
+from ..batch.summary import (ENVELOPE_WIDTH, MODES, REPORT_FRACTIONS, TURNED_OVER, WARMUP,
+                             charge_column, report_times)
+from .figures import FIGURES
+from .paper import FRICTION_TITLES, dashpot_name
 
 
 def markdown_table(df: pd.DataFrame, formats: dict | None = None) -> str:
@@ -276,5 +275,4 @@ def write_all(result, out_dir: str, command: str) -> list[str]:
 
 
 def figures_in(out_dir: str) -> list[str]:
-    from .figures import FIGURES
     return [name for name in FIGURES if os.path.exists(os.path.join(out_dir, name))]

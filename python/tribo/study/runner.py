@@ -20,9 +20,9 @@ from dataclasses import dataclass, field
 
 import pandas as pd
 
+from ..batch.sweep import read_segments, read_series, run_sweep
 from . import figures, tables
-from .specs import FRICTION_CASES, paper_spec
-from .sweep import read_segments, read_series, run_sweep
+from .paper import FRICTION_CASES, paper_spec
 from .transition import Transition, find_transition
 
 PAPER_EPSILONS = tuple(round(0.1 * k, 10) for k in range(1, 11))
