@@ -15,10 +15,11 @@ def dashpot_name(damping_point: int) -> str:
     return DASHPOTS.get(damping_point, f"damping_point = {damping_point}")
 
 
-def paper_spec(epsilon: float, friction: str, t_end: float, record_interval: float = 1.0,
-               **overrides) -> RunSpec:
-    """The paper's run at a roundness and friction case ("low" or "high")."""
+def paper_spec(epsilon: float, friction: str, t_end: float, record_interval: float = 1.0, *,
+               integer_names, **overrides) -> RunSpec:
+    """The paper's run at a roundness and friction case ("low" or "high"). integer_names:
+    the FMU's parameters that take whole numbers (fmu.parameters.integer_names)."""
     mu = FRICTION_CASES[friction]
     params = dict(PAPER_SETUP, epsilon=epsilon, mu=mu, nu=mu)
     params.update(overrides)
-    return RunSpec(normalise_values(params), float(t_end), float(record_interval))
+    return RunSpec(normalise_values(params, integer_names), float(t_end), float(record_interval))
