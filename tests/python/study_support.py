@@ -29,7 +29,7 @@ def fmu_integer_names() -> tuple:
 
 
 def short_spec(epsilon, friction, t_end=200.0, **overrides):
-    """A short run of the paper's set-up with few segments (turning and the contact modes do
+    """A short run of the paper's set-up with few segments (turning and the motion classes do
     not depend on the segment count: charging does not act back on the motion)."""
     return paper_spec(epsilon, friction, t_end, integer_names=fmu_integer_names(),
                       **dict({"n_segments": 64}, **overrides))

@@ -36,6 +36,7 @@ import pandas as pd
 
 from ..batch.particle import RunResult, simulate
 from ..batch.specs import RunSpec
+from ..batch.summary import MOTION_CLASSES
 from ..fmu import FmuImage
 from ..materials import start_values
 from .distributions import Distribution, parse
@@ -52,7 +53,6 @@ DEFAULT_DISTRIBUTIONS = {"epsilon": "uniform:0.3:1", "size": "uniform:2e-4:2e-3"
 DEFAULT_CHUTE = {"chute_length": 0.3}
 
 MODELS = ("static", "sliding")
-MOTION_CLASSES = ("flight", "rocking", "rolling", "tumbling", "bouncing")
 OUTPUTS = (["exited", "exit_time", "u", "v", "omega", "contact_fraction", "impacts",
             "assumption_warnings"]
            + [f"charge_{m}" for m in MODELS] + [f"charge_to_mass_{m}" for m in MODELS]

@@ -13,8 +13,8 @@ import os
 import pandas as pd
 
 from ..batch.executors import available_cores
-from ..batch.summary import (ENVELOPE_WIDTH, MODES, REPORT_FRACTIONS, TURNED_OVER, WARMUP,
-                             charge_column, report_times)
+from ..batch.summary import (ENVELOPE_WIDTH, MOTION_CLASSES, REPORT_FRACTIONS, TURNED_OVER,
+                             WARMUP, charge_column, report_times)
 from .figures import FIGURES
 from .paper import FRICTION_TITLES, dashpot_name
 
@@ -45,7 +45,7 @@ def charges_table(runs: pd.DataFrame, t_end: float) -> pd.DataFrame:
 
 MOTION_FORMATS = {"contact_fraction": ".3f", "turns": ".3g", "warnings": "d", "max delta_y / eps": ".3f",
                   "Y max": ".3f", "bounce amp.": ".3f", "CPU s": ".2f", "wall s": ".2f",
-                  **{m: ".3f" for m in MODES}}
+                  **{m: ".3f" for m in MOTION_CLASSES}}
 
 
 def _add_motion(out: pd.DataFrame, runs: pd.DataFrame) -> pd.DataFrame:
@@ -53,7 +53,7 @@ def _add_motion(out: pd.DataFrame, runs: pd.DataFrame) -> pd.DataFrame:
     warnings, indentation, height, bounce amplitude."""
     out["contact_fraction"] = runs["contact_fraction"]
     out["turns"] = runs["turns"]
-    for m in MODES:
+    for m in MOTION_CLASSES:
         out[m] = runs[f"fraction_{m}_after_warmup"]
     out["warnings"] = runs["assumption_warnings"]
     out["max delta_y / eps"] = runs["delta_y_max"] / runs["epsilon"]
