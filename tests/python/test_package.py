@@ -20,6 +20,7 @@ from fmpy import simulate_fmu
 import tribo
 from study_support import command
 from tribo.fmu import model_description
+from tribo.fmu.locate import build_dir
 from tribo.fmu.parameters import ParameterError
 from tribo_fmu import ROOT
 
@@ -171,13 +172,17 @@ def test_sweep_and_load_results(fmu_file, tmp_path):
 
 
 def test_find_fmu(tmp_path, monkeypatch):
-    assert tribo.find_fmu() == os.path.join(ROOT, "build", "fmu", "tribo_fmi3.fmu") or \
-        os.environ.get("TRIBO_BUILD_DIR")
+    # the checkout's build/ unless TRIBO_BUILD_DIR names another (as when testing another build)
+    monkeypatch.delenv("TRIBO_BUILD_DIR", raising=False)
+    assert build_dir() == os.path.join(ROOT, "build")
     monkeypatch.setenv("TRIBO_BUILD_DIR", str(tmp_path))
+    assert build_dir() == str(tmp_path)
     with pytest.raises(FileNotFoundError, match="TRIBO_BUILD_DIR"):
         tribo.find_fmu(2)
     (tmp_path / "fmu").mkdir()
     (tmp_path / "fmu" / "tribo_fmi2.fmu").write_bytes(b"")
+    (tmp_path / "fmu" / "tribo_fmi3.fmu").write_bytes(b"")
+    assert tribo.find_fmu() == str(tmp_path / "fmu" / "tribo_fmi3.fmu")  # FMI 3.0 by default
     assert tribo.find_fmu(2) == str(tmp_path / "fmu" / "tribo_fmi2.fmu")
     assert tribo.find_fmu(str(tmp_path / "fmu" / "tribo_fmi2.fmu")) == str(tmp_path / "fmu" / "tribo_fmi2.fmu")
     (tmp_path / "fmu" / "tribo_si_fmi3.fmu").write_bytes(b"")
