@@ -8,7 +8,7 @@ from tribo_fmu import INTEGRATORS, VERSIONS, core_run, integrator_id
 
 SCENES = {
     "defaults": {},
-    # every tunable the issue names, a structural change and a smaller segment count
+    # five tunables away from their start values, and a structural one (fewer segments)
     "changed": {"epsilon": 0.3, "mu": 1.0, "nu": 1.0, "eta": 0.2, "tau0": 2.0, "n_segments": 64},
 }
 ARRAYS = {"segment_charge_static": "static", "segment_charge_sliding": "sliding"}
