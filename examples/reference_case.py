@@ -1,6 +1,6 @@
-"""Issue 12's reference case through the SI FMU (tribo.run_si): its figure, and a sweep over
-the particle's size and shape with q/m at the chute's exit. Writes docs/reference_case/:
-trajectory.png, sweep.png, sweep.csv.
+"""The reference case (docs/reference_case.md) through the SI FMU (tribo.run_si): its
+figure, and a sweep over the particle's size and shape with q/m at the chute's exit.
+Writes docs/reference_case/: trajectory.png, sweep.png, sweep.csv.
 
     .venv/bin/python examples/reference_case.py [--out docs/reference_case]
 

@@ -24,39 +24,35 @@ tribo-population (particle populations) and tribo-impact-map (charge-per-impact 
 with --help. The FMUs are those of the build directory (build/, or $TRIBO_BUILD_DIR) or
 the one given by path (fmu=...).
 
-Modules, one responsibility each:
+Its subpackages, by concern (each module's docstring says what it does):
 
-    api         the functions above
-    fmu         the fmpy driver (one instance, its logger, steps that end early), shared
-                with the tests
-    locate      where the FMUs are
-    particle    one particle's run: series, segment charges, summary row
-    parameters  parameter values checked by the FMU before any run
-    specs       what one run is (parameters, horizon, recording interval) and its key
-    grid        the runs of a sweep: combinations of values over a base set-up
-    summary     what a time series is summarised into (bounce envelope, charges, modes)
-    results     the results CSV: append a row per finished run, resume, backups
-    executors   where runs execute: serially here, or on Dask (local cluster or address)
-    sweep       a sweep: skip finished runs, run the rest, record them as they finish
-    transition  the transition roundness eps_t: coarse grid, then multi-section
-    study       the paper's study (docs/model.md section 7): runs, eps_t, figures, tables
-    figures     the study's figures; sweep_plot: a sweep's; plotting: what they share
-    tables      the study's tables (CSV and markdown)
-    materials   the materials table (data/materials.toml): a particle/wall pair as the SI
-                FMU's start values
-    distributions  a feed variable's distribution, as text, drawn with a seed
-    population_feed  a feed, its seeded draw, one particle's run down the chute (SI FMU)
-    population_runner, population_summary, population_plot: a population into a folder,
-                its q/m statistics by class, its figure
-    impact      one impact episode (run_end = first_liftoff) and a map's grid
-    impact_table  a map's runs, table, metadata and the lookup ImpactMap; impact_plot: its figure
-    cli         the commands
+    api          the functions above
+    materials    the materials table (data/materials.toml): a particle/wall pair as the SI
+                 FMU's start values
+    plotting     what every figure shares (axis labels, colours, legends; matplotlib)
+    fmu/         the fmpy driver, shared with the tests: instance, image (an FMU as bytes),
+                 locate (where the FMUs are), parameters (values checked by the FMU)
+    batch/       many runs of the FMU: specs (a run and its key), grid (a sweep's runs),
+                 particle (one run: series, segment charges, summary row), summary (what a
+                 series is summarised into), results (the results CSV), executors (serial
+                 or Dask), sweep (skip finished runs, run the rest, record them), plot
+    study/       the paper's study (docs/model.md section 7): paper (its runs), runner,
+                 transition (eps_t), figures, tables
+    populations/ particle populations down the chute (SI FMU): distributions, feed (a feed,
+                 its seeded draw, one particle's run), runner, summary (q/m by class), plot
+    impact/      charge-per-impact maps (SI FMU): episode (one impact, a map's grid), map
+                 (the runs, the table, the lookup ImpactMap), plot
+    cli/         the commands
+
+Each imports only its own modules and the layers below it: materials, plotting and fmu at
+the bottom, then batch, then study, populations and impact (not each other), then api and
+cli (CONTRIBUTING.md; tests/python/test_package_layout.py checks it).
 """
 
-from . import materials
+from . import fmu, materials
 from .api import impact_map, load_results, population, run, run_si, sweep
-from .impact_table import ImpactMap
-from .locate import find_fmu
+from .fmu.locate import find_fmu
+from .impact.map import ImpactMap
 
 __all__ = ["run", "run_si", "sweep", "load_results", "find_fmu", "materials", "population",
            "impact_map", "ImpactMap"]

@@ -2,15 +2,19 @@
 
 import pandas as pd
 
-from .executors import DaskExecutor, SerialExecutor
+from .batch.executors import DaskExecutor, SerialExecutor
+from .batch.grid import PAPER_BASE, build_specs, values_of
+from .batch.particle import simulate
+from .batch.results import read_results
+from .batch.sweep import run_sweep
 from .fmu import FmuImage
-from .grid import PAPER_BASE, build_specs, values_of
-from .locate import find_fmu
+from .fmu.locate import find_fmu
+from .fmu.parameters import check_names, check_values, integer_names
+from .impact.episode import DEFAULT_LIMIT, Grid
+from .impact.map import ImpactMap, run_impact_map
 from .materials import start_values
-from .parameters import check_names, check_values, integer_names
-from .particle import simulate
-from .results import read_results
-from .sweep import run_sweep
+from .populations.feed import DEFAULT_CHUTE, Feed, check_measured, read_measured
+from .populations.runner import run_population
 
 
 def scene_of(scene: str | dict | None = None, **parameters) -> dict:
@@ -112,16 +116,13 @@ def population(n: int, *, seed: int = 0, particle: str = "PE", wall: str = "stee
                scheduler: str | None = None, workers: int | None = None, serial: bool = False,
                fresh: bool = False, progress: bool = False, shape_edges=None, size_edges=None):
     """Draw n particles from a feed with the seed and run each down the chute through the
-    SI FMU (tribo.population: the feed variables epsilon, size, phi0, omega0, drop_height,
+    SI FMU (tribo.populations.feed: the feed variables epsilon, size, phi0, omega0, drop_height,
     drop_speed, drop_angle, each a distribution text like "uniform:0.3:1" or a number;
     measured: a CSV path or DataFrame of measured values whose rows are drawn instead).
     chute: SI chute parameters (default chute_length 0.3 m); settings: any other SI
     parameter. Results go into the folder `out` (particles.csv, summary.csv,
     population.png); an interrupted population resumes. Returns the report: .results (a
     row per particle), .summary (q/m statistics overall, per shape and size class)."""
-    from .population_feed import DEFAULT_CHUTE, Feed, check_measured, read_measured
-    from .population_runner import run_population
-
     if isinstance(measured, str):
         measured = read_measured(measured)
     elif measured is not None:
@@ -145,14 +146,11 @@ def impact_map(*, speed, angle, phi0, epsilon, particle: str = "PE", wall: str =
                fresh: bool = False, progress: bool = False):
     """The charge-per-impact map of a materials pair over the grid of impact speeds (m/s),
     angles (deg from the plate's surface, 90 head-on), orientations phi0 (deg) and
-    roundness values (tribo.impact): one SI FMU episode per point, from first contact to
-    the lift-off or the time limit (`limit` in t*; default impact.DEFAULT_LIMIT). settings:
-    other SI parameters (semi_major_axis, ...). Written into `out` (impact_map.csv,
-    impact_map.json, impact_map.png), resumable; returns tribo.ImpactMap for lookups."""
-    from .impact import DEFAULT_LIMIT
-    from .impact_table import ImpactMap, run_impact_map
-    from .impact import Grid
-
+    roundness values (tribo.impact.episode): one SI FMU episode per point, from first
+    contact to the lift-off or the time limit (`limit` in t*; default DEFAULT_LIMIT).
+    settings: other SI parameters (semi_major_axis, ...). Written into `out`
+    (impact_map.csv, impact_map.json, impact_map.png), resumable; returns tribo.ImpactMap
+    for lookups."""
     grid = Grid.of(speed=speed, angle=angle, phi0=phi0, epsilon=epsilon)
     image = FmuImage.load(find_fmu(fmu, "si"))
     executor = SerialExecutor() if serial else DaskExecutor(scheduler, workers)

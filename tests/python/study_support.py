@@ -3,11 +3,14 @@ package takes it, the commands as a user runs them."""
 
 import os
 import sys
+from functools import cache
 
-from tribo.fmu import FmuImage
-from tribo.particle import run_fmu
-from tribo.specs import paper_spec
-from tribo.sweep import TIMING_COLUMNS
+from tribo.batch.particle import run_fmu
+from tribo.batch.sweep import TIMING_COLUMNS
+from tribo.fmu import FmuImage, model_description
+from tribo.fmu.locate import find_fmu
+from tribo.fmu.parameters import integer_names
+from tribo.study.paper import paper_spec
 
 PYTHON = sys.executable
 BIN = os.path.dirname(PYTHON)  # the venv's bin/, where pip put the entry points
@@ -18,10 +21,18 @@ def command(name: str) -> str:
     return os.path.join(BIN, name)
 
 
+@cache
+def fmu_integer_names() -> tuple:
+    """The parameters that take whole numbers, from the build's FMU (both FMI versions have
+    the same)."""
+    return integer_names(model_description(find_fmu()))
+
+
 def short_spec(epsilon, friction, t_end=200.0, **overrides):
-    """A short run of the paper's set-up with few segments (turning and the contact modes do
+    """A short run of the paper's set-up with few segments (turning and the motion classes do
     not depend on the segment count: charging does not act back on the motion)."""
-    return paper_spec(epsilon, friction, t_end, **dict({"n_segments": 64}, **overrides))
+    return paper_spec(epsilon, friction, t_end, integer_names=fmu_integer_names(),
+                      **dict({"n_segments": 64}, **overrides))
 
 
 def without_timing(df):

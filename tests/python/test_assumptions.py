@@ -1,6 +1,6 @@
-"""Where the model's assumptions break (issue 5): a contact indented beyond
-0.1 min(epsilon, rho_c) is reported through the FMI logger as a warning, and counted in
-the assumption_warnings output, never returned quietly."""
+"""Where the model's assumptions break: a contact indented beyond 0.1 min(epsilon, rho_c)
+is reported through the FMI logger as a warning, and counted in the assumption_warnings
+output, never returned quietly."""
 
 import pytest
 

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 from fmpy.fmi1 import FMICallException
 
+from tribo.batch.particle import simulate
 from tribo.fmu import DISCARD, OK, FmuImage, Instance, record
-from tribo.particle import simulate
 
 NAMES = ["X", "Y", "phi", "Q_static", "Q_sliding", "contact_fraction", "motion_class"]
 TIMES = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0]
@@ -103,7 +103,7 @@ def test_fmi3_terminate_with_ok_ends_the_run_too(fmu_dir):
 
 
 def test_simulate_and_the_api_record_an_early_end(fmu_file, monkeypatch):
-    """The path tribo.run and the sweeps take (tribo.particle.simulate) stops there too."""
+    """The path tribo.run and the sweeps take (tribo.batch.particle.simulate) stops there too."""
     real = Instance._do_step3
 
     def do_step3(self, t, h):

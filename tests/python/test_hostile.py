@@ -1,5 +1,5 @@
-"""Hostile and careless importers (issue 11): each defect that fuzzing the FMUs found, as an
-importer meets it through fmpy. The fuzz suite itself: test_fuzz.py (tests/fuzz)."""
+"""Hostile and careless importers: each defect that fuzzing the FMUs found, as an importer
+meets it through fmpy. The fuzz suite itself: test_fuzz.py (tests/fuzz)."""
 
 import math
 import struct
@@ -17,7 +17,7 @@ def finite_outputs(s, output_names):
     return all(math.isfinite(v) for v in s.get_many(output_names).values())
 
 
-# ---- defect 1: the fixed step restores its own state at accumulated times ---------------------
+# ---- the fixed step restores its own state at accumulated times -------------------------------
 
 @pytest.mark.parametrize("version", VERSIONS)
 def test_fixed_step_restores_its_state_when_the_importer_adds_up_time(fmu_dir, version):
@@ -34,7 +34,7 @@ def test_fixed_step_restores_its_state_when_the_importer_adds_up_time(fmu_dir, v
     s.step_to(t + 0.1)
 
 
-# ---- defect 2: a restored state runs on with its own tolerances ---------------------------------
+# ---- a restored state runs on with its own tolerances -----------------------------------------
 
 @pytest.mark.parametrize("version", VERSIONS)
 def test_state_restored_into_other_tolerances_continues_the_saved_run(fmu_dir, version):
@@ -49,7 +49,7 @@ def test_state_restored_into_other_tolerances_continues_the_saved_run(fmu_dir, v
     assert other.run([25.0], MOTION) == saver.run([25.0], MOTION)
 
 
-# ---- defect 3: a state of Initialization Mode after a change restores ---------------------------
+# ---- a state of Initialization Mode after a change restores -----------------------------------
 
 def enter_initialization(s):
     if s.version == 2:
@@ -75,7 +75,7 @@ def test_state_of_initialization_mode_after_a_change_restores(fmu_dir, version):
     assert s.run([1.0], MOTION) == reference.run([1.0], MOTION)
 
 
-# ---- defect 4: corrupt states are refused, and the instance stays as it was -------------------
+# ---- corrupt states are refused, and the instance stays as it was -----------------------------
 
 def offsets(s):
     """Where fields lie in a serialized state (fmu/fmu_state.c, src/state_io.c, the CVODE
@@ -125,7 +125,7 @@ def test_corrupt_states_are_refused_and_change_nothing(fmu_dir, output_names, ve
     assert s.run([2.0], output_names) == twin.run([2.0], output_names)
 
 
-# ---- defect 5: huge steps are refused or bounded -----------------------------------------------
+# ---- huge steps are refused or bounded --------------------------------------------------------
 
 @pytest.mark.parametrize("version", VERSIONS)
 @pytest.mark.parametrize("integrator", INTEGRATORS, ids=integrator_id)
@@ -149,7 +149,7 @@ def test_huge_steps_are_refused_or_end_early(fmu_dir, output_names, version, int
         assert s.do_step(reached, 1.0)[0] == OK
 
 
-# ---- defect 6: the work of one step is bounded; stopping early changes nothing ---------------
+# ---- the work of one step is bounded; stopping early changes nothing --------------------------
 
 @pytest.mark.parametrize("integrator", (0, 1), ids=integrator_id)
 def test_early_returns_continue_the_same_run(fmu_dir, output_names, integrator):
@@ -182,7 +182,7 @@ def test_a_stiff_input_ends_the_step_early_instead_of_running_for_minutes(fmu_di
     assert finite_outputs(s, output_names)
 
 
-# ---- defect 7: valid extreme values give finite outputs ---------------------------------------
+# ---- valid extreme values give finite outputs -------------------------------------------------
 
 EXTREMES = [{"tau0": 1e-9, "tau_r": 1e-9}, {"Sigma0": 1e-9, "eta": 1e9}, {"Sigma0": 1e9},
             {"Gamma": 10.0}, {"drop_speed": 10.0}, {"epsilon": 1e-3}, {"mu": 100.0, "nu": 100.0},
@@ -199,7 +199,7 @@ def test_values_at_the_ends_of_their_ranges_give_finite_outputs(fmu_dir, output_
     assert finite_outputs(s, output_names)
 
 
-# ---- defect 8: a set call is checked whole before any of it is applied ------------------------
+# ---- a set call is checked whole before any of it is applied ----------------------------------
 
 @pytest.mark.parametrize("version", VERSIONS)
 def test_a_set_with_one_refused_value_applies_none(fmu_dir, output_names, version):

@@ -1,4 +1,4 @@
-"""Charge-per-impact maps (tribo.impact, tribo.impact_table, tribo-impact-map): one episode
+"""Charge-per-impact maps (tribo.impact.episode, tribo.impact.map, tribo-impact-map): one episode
 ends at its lift-off or its time limit, the lookup against direct episodes at grid points and
 between them, resuming, bad input in one line, the figure's legends."""
 
@@ -6,12 +6,12 @@ import numpy as np
 import pytest
 
 import tribo
-from tribo import impact_plot
+from tribo.batch.executors import SerialExecutor
 from tribo.cli import impact_map as cli
-from tribo.executors import SerialExecutor
 from tribo.fmu import FmuImage
-from tribo.impact import Grid, ImpactError, episode_specs, run_episode
-from tribo.impact_table import ImpactMap, run_impact_map
+from tribo.impact import plot as impact_plot
+from tribo.impact.episode import Grid, ImpactError, episode_specs, run_episode
+from tribo.impact.map import ImpactMap, run_impact_map
 
 SETTINGS = {"semi_major_axis": 0.5e-3, "n_segments": 400}
 
@@ -82,11 +82,11 @@ def test_the_lookup_between_grid_points(small_map, si_image):
     b = m("charge_static", 3.0, 60.0, 0.0, 0.5)
     assert m("charge_static", 2.0, 60.0, 0.0, 0.5) == pytest.approx(0.5 * (a + b), rel=1e-12)
     # and close to the episode run there: the static charge per impact of a disc grows
-    # smoothly with the speed (measured 2.3% between the linear lookup and the episode at
-    # 2 m/s, head-on; bound 10%)
+    # smoothly with the speed (measured: the linear lookup is 2.32% below the episode at
+    # 2 m/s, head-on; bound: that error with a margin of 1.5)
     direct = episode(si_image, 2.0, 90.0, 0.0, 1.0)
     looked_up = m("charge_static", 2.0, 90.0, 0.0, 1.0)
-    assert looked_up == pytest.approx(direct["charge_static"], rel=0.10)
+    assert looked_up == pytest.approx(direct["charge_static"], rel=1.5 * 0.0232)
     # arrays broadcast
     values = m("rebound_speed", np.array([1.0, 2.0, 3.0]), 90.0, 0.0, 1.0)
     assert values.shape == (3,) and values[0] < values[1] < values[2]

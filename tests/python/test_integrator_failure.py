@@ -1,4 +1,4 @@
-"""Never a silent failure (issue 4): when the integrator cannot go on, doStep returns an
+"""Never a silent failure: when the integrator cannot go on, doStep returns an
 error and the logger says why, with the time and the state; the instance then only
 resets or restores a state.
 

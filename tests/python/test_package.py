@@ -2,12 +2,15 @@
 python/tribo), imported without any sys.path manipulation, its console commands, its API
 (one particle as a DataFrame, a sweep, its results) and where it finds the FMUs."""
 
+import glob
 import hashlib
+import importlib
 import importlib.metadata
 import os
 import re
 import subprocess
 import sys
+import tomllib
 
 import numpy as np
 import pandas as pd
@@ -16,7 +19,9 @@ from fmpy import simulate_fmu
 
 import tribo
 from study_support import command
-from tribo.parameters import ParameterError
+from tribo.fmu import model_description
+from tribo.fmu.locate import build_dir
+from tribo.fmu.parameters import ParameterError
 from tribo_fmu import ROOT
 
 
@@ -45,19 +50,89 @@ def test_nothing_in_the_repository_changes_sys_path():
     assert not offenders, offenders
 
 
-@pytest.mark.parametrize("name, module", [("tribo-study", "tribo.cli.study:main"),
-                                          ("tribo-sweep", "tribo.cli.sweep:main")])
-def test_console_commands(name, module):
+# The commands users type and the modules they run: a rename here breaks scripts and docs.
+COMMANDS = {"tribo-study": "tribo.cli.study:main", "tribo-sweep": "tribo.cli.sweep:main",
+            "tribo-population": "tribo.cli.population:main",
+            "tribo-impact-map": "tribo.cli.impact_map:main"}
+# The names `import tribo` gives (README.md, docs/): changing them is a decision about the
+# API, never a side effect of moving modules.
+PUBLIC = ["run", "run_si", "sweep", "load_results", "find_fmu", "materials", "population",
+          "impact_map", "ImpactMap"]
+
+
+def test_pyproject_declares_the_console_commands():
+    with open(os.path.join(ROOT, "pyproject.toml"), "rb") as f:
+        assert tomllib.load(f)["project"]["scripts"] == COMMANDS
+
+
+@pytest.mark.parametrize("name", COMMANDS)
+def test_console_commands(name):
     scripts = {e.name: e.value for e in importlib.metadata.entry_points(group="console_scripts")}
-    assert scripts[name] == module
+    assert scripts[name] == COMMANDS[name]
     done = subprocess.run([command(name), "--help"], capture_output=True, text=True, timeout=60)
     assert done.returncode == 0 and done.stdout.startswith(f"usage: {name} ")
     assert "--scheduler" in done.stdout and "--fresh" in done.stdout
 
 
+def test_the_public_api_is_pinned():
+    assert tribo.__all__ == PUBLIC
+    assert all(callable(getattr(tribo, n)) for n in PUBLIC if n not in ("materials", "ImpactMap"))
+    assert isinstance(tribo.ImpactMap, type) and tribo.ImpactMap.__module__.startswith("tribo.")
+    assert tribo.materials.__name__ == "tribo.materials"
+    # the fmpy driver the README points to, with the names the tests and examples import
+    assert tribo.fmu.__name__ == "tribo.fmu"
+    assert {"Instance", "FmuImage", "unpacked", "record", "model_description", "status_of",
+            "OK", "WARNING", "DISCARD", "ERROR", "FATAL"} <= set(tribo.fmu.__all__)
+    assert all(hasattr(tribo.fmu, n) for n in tribo.fmu.__all__)
+
+
+def documents() -> dict:
+    """README.md, CONTRIBUTING.md and docs/*.md: path -> text."""
+    paths = [os.path.join(ROOT, "README.md"), os.path.join(ROOT, "CONTRIBUTING.md")]
+    paths += sorted(glob.glob(os.path.join(ROOT, "docs", "*.md")))
+    return {os.path.relpath(p, ROOT): open(p, encoding="utf-8").read() for p in paths}
+
+
+def fmu_type_names() -> set:
+    """The FMUs' own dotted names (enumeration types such as tribo.MotionClass)."""
+    names = set()
+    for xml in glob.glob(os.path.join(ROOT, "modelDescription", "*.xml")):
+        names |= {t.name for t in model_description(xml).typeDefinitions}
+    return names
+
+
+def test_every_package_name_the_docs_use_exists():
+    # tribo.x.y, not inside a path (src/tribo.h) or another name (tribo_fmi3.fmu)
+    pattern = re.compile(r"(?<![\w/.-])tribo(?:\.[A-Za-z_]\w*)+")
+    used = {(m.group(0), where) for where, text in documents().items()
+            for m in pattern.finditer(text)}
+    used = {(name, where) for name, where in used if name not in fmu_type_names()}
+    assert {name for name, _ in used} >= {"tribo.run", "tribo.sweep", "tribo.materials", "tribo.fmu"}
+    missing = []
+    for name, where in sorted(used):
+        parts = name.split(".")
+        obj = tribo
+        for i, part in enumerate(parts[1:], 2):
+            try:
+                obj = getattr(obj, part) if hasattr(obj, part) else \
+                    importlib.import_module(".".join(parts[:i]))
+            except ImportError:
+                missing.append(f"{where}: {name}")
+                break
+    assert not missing, missing
+
+
+def test_every_package_path_the_docs_name_exists():
+    paths = {(m.group(0).rstrip("."), where) for where, text in documents().items()
+             for m in re.finditer(r"(?<![\w/])python/tribo(?:/[\w.*]+)*", text)}
+    assert ("python/tribo/data/materials.toml", "README.md") in paths
+    missing = [f"{where}: {path}" for path, where in sorted(paths)
+               if not glob.glob(os.path.join(ROOT, path))]
+    assert not missing, missing
+
+
 def test_package_data_is_part_of_the_package():
     """python/tribo/data/* (e.g. a materials table) goes with the package."""
-    import tomllib
     with open(os.path.join(ROOT, "pyproject.toml"), "rb") as f:
         project = tomllib.load(f)
     assert project["tool"]["setuptools"]["package-data"]["tribo"] == ["data/*"]
@@ -97,13 +172,17 @@ def test_sweep_and_load_results(fmu_file, tmp_path):
 
 
 def test_find_fmu(tmp_path, monkeypatch):
-    assert tribo.find_fmu() == os.path.join(ROOT, "build", "fmu", "tribo_fmi3.fmu") or \
-        os.environ.get("TRIBO_BUILD_DIR")
+    # the checkout's build/ unless TRIBO_BUILD_DIR names another (as when testing another build)
+    monkeypatch.delenv("TRIBO_BUILD_DIR", raising=False)
+    assert build_dir() == os.path.join(ROOT, "build")
     monkeypatch.setenv("TRIBO_BUILD_DIR", str(tmp_path))
+    assert build_dir() == str(tmp_path)
     with pytest.raises(FileNotFoundError, match="TRIBO_BUILD_DIR"):
         tribo.find_fmu(2)
     (tmp_path / "fmu").mkdir()
     (tmp_path / "fmu" / "tribo_fmi2.fmu").write_bytes(b"")
+    (tmp_path / "fmu" / "tribo_fmi3.fmu").write_bytes(b"")
+    assert tribo.find_fmu() == str(tmp_path / "fmu" / "tribo_fmi3.fmu")  # FMI 3.0 by default
     assert tribo.find_fmu(2) == str(tmp_path / "fmu" / "tribo_fmi2.fmu")
     assert tribo.find_fmu(str(tmp_path / "fmu" / "tribo_fmi2.fmu")) == str(tmp_path / "fmu" / "tribo_fmi2.fmu")
     (tmp_path / "fmu" / "tribo_si_fmi3.fmu").write_bytes(b"")

@@ -6,13 +6,13 @@ import pandas as pd
 import pytest
 
 import tribo
-from tribo import population_plot
+from tribo.batch.executors import SerialExecutor
 from tribo.cli import population as cli
-from tribo.executors import SerialExecutor
 from tribo.fmu import FmuImage
-from tribo.population_feed import Feed, draw, particle_parameters
-from tribo.population_runner import run_population
-from tribo.population_summary import summarize_population
+from tribo.populations import plot as population_plot
+from tribo.populations.feed import Feed, draw, particle_parameters
+from tribo.populations.runner import run_population
+from tribo.populations.summary import summarize_population
 
 # a short chute: each particle a few impacts, ~0.05 s of CPU
 SHORT = {"chute_length": 0.02}

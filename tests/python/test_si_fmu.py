@@ -66,7 +66,7 @@ def test_every_display_unit_is_pints_conversion(described):
             converted = (1 * pint_unit(unit.name)).to(pint_unit(display.name)).magnitude
             assert display.factor == pytest.approx(converted, rel=1e-14), (unit.name, display.name)
             assert display.offset == 0
-    # the display units people expect (issue 12)
+    # the display units an engineer reads a grain's size, charge and q/m in
     assert {"deg", "mm", "µm", "ms", "GPa", "nC", "pC", "µC/kg", "nC/kg"} <= set(shown)
 
 
@@ -213,8 +213,8 @@ def test_si_and_dimensionless_fmus_give_the_same_run(fmu_dir, version, integrato
     rows_si, rows_model = np.array(rows_si), np.array(rows_model)
     # relative to each quantity's largest magnitude over the run. Measured: at most 1.3e-16
     # with either integrator and FMI version (the core runs the same numbers; only the SI
-    # FMU's conversions of its outputs round); issue 12 asks for 1e-12, the test holds them
-    # to 1e-14 (about 75 times the measured, for other compilers' rounding)
+    # FMU's conversions of its outputs round); the test holds them to 1e-14 (about 75 times
+    # the measured, for other compilers' rounding)
     error = np.abs(rows_si - rows_model).max(axis=0) / np.abs(rows_model).max(axis=0)
     assert error.max() <= 1e-14, dict(zip(pairs, error))
     if version == 3:  # the per-segment arrays: the model's times sigma0 (docs/model.md §8)
@@ -227,7 +227,7 @@ def test_si_and_dimensionless_fmus_give_the_same_run(fmu_dir, version, integrato
     model.free()
 
 
-# ---- the reference case (issue 12): a 1 mm polyethylene grain leaves a 0.3 m steel chute -----
+# ---- the reference case: a 1 mm polyethylene grain leaves a 0.3 m steel chute ----------------
 
 
 @pytest.mark.parametrize("version", VERSIONS)

@@ -10,7 +10,7 @@ import pandas as pd
 import pytest
 
 from study_support import command
-from tribo.figures import FIGURES
+from tribo.study.figures import FIGURES
 
 
 @pytest.fixture(scope="module")
@@ -89,9 +89,9 @@ def tiny_result(tiny_study, fmu_file):
     """The tiny study's result in this process (every run reused from its runs/)."""
     from dataclasses import replace
 
-    from tribo.executors import SerialExecutor
+    from tribo.batch.executors import SerialExecutor
     from tribo.fmu import FmuImage
-    from tribo.study import REDUCED, run_study
+    from tribo.study.runner import REDUCED, run_study
     out, _, _ = tiny_study
     settings = replace(REDUCED, epsilons=(0.3, 1.0), t_end=200.0, transition_width=0.25)
     result = run_study(settings, FmuImage.load(fmu_file(3)), str(out), SerialExecutor(), progress=False)
@@ -104,7 +104,7 @@ def test_the_study_uses_the_fmus_default_tolerances(tiny_study, tiny_result, fmu
     and a grid run is, bit for bit, the run that leaves them unset; the old pinned rtol 1e-8
     gives other numbers."""
     from tribo.fmu import model_description
-    from tribo.particle import simulate
+    from tribo.batch.particle import simulate
     out, _, _ = tiny_study
     start = {v.name: float(v.start) for v in model_description(fmu_file(3)).modelVariables
              if v.name in ("rtol", "atol")}
@@ -136,7 +136,7 @@ def _panels(fig):
 def test_every_panel_has_a_legend_and_distinct_lines(tiny_result, name):
     from matplotlib.colors import to_hex
 
-    from tribo import figures
+    from tribo.study import figures
     writer = getattr(figures, name[:-len(".png")])
     fig = writer(tiny_result)
     panels = _panels(fig)
@@ -154,7 +154,7 @@ def test_every_panel_has_a_legend_and_distinct_lines(tiny_result, name):
 
 
 def test_axes_say_what_is_normalised_by_what(tiny_result):
-    from tribo import figures
+    from tribo.study import figures
     fig = figures.charge_vs_time(tiny_result)
     for ax in fig.axes:
         assert ax.get_xlabel() == "τ = t / sqrt(m/k)"
@@ -169,7 +169,7 @@ def test_axes_say_what_is_normalised_by_what(tiny_result):
 
 
 def test_the_segment_map_is_a_polar_plot_of_the_segment_charges(tiny_result):
-    from tribo import figures
+    from tribo.study import figures
     fig = figures.segment_charge(tiny_result)
     assert all(ax.name == "polar" for ax in fig.axes) and len(fig.axes) == 4
     ax = fig.axes[0]  # static, low friction
@@ -184,6 +184,6 @@ def test_the_segment_map_is_a_polar_plot_of_the_segment_charges(tiny_result):
 def test_an_fmi2_fmu_gives_no_segment_map(tiny_result):
     from dataclasses import replace
 
-    from tribo import figures
+    from tribo.study import figures
     without = replace(tiny_result, all_segments={k: None for k in tiny_result.all_segments})
     assert figures.segment_charge(without) is None

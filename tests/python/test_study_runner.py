@@ -1,13 +1,13 @@
-"""One FMU run as the study makes it (tribo/particle.py and summary.py):
+"""One FMU run as the study makes it (tribo/batch/particle.py and summary.py):
 the recorded series and the summary row agree with each other and with the FMU."""
 
 import numpy as np
 import pytest
 
 from study_support import image_of, short_spec
-from tribo.particle import RECORDED, run_fmu
-from tribo.summary import (MODES, WARMUP, bounce_envelope, report_times, summary_columns,
-                           upper_envelope)
+from tribo.batch.particle import RECORDED, run_fmu
+from tribo.batch.summary import (MOTION_CLASSES, WARMUP, bounce_envelope, report_times,
+                                 summary_columns, upper_envelope)
 
 
 @pytest.fixture(scope="module")
@@ -34,8 +34,8 @@ def test_summary_row_has_its_columns_in_order(tumbling_run):
 
 def test_mode_fractions_sum_to_one(tumbling_run):
     row = tumbling_run.row
-    assert sum(row[f"fraction_{m}"] for m in MODES) == pytest.approx(1.0, abs=1e-9)
-    assert sum(row[f"fraction_{m}_after_warmup"] for m in MODES) == pytest.approx(1.0, abs=1e-9)
+    assert sum(row[f"fraction_{m}"] for m in MOTION_CLASSES) == pytest.approx(1.0, abs=1e-9)
+    assert sum(row[f"fraction_{m}_after_warmup"] for m in MOTION_CLASSES) == pytest.approx(1.0, abs=1e-9)
     # the case mixes modes, so the check above is not 1 = 1 + 0 + 0 ...
     assert row["fraction_tumbling_after_warmup"] > 0.1 and row["fraction_bouncing_after_warmup"] > 0.1
 
@@ -45,7 +45,7 @@ def test_mode_fractions_agree_with_the_sampled_mode(tumbling_run):
     of recorded times in each motion_class: equal up to the sampling (a few switches)."""
     s = tumbling_run.series
     after = s[s["time"] > WARMUP]
-    for i, m in enumerate(MODES):
+    for i, m in enumerate(MOTION_CLASSES):
         sampled = float((after["motion_class"] == i).mean())
         assert tumbling_run.row[f"fraction_{m}_after_warmup"] == pytest.approx(sampled, abs=0.02), m
 

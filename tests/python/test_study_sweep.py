@@ -1,8 +1,8 @@
-"""Sweeps (tribo/sweep.py, executors.py, results.py, grid.py; tribo-sweep): Dask gives the
-serial run's numbers, an interrupted or limited sweep resumes without redoing finished
-runs and ends with the uninterrupted sweep's file, runs of different horizons share a
-file, a fresh start keeps the old file, and a sweep runs on an existing Dask cluster that
-does not have the package."""
+"""Sweeps (tribo/batch/: sweep.py, executors.py, results.py, grid.py; tribo-sweep): Dask
+gives the serial run's numbers, an interrupted or limited sweep resumes without redoing
+finished runs and ends with the uninterrupted sweep's file, runs of different horizons
+share a file, a fresh start keeps the old file, and a sweep runs on an existing Dask
+cluster that does not have the package."""
 
 import os
 import signal
@@ -15,13 +15,13 @@ import pandas as pd
 import pytest
 
 from study_support import PYTHON, CountingRun, command, image_of, short_spec, without_timing
-from tribo.executors import DaskExecutor, SerialExecutor
-from tribo.grid import PAPER_BASE, build_specs, parse_param
-from tribo.parameters import ParameterError, check_names, integer_names
-from tribo.particle import run_fmu
-from tribo.results import read_results
-from tribo.specs import run_key
-from tribo.sweep import run_sweep, series_path
+from tribo.batch.executors import DaskExecutor, SerialExecutor
+from tribo.batch.grid import PAPER_BASE, build_specs, parse_param
+from tribo.batch.particle import run_fmu
+from tribo.batch.results import read_results
+from tribo.batch.specs import run_key
+from tribo.batch.sweep import run_sweep, series_path
+from tribo.fmu.parameters import ParameterError, check_names, integer_names
 
 SPECS = [short_spec(e, f, t_end=100.0) for f in ("low", "high") for e in (0.3, 0.6, 1.0)]
 

@@ -1,4 +1,4 @@
-"""The search for the transition roundness (tribo/transition.py): on
+"""The search for the transition roundness (tribo/study/transition.py): on
 synthetic predicates with a known answer, and on short real FMU runs."""
 
 import math
@@ -6,10 +6,10 @@ import math
 import pytest
 
 from study_support import image_of, short_spec
-from tribo.executors import SerialExecutor
-from tribo.particle import run_fmu
-from tribo.sweep import run_sweep
-from tribo.transition import find_transition
+from tribo.batch.executors import SerialExecutor
+from tribo.batch.particle import run_fmu
+from tribo.batch.sweep import run_sweep
+from tribo.study.transition import find_transition
 
 GRID = [round(0.1 * k, 10) for k in range(1, 11)]
 
@@ -63,8 +63,8 @@ def test_no_transition_or_below_the_grid():
 
 def test_finds_the_high_friction_transition_of_the_fmu(fmu_file, tmp_path):
     """High friction, tau to 200: at the grid 0.1 ... 0.5 the turning starts between 0.3 and
-    0.4 (the issue's quick check). The bracket's ends, run again on their own, are on the
-    sides they are said to be on."""
+    0.4, as in the full study (eps_t = 0.339 at tau = 5000). The bracket's ends, run again
+    on their own, are on the sides they are said to be on."""
     image = image_of(fmu_file)
     path = str(tmp_path / "results.csv")
 

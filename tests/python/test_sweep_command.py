@@ -16,7 +16,7 @@ import psutil
 import pytest
 
 from study_support import command
-from tribo.executors import DaskExecutor, scheduler_address
+from tribo.batch.executors import DaskExecutor, scheduler_address
 
 SMALL = ["--param", "n_segments=64", "--no-progress"]
 
@@ -181,12 +181,12 @@ def test_the_sweep_plots_its_results(fmu_file, tmp_path):
     from matplotlib.image import imread
     assert imread(png).shape[0] >= 700
 
-    from tribo.sweep_plot import write_sweep_figure
+    from tribo.batch.plot import write_sweep_figure
     from tribo import plotting
     seen = {}
     original = plotting.save
     try:
-        import tribo.sweep_plot as sp
+        import tribo.batch.plot as sp
         sp.save = lambda fig, path: seen.setdefault("fig", fig)
         write_sweep_figure(pd.read_csv(out), ["epsilon", "mu"], str(tmp_path / "again.png"))
     finally:

@@ -11,7 +11,7 @@ import os
 import subprocess
 
 from tribo.fmu import DISCARD, ERROR, FATAL, OK, WARNING, Instance, model_description, status_of  # noqa: F401
-from tribo.locate import CHECKOUT, build_dir
+from tribo.fmu.locate import CHECKOUT, build_dir
 
 ROOT = CHECKOUT
 # build/ unless TRIBO_BUILD_DIR names another build directory

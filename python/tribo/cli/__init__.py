@@ -1,1 +1,2 @@
-"""The console commands (entry points in pyproject.toml): tribo-study, tribo-sweep."""
+"""The console commands (entry points in pyproject.toml): tribo-study, tribo-sweep,
+tribo-population and tribo-impact-map; `common` holds what they share."""

@@ -6,8 +6,8 @@ import os
 import sys
 import tempfile
 
-from ..executors import DaskExecutor, SerialExecutor
-from ..grid import parse_values
+from ..batch.executors import DaskExecutor, SerialExecutor
+from ..batch.grid import parse_values
 
 
 class OneLineParser(argparse.ArgumentParser):
@@ -31,6 +31,17 @@ def numbers(text: str) -> tuple:
         return tuple(float(x) for x in text.split(","))
     except ValueError:
         raise argparse.ArgumentTypeError(f"{text!r}: expected numbers separated by commas") from None
+
+
+def name_value(text: str) -> tuple:
+    """argparse type: NAME=VALUE, the value a number (a --set option)."""
+    name, sep, value = text.partition("=")
+    if not sep or not name:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected NAME=VALUE")
+    try:
+        return name, float(value)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: {value!r} is not a number") from None
 
 
 def value_list(text: str) -> list:

@@ -4,7 +4,7 @@ impact angle, orientation and roundness for a materials pair, through the SI FMU
     tribo-impact-map --speed 0.5:10:5 --angle 15:90:6 --phi0 0:90:4 --epsilon 0.4,0.7,1 \\
         --particle PE --wall steel --out out/impact_map
 
-Each grid point is one impact episode (tribo/impact.py): the particle arrives with its lowest
+Each grid point is one impact episode (tribo/impact/episode.py): the particle arrives with its lowest
 point touching a level plate, at the speed (m/s) and angle (degrees from the plate's surface;
 90 is head-on), orientation phi0 (degrees) and spin --omega0 (rad/s); the SI FMU runs it
 with run_end = first_liftoff and ends it exactly where it leaves the plate, or at the time
@@ -24,16 +24,15 @@ Dask: as tribo-sweep (a local cluster on 127.0.0.1 without dashboard, or --sched
 import os
 import sys
 
-from ..executors import ClusterUnreachable
+from ..batch.executors import ClusterUnreachable
+from ..batch.sweep import keys_of, kept
 from ..fmu import FmuImage
-from ..impact import DEFAULT_LIMIT, Grid
-from ..impact_table import EPISODES, prepare_map, run_impact_map
-from ..locate import find_fmu
+from ..fmu.locate import find_fmu
+from ..impact.episode import DEFAULT_LIMIT, Grid
+from ..impact.map import EPISODES, prepare_map, run_impact_map
 from ..materials import MaterialError
-from ..sweep import keys_of, kept
 from .common import (add_execution_options, check_writable_dir, command_parser, executor_of, fail,
-                     value_list)
-from .population import name_value
+                     name_value, value_list)
 
 PROG = "tribo-impact-map"
 

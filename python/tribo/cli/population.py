@@ -6,7 +6,7 @@ particles drawn from a feed with a seed, one row per particle, the q/m summary a
         --size lognormal:1e-3:0.3 --chute-length 0.5 --set tilt=0.6
     tribo-population -n 500 --measured sieve.csv      # rows of measured values, drawn
 
-The feed variables (tribo/population_feed.py) take a number or a distribution: uniform:LOW:HIGH,
+The feed variables (tribo/populations/feed.py) take a number or a distribution: uniform:LOW:HIGH,
 normal:MEAN:SD, lognormal:MEDIAN:SIGMA, choice:V1,V2,...; --measured CSV gives columns of
 measured values (any of epsilon, size, phi0, omega0, drop_height, drop_speed, drop_angle),
 whose rows are drawn with replacement instead. Defaults: the SI reference case's feed
@@ -23,33 +23,21 @@ the same command is run again; --fresh starts over, keeping the old particles.cs
 Dask: as tribo-sweep (a local cluster on 127.0.0.1 without dashboard, or --scheduler).
 """
 
-import argparse
 import os
 import sys
 
-from ..distributions import DistributionError
-from ..executors import ClusterUnreachable
+from ..batch.executors import ClusterUnreachable
+from ..batch.sweep import keys_of, kept
 from ..fmu import FmuImage
-from ..locate import find_fmu
+from ..fmu.locate import find_fmu
 from ..materials import MaterialError
-from ..population_feed import DEFAULT_CHUTE, FEED_VARIABLES, Feed, read_measured
-from ..population_runner import PARTICLES, prepare_population, run_population
-from ..sweep import keys_of, kept
+from ..populations.distributions import DistributionError
+from ..populations.feed import DEFAULT_CHUTE, FEED_VARIABLES, Feed, read_measured
+from ..populations.runner import PARTICLES, prepare_population, run_population
 from .common import (add_execution_options, check_writable_dir, command_parser, executor_of, fail,
-                     numbers)
+                     name_value, numbers)
 
 PROG = "tribo-population"
-
-
-def name_value(text: str):
-    name, sep, value = text.partition("=")
-    if not sep or not name:
-        raise argparse.ArgumentTypeError(f"{text!r}: expected NAME=VALUE")
-    try:
-        return name, float(value)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r}: {value!r} is not a number") from None
-
 
 
 def parse_args(argv=None):

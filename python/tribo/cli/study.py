@@ -23,14 +23,14 @@ import sys
 import time
 from dataclasses import replace
 
-from .. import parameters
-from ..executors import ClusterUnreachable
+from ..batch.executors import ClusterUnreachable
+from ..batch.particle import communication_points
+from ..batch.results import read_results
 from ..fmu import FmuImage
-from ..locate import CHECKOUT, find_fmu
-from ..particle import communication_points
-from ..results import read_results
-from ..specs import paper_spec
-from ..study import FULL, REDUCED, run_study
+from ..fmu.locate import CHECKOUT, find_fmu
+from ..fmu.parameters import check_values, integer_names
+from ..study.paper import paper_spec
+from ..study.runner import FULL, REDUCED, run_study
 from .common import (add_execution_options, check_writable_dir, command_parser, executor_of, fail,
                      numbers)
 
@@ -93,13 +93,15 @@ def prepare(args):
     if settings.points_per_round < 1:
         raise ValueError(f"--points-per-round {settings.points_per_round}: at least 1")
     image = FmuImage.load(find_fmu(args.fmu))
-    specs = [paper_spec(e, f, settings.t_end, damping_point=d, **dict(settings.tolerances))
+    integers = integer_names(image.model_description())
+    specs = [paper_spec(e, f, settings.t_end, integer_names=integers, damping_point=d,
+                        **dict(settings.tolerances))
              for d in settings.dashpots for f in settings.frictions for e in settings.epsilons]
     values = {}
     for s in specs:
         for name, value in s.params.items():
             values.setdefault(name, []).append(value)
-    parameters.check_values(image, values)
+    check_values(image, values)
     out = args.out or os.path.join("out", "study-full" if args.full else "study")
     check_writable_dir(out)
     check_writable_dir(os.path.join(out, "runs", "series"))

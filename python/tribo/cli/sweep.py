@@ -20,7 +20,7 @@ Rows are appended as runs finish, keyed by a hash of the run's parameters, horiz
 FMU; after an interruption (Ctrl-C) the same command runs only the missing runs. Runs of
 other horizons can go into the same file. --fresh starts the file over, keeping the old
 one as <name>.backup-<n>.csv. Columns: key, the parameters, t_end, record_interval,
-fmu_sha256, the summary (tribo/summary.py: Q_static_20pct ... Q_static_end and the same
+fmu_sha256, the summary (tribo/batch/summary.py: Q_static_20pct ... Q_static_end and the same
 for Q_sliding, at 1/5 ... 5/5 of t_end; contact fraction, turns, turned_over, mode
 fractions, assumption warnings, bounce amplitude), cpu_s, wall_s. The figure
 (<out>.png, unless --no-plot) shows the charges, the contact fraction and the turns
@@ -37,13 +37,13 @@ servers listen on all interfaces unless --dashboard-address says otherwise, even
 import os
 import sys
 
-from .. import parameters
-from ..executors import ClusterUnreachable
+from ..batch.executors import ClusterUnreachable
+from ..batch.grid import PAPER_BASE, build_specs, parse_param, values_of
+from ..batch.particle import communication_points
+from ..batch.sweep import keys_of, kept, run_sweep
 from ..fmu import FmuImage
-from ..grid import PAPER_BASE, build_specs, parse_param, values_of
-from ..locate import find_fmu
-from ..particle import communication_points
-from ..sweep import keys_of, kept, run_sweep
+from ..fmu.locate import find_fmu
+from ..fmu.parameters import check_names, check_values, integer_names
 from .common import (add_execution_options, check_writable_dir, check_writable_file, command_parser,
                      executor_of, fail)
 
@@ -83,11 +83,11 @@ def prepare(args):
     communication_points(args.t_end, args.record_interval)
     image = FmuImage.load(find_fmu(args.fmu))
     md = image.model_description()
-    parameters.check_names(md, [n for n, _ in swept])
+    check_names(md, [n for n, _ in swept])
     base = PAPER_BASE if args.base == "paper" else {}
-    specs = build_specs(swept, base, parameters.integer_names(md), args.t_end,
+    specs = build_specs(swept, base, integer_names(md), args.t_end,
                         args.record_interval, args.tie)
-    parameters.check_values(image, values_of(specs))  # by the FMU itself
+    check_values(image, values_of(specs))  # by the FMU itself
     check_writable_file(args.out)
     if args.series_dir:
         check_writable_dir(args.series_dir)
@@ -129,7 +129,8 @@ def main(argv=None) -> int:
         print(report.results[swept + ["turned_over", "contact_fraction", "Q_static_end"]]
               .to_string(index=False))
         if plot:
-            from ..sweep_plot import write_sweep_figure
+            # matplotlib only when a figure is drawn: --no-plot runs without it
+            from ..batch.plot import write_sweep_figure
             write_sweep_figure(report.results, swept, plot)
             print(f"sweep: figure {plot}")
     return 1 if report.failed else 0

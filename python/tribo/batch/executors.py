@@ -23,7 +23,8 @@ import threading
 import zipfile
 from typing import Callable, Iterator
 
-PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
+# the whole package (tribo/, above batch/) goes to the workers of an existing cluster
+PACKAGE_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DEFAULT_SCHEDULER_PORT = 8786  # Dask's
 CONNECT_TIMEOUT_S = 5.0
 
@@ -106,6 +107,7 @@ class DaskExecutor:
         self._scattered = {}  # FMU sha256 -> future of its image on the workers
 
     def __enter__(self):
+        # distributed only when a Dask run starts: `import tribo` and serial runs stay without it
         from distributed import Client, LocalCluster
 
         if self.address:
@@ -154,7 +156,7 @@ class DaskExecutor:
         return f"Dask, {where}"
 
     def run(self, function: Callable, image, specs) -> Iterator:
-        from distributed import as_completed
+        from distributed import as_completed  # lazily, as in __enter__
 
         if image.sha256 not in self._scattered:
             self._scattered[image.sha256] = self._client.scatter(image, broadcast=True)

@@ -12,12 +12,11 @@ import os
 
 import pandas as pd
 
-from .executors import available_cores
-from .specs import dashpot_name
-from .summary import (ENVELOPE_WIDTH, MODES, REPORT_FRACTIONS, TURNED_OVER, WARMUP, charge_column,
-                      report_times)
-
-FRICTION_TITLES = {"low": "low (mu = nu = 0.1)", "high": "high (mu = nu = 1.0)"}
+from ..batch.executors import available_cores
+from ..batch.summary import (ENVELOPE_WIDTH, MOTION_CLASSES, REPORT_FRACTIONS, TURNED_OVER,
+                             WARMUP, charge_column, report_times)
+from .figures import FIGURES
+from .paper import FRICTION_TITLES, dashpot_name
 
 
 def markdown_table(df: pd.DataFrame, formats: dict | None = None) -> str:
@@ -46,7 +45,7 @@ def charges_table(runs: pd.DataFrame, t_end: float) -> pd.DataFrame:
 
 MOTION_FORMATS = {"contact_fraction": ".3f", "turns": ".3g", "warnings": "d", "max delta_y / eps": ".3f",
                   "Y max": ".3f", "bounce amp.": ".3f", "CPU s": ".2f", "wall s": ".2f",
-                  **{m: ".3f" for m in MODES}}
+                  **{m: ".3f" for m in MOTION_CLASSES}}
 
 
 def _add_motion(out: pd.DataFrame, runs: pd.DataFrame) -> pd.DataFrame:
@@ -54,7 +53,7 @@ def _add_motion(out: pd.DataFrame, runs: pd.DataFrame) -> pd.DataFrame:
     warnings, indentation, height, bounce amplitude."""
     out["contact_fraction"] = runs["contact_fraction"]
     out["turns"] = runs["turns"]
-    for m in MODES:
+    for m in MOTION_CLASSES:
         out[m] = runs[f"fraction_{m}_after_warmup"]
     out["warnings"] = runs["assumption_warnings"]
     out["max delta_y / eps"] = runs["delta_y_max"] / runs["epsilon"]
@@ -276,5 +275,4 @@ def write_all(result, out_dir: str, command: str) -> list[str]:
 
 
 def figures_in(out_dir: str) -> list[str]:
-    from .figures import FIGURES
     return [name for name in FIGURES if os.path.exists(os.path.join(out_dir, name))]

@@ -1,10 +1,10 @@
 """A charge-per-impact map: the episodes of a grid over (impact speed, impact angle,
-orientation, roundness) for a materials pair, run resumably (sweep.run_sweep), written as a
-table with its metadata, and the lookup a DEM or CFD wall model calls.
+orientation, roundness) for a materials pair, run resumably (batch.sweep.run_sweep),
+written as a table with its metadata, and the lookup a DEM or CFD wall model calls.
 
     <out>/episodes.csv     the runs, one row each as they finish (resumable)
     <out>/impact_map.csv   the map: the grid's axes (speed, angle, phi0, epsilon), then the
-                           episode's results (impact.EPISODE_COLUMNS), in the grid's order
+                           episode's results (episode.EPISODE_COLUMNS), in the grid's order
     <out>/impact_map.json  metadata: materials, settings, the time limit, the grid, the FMU
                            (name, SHA-256, instantiation token, generation tool), the package
     <out>/impact_map.png   the figure
@@ -25,9 +25,11 @@ from importlib import metadata as package_metadata
 import numpy as np
 import pandas as pd
 
-from .fmu import FmuImage
-from .impact import AXES, AXIS_UNITS, EPISODE_COLUMNS, Grid, episode_specs, run_episode
-from .sweep import keys_of, run_sweep
+from ..batch.grid import values_of
+from ..batch.sweep import keys_of, run_sweep
+from ..fmu import FmuImage
+from ..fmu.parameters import check_values
+from .episode import AXES, AXIS_UNITS, EPISODE_COLUMNS, Grid, episode_specs, run_episode
 
 EPISODES, TABLE, METADATA, FIGURE = "episodes.csv", "impact_map.csv", "impact_map.json", "impact_map.png"
 
@@ -46,9 +48,6 @@ class MapReport:
 def prepare_map(grid: Grid, particle: str, wall: str, settings: dict, limit: float,
                 image: FmuImage, omega0: float = 0.0):
     """The episodes' runs, every value checked by the FMU before anything runs."""
-    from .grid import values_of
-    from .parameters import check_values
-
     specs = episode_specs(grid, particle, wall, settings, limit, omega0)
     check_values(image, values_of(specs))
     return specs
@@ -101,7 +100,8 @@ def run_impact_map(grid: Grid, particle: str, wall: str, settings: dict, limit: 
             json.dump(map_metadata(grid, particle, wall, settings, limit, omega0, image), f, indent=2)
         files += [os.path.join(out, TABLE), os.path.join(out, METADATA)]
         if figure:
-            from .impact_plot import write_impact_figure
+            # matplotlib only when a figure is drawn: `import tribo` stays without it
+            from .plot import write_impact_figure
             files.append(write_impact_figure(table, os.path.join(out, FIGURE),
                                              f"charge per impact, {particle} on {wall}"))
     return MapReport(table, len(report.keys), report.executed, report.skipped, report.failed,
@@ -130,6 +130,7 @@ class ImpactMap:
         return cls(pd.read_csv(os.path.join(folder, TABLE)), meta)
 
     def _interpolator(self, quantity: str):
+        # scipy only at the first lookup: `import tribo` stays without it
         from scipy.interpolate import RegularGridInterpolator
 
         if quantity not in self._values:

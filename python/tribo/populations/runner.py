@@ -1,5 +1,5 @@
-"""A population run into a folder: the particles (sweep.run_sweep's resumable results file,
-one row per particle), the summary, the figure and what was run.
+"""A population run into a folder: the particles (batch.sweep.run_sweep's resumable
+results file, one row per particle), the summary, the figure and what was run.
 
     <out>/particles.csv   one row per particle (tribo.load_results reads it)
     <out>/summary.csv     q/m statistics overall, per shape class, per size class
@@ -13,10 +13,12 @@ from dataclasses import dataclass
 
 import pandas as pd
 
-from .fmu import FmuImage
-from .population_feed import RESULT_COLUMNS, Feed, run_particle, specs_of
-from .population_summary import summarize_population
-from .sweep import run_sweep
+from ..batch.grid import values_of
+from ..batch.sweep import run_sweep
+from ..fmu import FmuImage
+from ..fmu.parameters import check_values
+from .feed import RESULT_COLUMNS, Feed, run_particle, specs_of
+from .summary import summarize_population
 
 PARTICLES, SUMMARY, FIGURE, METADATA = "particles.csv", "summary.csv", "population.png", "population.json"
 
@@ -39,9 +41,6 @@ class PopulationReport:
 
 def prepare_population(feed: Feed, n: int, seed: int, t_end: float, image: FmuImage):
     """The runs, every value checked by the FMU before anything runs."""
-    from .grid import values_of
-    from .parameters import check_values
-
     specs = specs_of(feed, n, seed, t_end)
     check_values(image, values_of(specs))
     return specs
@@ -68,7 +67,8 @@ def run_population(feed: Feed, n: int, seed: int, t_end: float, image: FmuImage,
         summary.to_csv(os.path.join(out, SUMMARY), index=False)
         files.append(os.path.join(out, SUMMARY))
         if figure:
-            from .population_plot import write_population_figure
+            # matplotlib only when a figure is drawn: `import tribo` stays without it
+            from .plot import write_population_figure
             title = (f"{n} particles of {feed.particle} on {feed.wall} (seed {seed}), "
                      f"at the chute's exit")
             files.append(write_population_figure(report.results, os.path.join(out, FIGURE),

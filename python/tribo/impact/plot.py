@@ -2,7 +2,7 @@
 impact against the impact angle (at the map's highest speed) and against the impact speed
 (at its most head-on angle), a line per roundness, each the mean over the orientations."""
 
-from .plotting import distinct_colours, legend, plt, save
+from ..plotting import distinct_colours, legend, plt, save
 
 CHARGE_UNIT, CHARGE_FACTOR = "pC", 1e12
 

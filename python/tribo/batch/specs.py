@@ -9,34 +9,7 @@ a rebuilt FMU with other behaviour is not mistaken for the old one.
 
 import hashlib
 import json
-import math
 from dataclasses import dataclass, field
-
-# docs/model.md section 7 (the paper's set-up), with CVODE instead of the paper's fixed step
-# (faster at equal error, see docs/work_precision.md) at the FMU's default tolerances (rtol,
-# atol: not set here), and the normal dashpot on the contact point (docs/model.md section 3).
-# epsilon, mu and nu are set per run.
-PAPER_SETUP = {
-    "Gamma": 0.001,
-    "beta": 45 * (math.pi / 180.0),  # rad
-    "tau0": 1.0,
-    "Sigma0": 0.01,
-    "eta": 0.1,
-    "tau_r": 1.0,  # tau_r = tau0
-    "n_segments": 2000,
-    "drop_speed": 0.025,
-    "charge_model": 3,  # both charge models
-    "integrator": 1,  # CVODE (Adams)
-    "damping_point": 0,
-}
-
-FRICTION_CASES = {"low": 0.1, "high": 1.0}  # mu = nu
-# damping_point: the velocity the normal dashpot opposes (docs/model.md section 3)
-DASHPOTS = {0: "contact point", 1: "centre"}
-
-
-def dashpot_name(damping_point: int) -> str:
-    return DASHPOTS.get(damping_point, f"damping_point = {damping_point}")
 
 # Parameters given as decimals (e.g. from a linspace) are rounded to this many decimal
 # places, so that 0.30000000000000004 and 0.3 are the same run.
@@ -56,20 +29,10 @@ class RunSpec:
                            "record_interval": self.record_interval}, sort_keys=True)
 
 
-def paper_spec(epsilon: float, friction: str, t_end: float, record_interval: float = 1.0,
-               **overrides) -> RunSpec:
-    """The paper's run at a roundness and friction case ("low" or "high")."""
-    mu = FRICTION_CASES[friction]
-    params = dict(PAPER_SETUP, epsilon=epsilon, mu=mu, nu=mu)
-    params.update(overrides)
-    return RunSpec(normalise_values(params), float(t_end), float(record_interval))
-
-
-def normalise_values(params: dict, integer_names=("n_segments", "charge_model", "integrator",
-                                                  "damping_point"),
-                     exact_names=("beta", "phi0", "Omega0")) -> dict:
-    """Integers as int, angles (in rad: no decimal numbers) as they are, everything else as
-    a float rounded to DECIMALS places."""
+def normalise_values(params: dict, integer_names, exact_names=("beta", "phi0", "Omega0")) -> dict:
+    """Integers (integer_names: the FMU's, parameters.integer_names) as int, angles (in
+    rad: no decimal numbers) as they are, everything else as a float rounded to DECIMALS
+    places."""
     out = {}
     for name, value in params.items():
         if name in integer_names:

@@ -11,10 +11,10 @@ Definitions (used in the tables, the figures and the docs):
 * charges: Q_static and Q_sliding at REPORT_FRACTIONS of the horizon (1000, 2000, ...,
   5000 for the paper's tau = 5000), in columns named by the fraction, not the time
   (Q_static_20pct, ..., Q_static_end), so that runs of different horizons share them.
-* contact modes: the FMU's fractions of time in each mode over the whole run, and the
+* motion classes: the FMU's fractions of time in each class over the whole run, and the
   same fractions after the warm-up (the FMU classifies over a ~20-unit exponential
   window, so the first WARMUP units read as "bouncing" while that window fills up). The
-  after-warm-up fractions are exact differences of the FMU's cumulative mode times:
+  after-warm-up fractions are exact differences of the FMU's cumulative class times:
   (f(T) T - f(tw) tw) / (T - tw), with tw the first recorded time >= WARMUP.
 * delta_y_max: the largest recorded indentation. The contact law assumes it small
   (the FMU counts excursions beyond 0.1 min(epsilon, rho_c) in assumption_warnings).
@@ -31,7 +31,7 @@ ENVELOPE_WIDTH = 50.0
 WARMUP = 60.0  # three classification windows of the FMU (TRIBO_MOTION_WINDOW = 20)
 TURNED_OVER = 0.5
 REPORT_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 1.0)
-MODES = ("flight", "rocking", "rolling", "tumbling", "bouncing")  # motion_class 0..4
+MOTION_CLASSES = ("flight", "rocking", "rolling", "tumbling", "bouncing")  # motion_class 0..4
 
 
 def report_times(t_end: float) -> list[float]:
@@ -65,17 +65,18 @@ def bounce_envelope(series: pd.DataFrame, width: float = ENVELOPE_WIDTH) -> np.n
 
 
 def fractions_after(series: pd.DataFrame, t_from: float) -> dict[str, float]:
-    """Fraction of the time after t_from spent in each mode (NaN if the run is shorter)."""
+    """Fraction of the time after t_from spent in each motion class (NaN if the run is
+    shorter)."""
     tau = series["time"].to_numpy()
     i = int(np.searchsorted(tau, t_from - 1e-9))
     if i >= len(tau) - 1:
-        return {m: math.nan for m in MODES}
+        return {m: math.nan for m in MOTION_CLASSES}
     t0, t1 = tau[i], tau[-1]
     out = {}
-    for m in MODES:
+    for m in MOTION_CLASSES:
         f = series[f"fraction_{m}"].to_numpy()
         # a difference of two cumulative times: clip the rounding below 0 (e.g. -1e-17 for
-        # a mode seen only during the warm-up)
+        # a class seen only during the warm-up)
         out[m] = max(0.0, (f[-1] * t1 - f[i] * t0) / (t1 - t0))
     return out
 
@@ -85,7 +86,8 @@ def summary_columns() -> list[str]:
     before the first run has finished); the same for every horizon."""
     charges = charge_columns("static") + charge_columns("sliding")
     return (charges + ["contact_fraction", "turns", "turns_max", "turned_over", "motion_class_end"]
-            + [f"fraction_{m}" for m in MODES] + [f"fraction_{m}_after_warmup" for m in MODES]
+            + [f"fraction_{m}" for m in MOTION_CLASSES]
+            + [f"fraction_{m}_after_warmup" for m in MOTION_CLASSES]
             + ["assumption_warnings", "delta_y_max", "Y_max", "bounce_amplitude_end",
                "bounce_amplitude_mean"])
 
@@ -107,7 +109,7 @@ def summarize(series: pd.DataFrame, t_end: float) -> dict:
         turned_over=int(turns_max >= TURNED_OVER),
         motion_class_end=int(last["motion_class"]),
     )
-    for m in MODES:
+    for m in MOTION_CLASSES:
         row[f"fraction_{m}"] = float(last[f"fraction_{m}"])
     for m, f in fractions_after(series, WARMUP).items():
         row[f"fraction_{m}_after_warmup"] = float(f)

@@ -20,9 +20,10 @@ from dataclasses import dataclass, field
 
 import pandas as pd
 
+from ..batch.sweep import read_segments, read_series, run_sweep
+from ..fmu.parameters import integer_names
 from . import figures, tables
-from .specs import FRICTION_CASES, paper_spec
-from .sweep import read_segments, read_series, run_sweep
+from .paper import FRICTION_CASES, paper_spec
 from .transition import Transition, find_transition
 
 PAPER_EPSILONS = tuple(round(0.1 * k, 10) for k in range(1, 11))
@@ -107,6 +108,7 @@ def run_study(settings: StudySettings, image, out_dir: str, executor, *, resume:
     # set in every run, so that the results file says which; the grid's equal the runs
     # that leave them at the FMU's defaults, bit for bit
     tolerances = tolerances_of(image, settings)
+    integers = integer_names(image.model_description())
 
     def sweep(specs, desc, fresh=False):
         report = run_sweep(specs, image, results_path, executor, resume=not fresh,
@@ -121,7 +123,8 @@ def run_study(settings: StudySettings, image, out_dir: str, executor, *, resume:
 
     def spec(e, friction, dashpot=settings.dashpot, **overrides):
         return paper_spec(e, friction, settings.t_end, settings.record_interval,
-                          damping_point=dashpot, **dict(tolerances, **overrides))
+                          integer_names=integers, damping_point=dashpot,
+                          **dict(tolerances, **overrides))
 
     grid = [(d, f, e) for d in settings.dashpots for f in settings.frictions
             for e in settings.epsilons]

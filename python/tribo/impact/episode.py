@@ -23,10 +23,10 @@ from dataclasses import dataclass
 
 from fmpy.fmi1 import FMICallException
 
-from .fmu import ERROR, FmuImage, Instance, unpacked
-from .materials import start_values
-from .particle import RunResult
-from .specs import RunSpec
+from ..batch.particle import RunResult
+from ..batch.specs import RunSpec
+from ..fmu import ERROR, FmuImage, Instance, unpacked
+from ..materials import start_values
 
 AXES = ("speed", "angle", "phi0", "epsilon")
 AXIS_UNITS = {"speed": "m/s", "angle": "deg from the plate's surface (90: head-on)",

@@ -13,7 +13,13 @@ import numbers
 
 from fmpy.fmi1 import FMICallException
 
-from .fmu import REAL_TYPES, FmuImage, Instance, parameters, unpacked
+from .image import FmuImage, unpacked
+from .instance import PARAMETER_CAUSALITIES, REAL_TYPES, Instance
+
+
+def parameter_variables(md) -> dict:
+    """The FMU's parameters (structural ones included): name -> fmpy ModelVariable."""
+    return {v.name: v for v in md.modelVariables if v.causality in PARAMETER_CAUSALITIES}
 
 
 class ParameterError(ValueError):
@@ -22,11 +28,11 @@ class ParameterError(ValueError):
 
 def integer_names(md) -> tuple:
     """The parameters that take whole numbers (Integer, UInt64, Enumeration, ...)."""
-    return tuple(n for n, v in parameters(md).items() if v.type not in REAL_TYPES)
+    return tuple(n for n, v in parameter_variables(md).items() if v.type not in REAL_TYPES)
 
 
 def check_names(md, names) -> None:
-    known = parameters(md)
+    known = parameter_variables(md)
     unknown = [n for n in names if n not in known]
     if unknown:
         raise ParameterError(f"not parameters of the FMU: {', '.join(unknown)} "
@@ -40,7 +46,7 @@ def check_values(image: FmuImage, values: dict) -> None:
     check_names(md, values)
     integers = set(integer_names(md))
     for name, options in values.items():
-        v = parameters(md)[name]
+        v = parameter_variables(md)[name]
         for value in options:
             if isinstance(value, bool) or not isinstance(value, numbers.Real):
                 raise ParameterError(f"{name} = {value!r} is not a number")

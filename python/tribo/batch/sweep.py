@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import pandas as pd
 from tqdm.auto import tqdm
 
-from .fmu import FmuImage
+from ..fmu import FmuImage
 from .particle import run_fmu
 from .results import KEY, ResultsFile, read_results
 from .specs import RunSpec, run_key

@@ -1,25 +1,13 @@
-"""The one fmpy driver of the tribo FMUs (FMI 2.0 and 3.0), shared by the package and the
-tests.
+"""One co-simulation instance of a tribo FMU (FMI 2.0 and 3.0) through fmpy's low-level
+API: the driver the package and the tests share.
 
-`Instance` is one co-simulation instance through fmpy's low-level API, with the FMU's log
-messages captured per instance (`messages`), values set and read by name whatever their
-FMI type, and steps that notice an FMU ending the run early (a doStep that returns
-Discard and asks to terminate, as a particle leaving the chute does): `step_to` then
-returns False and the instance's time is the last time the FMU reached.
-
-`FmuImage` is an .fmu file as bytes, so that a task on any Dask worker, local or on
-another machine, can run it without a shared file system; `unpacked(image)` gives a
-private directory with it unpacked, removed afterwards.
+`Instance` captures the FMU's log messages per instance (`messages`), sets and reads
+values by name whatever their FMI type, and notices an FMU ending the run early (a doStep
+that returns Discard and asks to terminate, as a particle leaving the chute does):
+`step_to` then returns False and the instance's time is the last time the FMU reached.
 """
 
-import contextlib
-import hashlib
-import io
-import os
-import tempfile
-import zipfile
 from ctypes import byref, c_double, c_void_p
-from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
@@ -56,53 +44,6 @@ _FMI2_LOGGER = fmi2CallbackLoggerTYPE(_fmi2_dispatch)
 def model_description(path: str):
     """fmpy's model description of an .fmu file, an unpacked FMU or a modelDescription.xml."""
     return read_model_description(path, validate=False)
-
-
-def parameters(md) -> dict:
-    """The FMU's parameters (structural ones included): name -> fmpy ModelVariable."""
-    return {v.name: v for v in md.modelVariables if v.causality in PARAMETER_CAUSALITIES}
-
-
-@dataclass(frozen=True)
-class FmuImage:
-    """The bytes of an .fmu file, its name and their SHA-256."""
-
-    name: str
-    data: bytes
-    sha256: str
-
-    @classmethod
-    def load(cls, path: str) -> "FmuImage":
-        with open(path, "rb") as f:
-            data = f.read()
-        return cls(os.path.basename(path), data, hashlib.sha256(data).hexdigest())
-
-    def model_description(self):
-        """The model description, read from the bytes (cached per FMU)."""
-        return _description_of_bytes(self.sha256, self.data)
-
-
-def _description_of_bytes(sha256: str, data: bytes):
-    if sha256 not in _descriptions_by_hash:
-        with zipfile.ZipFile(io.BytesIO(data)) as z, \
-                tempfile.TemporaryDirectory(prefix="tribo_md_") as tmp:
-            path = os.path.join(tmp, "modelDescription.xml")
-            with open(path, "wb") as f:
-                f.write(z.read("modelDescription.xml"))
-            _descriptions_by_hash[sha256] = read_model_description(path, validate=False)
-    return _descriptions_by_hash[sha256]
-
-
-_descriptions_by_hash = {}
-
-
-@contextlib.contextmanager
-def unpacked(image: FmuImage):
-    """A private directory holding the FMU unpacked; removed on leaving."""
-    with tempfile.TemporaryDirectory(prefix="tribo_fmu_") as tmp:
-        with zipfile.ZipFile(io.BytesIO(image.data)) as z:
-            z.extractall(tmp)
-        yield tmp
 
 
 class Instance:

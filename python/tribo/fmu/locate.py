@@ -3,7 +3,7 @@ checkout's build/ (the package installed in editable mode sits in <checkout>/pyt
 
 import os
 
-PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
+PACKAGE_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # tribo/, above fmu/
 CHECKOUT = os.path.dirname(os.path.dirname(PACKAGE_DIR))
 # the FMUs' modelIdentifiers by variant: the dimensionless model, or the SI front end
 # (physical units, docs/model.md section 8)

@@ -19,16 +19,15 @@ import os
 import numpy as np
 from matplotlib.lines import Line2D
 
-from .plotting import (CHARGE_LABELS, EPSILON_LABEL, HEIGHT_LABEL, SHORT_CHARGE_LABELS, TAU_LABEL,
-                       distinct_colours, legend, plt, save)
-from .specs import dashpot_name
-from .summary import (ENVELOPE_WIDTH, MODES, REPORT_FRACTIONS, TURNED_OVER, WARMUP, bounce_envelope,
-                      charge_column, report_times)
-from .tables import FRICTION_TITLES
+from ..batch.summary import (ENVELOPE_WIDTH, MOTION_CLASSES, REPORT_FRACTIONS, TURNED_OVER,
+                             WARMUP, bounce_envelope, charge_column, report_times)
+from ..plotting import (CHARGE_LABELS, EPSILON_LABEL, HEIGHT_LABEL, SHORT_CHARGE_LABELS, TAU_LABEL,
+                        distinct_colours, legend, plt, save)
+from .paper import FRICTION_TITLES, dashpot_name
 
 FIGURES = ["bounce_amplitude.png", "charge_vs_time.png", "charge_vs_epsilon.png",
            "contact_modes.png", "trajectory.png", "segment_charge.png", "transition.png"]
-MODE_COLOURS = {"flight": "tab:gray", "rocking": "tab:blue", "rolling": "tab:green",
+MOTION_CLASS_COLOURS = {"flight": "tab:gray", "rocking": "tab:blue", "rolling": "tab:green",
                 "tumbling": "tab:red", "bouncing": "tab:orange"}
 CHARGE_MODELS = ("static", "sliding")
 # the trajectory and the segment map show a few roundness values, not the whole grid
@@ -144,9 +143,9 @@ def contact_modes(result):
         width = 0.8 * (np.min(np.diff(eps)) if len(eps) > 1 else 0.1)
         ax = axes[0][j]
         bottom = np.zeros(len(eps))
-        for m in MODES:
+        for m in MOTION_CLASSES:
             f = runs[f"fraction_{m}_after_warmup"].to_numpy()
-            ax.bar(eps, f, width, bottom=bottom, color=MODE_COLOURS[m], label=m)
+            ax.bar(eps, f, width, bottom=bottom, color=MOTION_CLASS_COLOURS[m], label=m)
             bottom += f
         ax.set_title(_title(result, f"motion classes after τ = {WARMUP:g}", friction), fontsize=10)
         ax.set_xlabel(EPSILON_LABEL)

@@ -15,13 +15,14 @@ import numpy as np
 import pandas as pd
 from fmpy.fmi1 import FMICallException
 
-from .fmu import ERROR, FmuImage, Instance, record, unpacked
+from ..fmu import ERROR, FmuImage, Instance, record, unpacked
 from .specs import RunSpec
-from .summary import MODES, summarize
+from .summary import MOTION_CLASSES, summarize
 
 # The outputs the study records at every communication point (its summary and figures use them).
 RECORDED = ["X", "Y", "phi", "U", "V", "Omega", "delta_y", "in_contact", "Q_static", "Q_sliding",
-            "contact_fraction", "turns", "motion_class"] + [f"fraction_{m}" for m in MODES] \
+            "contact_fraction", "turns", "motion_class"] \
+           + [f"fraction_{m}" for m in MOTION_CLASSES] \
            + ["assumption_warnings"]
 # charge model -> the FMI 3.0 array of its per-segment charges
 SEGMENT_ARRAYS = {"static": "segment_charge_static", "sliding": "segment_charge_sliding"}

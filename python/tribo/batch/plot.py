@@ -4,7 +4,7 @@ other swept parameters (and per horizon, where the file holds several)."""
 
 import numpy as np
 
-from .plotting import CHARGE_LABELS, distinct_colours, legend, plt, save
+from ..plotting import CHARGE_LABELS, distinct_colours, legend, plt, save
 
 QUANTITIES = [  # column, axis label, log scale
     ("Q_static_end", CHARGE_LABELS["static"], False),

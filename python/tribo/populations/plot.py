@@ -6,8 +6,8 @@ population's q/m spans decades."""
 
 import numpy as np
 
-from .plotting import distinct_colours, legend, plt, save
-from .population_summary import class_edges, classes_of
+from ..plotting import distinct_colours, legend, plt, save
+from .summary import class_edges, classes_of
 
 QM_UNIT, QM_FACTOR = "µC/kg", 1e6
 CHARGE_UNIT, CHARGE_FACTOR = "pC", 1e12

@@ -2,7 +2,7 @@
 run through the SI FMU down the chute, one row per particle.
 
 A feed is the particle and wall materials (tribo.materials), the chute (SI parameters:
-chute_length, tilt), any other SI parameter, and a distribution (tribo.distributions) or
+chute_length, tilt), any other SI parameter, and a distribution (distributions.py) or
 measured values (a CSV, its rows drawn with replacement, so that values measured together
 stay together) for each of
 
@@ -17,8 +17,8 @@ stay together) for each of
 The draw uses numpy's generator seeded with `seed`, the variables in that order: the same
 feed and seed give the same particles. Each particle is a run of the SI FMU (no unit
 conversion here: the FMU maps the SI set-up onto the model) from the drop to the chute's
-exit or the horizon, keyed like a sweep's run (specs.run_key), so that a population is
-resumable like a sweep (sweep.run_sweep).
+exit or the horizon, keyed like a sweep's run (batch.specs.run_key), so that a population is
+resumable like a sweep (batch.sweep.run_sweep).
 
 Per particle (RESULT_COLUMNS): size; whether and when it left the chute; its velocity
 there (u along, v normal to the chute, the speed, the spin); both models' charge and
@@ -34,11 +34,12 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from ..batch.particle import RunResult, simulate
+from ..batch.specs import RunSpec
+from ..batch.summary import MOTION_CLASSES
+from ..fmu import FmuImage
+from ..materials import start_values
 from .distributions import Distribution, parse
-from .fmu import FmuImage
-from .materials import start_values
-from .particle import RunResult, simulate
-from .specs import RunSpec
 
 # feed variable -> the SI FMU's parameter it sets (size: the long diameter, 2a)
 FEED_VARIABLES = {"epsilon": "epsilon", "size": "semi_major_axis", "phi0": "phi0",
@@ -52,7 +53,6 @@ DEFAULT_DISTRIBUTIONS = {"epsilon": "uniform:0.3:1", "size": "uniform:2e-4:2e-3"
 DEFAULT_CHUTE = {"chute_length": 0.3}
 
 MODELS = ("static", "sliding")
-MOTION_CLASSES = ("flight", "rocking", "rolling", "tumbling", "bouncing")
 OUTPUTS = (["exited", "exit_time", "u", "v", "omega", "contact_fraction", "impacts",
             "assumption_warnings"]
            + [f"charge_{m}" for m in MODELS] + [f"charge_to_mass_{m}" for m in MODELS]

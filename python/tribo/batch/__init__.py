@@ -1,0 +1,12 @@
+"""Many runs of the FMU, each keyed, recorded as it finishes and resumable: the machinery of
+parameter sweeps, which the study, populations and impact maps run on too.
+
+    specs      what one run is (parameters, horizon, recording interval) and its key
+    grid       the runs of a sweep: combinations of values over a base set-up (the paper's)
+    particle   one particle's run: series, segment charges, summary row
+    summary    what a time series is summarised into (bounce envelope, charges, motion classes)
+    results    the results CSV: append a row per finished run, resume, backups
+    executors  where runs execute: serially here, or on Dask (local cluster or address)
+    sweep      a sweep: skip finished runs, run the rest, record them as they finish
+    plot       a sweep's figure
+"""

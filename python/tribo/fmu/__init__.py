@@ -1,0 +1,17 @@
+"""The fmpy driver of the tribo FMUs (FMI 2.0 and 3.0), shared by the package and the tests.
+
+    instance    one co-simulation instance (`Instance`): its log, values by name, steps
+                that notice an FMU ending the run early; `record`, `status_of`
+    image       an .fmu file as bytes (`FmuImage`) for any Dask worker; `unpacked`
+    locate      where the build's FMUs are (`find_fmu`)
+    parameters  parameter names and values checked by the FMU before any run
+
+The driver's names are importable from here (`from tribo.fmu import Instance, FmuImage`).
+"""
+
+from .image import FmuImage, unpacked
+from .instance import (DISCARD, ERROR, FATAL, OK, PARAMETER_CAUSALITIES, REAL_TYPES, WARNING,
+                       Instance, model_description, record, status_of)
+
+__all__ = ["OK", "WARNING", "DISCARD", "ERROR", "FATAL", "PARAMETER_CAUSALITIES", "REAL_TYPES",
+           "Instance", "model_description", "record", "status_of", "FmuImage", "unpacked"]
