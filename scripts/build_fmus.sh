@@ -74,12 +74,12 @@ description_name() { # description_name <prefix> <fmi version>: as fmu/CMakeList
   if [ "$1" = tribo ]; then echo "fmi$2"; else echo "$1_fmi$2"; fi
 }
 make_sources() { # make_sources <prefix> <fmi version> <folder>
-  local prefix=$1 v=$2 dir=$3 sun="$3/sundials" front=front_end_model
-  [ "$prefix" = tribo ] || front=front_end_si
+  local prefix=$1 v=$2 dir=$3 sun="$3/sundials" front=front_end_model variables=variables_model
+  [ "$prefix" = tribo ] || { front=front_end_si; variables=variables_si; }
   rm -rf "$dir"
   mkdir -p "$dir/tribo/src" "$dir/tribo/fmu" "$sun/include" "$sun/src"
   cp "$ROOT/src"/*.c "$ROOT/src"/*.h "$ROOT/src"/*.def "$dir/tribo/src/"
-  for f in variables logging lifecycle step access fmu_state "$front" "fmi$v"; do
+  for f in "$variables" logging lifecycle step access fmu_state "$front" "fmi$v"; do
     cp "$ROOT/fmu/$f.c" "$dir/tribo/fmu/"
   done
   cp "$ROOT/fmu"/*.h "$ROOT/build/fmu/generated/$(description_name "$prefix" "$v")/instantiation_token.h" \

@@ -5,8 +5,7 @@ library (and linking the C maths library on Unix) gives the FMU's binary.
 
     python build_description.py <tribo|tribo_si> <2|3> <sources folder> > buildDescription.xml
 
-The first argument is the FMU pair's prefix (its modelIdentifier is <prefix>_fmi<version>):
-the SI FMUs' variable table is compiled with TRIBO_FMU_SI (fmu/variables.c).
+The first argument is the FMU pair's prefix (its modelIdentifier is <prefix>_fmi<version>).
 """
 
 import os
@@ -22,8 +21,7 @@ DEFINITIONS = [
 
 def main():
     prefix, version, folder = sys.argv[1], int(sys.argv[2]), sys.argv[3]
-    definitions = DEFINITIONS + ([("TRIBO_FMU_SI", "the variable table of the SI front end "
-                                   "(src/si_quantities.def)")] if prefix == "tribo_si" else [])
+    definitions = DEFINITIONS
     sources, includes = [], set()
     for directory, _, files in sorted(os.walk(folder)):
         relative = os.path.relpath(directory, folder).replace(os.sep, "/")
