@@ -2,7 +2,8 @@
  * front_end.h: what lies between the importer's variables and the core, the one thing the
  * dimensionless and the SI FMUs do differently. The instance layer (lifecycle.c, access.c,
  * step.c, fmu_state.c) is the same for both; each FMU links one front end and the variable
- * table made from its table (variables.c, compiled once per table):
+ * table made from its table (variables_impl.h, compiled once per table: variables_model.c,
+ * variables_si.c):
  *
  *   front_end_model.c   the dimensionless FMUs: the core's table (src/quantities.def); the
  *                       identity

@@ -69,40 +69,19 @@ if [ ! -f "$OUT/win64/build.ninja" ]; then
 fi
 cmake --build "$OUT/win64"
 
-# ---- sources/: what a C compiler needs to build the FMU anywhere ------------------------------
+# ---- sources/: what a C compiler needs to build the FMU anywhere, with only sources/ and the
+# importer's FMI headers on its include path (fmu/tools/make_sources.py lays it out) -------
 description_name() { # description_name <prefix> <fmi version>: as fmu/CMakeLists.txt names it
   if [ "$1" = tribo ]; then echo "fmi$2"; else echo "$1_fmi$2"; fi
 }
 make_sources() { # make_sources <prefix> <fmi version> <folder>
-  local prefix=$1 v=$2 dir=$3 sun="$3/sundials" front=front_end_model
-  [ "$prefix" = tribo ] || front=front_end_si
-  rm -rf "$dir"
-  mkdir -p "$dir/tribo/src" "$dir/tribo/fmu" "$sun/include" "$sun/src"
-  cp "$ROOT/src"/*.c "$ROOT/src"/*.h "$ROOT/src"/*.def "$dir/tribo/src/"
-  for f in variables logging lifecycle step access fmu_state "$front" "fmi$v"; do
-    cp "$ROOT/fmu/$f.c" "$dir/tribo/fmu/"
-  done
-  cp "$ROOT/fmu"/*.h "$ROOT/build/fmu/generated/$(description_name "$prefix" "$v")/instantiation_token.h" \
-     "$dir/tribo/fmu/"
-  cp "$ROOT/LICENSE" "$dir/tribo/"
-  # CVODE: the sources of the objects in the static library the Windows build links (it
-  # bundles the dense matrix, linear and nonlinear solvers), their private headers, the
-  # public headers and the configured ones
-  cp -r "$SUNDIALS_SRC/include/." "$sun/include/"
-  cp "$SUNDIALS_WIN/include/sundials/sundials_config.h" "$SUNDIALS_WIN/include/sundials/sundials_export.h" \
-     "$sun/include/sundials/"
-  # configured for MinGW: make the deprecation attributes portable (empty)
-  sed -i 's/__declspec(deprecated(msg))//; s/__attribute__ ((__deprecated__))//' \
-     "$sun/include/sundials/sundials_config.h" "$sun/include/sundials/sundials_export.h"
-  for obj in $( (ar t "$SUNDIALS_WIN/lib/libsundials_cvode.a"; ar t "$SUNDIALS_WIN/lib/libsundials_nvecserial.a") | sort -u); do
-    local c
-    c=$(cd "$SUNDIALS_SRC" && find src -name "${obj%.obj}" | head -1)
-    mkdir -p "$sun/$(dirname "$c")"
-    cp "$SUNDIALS_SRC/$c" "$sun/$c"
-    cp "$SUNDIALS_SRC/$(dirname "$c")"/*.h "$sun/$(dirname "$c")/" 2>/dev/null || true
-  done
-  cp "$SUNDIALS_SRC/LICENSE" "$SUNDIALS_SRC/NOTICE" "$sun/"
-  "$PYTHON" "$ROOT/fmu/tools/build_description.py" "$prefix" "$v" "$dir" > "$dir/buildDescription.xml"
+  # CVODE: the sources of the objects in the static libraries the Windows build links (they
+  # bundle the dense matrix, linear and nonlinear solvers), with the headers configured there
+  "$PYTHON" "$ROOT/fmu/tools/make_sources.py" --prefix "$1" --version "$2" --out "$3" \
+    --token "$ROOT/build/fmu/generated/$(description_name "$1" "$2")/instantiation_token.h" \
+    --sundials "$SUNDIALS_SRC" --sundials-config "$SUNDIALS_WIN/include/sundials" \
+    --sundials-library "$SUNDIALS_WIN/lib/libsundials_cvode.a" \
+    --sundials-library "$SUNDIALS_WIN/lib/libsundials_nvecserial.a"
 }
 
 for prefix in tribo tribo_si; do
@@ -113,8 +92,15 @@ for prefix in tribo tribo_si; do
     grep -q "$token" "$OUT/win64/fmu/lib/$id.dll" ||
       { echo "build_fmus: the Windows binary does not carry the description's token $token" >&2; exit 1; }
     make_sources "$prefix" "$v" "$OUT/sources_$id"
+    description="$ROOT/build/fmu/$name.xml"
+    if [ "$v" = 2 ]; then
+      # FMI 2.0 importers read the files to compile from the description's <SourceFiles>
+      "$PYTHON" "$ROOT/fmu/tools/add_source_files.py" "$description" \
+        "$OUT/sources_$id/buildDescription.xml" > "$OUT/$id.xml"
+      description="$OUT/$id.xml"
+    fi
     "$PYTHON" "$ROOT/fmu/tools/pack_fmu.py" --out "$OUT/$id.fmu" \
-      --description "$ROOT/build/fmu/$name.xml" --model-doc "$ROOT/docs/model.md" \
+      --description "$description" --model-doc "$ROOT/docs/model.md" \
       --binary "$linux=$ROOT/build/fmu/lib/$id.so" \
       --binary "$windows=$OUT/win64/fmu/lib/$id.dll" \
       --license license.txt="$ROOT/LICENSE" --license SUNDIALS-LICENSE="$SUNDIALS_SRC/LICENSE" \

@@ -1,51 +1,33 @@
-"""Writes the FMI 3.0 buildDescription.xml of a source FMU's sources/ folder (also packed
-into the FMI 2.0 FMU, whose importers ignore it): every C file to compile, the include
-directories, the preprocessor definitions. Compiling the listed files into a shared
-library (and linking the C maths library on Unix) gives the FMU's binary.
+"""The FMI 3.0 buildDescription.xml of a source FMU's sources/ folder (make_sources.py
+writes it there; add_source_files.py copies its list into an FMI 2.0 description): the C
+files to compile into the FMU's one shared library. They need no include directory but
+sources/ itself and the importer's FMI headers, and no preprocessor definition with a C
+compiler in its default mode; the two definitions listed are for compilers in strict ISO
+mode (M_PI)."""
 
-    python build_description.py <tribo|tribo_si> <2|3> <sources folder> > buildDescription.xml
-
-The first argument is the FMU pair's prefix (its modelIdentifier is <prefix>_fmi<version>):
-the SI FMUs' variable table is compiled with TRIBO_FMU_SI (fmu/variables.c).
-"""
-
-import os
-import sys
 from xml.sax.saxutils import quoteattr
 
+# value "1": an importer that passes NAME=<value> (FMPy) gets a value it can write
 DEFINITIONS = [
-    ("_DEFAULT_SOURCE", "M_PI and the POSIX names under C11 (glibc)"),
-    ("_USE_MATH_DEFINES", "M_PI on Windows"),
-    ("SUNDIALS_STATIC_DEFINE", "SUNDIALS compiled into the FMU's binary, not imported"),
+    ("_DEFAULT_SOURCE", "M_PI with glibc under a strict -std=c11 (the GNU modes define it)"),
+    ("_USE_MATH_DEFINES", "M_PI with Microsoft's C library"),
 ]
+LIBRARY = ("m", "the C maths library, on Unix (the importer's: part of the C library elsewhere)")
 
 
-def main():
-    prefix, version, folder = sys.argv[1], int(sys.argv[2]), sys.argv[3]
-    definitions = DEFINITIONS + ([("TRIBO_FMU_SI", "the variable table of the SI front end "
-                                   "(src/si_quantities.def)")] if prefix == "tribo_si" else [])
-    sources, includes = [], set()
-    for directory, _, files in sorted(os.walk(folder)):
-        relative = os.path.relpath(directory, folder).replace(os.sep, "/")
-        for name in sorted(files):
-            if name.endswith(".c"):
-                sources.append(f"{relative}/{name}")
-            elif name.endswith(".h") and relative != ".":
-                includes.add(relative)
-    # public SUNDIALS headers are included as <sundials/...>, <cvode/...>, ...
-    includes = {i for i in includes if not i.startswith("sundials/include/")} | {"sundials/include"}
+def build_description(model_identifier, sources):
+    """The description of one build configuration compiling `sources` (paths relative to
+    sources/, in order)."""
     out = ['<?xml version="1.0" encoding="UTF-8"?>',
            '<fmiBuildDescription fmiVersion="3.0">',
-           f'  <BuildConfiguration modelIdentifier="{prefix}_fmi{version}" '
-           f'description="the FMU as one shared library (link the C maths library on Unix)">',
+           f'  <BuildConfiguration modelIdentifier={quoteattr(model_identifier)} '
+           f'description="the FMU as one shared library">',
            '    <SourceFileSet language="C11">']
     out += [f"      <SourceFile name={quoteattr(s)}/>" for s in sources]
-    out += [f"      <PreprocessorDefinition name={quoteattr(n)} description={quoteattr(d)}/>"
-            for n, d in definitions]
-    out += [f"      <IncludeDirectory name={quoteattr(i)}/>" for i in sorted(includes)]
-    out += ["    </SourceFileSet>", "  </BuildConfiguration>", "</fmiBuildDescription>"]
-    print("\n".join(out))
-
-
-if __name__ == "__main__":
-    main()
+    out += [f'      <PreprocessorDefinition name={quoteattr(n)} value="1" optional="true" '
+            f'description={quoteattr(d)}/>' for n, d in DEFINITIONS]
+    out += ["    </SourceFileSet>",
+            f'    <Library name={quoteattr(LIBRARY[0])} external="true" '
+            f'description={quoteattr(LIBRARY[1])}/>',
+            "  </BuildConfiguration>", "</fmiBuildDescription>"]
+    return "\n".join(out) + "\n"

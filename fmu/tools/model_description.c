@@ -1,6 +1,6 @@
 /*
  * model_description: writes the modelDescription.xml of the FMI 2.0 or 3.0 FMU from the
- * FMU's variable table (variables.c, made from its front end's table: src/quantities.def
+ * FMU's variable table (variables_impl.h, made from its front end's table: src/quantities.def
  * or src/si_quantities.def), at build time. Built once per front end, like the FMUs.
  *
  *   tribo_model_description <2|3> <version> <source date epoch> > modelDescription.xml

@@ -1,20 +1,26 @@
 """The multi-platform FMUs of scripts/build_fmus.sh (build-fmus/, or TRIBO_FMUS_DIR), the
-dimensionless and the SI pair: each
-holds the Linux and the Windows binary, sources/ and documentation/ with the licences;
-the Windows binary, run under Wine, gives the Linux binary's results (libm differs); a
-binary compiled from the FMU's own sources/ gives the shipped one's; the Linux binary
-needs glibc 2.29 at most; the archives are reproducible."""
+dimensionless and the SI pair: each holds the Linux and the Windows binary, sources/ and
+documentation/ with the licences; the Windows binary, run under Wine, gives the Linux
+binary's results (libm differs); sources/ lists every C file it holds (FMI 2.0:
+<SourceFiles>, FMI 3.0: buildDescription.xml), and a binary compiled from them with only
+sources/ and the FMI headers on the include path, by FMPy's build helper or by the plain
+compiler call of fmu/README.md, gives the shipped one's results; the Linux binary needs
+glibc 2.29 at most; the archives are reproducible."""
 
+import glob
 import os
 import re
+import shutil
 import subprocess
 import xml.etree.ElementTree as ET
 import zipfile
+from concurrent.futures import ThreadPoolExecutor
 
 import fmpy
 import numpy as np
 import pytest
-from fmpy import read_model_description
+from fmpy import read_model_description, simulate_fmu
+from fmpy.build import build_platform_binary
 from fmpy.validation import validate_fmu
 
 from tribo_fmu import BUILD_DIR, ROOT, VERSIONS
@@ -53,6 +59,16 @@ def unpacked(tmp_path_factory):
     return unpack
 
 
+def source_files(unzipped):
+    """The C files to compile, as the FMU lists them: FMI 2.0 in the modelDescription's
+    <SourceFiles>, FMI 3.0 in sources/buildDescription.xml."""
+    root = ET.parse(os.path.join(unzipped, "modelDescription.xml")).getroot()
+    if root.get("fmiVersion") == "2.0":
+        return [f.get("name") for f in root.findall("CoSimulation/SourceFiles/File")]
+    build = ET.parse(os.path.join(unzipped, "sources", "buildDescription.xml")).getroot()
+    return [f.get("name") for f in build.iter("SourceFile")]
+
+
 def scalar_outputs(unzipped):
     md = read_model_description(unzipped, validate=False)
     return [f"{KIND[v.type]}{v.valueReference}" for v in md.modelVariables
@@ -77,24 +93,56 @@ def test_release_layout(unpacked, version, prefix):
     with zipfile.ZipFile(release(version, prefix)) as z:
         names = set(z.namelist())
     linux, windows = PLATFORMS[version]
-    front_ends = {"tribo": "front_end_model.c", "tribo_si": "front_end_si.c"}
-    assert f"sources/tribo/fmu/{front_ends[prefix]}" in names
-    assert all(f"sources/tribo/fmu/{f}" not in names for p, f in front_ends.items() if p != prefix)
+    front_ends = {"tribo": ("front_end_model.c", "variables_model.c"),
+                  "tribo_si": ("front_end_si.c", "variables_si.c")}
+    assert {f"sources/tribo/{f}" for f in front_ends[prefix]} <= names
+    assert all(f"sources/tribo/{f}" not in names for p, fs in front_ends.items() if p != prefix
+               for f in fs)
     unpacked_dir = unpacked(version, prefix)
     id = f"{prefix}_fmi{version}"
     assert {f"binaries/{linux}/{id}.so", f"binaries/{windows}/{id}.dll",
             "modelDescription.xml", "documentation/index.html",
             "documentation/licenses/license.txt", "documentation/licenses/SUNDIALS-LICENSE",
-            "sources/buildDescription.xml", "sources/sundials/LICENSE",
-            f"sources/tribo/fmu/fmi{version}.c", "sources/tribo/src/model.c",
-            "sources/sundials/src/cvode/cvode.c"} <= names
-    assert f"sources/tribo/fmu/fmi{5 - version}.c" not in names
+            "sources/buildDescription.xml", "sources/sundials/LICENSE", "sources/tribo/LICENSE",
+            f"sources/tribo/fmi{version}.c", "sources/tribo/model.c", "sources/tribo/quantities.def",
+            "sources/tribo/instantiation_token.h", "sources/sundials/cvode.c",
+            "sources/sundials/sundials_config.h", "sources/cvode/cvode.h"} <= names
+    assert f"sources/tribo/fmi{5 - version}.c" not in names
+    # only what compiles in C: no C++ interfaces of SUNDIALS, none of its unused solvers
+    assert not [n for n in names if n.endswith(".hpp") or n.startswith(("sources/arkode/", "sources/ida/"))]
     with open(os.path.join(ROOT, "LICENSE"), "rb") as f:
         assert open(os.path.join(unpacked_dir, "documentation/licenses/license.txt"), "rb").read() == f.read()
-    with open(os.path.join(BUILD_DIR, "fmu", DESCRIPTION[prefix].format(v=version)), "rb") as f:
-        assert open(os.path.join(unpacked_dir, "modelDescription.xml"), "rb").read() == f.read()
+    with open(os.path.join(BUILD_DIR, "fmu", DESCRIPTION[prefix].format(v=version)), encoding="utf-8") as f:
+        generated = f.read()
+    packed = open(os.path.join(unpacked_dir, "modelDescription.xml"), encoding="utf-8").read()
+    if version == 2:
+        # the generated description, with <SourceFiles> in its CoSimulation element
+        assert packed.count("<SourceFiles>") == 1
+        packed = re.sub(r">\s*<SourceFiles>.*</SourceFiles>\s*</CoSimulation>", "/>", packed, flags=re.S)
+    assert packed == generated
     assert "BSD 3-Clause" in open(os.path.join(unpacked_dir, "sources/sundials/LICENSE")).read()
     assert validate_fmu(release(version, prefix)) == []
+
+
+@every_fmu
+@pytest.mark.parametrize("version", VERSIONS)
+def test_sources_list_every_c_file_they_hold(unpacked, version, prefix):
+    """Both FMI versions list the same files in their own way, and every C file in
+    sources/ among them: `sources/*/*.c` is the build (fmu/README.md)."""
+    u = unpacked(version, prefix)
+    listed = source_files(u)
+
+    def held(pattern):
+        return sorted(os.path.relpath(f, os.path.join(u, "sources")).replace(os.sep, "/")
+                      for f in glob.glob(os.path.join(u, "sources", pattern), recursive=True))
+
+    assert len(listed) > 50 and sorted(listed) == held("**/*.c") == held("*/*.c")
+    build = ET.parse(os.path.join(u, "sources", "buildDescription.xml")).getroot()
+    assert [f.get("name") for f in build.iter("SourceFile")] == listed
+    assert build.find("BuildConfiguration").get("modelIdentifier") == f"{prefix}_fmi{version}"
+    # no include directory but sources/ itself, no definition an importer must make
+    assert build.find(".//IncludeDirectory") is None
+    assert all(d.get("optional") == "true" for d in build.iter("PreprocessorDefinition"))
 
 
 @every_fmu
@@ -141,27 +189,97 @@ def test_windows_binary_under_wine_matches_linux(unpacked, version, prefix):
         assert native[0, 2] - native[-1, 2] > 5e-3
 
 
+FMI_HEADERS = os.path.join(os.path.dirname(fmpy.__file__), "c-code")
+
+
+def readme_compiler_call():
+    """The plain compiler call fmu/README.md documents for a platform without a binary."""
+    with open(os.path.join(ROOT, "fmu", "README.md"), encoding="utf-8") as f:
+        calls = [line for line in f.read().splitlines() if line.startswith("cc ")]
+    assert len(calls) == 1, calls
+    return calls[0]
+
+
+def compile_with_fmpy(tmp_path_factory, version, prefix):
+    """The FMU unzipped afresh, its Linux binary removed and compiled again from its
+    sources/ by FMPy's build helper (what `fmpy compile` runs): the unzipped FMU."""
+    unzipped = tmp_path_factory.mktemp(f"fmpy_built_{prefix}{version}")
+    with zipfile.ZipFile(release(version, prefix)) as z:
+        z.extractall(unzipped)
+    shutil.rmtree(unzipped / "binaries" / PLATFORMS[version][0])
+    build_platform_binary(unzipped, build_dir=tmp_path_factory.mktemp(f"fmpy_build_{prefix}{version}"))
+    return str(unzipped)
+
+
+def compile_with_cc(tmp_path_factory, version, prefix):
+    """The FMU's sources/ compiled by fmu/README.md's call, as it is written there: the
+    binary."""
+    unzipped = tmp_path_factory.mktemp(f"cc_built_{prefix}{version}")
+    with zipfile.ZipFile(release(version, prefix)) as z:
+        z.extractall(unzipped, [n for n in z.namelist() if n.startswith("sources/")])
+    binary = str(unzipped / f"{prefix}_fmi{version}.so")
+    out = subprocess.run(["bash", "-c", readme_compiler_call()], cwd=unzipped,
+                         env=dict(os.environ, FMI_HEADERS=FMI_HEADERS, BINARY=binary),
+                         capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr[-3000:]
+    return binary
+
+
+@pytest.fixture(scope="module")
+def compiled(tmp_path_factory):
+    """Every FMU compiled from its sources/ both ways ("fmpy": compile_with_fmpy, "cc":
+    compile_with_cc), all eight builds started at the first use, as many at once as there
+    are cores (about a minute of CPU in all); a failed build raises in the test that asks
+    for it."""
+    builds = {}
+
+    def result(how, version, prefix):
+        if not builds:
+            pool = ThreadPoolExecutor(max_workers=os.cpu_count() or 1)
+            for h, build in (("fmpy", compile_with_fmpy), ("cc", compile_with_cc)):
+                for p in PREFIXES:
+                    for v in VERSIONS:
+                        builds[h, v, p] = pool.submit(build, tmp_path_factory, v, p)
+            pool.shutdown(wait=False)
+        return builds[how, version, prefix].result()
+
+    return result
+
+
 @every_fmu
 @pytest.mark.parametrize("version", VERSIONS)
-def test_rebuilt_from_its_sources_matches_the_shipped_binary(unpacked, tmp_path, version, prefix):
-    """Compiled from sources/ as buildDescription.xml says (the FMI headers from the
-    importer, here fmpy): bit-identical results (measured)."""
-    sources = os.path.join(unpacked(version, prefix), "sources")
-    files = ET.parse(os.path.join(sources, "buildDescription.xml")).getroot().find(
-        "BuildConfiguration/SourceFileSet")
-    rebuilt = str(tmp_path / f"{prefix}_fmi{version}.so")
-    command = ["cc", "-shared", "-fPIC", "-O2", "-std=c11", "-o", rebuilt,
-               "-I" + os.path.join(os.path.dirname(fmpy.__file__), "c-code")]
-    command += ["-D" + d.get("name") for d in files.findall("PreprocessorDefinition")]
-    command += ["-I" + os.path.join(sources, i.get("name")) for i in files.findall("IncludeDirectory")]
-    command += [os.path.join(sources, s.get("name")) for s in files.findall("SourceFile")] + ["-lm"]
-    out = subprocess.run(command, capture_output=True, text=True)
-    assert out.returncode == 0, out.stderr[-3000:]
+def test_plain_compiler_call_on_the_sources_gives_the_shipped_results(compiled, unpacked, version, prefix):
+    """fmu/README.md's call: only sources/ and the FMI headers on the include path, no
+    definition. Bit-identical results (measured)."""
+    rebuilt = compiled("cc", version, prefix)
     outputs, token = scalar_outputs(unpacked(version, prefix))
     shipped = os.path.join(unpacked(version, prefix), "binaries", PLATFORMS[version][0],
                            f"{prefix}_fmi{version}.so")
     assert np.array_equal(check_run(NATIVE_CHECK, rebuilt, version, token, outputs, prefix),
                           check_run(NATIVE_CHECK, shipped, version, token, outputs, prefix))
+
+
+@every_fmu
+@pytest.mark.parametrize("version", VERSIONS)
+def test_fmpy_build_helper_compiles_the_sources_to_the_shipped_results(compiled, version, prefix):
+    """FMPy puts only sources/ on the include path, reads FMI 2.0's <SourceFiles> and FMI
+    3.0's buildDescription.xml; its binary, simulated by fmpy, gives the shipped binary's
+    results bit for bit, every scalar output at every communication point (measured)."""
+    rebuilt = compiled("fmpy", version, prefix)
+    binary = os.path.join(rebuilt, "binaries", PLATFORMS[version][0], f"{prefix}_fmi{version}.so")
+    assert os.path.exists(binary)
+    md = read_model_description(rebuilt)
+    outputs = [v.name for v in md.modelVariables if v.causality == "output" and not v.dimensions]
+    stop, step = RUNS[prefix]
+    runs = [simulate_fmu(fmu, stop_time=stop, output_interval=step, output=outputs)
+            for fmu in (rebuilt, release(version, prefix))]
+    assert runs[0].dtype.names == runs[1].dtype.names and len(runs[0]) == round(stop / step) + 1
+    assert all(np.array_equal(runs[0][n], runs[1][n]) for n in runs[0].dtype.names)
+    # the particle moved (down the plate; the SI drop: 10 mm down)
+    if prefix == "tribo":
+        assert runs[0]["X"][-1] > 1
+    else:
+        assert runs[0]["y"][0] - runs[0]["y"][-1] > 5e-3
 
 
 @every_fmu

@@ -1,8 +1,9 @@
-/* variables.c: the table of the FMU's variables (see variables.h), made from the table of
-   its front end (front_end.h): compiled once per FMU pair, with TRIBO_FMU_SI defined for the
-   SI FMUs (src/si_quantities.def), without it for the dimensionless ones
-   (src/quantities.def). The enumerations and the units "1" and "rad" are always
-   quantities.def's. */
+/* variables_impl.h: the table of the FMU's variables (see variables.h), made from the table
+   of its front end (front_end.h). Not a header to include: the body of the one compile
+   unit of each FMU pair, variables_model.c (src/quantities.def) and variables_si.c (with
+   TRIBO_FMU_SI: src/si_quantities.def), so that every C file of an FMU's sources/ is one to
+   compile and none needs a preprocessor definition. The enumerations and the units "1" and
+   "rad" are always quantities.def's. */
 #include "variables.h"
 
 #include <math.h>
