@@ -39,27 +39,100 @@ static probe_point probe_at(sweep *w, double t, const probe_point *near)
 
 static double edge_of(const probe_point *p, int hi_edge) { return hi_edge ? p->hi : p->lo; }
 
-/* When an edge (lo or hi), moving monotonically through a, m, b, crosses the boundary at
-   x: first the inverse quadratic through the three points, checked on the probe; then, if
-   needed, the Illinois variant of regula falsi from the tighter bracket. Located to
-   rtol of the piece's duration. */
-static double crossing(sweep *w, probe_point a, const probe_point *m, probe_point b, int hi_edge,
-                       double x)
+/* The probes of a piece: its start, quarter, middle, three-quarter and end points. */
+enum { PIECE_POINTS = 5 };
+
+/* One edge over a piece, for locating its crossings: its values e at the piece's points, and
+   the weights of the inverse interpolating polynomials t(e) through all of them and through
+   the start, middle and end (Lagrange form, in times from the piece's start so that the sum
+   keeps the digits of a short piece at a late time). */
+typedef struct edge_fit {
+    int hi_edge;
+    double e[PIECE_POINTS];
+    int monotone; /* strictly, through all the points */
+    double w_all[PIECE_POINTS], w_ends[3];
+} edge_fit;
+
+static const int ALL_POINTS[PIECE_POINTS] = {0, 1, 2, 3, 4}, END_POINTS[3] = {0, 2, 4};
+
+/* Lagrange weights w_i = t_i / prod_{j != i} (e_i - e_j) of the points idx[0..n). */
+static void lagrange_weights(const edge_fit *f, const probe_point *pts, const int *idx, int n,
+                             double *w)
 {
-    const double tol = w->rtol * (b.t - a.t) + 1e-15 * fabs(b.t);
-    const double ea = edge_of(&a, hi_edge), em = edge_of(m, hi_edge), eb = edge_of(&b, hi_edge);
-    double fa = ea - x, fb = eb - x;
-    if (ea != em && em != eb && ea != eb) {
-        /* Lagrange interpolation of t as a function of the edge */
-        const double t = a.t * (x - em) * (x - eb) / ((ea - em) * (ea - eb)) +
-                         m->t * (x - ea) * (x - eb) / ((em - ea) * (em - eb)) +
-                         b.t * (x - ea) * (x - em) / ((eb - ea) * (eb - em));
-        if (t > a.t && t < b.t) {
-            const probe_point p = probe_at(w, t, m);
-            const double fp = edge_of(&p, hi_edge) - x;
-            const double speed = fabs(eb - ea) / (b.t - a.t);
-            if (fabs(fp) <= speed * tol)
-                return t;
+    for (int i = 0; i < n; i++) {
+        double d = 1.0;
+        for (int j = 0; j < n; j++)
+            if (j != i)
+                d *= f->e[idx[i]] - f->e[idx[j]];
+        w[i] = (pts[idx[i]].t - pts[0].t) / d;
+    }
+}
+
+static void fit_edge(edge_fit *f, const probe_point *pts, int hi_edge)
+{
+    f->hi_edge = hi_edge;
+    for (int i = 0; i < PIECE_POINTS; i++)
+        f->e[i] = edge_of(&pts[i], hi_edge);
+    const double travel = f->e[PIECE_POINTS - 1] - f->e[0];
+    f->monotone = 1;
+    for (int i = 1; i < PIECE_POINTS; i++)
+        f->monotone = f->monotone && (f->e[i] - f->e[i - 1]) * travel > 0.0;
+    if (!f->monotone)
+        return;
+    lagrange_weights(f, pts, ALL_POINTS, PIECE_POINTS, f->w_all);
+    lagrange_weights(f, pts, END_POINTS, 3, f->w_ends);
+}
+
+/* The inverse interpolating polynomial at x, in time from the piece's start:
+   sum_i w_i prod_{j != i} (x - e_j) over the points idx[0..n). */
+static double inverse_at(const edge_fit *f, const int *idx, int n, const double *w, double x)
+{
+    double d[PIECE_POINTS], before[PIECE_POINTS], after = 1.0, sum = 0.0;
+    before[0] = 1.0;
+    for (int i = 0; i < n; i++) {
+        d[i] = x - f->e[idx[i]];
+        if (i + 1 < n)
+            before[i + 1] = before[i] * d[i];
+    }
+    for (int i = n - 1; i >= 0; i--) {
+        sum += w[i] * before[i] * after;
+        after *= d[i];
+    }
+    return sum;
+}
+
+/* When an edge, moving monotonically through the piece's points, crosses the boundary at x,
+   to rtol of the piece's duration. The five points give it without a further probe where the
+   edge is smooth: the inverse quartic through them, taken where it agrees with the inverse
+   quadratic through the start, middle and end (an estimate of the quadratic's error, the
+   quartic's being far smaller) to within that tolerance. Otherwise the quartic's estimate is
+   checked on the probe, and then, if needed, the Illinois variant of regula falsi from the
+   tightest bracket. */
+static double crossing(sweep *w, const probe_point *pts, const edge_fit *f, double x)
+{
+    const probe_point *first = &pts[0], *last = &pts[PIECE_POINTS - 1];
+    const double tol = w->rtol * (last->t - first->t) + 1e-15 * fabs(last->t);
+    const double travel = f->e[PIECE_POINTS - 1] - f->e[0];
+    /* the bracket: the neighbouring points between which a monotone edge passes x, else
+       the piece */
+    int k = 0, l = PIECE_POINTS - 1;
+    if (f->monotone) {
+        while (k < PIECE_POINTS - 2 && (f->e[k + 1] - x) * travel < 0.0)
+            k++;
+        l = k + 1;
+    }
+    probe_point a = pts[k], b = pts[l];
+    double fa = f->e[k] - x, fb = f->e[l] - x;
+    if (f->monotone) {
+        const double quartic = first->t + inverse_at(f, ALL_POINTS, PIECE_POINTS, f->w_all, x);
+        const double quadratic = first->t + inverse_at(f, END_POINTS, 3, f->w_ends, x);
+        if (quartic > a.t && quartic < b.t) {
+            if (fabs(quartic - quadratic) <= tol)
+                return quartic;
+            const probe_point p = probe_at(w, quartic, &a);
+            const double fp = edge_of(&p, f->hi_edge) - x;
+            if (fabs(fp) <= fabs(travel) / (last->t - first->t) * tol)
+                return quartic;
             if ((fp > 0) == (fb > 0)) {
                 b = p;
                 fb = fp;
@@ -71,11 +144,11 @@ static double crossing(sweep *w, probe_point a, const probe_point *m, probe_poin
     }
     int side = 0;
     for (int it = 0; it < 100 && b.t - a.t > tol; it++) {
-        double t = (a.t * fb - b.t * fa) / (fb - fa);
-        if (!(t > a.t && t < b.t))
-            t = 0.5 * (a.t + b.t);
-        const probe_point p = probe_at(w, t, &a);
-        const double fp = edge_of(&p, hi_edge) - x;
+        double tm = (a.t * fb - b.t * fa) / (fb - fa);
+        if (!(tm > a.t && tm < b.t))
+            tm = 0.5 * (a.t + b.t);
+        const probe_point p = probe_at(w, tm, &a);
+        const double fp = edge_of(&p, f->hi_edge) - x;
         if ((fp > 0) == (fb > 0)) {
             b = p;
             fb = fp;
@@ -103,10 +176,18 @@ typedef struct cut {
     int hi_edge, step;
 } cut;
 
-static int cmp_cut(const void *x, const void *y)
+/* The cuts in time order. Each edge's come in order already (in order of the boundaries it
+   crosses, reversed where it moves down), so an insertion sort costs what interleaving the
+   two edges' lists takes. */
+static void sort_cuts(cut *cuts, int n)
 {
-    const double a = ((const cut *)x)->t, b = ((const cut *)y)->t;
-    return (a > b) - (a < b);
+    for (int i = 1; i < n; i++) {
+        const cut c = cuts[i];
+        int j = i;
+        for (; j > 0 && cuts[j - 1].t > c.t; j--)
+            cuts[j] = cuts[j - 1];
+        cuts[j] = c;
+    }
 }
 
 static int inside(double e0, double em, double e1)
@@ -117,12 +198,12 @@ static int inside(double e0, double em, double e1)
 
 /* A piece in which each edge moves monotonically by at most SEGMENTS_PER_PIECE segments
    and the globals are quadratic to the tolerances: locate the boundary crossings, and
-   charge the parts between them, each with its fixed set of segments (§5a, §5b). S0, S1,
-   S2: the globals at the piece's start, middle and end. */
-static void charge_piece(sweep *w, const probe_point *a, const probe_point *m,
-                         const probe_point *b, const double *S0, const double *S1,
+   charge the parts between them, each with its fixed set of segments (§5a, §5b). pts: the
+   piece's points (PIECE_POINTS); S0, S1, S2: the globals at its start, middle and end. */
+static void charge_piece(sweep *w, const probe_point *pts, const double *S0, const double *S1,
                          const double *S2)
 {
+    const probe_point *a = &pts[0], *b = &pts[PIECE_POINTS - 1];
     cut cuts[2 * SEGMENTS_PER_PIECE + 2];
     int n = 0;
     double cell[2] = {floor(a->lo / w->seg), floor(a->hi / w->seg)};
@@ -130,12 +211,20 @@ static void charge_piece(sweep *w, const probe_point *a, const probe_point *m,
         const double e0 = edge_of(a, edge), e1 = edge_of(b, edge);
         const int step = e1 > e0 ? 1 : -1;
         const double lo = fmin(e0, e1), hi = fmax(e0, e1);
+        edge_fit fit;
+        fit_edge(&fit, pts, edge);
+        const int from = n;
         for (double k = floor(lo / w->seg) + 1; k * w->seg < hi && n < 2 * SEGMENTS_PER_PIECE + 2; k++) {
-            const cut c = {crossing(w, *a, m, *b, edge, k * w->seg), edge, step};
+            const cut c = {crossing(w, pts, &fit, k * w->seg), edge, step};
             cuts[n++] = c;
         }
+        for (int i = from, j = n - 1; step < 0 && i < j; i++, j--) {
+            const cut swap = cuts[i];
+            cuts[i] = cuts[j];
+            cuts[j] = swap;
+        }
     }
-    qsort(cuts, (size_t)n, sizeof cuts[0], cmp_cut);
+    sort_cuts(cuts, n);
 
     /* each global within the piece: the quadratic through its start, middle and end */
     const int n_globals = w->c->n_globals;
@@ -185,13 +274,12 @@ static int has_states(const tribo_charging *c)
    time (a rate can be ~0 and noisy, as the work rate in stick, and can go as
    sqrt(delta_y) at the ends of a contact). Fills q_mid and q_end from cur's; returns
    whether all are accurate. Then the globals follow (each model's piece_globals). */
-static int advance_states(sweep *w, const probe_point *cur, const probe_point *m,
-                          const probe_point *next, double h, double rtol, double atol,
+static int advance_states(sweep *w, const probe_point *pts, double h, double rtol, double atol,
                           double *q_end, const double *g0, double *g_mid, double *g_end)
 {
     const tribo_charging *c = w->c;
-    const probe_point q1 = probe_at(w, cur->t + 0.25 * h, cur);
-    const probe_point q3 = probe_at(w, cur->t + 0.75 * h, cur);
+    const probe_point *cur = &pts[0], *m = &pts[2], *next = &pts[4];
+    const probe_point q1 = pts[1], q3 = pts[3];
     double rates[TRIBO_CHARGE_MAX_QUADRATURES][5];
     double q_mid[TRIBO_CHARGE_MAX_QUADRATURES];
     int ok = 1;
@@ -228,37 +316,47 @@ int tribo_charging_sweep(tribo_charging *c, const tribo_scene *s, const tribo_co
     const size_t q_bytes = (size_t)c->n_quadratures * sizeof(double);
     const size_t g_bytes = (size_t)c->n_globals * sizeof(double);
     const int with_states = has_states(c);
-    /* Left to right in pieces; a trial piece is at most a segment's travel of the centre,
-       halved until the piece is regular, and grown after each accepted one. */
+    /* Left to right in pieces; a trial piece is at most the time the centre takes, at its
+       speed at the start, to travel one segment less than a piece may span (so that a contact
+       that speeds up stays within it), halved until the piece is regular, and grown after
+       each accepted one. */
     probe_point cur = probe_at(&w, a, NULL);
     memcpy(cur.quadratures, quadratures, q_bytes);
     const double min_piece = 1e-13 * (1.0 + fabs(b));
     double trial = b - a;
     while (cur.t < b && !w.status) {
         if (cur.speed > 0.0)
-            trial = fmin(trial, SEGMENTS_PER_PIECE * w.seg / cur.speed);
+            trial = fmin(trial, (SEGMENTS_PER_PIECE - 1) * w.seg / cur.speed);
         /* within min_piece of b, go to b: the piece then is at most trial + min_piece */
         const double t1 = cur.t + trial >= b - min_piece ? b : cur.t + trial;
         const double h = t1 - cur.t;
-        const probe_point m = probe_at(&w, cur.t + 0.5 * h, &cur);
-        probe_point next = probe_at(&w, t1, &m);
+        probe_point pts[PIECE_POINTS];
+        pts[0] = cur;
+        pts[2] = probe_at(&w, cur.t + 0.5 * h, &cur);
+        pts[4] = probe_at(&w, t1, &pts[2]);
+        const probe_point *m = &pts[2], *next = &pts[4];
         const double reach = SEGMENTS_PER_PIECE * w.seg;
-        int ok = fabs(next.lo - cur.lo) <= reach && fabs(next.hi - cur.hi) <= reach &&
-                 inside(cur.lo, m.lo, next.lo) && inside(cur.hi, m.hi, next.hi);
+        int ok = fabs(next->lo - cur.lo) <= reach && fabs(next->hi - cur.hi) <= reach &&
+                 inside(cur.lo, m->lo, next->lo) && inside(cur.hi, m->hi, next->hi);
         double q_end[TRIBO_CHARGE_MAX_QUADRATURES], g_mid[TRIBO_CHARGE_MAX_GLOBALS],
             g_end[TRIBO_CHARGE_MAX_GLOBALS];
         memcpy(q_end, cur.quadratures, q_bytes);
         memcpy(g_mid, globals, g_bytes);
         memcpy(g_end, globals, g_bytes);
-        if (ok && with_states)
-            ok = advance_states(&w, &cur, &m, &next, h, rtol, atol, q_end, globals, g_mid, g_end);
         /* a trial piece below min_piece is taken whatever the tests say: trial only halves,
            so every piece advances by at least min_piece / 2 */
-        if (ok || trial <= min_piece) {
-            memcpy(next.quadratures, q_end, q_bytes);
-            charge_piece(&w, &cur, &m, &next, globals, g_mid, g_end);
+        const int forced = trial <= min_piece;
+        if (ok || forced) {
+            pts[1] = probe_at(&w, cur.t + 0.25 * h, &cur);
+            pts[3] = probe_at(&w, cur.t + 0.75 * h, &cur);
+        }
+        if (ok && with_states)
+            ok = advance_states(&w, pts, h, rtol, atol, q_end, globals, g_mid, g_end);
+        if (ok || forced) {
+            memcpy(pts[4].quadratures, q_end, q_bytes);
+            charge_piece(&w, pts, globals, g_mid, g_end);
             memcpy(globals, g_end, g_bytes);
-            cur = next;
+            cur = pts[4];
             trial = 2.0 * h;
         } else {
             trial *= 0.5;

@@ -5,11 +5,11 @@
 
 #include <math.h>
 
-/* Indentation delta_y = h(phi) - Y if positive, else 0 (model.md §2). */
-static inline double tribo_indentation(double h, double Y)
+/* Indentation delta_y = h(phi) - Y = -G if positive, else 0 (model.md §2), from the clearance
+   G of the lowest point. */
+static inline double tribo_indentation(double gap)
 {
-    const double d = h - Y;
-    return d > 0.0 ? d : 0.0;
+    return gap < 0.0 ? -gap : 0.0;
 }
 
 /* Normal force Psi_N = delta_y (1 - nu s), clamped at >= 0 (no adhesion), where s is the

@@ -13,9 +13,57 @@ static double limit_rate(const tribo_dyn_params *p, const tribo_contact_eval *ev
     return factor > 0.0 && (ev->delta_y > 0.0 || ddy > 0.0) ? p->mu * factor * ddy : 0.0;
 }
 
+void tribo_contact_inverse_mass(const tribo_dyn_params *p, const tribo_pose *g, double w[3])
+{
+    w[0] = 1.0 + g->cx * g->cx * p->inv_inertia;
+    w[1] = g->cx * g->h * p->inv_inertia;
+    w[2] = 1.0 + g->h * g->h * p->inv_inertia;
+}
+
+/* model.md §3b: with (model.md §4) dU/dtau = Gamma sin(beta) + F_T + Psi_T,
+   dV/dtau = -Gamma cos(beta) + F_N + Psi_N, I dOmega/dtau = h Psi_T + cx Psi_N, and
+   dh/dphi = -cx, dcx/dphi = kappa:
+     d(vn)/dtau = W_NN Psi_N + W_NT Psi_T - (Gamma cos(beta) - F_N) + kappa Omega^2 = 0
+     d(vs)/dtau = W_NT Psi_N + W_TT Psi_T + (Gamma sin(beta) + F_T) - cx Omega^2 = 0 */
+void tribo_rigid_forces(const tribo_dyn_params *p, const tribo_pose *g, double Omega,
+                        double *psi_n, double *psi_t)
+{
+    double w[3];
+    tribo_contact_inverse_mass(p, g, w);
+    const double spin2 = Omega * Omega;
+    const double b_n = p->g_n - p->F_N - tribo_pose_kappa(p->eps2, g) * spin2;
+    const double b_t = g->cx * spin2 - (p->g_t + p->F_T);
+    const double det = w[0] * w[2] - w[1] * w[1];
+    *psi_n = (w[2] * b_n - w[1] * b_t) / det;
+    *psi_t = (w[0] * b_t - w[1] * b_n) / det;
+}
+
+void tribo_stop_contact_point(const tribo_dyn_params *p, const tribo_pose *g, double *y)
+{
+    double w[3];
+    tribo_contact_inverse_mass(p, g, w);
+    const double vn = y[TRIBO_IV] + g->cx * y[TRIBO_IOMEGA];
+    const double vs = y[TRIBO_IU] + g->h * y[TRIBO_IOMEGA];
+    const double det = w[0] * w[2] - w[1] * w[1];
+    /* the impulse (P_N, P_T) at the contact point with W P = -(vn, vs) */
+    const double P_n = (w[1] * vs - w[2] * vn) / det;
+    const double P_t = (w[1] * vn - w[0] * vs) / det;
+    y[TRIBO_IU] += P_t;
+    y[TRIBO_IV] += P_n;
+    y[TRIBO_IOMEGA] += p->inv_inertia * (g->cx * P_n + g->h * P_t);
+}
+
 double tribo_lock_force(const tribo_dyn_params *p, const tribo_force_law *law, const tribo_pose *g,
                         const double *y, double *A)
 {
+    if (law->tangent == TRIBO_TANGENT_RIGID) {
+        double psi_t, w[3];
+        tribo_contact_inverse_mass(p, g, w);
+        *A = w[0] * w[2] - w[1] * w[1];
+        double psi_n;
+        tribo_rigid_forces(p, g, y[TRIBO_IOMEGA], &psi_n, &psi_t);
+        return psi_n;
+    }
     if (p->damping_point == TRIBO_DAMPING_CENTRE) {
         *A = 1.0;
         return p->g_n - p->F_N; /* V held at 0: the normal force balances the normal load */
@@ -57,7 +105,7 @@ void tribo_contact_at(const tribo_dyn_params *p, const tribo_force_law *law, con
                       tribo_contact_eval *ev)
 {
     tribo_pose_at(p->eps2, y[TRIBO_IPHI], &ev->pose);
-    ev->delta_y = tribo_indentation(ev->pose.h, y[TRIBO_IY]);
+    ev->delta_y = tribo_indentation(y[TRIBO_IGAP]);
     ev->in_contact = law->contact == TRIBO_CONTACT_BY_GEOMETRY ? ev->delta_y > 0.0
                                                                 : law->contact == TRIBO_CONTACT_ON;
     ev->vs = y[TRIBO_IU] + ev->pose.h * y[TRIBO_IOMEGA]; /* model.md §2 */
@@ -81,12 +129,22 @@ void tribo_contact_at(const tribo_dyn_params *p, const tribo_force_law *law, con
         ev->psi_n = tribo_normal_force(ev->delta_y, p->nu, ev->sign_v);
         ev->limit_rate = limit_rate(p, ev, ddy);
         break;
-    case TRIBO_NORMAL_LOCK: {
+    case TRIBO_NORMAL_LOCK:
+    case TRIBO_NORMAL_CREEP: {
         /* the damped velocity held at 0: the normal force is whatever holds it (model.md §3) */
         double A;
-        ev->psi_n = tribo_lock_force(p, law, &ev->pose, y, &A);
-        ev->sign_v = p->nu > 0.0 && ev->delta_y > 0.0 ? (1.0 - ev->psi_n / ev->delta_y) / p->nu
-                                                       : 0.0;
+        if (law->tangent == TRIBO_TANGENT_RIGID)
+            tribo_rigid_forces(p, &ev->pose, y[TRIBO_IOMEGA], &ev->psi_n, &ev->psi_t);
+        else
+            ev->psi_n = tribo_lock_force(p, law, &ev->pose, y, &A);
+        if (law->normal == TRIBO_NORMAL_CREEP) {
+            /* on the band's edge: Psi_N* = delta_y (1 - nu s) */
+            ev->sign_v = law->normal_sign;
+            ev->delta_y = fmax(0.0, ev->psi_n / (1.0 - p->nu * law->normal_sign));
+        } else {
+            ev->sign_v = p->nu > 0.0 && ev->delta_y > 0.0 ? (1.0 - ev->psi_n / ev->delta_y) / p->nu
+                                                           : 0.0;
+        }
         ev->limit_rate = law->tangent == TRIBO_TANGENT_SLIP
                              ? lock_limit_rate(p, &ev->pose, y, law->slip_sign, ev->psi_n, A)
                              : 0.0;
@@ -104,6 +162,8 @@ void tribo_contact_at(const tribo_dyn_params *p, const tribo_force_law *law, con
     case TRIBO_TANGENT_SLIP:
         ev->psi_t = -ev->limit * law->slip_sign;
         break;
+    case TRIBO_TANGENT_RIGID: /* the constraint's, with the normal force */
+        break;
     }
 }
 
@@ -115,12 +175,20 @@ void tribo_dynamics_rhs(const tribo_dyn_params *p, const tribo_force_law *law, c
 
     const double U = y[TRIBO_IU], V = y[TRIBO_IV], Om = y[TRIBO_IOMEGA];
     dydt[TRIBO_IX] = U;
-    /* In a normal lock the held quantity does not move: Y for the centre dashpot, delta_y =
-       h(phi) - Y for the contact point's (dY/dtau = dh/dtau = -cx Omega, whatever error V
-       carries; V itself follows -cx Omega through Psi_N*). */
-    const int lock = law->normal == TRIBO_NORMAL_LOCK;
+    /* dG/dtau = dY/dtau - dh/dtau = V + cx Omega = vn (dh/dphi = -cx). In a normal lock the held
+       quantity does not move: delta_y = -G for the contact point's (whatever error V carries;
+       V itself follows -cx Omega through Psi_N*), Y for the centre dashpot's (dG/dtau =
+       cx Omega). In a creep the indentation follows the band's edge, delta_y = Psi_N* /
+       (1 - nu s), while the contact point's velocity is held at 0 as in a lock: G and Y move
+       with d(delta_y)/dtau, an indentation rate that needs no normal velocity of the body (it
+       is the normal law's, at the contact's stiffness, not the body's motion). */
+    const int lock = tribo_locked(law);
     const int centre = p->damping_point == TRIBO_DAMPING_CENTRE;
-    dydt[TRIBO_IY] = lock ? (centre ? 0.0 : -ev->pose.cx * Om) : V;
+    double creep_rate = 0.0; /* d(delta_y)/dtau in a creep */
+    if (law->normal == TRIBO_NORMAL_CREEP && ev->in_contact)
+        creep_rate = tribo_lock_force_rate(p, law, y) / (1.0 - p->nu * law->normal_sign);
+    dydt[TRIBO_IY] = lock && centre ? 0.0 : V - creep_rate;
+    dydt[TRIBO_IGAP] = lock ? (centre ? ev->pose.cx * Om : -creep_rate) : V + ev->pose.cx * Om;
     dydt[TRIBO_IPHI] = Om;
     /* model.md §4 */
     dydt[TRIBO_IU] = p->g_t + p->F_T + ev->psi_t;
@@ -128,9 +196,12 @@ void tribo_dynamics_rhs(const tribo_dyn_params *p, const tribo_force_law *law, c
     dydt[TRIBO_IOMEGA] = p->inv_inertia * (ev->pose.h * ev->psi_t + ev->pose.cx * ev->psi_n);
     dydt[TRIBO_IWEXT] = p->F_T * U + p->F_N * V;
 
-    if (!ev->in_contact) {
+    if (!ev->in_contact || law->tangent == TRIBO_TANGENT_RIGID) {
+        /* a rigid stick's stretch is its quasi-static value and the energy it stores is
+           booked with it, both set along the phase by the integrator (model.md §3b): the
+           constraint forces themselves do no work; a creep's dashpot does */
         dydt[TRIBO_IDX] = 0.0;
-        dydt[TRIBO_IWDISS] = 0.0;
+        dydt[TRIBO_IWDISS] = ev->in_contact ? (ev->delta_y - ev->psi_n) * -creep_rate : 0.0;
         return;
     }
     /* model.md §3: the stretch follows the slip velocity of the contact point; in slip it
@@ -141,16 +212,43 @@ void tribo_dynamics_rhs(const tribo_dyn_params *p, const tribo_force_law *law, c
     /* Power lost from E (model.md §6): dE/dtau = Psi_T vs + dx ddx + (Psi_N - dy) vn
        + external power, so the contact dissipates -Psi_T vs - dx ddx + (dy - Psi_N) vn, with
        vn = V + cx Om. A contact-point lock holds vn = 0 (its V carries only integration
-       error, which must not be booked as work). */
-    const double vn = lock && !centre ? 0.0 : V + ev->pose.cx * Om;
+       error, which must not be booked as work); a creep's indentation moves at -vn =
+       d(delta_y)/dtau, against the dashpot: (dy - Psi_N) vn = -nu s dy d(delta_y)/dtau >= 0. */
+    const double vn = lock && !centre ? -creep_rate : V + ev->pose.cx * Om;
     dydt[TRIBO_IWDISS] = -ev->psi_t * ev->vs - y[TRIBO_IDX] * ddx + (ev->delta_y - ev->psi_n) * vn;
+}
+
+double tribo_lock_force_rate(const tribo_dyn_params *p, const tribo_force_law *law, const double *y)
+{
+    /* the direction of the motion, with the lock's force (which does not depend on how the
+       indentation moves) */
+    tribo_force_law lock = *law;
+    lock.normal = TRIBO_NORMAL_LOCK;
+    double f[TRIBO_NMOTION];
+    tribo_dynamics_rhs(p, &lock, y, f, NULL);
+    /* a step that turns the particle by 1e-5 rad and changes its spin by 1e-5 of its scale:
+       the central difference is then exact to ~1e-10 of Psi_N*'s scale of change */
+    const double Om = y[TRIBO_IOMEGA];
+    const double d = 1e-5 / (fabs(Om) + sqrt(fabs(f[TRIBO_IOMEGA])) + 1e-300);
+    double z[2][TRIBO_NMOTION], psi[2];
+    for (int k = 0; k < 2; k++) {
+        memcpy(z[k], y, sizeof z[k]); /* y may be CVODE's vector: the motion and no more */
+        const double step = k ? -d : d;
+        for (int i = 0; i < TRIBO_NMOTION; i++)
+            z[k][i] += step * f[i];
+        tribo_pose g;
+        tribo_pose_at(p->eps2, z[k][TRIBO_IPHI], &g);
+        double A;
+        psi[k] = tribo_lock_force(p, &lock, &g, z[k], &A);
+    }
+    return (psi[0] - psi[1]) / (2.0 * d);
 }
 
 double tribo_energy(const tribo_dyn_params *p, const double *y)
 {
     tribo_pose g;
     tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
-    const double dy = tribo_indentation(g.h, y[TRIBO_IY]);
+    const double dy = tribo_indentation(y[TRIBO_IGAP]);
     const double U = y[TRIBO_IU], V = y[TRIBO_IV], Om = y[TRIBO_IOMEGA], dx = y[TRIBO_IDX];
     /* model.md §6 */
     return 0.5 * (U * U + V * V) + 0.125 * (1.0 + p->eps2) * Om * Om +

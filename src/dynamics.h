@@ -18,6 +18,13 @@ enum {
     TRIBO_IDX,     /* delta_x: tangential spring stretch                      */
     TRIBO_IWDISS,  /* work dissipated by the contact forces                   */
     TRIBO_IWEXT,   /* work done by the external forces F_T_ext, F_N_ext        */
+    TRIBO_IGAP,    /* G: clearance of the lowest point above the plate, Y - h(phi) (-G the
+                      indentation where G < 0), integrated beside Y: near the plate G is
+                      the small difference of two O(1) numbers, and integrated itself it is
+                      held to the absolute tolerance, not to rtol |Y| (at physical scale
+                      the indentation is ~Gamma, 1e-8, below rtol |Y|), while Y, a parabola
+                      in flight, is exact there. The contact reads G; the height and the
+                      energy read Y. Both are put on the plate at a contact switch. */
     TRIBO_NMOTION  /* the charge models' quadratures follow, from here          */
 };
 
@@ -37,7 +44,16 @@ typedef struct tribo_dyn_params {
     double F_T, F_N;     /* external force (inputs) */
     double chute_length; /* X where the chute ends (model.md §9); INFINITY: none */
     int end_at_liftoff;  /* the run ends at the first lift-off (run_end = first_liftoff) */
+    int rigid_stick;     /* stick_model = rigid: a stick in a contact-point lock is a
+                            constraint (model.md §3b) */
 } tribo_dyn_params;
+
+/* The rounding of a velocity a + b (V + cx Omega, say) in a state an event-driven integrator
+   holds to its tolerances: within it a state cannot tell which way the velocity points. */
+static inline double tribo_velocity_rounding(const tribo_dyn_params *p, double a, double b)
+{
+    return 10.0 * (p->rtol * (fabs(a) + fabs(b)) + p->atol);
+}
 
 /* The normal velocity the dashpot opposes (model.md §3): the contact point's
    vn = V + cx Omega (= -d delta_y/dtau), or the centre's V (damping_point = 1). */
@@ -57,8 +73,27 @@ typedef enum {
     TRIBO_CONTACT_ON           /* contact phase: the law with max(delta_y, 0), so that the
                                   right-hand side is smooth up to the located switch     */
 } tribo_contact_rule;
-typedef enum { TRIBO_NORMAL_REGULARISED, TRIBO_NORMAL_SIGN, TRIBO_NORMAL_LOCK } tribo_normal_rule;
-typedef enum { TRIBO_TANGENT_CLAMP, TRIBO_TANGENT_STICK, TRIBO_TANGENT_SLIP } tribo_tangent_rule;
+/* CREEP: with the rigid stick (model.md §3b), a contact-point lock whose load reaches an edge
+   of its band and goes on past it: the contact point stays at rest normally and the force is
+   the lock's, Psi_N*, while the indentation follows the edge, delta_y = Psi_N* / (1 - nu s)
+   (s = normal_sign: -1 the upper edge, pressing in; +1 the lower, lifting): the normal law's
+   quasi-static motion there. (The compliant law leaves the lock into a sign phase, whose
+   undamped normal spring an integrator must resolve for as long as the load creeps.) */
+typedef enum {
+    TRIBO_NORMAL_REGULARISED,
+    TRIBO_NORMAL_SIGN,
+    TRIBO_NORMAL_LOCK,
+    TRIBO_NORMAL_CREEP
+} tribo_normal_rule;
+/* RIGID: the rigid stick of model.md §3b, only in a contact-point normal lock: the contact
+   point is at rest and the forces are the constraint's (tribo_rigid_forces); the stretch is
+   their quasi-static value, set by the integrator, not integrated. */
+typedef enum {
+    TRIBO_TANGENT_CLAMP,
+    TRIBO_TANGENT_STICK,
+    TRIBO_TANGENT_SLIP,
+    TRIBO_TANGENT_RIGID
+} tribo_tangent_rule;
 
 typedef struct tribo_force_law {
     tribo_contact_rule contact;
@@ -67,7 +102,41 @@ typedef struct tribo_force_law {
     tribo_tangent_rule tangent;
     double slip_sign;     /* for TRIBO_TANGENT_SLIP: the sign of the stretch held at the limit
                              (+1 / -1); the slip force opposes it (model.md §3) */
+    int started_at_rest;  /* for TRIBO_NORMAL_SIGN in contact: the phase began with the damped
+                             velocity at 0 within its rounding (out of a lock at its band's
+                             edge, or a reversal decided at 0), from where it creeps: its switch
+                             waits for the velocity to pass 0 by more than that rounding */
 } tribo_force_law;
+
+/* Whether a rule holds the damped velocity at 0 with the lock's force: a lock or a creep. */
+static inline int tribo_locked(const tribo_force_law *law)
+{
+    return law->normal == TRIBO_NORMAL_LOCK || law->normal == TRIBO_NORMAL_CREEP;
+}
+
+/* Whether a phase holds the contact point at rest normally (vn = 0): a contact-point lock,
+   which also holds the indentation (dG/dtau = 0), or a creep. */
+static inline int tribo_contact_point_lock(const tribo_dyn_params *p, const tribo_force_law *law)
+{
+    return law->contact == TRIBO_CONTACT_ON && tribo_locked(law) &&
+           p->damping_point == TRIBO_DAMPING_CONTACT_POINT;
+}
+
+/* The contact's inverse mass (the Delassus matrix of the contact point's normal and tangential
+   velocities vn = V + cx Omega, vs = U + h Omega, model.md §3b): a force (Psi_N, Psi_T) at the
+   contact point changes (vn, vs) at the rate W (Psi_N, Psi_T). w[0] = W_NN = 1 + cx^2/I,
+   w[1] = W_NT = cx h / I, w[2] = W_TT = 1 + h^2/I; det W = 1 + (cx^2 + h^2)/I >= 1. */
+void tribo_contact_inverse_mass(const tribo_dyn_params *p, const tribo_pose *g, double w[3]);
+
+/* The forces of the rigid stick (model.md §3b): Psi_N* and Psi_T* that keep the contact point
+   at rest, d(vn)/dtau = 0 and d(vs)/dtau = 0, at the pose g and spin Omega. */
+void tribo_rigid_forces(const tribo_dyn_params *p, const tribo_pose *g, double Omega,
+                        double *psi_n, double *psi_t);
+
+/* Bring the contact point of y to rest (vn = vs = 0) by an impulse at the contact point: the
+   velocities of the rigid stick nearest to y's in the particle's kinetic energy. The
+   particle's angular momentum about the contact point does not change. */
+void tribo_stop_contact_point(const tribo_dyn_params *p, const tribo_pose *g, double *y);
 
 /* The normal force Psi_N* of the normal lock (model.md §3): the force that keeps the damped
    velocity at 0 (dvn/dtau = 0; for the centre dashpot dV/dtau = 0), in the law's tangential
@@ -76,6 +145,10 @@ typedef struct tribo_force_law {
    the centre dashpot); the lock exists only while A > 0. */
 double tribo_lock_force(const tribo_dyn_params *p, const tribo_force_law *law, const tribo_pose *g,
                         const double *y, double *A);
+
+/* d(Psi_N*)/dtau along the motion of a lock or a creep at y (the rate at which the load the lock
+   carries changes), by a central difference along the right-hand side's direction. */
+double tribo_lock_force_rate(const tribo_dyn_params *p, const tribo_force_law *law, const double *y);
 
 /* The contact as seen by one evaluation of the right-hand side. */
 typedef struct tribo_contact_eval {

@@ -1,11 +1,12 @@
-/* force_phases.c: the phases of the force law and the switches between them (model.md §3). */
+/* force_phases.c: the phases of the force law and the switches between them (model.md §3;
+   the rigid stick and what an impact is, §3b). */
 #include "force_phases.h"
 
 #include <math.h>
 #include <string.h>
 
 const tribo_force_law TRIBO_PHASE_FLIGHT = {TRIBO_CONTACT_OFF, TRIBO_NORMAL_SIGN, -1.0, TRIBO_TANGENT_STICK,
-                                     0.0};
+                                     0.0, 0};
 
 /* The normal lock holds while Psi_N* (tribo_lock_force) lies in the band of normal forces
    the set-valued sign allows (model.md §3), max(0, dy(1 - nu)) <= Psi_N* <= dy(1 + nu), and,
@@ -15,9 +16,26 @@ static double lock_lower(const tribo_dyn_params *p, double dy)
     return fmax(0.0, dy * (1.0 - p->nu));
 }
 
+/* A lock or a creep of the contact point (the tangential rules and the lock's force are
+   those of tribo_lock_force). */
 static int contact_point_lock(const tribo_dyn_params *p, const tribo_force_law *law)
 {
-    return law->normal == TRIBO_NORMAL_LOCK && p->damping_point == TRIBO_DAMPING_CONTACT_POINT;
+    return tribo_locked(law) && p->damping_point == TRIBO_DAMPING_CONTACT_POINT;
+}
+
+/* The rounding of the damped velocity at y (tribo_velocity_rounding). */
+static double damped_velocity_rounding(const tribo_dyn_params *p, const tribo_pose *g, const double *y)
+{
+    const double spin = p->damping_point == TRIBO_DAMPING_CENTRE ? 0.0 : g->cx * y[TRIBO_IOMEGA];
+    return tribo_velocity_rounding(p, y[TRIBO_IV], spin);
+}
+
+/* With the rigid stick (model.md §3b) a slip in a contact-point lock ends where the contact
+   point comes to rest, vs = 0: a stick there is the rigid one, whose stretch is quasi-static,
+   not a spring that has to come off the limit first. */
+static int slip_ends_at_rest(const tribo_dyn_params *p, const tribo_force_law *law)
+{
+    return p->rigid_stick && contact_point_lock(p, law) && law->tangent == TRIBO_TANGENT_SLIP;
 }
 
 void tribo_switch_functions(const tribo_dyn_params *p, const tribo_force_law *law, const double *y,
@@ -29,26 +47,47 @@ void tribo_switch_functions(const tribo_dyn_params *p, const tribo_force_law *la
     if (isfinite(p->chute_length))
         g[TRIBO_SWITCH_EXIT] = p->chute_length - y[TRIBO_IX];
     tribo_pose_at(p->eps2, y[TRIBO_IPHI], &ev.pose);
-    g[TRIBO_SWITCH_CONTACT] = ev.pose.h - y[TRIBO_IY];
+    g[TRIBO_SWITCH_CONTACT] = -y[TRIBO_IGAP];
     if (!tribo_touching(law))
         return;
     /* the contact as the phase sees it, even where delta_y has just gone negative */
     tribo_contact_at(p, law, y, &ev);
-    const double dy = ev.pose.h - y[TRIBO_IY];
-    if (law->normal == TRIBO_NORMAL_LOCK) {
-        const double psi_star = ev.psi_n;
-        g[TRIBO_SWITCH_NORMAL_A] = psi_star - lock_lower(p, dy);
-        g[TRIBO_SWITCH_NORMAL_B] = dy * (1.0 + p->nu) - psi_star;
+    const double dy = -y[TRIBO_IGAP];
+    if (law->normal == TRIBO_NORMAL_CREEP) {
+        /* the indentation on the band's edge reaches 0 (lift-off), or stops moving the way the
+           creep goes: the load turns back into the band */
+        g[TRIBO_SWITCH_CONTACT] = ev.delta_y;
+        g[TRIBO_SWITCH_NORMAL_A] = -law->normal_sign * tribo_lock_force_rate(p, law, y);
+    }
+    if (tribo_locked(law)) {
+        if (law->normal == TRIBO_NORMAL_LOCK) {
+            const double psi_star = ev.psi_n;
+            g[TRIBO_SWITCH_NORMAL_A] = psi_star - lock_lower(p, dy);
+            g[TRIBO_SWITCH_NORMAL_B] = dy * (1.0 + p->nu) - psi_star;
+        }
         if (contact_point_lock(p, law) && law->tangent == TRIBO_TANGENT_SLIP)
             tribo_lock_force(p, law, &ev.pose, y, &g[TRIBO_SWITCH_LOCK_FACTOR]);
     } else if (p->nu > 0.0) {
+        /* a sign phase that started at rest (out of a lock at its band's edge, where the
+           velocity creeps away from 0, or at an edge the load stays on) would see rounding
+           cross 0 again and again: its velocity must pass 0 by more than its rounding */
         g[TRIBO_SWITCH_NORMAL_A] = tribo_damped_velocity(p, &ev.pose, y);
+        if (law->started_at_rest)
+            g[TRIBO_SWITCH_NORMAL_A] += law->normal_sign * damped_velocity_rounding(p, &ev.pose, y);
     }
-    if (law->tangent == TRIBO_TANGENT_STICK) {
+    switch (law->tangent) {
+    case TRIBO_TANGENT_STICK:
         g[TRIBO_SWITCH_TANGENT_A] = ev.limit - y[TRIBO_IDX];
         g[TRIBO_SWITCH_TANGENT_B] = ev.limit + y[TRIBO_IDX];
-    } else {
-        g[TRIBO_SWITCH_TANGENT_A] = law->slip_sign * ev.vs - ev.limit_rate;
+        break;
+    case TRIBO_TANGENT_RIGID: /* the quasi-static stretch -Psi_T* reaches the limit */
+        g[TRIBO_SWITCH_TANGENT_A] = ev.limit + ev.psi_t;
+        g[TRIBO_SWITCH_TANGENT_B] = ev.limit - ev.psi_t;
+        break;
+    default:
+        g[TRIBO_SWITCH_TANGENT_A] =
+            law->slip_sign * ev.vs - (slip_ends_at_rest(p, law) ? 0.0 : ev.limit_rate);
+        break;
     }
 }
 
@@ -64,19 +103,23 @@ void tribo_switch_directions(const tribo_dyn_params *p, const tribo_force_law *p
         return;
     }
     dir[TRIBO_SWITCH_CONTACT] = -1;
-    if (ph->normal == TRIBO_NORMAL_LOCK) {
-        dir[TRIBO_SWITCH_NORMAL_A] = dir[TRIBO_SWITCH_NORMAL_B] = -1;
+    if (tribo_locked(ph)) {
+        dir[TRIBO_SWITCH_NORMAL_A] = -1;
+        if (ph->normal == TRIBO_NORMAL_LOCK)
+            dir[TRIBO_SWITCH_NORMAL_B] = -1;
         if (contact_point_lock(p, ph) && ph->tangent == TRIBO_TANGENT_SLIP)
             dir[TRIBO_SWITCH_LOCK_FACTOR] = -1;
     } else if (p->nu > 0.0) {
         dir[TRIBO_SWITCH_NORMAL_A] = ph->normal_sign < 0 ? +1 : -1; /* vn reaches 0 */
     }
     dir[TRIBO_SWITCH_TANGENT_A] = -1;
-    if (ph->tangent == TRIBO_TANGENT_STICK)
+    if (ph->tangent != TRIBO_TANGENT_SLIP)
         dir[TRIBO_SWITCH_TANGENT_B] = -1;
 }
 
 static void tangent_from_state(const tribo_dyn_params *p, double *y, tribo_force_law *law);
+static void settle_tangent(const tribo_dyn_params *p, double *y, tribo_force_law *law,
+                           const tribo_force_law *old);
 
 /* dvn/dtau at y in the normal phase of sign s (s = 0: the spring force alone, Psi_N =
    delta_y), with the tangential rule that phase gives the stretch. */
@@ -112,20 +155,24 @@ static double leaving_sign(const tribo_dyn_params *p, const double *y, const tri
 /* The normal rule of a contact whose damped velocity is exactly 0 (model.md §3): normal lock
    if the force that holds it (in the law's tangential rule) is within the band, otherwise
    the sign the net normal force gives the velocity: below the band the contact lifts
-   (s = +1), above it presses in (s = -1); where A <= 0 there is no lock (leaving_sign). */
-static void normal_at_rest(const tribo_dyn_params *p, const double *y, double dy, tribo_force_law *law)
+   (s = +1), above it presses in (s = -1); where A <= 0 there is no lock (leaving_sign). A
+   lock holds the indentation dy. y does not change. */
+static void normal_at_rest(const tribo_dyn_params *p, const double *y, double dy, tribo_force_law *law,
+                           const tribo_force_law *old)
 {
     tribo_pose g;
     tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
     /* A contact-point lock's force depends on the tangential rule the lock itself would have
-       (the rule before may be a slip at a zero limit, the contact having been unloaded):
-       that rule decides, on a copy of the state. */
+       (the rule before may be a slip at a zero limit, the contact having been unloaded; with
+       the rigid stick, a stick would stop the contact point): that rule decides, on a copy of
+       the state. */
     tribo_force_law as_locked = *law;
     double z[TRIBO_NSTATE_MAX];
     memcpy(z, y, sizeof z);
     if (p->damping_point == TRIBO_DAMPING_CONTACT_POINT) {
         as_locked.normal = TRIBO_NORMAL_LOCK;
-        tangent_from_state(p, z, &as_locked);
+        as_locked.normal_sign = 0.0;
+        settle_tangent(p, z, &as_locked, old);
     }
     double A;
     const double psi_star = tribo_lock_force(p, &as_locked, &g, z, &A);
@@ -141,15 +188,13 @@ static void normal_at_rest(const tribo_dyn_params *p, const double *y, double dy
     }
 }
 
-/* d2h/dphi2 at the pose of y, by central difference (h'' = -dcx/dphi). */
+/* d2h/dphi2 at phi: -kappa (model.md §3), exactly as flight.c has it, so that a contact the
+   flight's search makes is made here too. */
 static double h_curvature(const tribo_dyn_params *p, double phi)
 {
-    const double d = 1e-4;
-    tribo_pose a, b, g;
-    tribo_pose_at(p->eps2, phi + d, &a);
-    tribo_pose_at(p->eps2, phi - d, &b);
+    tribo_pose g;
     tribo_pose_at(p->eps2, phi, &g);
-    return (a.h - 2.0 * g.h + b.h) / (d * d);
+    return -tribo_pose_kappa(p->eps2, &g);
 }
 
 /* With the stretch on the limit and the first derivatives tied (sigma vs = d(limit)/dtau),
@@ -242,18 +287,160 @@ static void tangent_from_state(const tribo_dyn_params *p, double *y, tribo_force
     law->slip_sign = sigma;
 }
 
+/* A slip through a switch that was not a tangential one (the normal rule changed): it goes on,
+   the stretch put on the new phase's limit, where the stretch is on that limit to within the
+   rounding of the located switch (a stretch clamped to a lower limit included) and would leave
+   it; with the rigid stick in a contact-point lock, wherever the contact point still slides
+   (a stick there would be rigid, and the contact point does not stop while it slides). Where
+   the slip goes on, law and y are set and it returns 1. */
+static int slip_goes_on(const tribo_dyn_params *p, double *y, tribo_force_law *law, double sigma)
+{
+    tribo_force_law slip = *law;
+    slip.tangent = TRIBO_TANGENT_SLIP;
+    slip.slip_sign = sigma;
+    tribo_contact_eval ev;
+    tribo_contact_at(p, &slip, y, &ev);
+    if (contact_point_lock(p, &slip)) {
+        double A;
+        tribo_lock_force(p, &slip, &ev.pose, y, &A);
+        if (!(A > 0.0))
+            return 0;
+    }
+    int goes_on;
+    if (slip_ends_at_rest(p, &slip)) {
+        goes_on = sigma * ev.vs > tribo_velocity_rounding(p, y[TRIBO_IU], ev.pose.h * y[TRIBO_IOMEGA]);
+    } else {
+        const double stretch = sigma * y[TRIBO_IDX];
+        goes_on = stretch >= ev.limit - 1e-9 * (ev.limit + fabs(stretch)) &&
+                  stretch_leaves_limit(sigma, ev.vs, ev.limit_rate);
+    }
+    if (!goes_on)
+        return 0;
+    *law = slip;
+    y[TRIBO_IDX] = sigma * ev.limit;
+    return 1;
+}
+
+/* A slip of a contact-point lock in direction sigma from here, the stretch put on its limit
+   (the spring energy that changes is booked by tribo_phase_after); 0 where that slip has no
+   lock (A <= 0) and nothing changes. */
+static int slip_goes_on_forced(const tribo_dyn_params *p, double *y, tribo_force_law *law,
+                               double sigma)
+{
+    tribo_force_law slip = *law;
+    slip.tangent = TRIBO_TANGENT_SLIP;
+    slip.slip_sign = sigma;
+    tribo_pose g;
+    tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
+    double A;
+    const double psi = tribo_lock_force(p, &slip, &g, y, &A);
+    if (!(A > 0.0))
+        return 0;
+    *law = slip;
+    y[TRIBO_IDX] = sigma * p->mu * psi;
+    return 1;
+}
+
+/* The rigid stick (model.md §3b) in a contact-point lock that sticks: the contact point is
+   brought to rest (tribo_stop_contact_point: the energy of the spring's ringing and of the
+   relative motion is booked as dissipated by tribo_phase_after) and held there by the
+   constraint forces while they lie strictly within the Coulomb limit, the stretch at its
+   quasi-static value -Psi_T*. Beyond the limit the contact slips, from rest, the way the
+   constraint force cannot hold it (sigma = -sgn Psi_T*, under which sigma dvs/dtau >= 0), the
+   stretch on the limit. Where that slip has no lock (A <= 0, model.md §3) the compliant stick
+   stays, as in the compliant model. */
+static void stick_rigidly(const tribo_dyn_params *p, double *y, tribo_force_law *law)
+{
+    tribo_pose g;
+    tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
+    double z[TRIBO_NSTATE_MAX];
+    memcpy(z, y, sizeof z);
+    tribo_stop_contact_point(p, &g, z);
+    double psi_n, psi_t;
+    tribo_rigid_forces(p, &g, z[TRIBO_IOMEGA], &psi_n, &psi_t);
+    tribo_force_law next = *law;
+    if (fabs(psi_t) < p->mu * psi_n) {
+        next.tangent = TRIBO_TANGENT_RIGID;
+        next.slip_sign = 0.0;
+        z[TRIBO_IDX] = -psi_t;
+    } else {
+        next.tangent = TRIBO_TANGENT_SLIP;
+        next.slip_sign = psi_t > 0.0 ? -1.0 : 1.0;
+        double A;
+        const double psi_slip = tribo_lock_force(p, &next, &g, z, &A);
+        if (!(A > 0.0))
+            return;
+        z[TRIBO_IDX] = next.slip_sign * p->mu * psi_slip;
+    }
+    *law = next;
+    memcpy(y, z, sizeof z);
+}
+
+/* Whether a compliant stick entering a contact-point lock is a slide the spring cannot hold:
+   the ringing it would start about a stretch of 0, sqrt(dx^2 + vs^2 / w^2) at the spring's
+   frequency w (w^2 = det W / W_NN, the contact point's tangential inverse mass with the normal
+   held), reaches the Coulomb limit of a slip in the direction of vs. The rigid stick's limit of
+   such a contact is a slip, not a stop (stick_rigidly stops only the spring's ringing). */
+static int slides_through(const tribo_dyn_params *p, const double *y, const tribo_force_law *law)
+{
+    tribo_pose g;
+    tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
+    const double vs = y[TRIBO_IU] + g.h * y[TRIBO_IOMEGA];
+    tribo_force_law slip = *law;
+    slip.tangent = TRIBO_TANGENT_SLIP;
+    slip.slip_sign = vs >= 0.0 ? 1.0 : -1.0;
+    double A, w[3];
+    const double L = p->mu * tribo_lock_force(p, &slip, &g, y, &A);
+    if (!(A > 0.0))
+        return 0;
+    tribo_contact_inverse_mass(p, &g, w);
+    const double dx = y[TRIBO_IDX], w2 = (w[0] * w[2] - w[1] * w[1]) / w[0];
+    return dx * dx + vs * vs / w2 > L * L;
+}
+
+/* The tangential rule of a contact phase after a switch that was not a tangential one: a slip
+   that goes on (slip_goes_on), else the rule the state gives (tangent_from_state); with the
+   rigid stick, a stick in a contact-point lock is the rigid one (stick_rigidly), or a slip
+   where the contact slides through (slides_through). */
+static void settle_tangent(const tribo_dyn_params *p, double *y, tribo_force_law *law,
+                           const tribo_force_law *old)
+{
+    const int was_slipping = tribo_touching(old) && old->tangent == TRIBO_TANGENT_SLIP;
+    if (!(was_slipping && slip_goes_on(p, y, law, old->slip_sign)))
+        tangent_from_state(p, y, law);
+    if (p->rigid_stick && contact_point_lock(p, law) && law->tangent == TRIBO_TANGENT_STICK) {
+        tribo_pose g;
+        tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
+        const double sigma = y[TRIBO_IU] + g.h * y[TRIBO_IOMEGA] >= 0.0 ? 1.0 : -1.0;
+        if (!(slides_through(p, y, law) && slip_goes_on_forced(p, y, law, sigma)))
+            stick_rigidly(p, y, law);
+    }
+}
+
 /* A contact-point lock decided before its tangential rule was: Psi_N* and A change with the
    rule, so the lock is checked again under the final one; if it no longer holds, the
    contact leaves it and the tangential rule follows the new normal phase. */
-static void confirm_lock(const tribo_dyn_params *p, double *y, tribo_force_law *law)
+static void confirm_lock(const tribo_dyn_params *p, double *y, tribo_force_law *law,
+                         const tribo_force_law *old)
 {
     if (!contact_point_lock(p, law))
         return;
-    tribo_pose g;
-    tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
-    normal_at_rest(p, y, g.h - y[TRIBO_IY], law);
+    if (law->normal == TRIBO_NORMAL_CREEP) {
+        /* a creep sits on its band's edge by construction; only a slip's A can end it */
+        tribo_pose g;
+        tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
+        double A;
+        tribo_lock_force(p, law, &g, y, &A);
+        if (!(A > 0.0)) {
+            law->normal = TRIBO_NORMAL_SIGN;
+            law->normal_sign = leaving_sign(p, y, law);
+            settle_tangent(p, y, law, old);
+        }
+        return;
+    }
+    normal_at_rest(p, y, -y[TRIBO_IGAP], law, old);
     if (law->normal != TRIBO_NORMAL_LOCK)
-        tangent_from_state(p, y, law);
+        settle_tangent(p, y, law, old);
 }
 
 /* Whether a particle touching the plate at rest (delta_y = 0 and d(delta_y)/dtau = 0) is
@@ -267,24 +454,38 @@ static int pressed_in(const tribo_dyn_params *p, const double *y)
     return h_curvature(p, y[TRIBO_IPHI]) * Om * Om + (p->g_n - p->F_N) > 0.0;
 }
 
-/* A contact point that leaves vn = 0 in a sign phase (after a vn switch, out of a lock, or
-   set down at rest) may do so slowly: at the edge of the lock's band dvn/dtau starts at 0.
-   Its switch function vn would then sit within integration error of 0 and be seen
-   crossing back at once, again and again. It starts that error's size on its side,
-   vn = s m (the energy this changes is booked with the switch). The centre dashpot's V
-   is left exactly at 0, as it always was. */
-static void leave_rest(const tribo_dyn_params *p, double *y, const tribo_force_law *law)
+/* Whether a sign phase starts at rest at y: its damped velocity within its rounding of 0, and
+   so slow to leave it that it takes more than a unit of time (the contact's own time scale)
+   to get out of that rounding, as out of a lock at its band's edge (where the normal force is
+   continuous) or at a reversal with the load on an edge. Then the velocity creeps away from 0,
+   noise can see it cross 0 again and again, and its switch must wait for it to pass 0
+   decisively. (At a reversal the velocity leaves 0 at once, and the next reversal is a switch
+   of its own, where a lock can end an oscillation that is left.) */
+static int creeps(const tribo_dyn_params *p, const tribo_force_law *ph, const double *y)
 {
-    if (p->damping_point != TRIBO_DAMPING_CONTACT_POINT || !tribo_touching(law) ||
-        law->normal != TRIBO_NORMAL_SIGN || p->nu == 0.0)
-        return;
-    tribo_pose g;
-    tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
-    const double spin = g.cx * y[TRIBO_IOMEGA];
-    if (y[TRIBO_IV] + spin != 0.0)
-        return;
-    const double m = 10.0 * (p->rtol * (fabs(y[TRIBO_IV]) + fabs(spin)) + p->atol);
-    y[TRIBO_IV] = -spin + law->normal_sign * m;
+    double f[TRIBO_NMOTION];
+    tribo_contact_eval ev;
+    tribo_dynamics_rhs(p, ph, y, f, &ev);
+    const double rounding = damped_velocity_rounding(p, &ev.pose, y);
+    if (fabs(tribo_damped_velocity(p, &ev.pose, y)) > rounding)
+        return 0;
+    const double Om = y[TRIBO_IOMEGA];
+    const double rate =
+        p->damping_point == TRIBO_DAMPING_CENTRE
+            ? f[TRIBO_IV]
+            : f[TRIBO_IV] + tribo_pose_kappa(p->eps2, &ev.pose) * Om * Om + ev.pose.cx * f[TRIBO_IOMEGA];
+    return fabs(rate) <= rounding;
+}
+
+/* Whether a contact made at y (delta_y = 0) is made: the contact point approaches the plate,
+   vn = -d(delta_y)/dtau < 0, or, at rest on it (vn within its rounding of 0), is pressed in.
+   A contact "made" while it moves away is delta_y reaching 0 by rounding: no contact, and no
+   impact (model.md §3b). */
+static int approaching(const tribo_dyn_params *p, const tribo_pose *g, const double *y)
+{
+    const double spin = g->cx * y[TRIBO_IOMEGA];
+    const double vn = y[TRIBO_IV] + spin, rounding = tribo_velocity_rounding(p, y[TRIBO_IV], spin);
+    return vn < -rounding || (vn <= rounding && pressed_in(p, y));
 }
 
 /* The phase after an event (fired: the roots found) or, with fired = NULL, the phase a
@@ -297,24 +498,27 @@ static tribo_force_law next_phase(const tribo_dyn_params *p, const tribo_force_l
     tribo_force_law ph = *old;
     tribo_pose g;
     tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
-    const double dy = g.h - y[TRIBO_IY];
-    const double ddy = -g.cx * y[TRIBO_IOMEGA] - y[TRIBO_IV];
+    const double dy = -y[TRIBO_IGAP];
 
-    if (fired && fired[TRIBO_SWITCH_CONTACT])
+    if (fired && fired[TRIBO_SWITCH_CONTACT]) {
+        if (!tribo_touching(old) && !approaching(p, &g, y))
+            return *old;
         ph.contact = tribo_touching(old) ? TRIBO_CONTACT_OFF : TRIBO_CONTACT_ON;
-    else if (fired && tribo_touching(old) && dy < 0.0)
+    } else if (fired && tribo_touching(old) && dy < 0.0) {
         /* another switch where the lowest point is already above the plate: the contact
            was lost within the root finding's resolution of this switch, and its root,
            negative from the restart on, would never be seen (the phase would stay in
            contact with no force, its tangent switch firing at every stretch rounding) */
         ph.contact = TRIBO_CONTACT_OFF;
-    else if (!fired)
-        ph.contact = dy > 0.0 || (dy == 0.0 && (ddy > 0.0 || (ddy == 0.0 && pressed_in(p, y))))
-                         ? TRIBO_CONTACT_ON
-                         : TRIBO_CONTACT_OFF;
+    } else if (!fired) {
+        ph.contact = dy > 0.0 || (dy == 0.0 && approaching(p, &g, y)) ? TRIBO_CONTACT_ON
+                                                                     : TRIBO_CONTACT_OFF;
+    }
     const int onset = tribo_touching(&ph) && (!tribo_touching(old) || !fired);
-    if (fired && fired[TRIBO_SWITCH_CONTACT])
+    if (fired && fired[TRIBO_SWITCH_CONTACT]) {
+        y[TRIBO_IGAP] = 0.0;
         y[TRIBO_IY] = g.h;
+    }
 
     if (!tribo_touching(&ph)) {
         ph = TRIBO_PHASE_FLIGHT;
@@ -325,9 +529,18 @@ static tribo_force_law next_phase(const tribo_dyn_params *p, const tribo_force_l
     }
     if (onset && fired)
         y[TRIBO_IDX] = 0.0;
+    if (!onset && old->tangent == TRIBO_TANGENT_SLIP) {
+        /* a slip's stretch is on its limit (model.md §3); CVODE's integrated stretch follows
+           it only to the tolerances, and what the slip does next is decided against it */
+        tribo_contact_eval ev;
+        tribo_contact_at(p, old, y, &ev);
+        y[TRIBO_IDX] = old->slip_sign * ev.limit;
+    }
 
     /* normal */
-    const double dy_now = g.h - y[TRIBO_IY];
+    const double dy_now = -y[TRIBO_IGAP];
+    const int normal_event = fired && (fired[TRIBO_SWITCH_NORMAL_A] || fired[TRIBO_SWITCH_NORMAL_B] ||
+                                       fired[TRIBO_SWITCH_LOCK_FACTOR]);
     if (p->nu == 0.0) {
         ph.normal = TRIBO_NORMAL_SIGN; /* the sign does not matter */
         ph.normal_sign = -1.0;
@@ -337,27 +550,56 @@ static tribo_force_law next_phase(const tribo_dyn_params *p, const tribo_force_l
             ph.normal = TRIBO_NORMAL_SIGN;
             ph.normal_sign = vn < 0.0 ? -1.0 : 1.0;
         } else {
-            normal_at_rest(p, y, dy_now, &ph);
+            normal_at_rest(p, y, dy_now, &ph, old);
         }
-    } else if (fired && (fired[TRIBO_SWITCH_NORMAL_A] || fired[TRIBO_SWITCH_NORMAL_B] ||
-                         fired[TRIBO_SWITCH_LOCK_FACTOR])) {
-        if (old->normal == TRIBO_NORMAL_LOCK) {
+    } else if (normal_event) {
+        const double edge = fired[TRIBO_SWITCH_NORMAL_A] ? +1.0 : -1.0;
+        if (fired[TRIBO_SWITCH_LOCK_FACTOR] && tribo_locked(old)) {
+            /* a slipping lock or creep whose A reaches 0 (model.md §3) */
             ph.normal = TRIBO_NORMAL_SIGN;
-            ph.normal_sign = fired[TRIBO_SWITCH_LOCK_FACTOR] ? leaving_sign(p, y, &ph)
-                             : fired[TRIBO_SWITCH_NORMAL_A] ? +1.0
-                                                            : -1.0;
+            ph.normal_sign = leaving_sign(p, y, &ph);
+        } else if (old->normal == TRIBO_NORMAL_CREEP) {
+            /* the load turns back into the band: the lock holds the indentation the creep
+               reached, a hair inside the band (1e-12 of it, far above the edge's rounding
+               and far below anything the motion sees), so that the lock's own switch
+               starts on the right side of its edge */
+            ph.normal = TRIBO_NORMAL_LOCK;
+            ph.normal_sign = 0.0;
+            y[TRIBO_IGAP] *= 1.0 - 1e-12 * old->normal_sign; /* G < 0: s = +1 less deep */
+            y[TRIBO_IY] = g.h + y[TRIBO_IGAP];
+        } else if (old->normal == TRIBO_NORMAL_LOCK && p->rigid_stick && contact_point_lock(p, old) &&
+                   1.0 - p->nu * edge > 0.0) {
+            /* with the rigid stick a load that goes on past the band's edge makes the lock
+               creep along it (the lower edge only where nu < 1, where it is not 0) */
+            ph.normal = TRIBO_NORMAL_CREEP;
+            ph.normal_sign = edge;
+        } else if (old->normal == TRIBO_NORMAL_LOCK) {
+            /* out of the lock at its band's edge: the normal force is continuous there, and
+               the damped velocity leaves 0 from rest (at the edge d(vn)/dtau = 0 too: it
+               creeps, and its switch waits for it to pass 0 decisively, started_at_rest) */
+            ph.normal = TRIBO_NORMAL_SIGN;
+            ph.normal_sign = edge;
         } else {
-            /* the damped velocity exactly 0 */
-            y[TRIBO_IV] = p->damping_point == TRIBO_DAMPING_CENTRE ? 0.0 : -g.cx * y[TRIBO_IOMEGA];
-            normal_at_rest(p, y, dy_now, &ph);
+            /* the damped velocity, found past 0 by its rounding, exactly 0: the contact point's
+               by a normal impulse there (which takes out -vn^2 / (2 W_NN) of the energy), the
+               centre's by setting V */
+            if (p->damping_point == TRIBO_DAMPING_CENTRE) {
+                y[TRIBO_IV] = 0.0;
+            } else {
+                double w[3];
+                tribo_contact_inverse_mass(p, &g, w);
+                const double P_n = -(y[TRIBO_IV] + g.cx * y[TRIBO_IOMEGA]) / w[0];
+                y[TRIBO_IV] += P_n;
+                y[TRIBO_IOMEGA] += p->inv_inertia * g.cx * P_n;
+            }
+            normal_at_rest(p, y, dy_now, &ph, old);
         }
     }
 
     /* tangential */
-    const int tangent_event = fired && !onset && (fired[TRIBO_SWITCH_TANGENT_A] || fired[TRIBO_SWITCH_TANGENT_B]) &&
-                              !fired[TRIBO_SWITCH_NORMAL_A] && !fired[TRIBO_SWITCH_NORMAL_B] &&
-                              !fired[TRIBO_SWITCH_LOCK_FACTOR];
-    if (tangent_event && old->tangent == TRIBO_TANGENT_STICK) {
+    const int tangent_event = fired && !onset && !normal_event &&
+                              (fired[TRIBO_SWITCH_TANGENT_A] || fired[TRIBO_SWITCH_TANGENT_B]);
+    if (tangent_event && old->tangent != TRIBO_TANGENT_SLIP) {
         tribo_contact_eval ev;
         ph.tangent = TRIBO_TANGENT_SLIP;
         ph.slip_sign = fired[TRIBO_SWITCH_TANGENT_A] ? +1.0 : -1.0;
@@ -374,8 +616,10 @@ static tribo_force_law next_phase(const tribo_dyn_params *p, const tribo_force_l
             /* slip only where the stretch leaves the limit: at a grazing crossing the first
                order can show the opposite by rounding, and a slip that starts with
                sigma vs < d(limit)/dtau never sees its slip -> stick switch, and does
-               positive work */
-            if (!stretch_leaves_limit(ph.slip_sign, ev.vs, ev.limit_rate)) {
+               positive work. (The rigid stick's constraint force has passed the limit: its
+               slip starts from rest at second order, sigma dvs/dtau >= 0, stick_rigidly.) */
+            if (old->tangent == TRIBO_TANGENT_STICK &&
+                !stretch_leaves_limit(ph.slip_sign, ev.vs, ev.limit_rate)) {
                 /* The switch was crossed by integration error alone: on the limit, the stick
                    would see it crossed again at once. It starts that error's size inside
                    (the spring energy this takes out is booked as dissipated). */
@@ -388,16 +632,27 @@ static tribo_force_law next_phase(const tribo_dyn_params *p, const tribo_force_l
         tribo_contact_eval ev;
         tribo_contact_at(p, &ph, y, &ev);
         y[TRIBO_IDX] = ph.slip_sign * ev.limit;
-        /* likewise, it sticks only where the stretch comes off the limit */
-        if (!stretch_leaves_limit(ph.slip_sign, ev.vs, ev.limit_rate)) {
+        /* likewise, it sticks only where the stretch comes off the limit; with the rigid
+           stick a slip in a contact-point lock ends where the contact point comes to rest */
+        if (slip_ends_at_rest(p, old) || !stretch_leaves_limit(ph.slip_sign, ev.vs, ev.limit_rate)) {
             ph.tangent = TRIBO_TANGENT_STICK;
             ph.slip_sign = 0.0;
+            if (p->rigid_stick && contact_point_lock(p, &ph))
+                stick_rigidly(p, y, &ph);
         }
     } else {
-        tangent_from_state(p, y, &ph);
+        settle_tangent(p, y, &ph, old);
     }
-    confirm_lock(p, y, &ph);
-    leave_rest(p, y, &ph);
+    confirm_lock(p, y, &ph, old);
+    ph.started_at_rest = tribo_touching(&ph) && ph.normal == TRIBO_NORMAL_SIGN && p->nu > 0.0 &&
+                         creeps(p, &ph, y);
+    if (ph.started_at_rest && p->rigid_stick && p->damping_point == TRIBO_DAMPING_CONTACT_POINT &&
+        1.0 - p->nu * ph.normal_sign > 0.0) {
+        /* with the rigid stick, a contact at rest whose load lies on an edge of the band and
+           moves past it creeps along that edge (the sign phase it would start rings) */
+        ph.normal = TRIBO_NORMAL_CREEP;
+        ph.started_at_rest = 0;
+    }
     return ph;
 }
 

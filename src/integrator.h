@@ -134,7 +134,8 @@ void tribo_charge_step(tribo_model *m, const tribo_point *from, tribo_point *to,
 tribo_status tribo_charge_sample(tribo_model *m, const tribo_contact_sample *sample,
                                  tribo_charge_destination where);
 
-/* The contact at state y as the sweep sees it (tribo_contact_probe). */
+/* The contact at state y as the sweep sees it (tribo_contact_probe); reads only Y, phi, U
+   and Omega of y. */
 void tribo_probe_contact(const tribo_model *m, const double *y, double *s_centre,
                          double *half_width, double *centre_speed, tribo_contact_kinematics *k);
 /* Sweep a contact over [a, b] seen through the probe (tribo_charging_sweep), to the

@@ -39,6 +39,7 @@
 #include "integrator.h"
 
 #include "contact.h"
+#include "flight.h"
 #include "force_phases.h"
 
 #include <cvode/cvode.h>
@@ -76,8 +77,12 @@ typedef struct cvode_integrator {
     SUNMatrix jac;
     SUNLinearSolver ls;
     phase phase;
-    double lock_depth; /* the delta_y a contact-point normal lock holds, from its restart */
     int replaying; /* re-taking saved steps: no counting, no charging */
+
+    /* a flight is taken in closed form (flight.h), in pieces: the open piece's start, and
+       how many pieces the flight has taken since its restart */
+    tribo_flight flight;
+    long long flight_pieces;
 
     /* where CVODE was last (re)started, and the steps taken since */
     double t_restart;
@@ -142,24 +147,45 @@ static void error_handler(int code, const char *module, const char *function, ch
         tribo_warn(c->m, c->message);
 }
 
-static int holds_depth(const cvode_integrator *c)
+/* A contact-point normal lock holds delta_y and vn = 0 (model.md §3), the rigid stick also
+   vs = 0 (§3b), a creep vn = 0 with delta_y on its band's edge. The lock's indentation does
+   not move (dG/dtau = 0); the rest CVODE follows to its tolerances, and over many steps that
+   error would add up, so the points the phase commits, restarts from and shows are put back
+   on them: V = -cx Omega; a creep's G = -Psi_N* / (1 - nu s); Y = G + h(phi); in the rigid
+   stick the contact point stopped (tribo_stop_contact_point) and the stretch at its
+   quasi-static value -Psi_T*, the energy that stretch stores booked with it, so that
+   E + work_dissipated does not change by it (the constraint forces do no work). Putting a
+   point back twice changes nothing. The centre dashpot's lock holds Y and V exactly
+   (dY/dtau = dV/dtau = 0), and G = Y - h(phi). */
+static void hold_phase(const cvode_integrator *c, double *y)
 {
-    return c->phase.normal == TRIBO_NORMAL_LOCK && tribo_touching(&c->phase) &&
-           c->dyn->damping_point == TRIBO_DAMPING_CONTACT_POINT;
-}
-
-/* A contact-point normal lock holds delta_y and vn = 0 (model.md §3). CVODE follows them
-   to its tolerances; over many steps that error would add up, so the points the lock
-   commits and restarts from are put back on them: Y = h(phi) - delta_y of the lock,
-   V = -cx Omega. (The centre dashpot's lock holds Y and V exactly: dY = dV = 0.) */
-static void hold_lock(const cvode_integrator *c, double *y)
-{
-    if (!holds_depth(c))
+    if (!tribo_touching(&c->phase) || !tribo_locked(&c->phase))
         return;
     tribo_pose g;
     tribo_pose_at(c->dyn->eps2, y[TRIBO_IPHI], &g);
-    y[TRIBO_IY] = g.h - c->lock_depth;
-    y[TRIBO_IV] = -(g.cx * y[TRIBO_IOMEGA]);
+    if (c->dyn->damping_point == TRIBO_DAMPING_CENTRE) {
+        y[TRIBO_IGAP] = y[TRIBO_IY] - g.h;
+        return;
+    }
+    const int rigid = c->phase.tangent == TRIBO_TANGENT_RIGID;
+    if (rigid)
+        tribo_stop_contact_point(c->dyn, &g, y);
+    else
+        y[TRIBO_IV] = -(g.cx * y[TRIBO_IOMEGA]);
+    if (!rigid && c->phase.normal == TRIBO_NORMAL_LOCK) {
+        y[TRIBO_IY] = g.h + y[TRIBO_IGAP];
+        return;
+    }
+    tribo_contact_eval ev;
+    tribo_contact_at(c->dyn, &c->phase, y, &ev);
+    if (c->phase.normal == TRIBO_NORMAL_CREEP)
+        y[TRIBO_IGAP] = -ev.delta_y;
+    y[TRIBO_IY] = g.h + y[TRIBO_IGAP];
+    if (rigid) {
+        const double dx = y[TRIBO_IDX];
+        y[TRIBO_IWDISS] += 0.5 * (dx * dx - ev.psi_t * ev.psi_t);
+        y[TRIBO_IDX] = -ev.psi_t;
+    }
 }
 
 /* The longest step: the time in which the steady loads (gravity and the inputs) move a
@@ -174,20 +200,22 @@ static double slow_step(const tribo_dyn_params *p)
     return fmax(1.0, sqrt(1e-3 / (p->Gamma + fabs(p->F_T) + fabs(p->F_N))));
 }
 
-/* (Re)start CVODE at (t, y) in phase ph. */
+/* (Re)start at (t, y) in phase ph: a flight in closed form, a contact with CVODE. */
 static tribo_status restart_at(cvode_integrator *c, double t, const double *y, const phase *ph)
 {
     tribo_model *m = c->m;
     c->phase = *ph;
-    if (holds_depth(c)) {
-        tribo_pose g;
-        tribo_pose_at(c->dyn->eps2, y[TRIBO_IPHI], &g);
-        c->lock_depth = g.h - y[TRIBO_IY];
-    }
     c->t_restart = t;
     memcpy(c->y_restart, y, sizeof c->y_restart);
     c->steps_since_restart = 0;
     c->open = 0;
+    if (!tribo_touching(ph)) {
+        tribo_flight_start(&c->flight, c->dyn, t, y, c->n);
+        c->flight_pieces = 0;
+        if (!c->replaying)
+            tribo_count(m, TRIBO_COUNT_RESTARTS, 1);
+        return TRIBO_OK;
+    }
     memcpy(N_VGetArrayPointer(c->y), y, (size_t)c->n * sizeof(double));
     int dir[N_ROOTS];
     tribo_switch_directions(c->dyn, ph, dir);
@@ -297,15 +325,21 @@ static void describe_state(const cvode_integrator *c, const double *y, char *buf
 {
     const phase *ph = &c->phase;
     snprintf(buf, n,
-             "X = %.9g, Y = %.9g, phi = %.9g, U = %.9g, V = %.9g, Omega = %.9g, delta_x = %.9g; "
+             "X = %.9g, Y = %.9g, clearance of the lowest point G = %.9g, phi = %.9g, U = %.9g, "
+             "V = %.9g, Omega = %.9g, delta_x = %.9g; "
              "phase: %s%s%s",
-             y[TRIBO_IX], y[TRIBO_IY], y[TRIBO_IPHI], y[TRIBO_IU], y[TRIBO_IV], y[TRIBO_IOMEGA],
+             y[TRIBO_IX], y[TRIBO_IY], y[TRIBO_IGAP], y[TRIBO_IPHI], y[TRIBO_IU], y[TRIBO_IV],
+             y[TRIBO_IOMEGA],
              y[TRIBO_IDX], tribo_touching(ph) ? "contact, " : "flight",
              !tribo_touching(ph) ? ""
              : ph->normal == TRIBO_NORMAL_LOCK ? "normal lock, "
+             : ph->normal == TRIBO_NORMAL_CREEP ? (ph->normal_sign > 0 ? "creeping out, " : "creeping in, ")
              : ph->normal_sign > 0 ? "moving out, "
                                        : "moving in, ",
-             !tribo_touching(ph) ? "" : ph->tangent == TRIBO_TANGENT_STICK ? "stick" : "slip");
+             !tribo_touching(ph)                    ? ""
+             : ph->tangent == TRIBO_TANGENT_STICK ? "stick"
+             : ph->tangent == TRIBO_TANGENT_RIGID ? "rigid stick"
+                                                  : "slip");
 }
 
 static tribo_status fail_at(cvode_integrator *c, double t, const double *y, const char *why)
@@ -320,8 +354,48 @@ static void capture_interpolant(cvode_integrator *c);
 static void find_grazing_switch(cvode_integrator *c, double t_start);
 
 /* Take one CVODE step from the end of the last one; it becomes the open step. */
+/* The longest piece of a flight, in units of slow_step, and the most evaluations of the
+   clearance a piece spends looking for the flight's end before it ends where it got to (so
+   that a flight that never comes down, or spins fast, is taken in bounded pieces). */
+#define FLIGHT_PIECE_STEPS 1000.0
+#define FLIGHT_PIECE_EVALUATIONS 64
+/* An evaluation of the clearance costs about as much as this many RK4 steps. */
+#define FLIGHT_EVALUATION_WORK 0.2
+
+/* The next piece of a flight: from the end of the last one (or the restart), to the flight's
+   end (flight.h) or as far as the piece may go; it becomes the open step. */
+static tribo_status take_flight_piece(cvode_integrator *c)
+{
+    if (c->flight_pieces++ > 0)
+        tribo_flight_start(&c->flight, c->dyn, c->t_end, c->y_end, c->n);
+    const double t0 = c->flight.t0;
+    tribo_flight_end why;
+    long used;
+    const double t_end = tribo_flight_end_of(&c->flight, c->dyn, t0,
+                                             t0 + FLIGHT_PIECE_STEPS * slow_step(c->dyn),
+                                             FLIGHT_PIECE_EVALUATIONS, &why, &used);
+    c->steps_since_restart++;
+    c->open = 1;
+    c->t_end = t_end;
+    tribo_flight_state(&c->flight, c->dyn, t_end, c->y_end);
+    for (int i = 0; i < N_ROOTS; i++)
+        c->roots[i] = 0;
+    c->ends_at_root = why != TRIBO_FLIGHT_GOES_ON;
+    if (why == TRIBO_FLIGHT_CONTACT)
+        c->roots[TRIBO_SWITCH_CONTACT] = +1;
+    else if (why == TRIBO_FLIGHT_EXIT)
+        c->roots[TRIBO_SWITCH_EXIT] = -1;
+    if (!c->replaying) {
+        tribo_count(c->m, TRIBO_COUNT_STEPS, 1);
+        tribo_work(c->m, 1.0 + FLIGHT_EVALUATION_WORK * (double)used);
+    }
+    return TRIBO_OK;
+}
+
 static tribo_status take_step(cvode_integrator *c)
 {
+    if (!tribo_touching(&c->phase))
+        return take_flight_piece(c);
     double t_ret;
     /* in one-step mode the target only sets the direction and the first step's scale */
     const int flag = CVode(c->mem, c->t_restart + 1.0, c->y, &t_ret, CV_ONE_STEP);
@@ -336,7 +410,7 @@ static tribo_status take_step(cvode_integrator *c)
     c->open = 1;
     c->t_end = t_ret;
     memcpy(c->y_end, N_VGetArrayPointer(c->y), (size_t)c->n * sizeof(double));
-    hold_lock(c, c->y_end);
+    hold_phase(c, c->y_end);
     c->ends_at_root = flag == CV_ROOT_RETURN;
     if (c->ends_at_root)
         CVodeGetRootInfo(c->mem, c->roots);
@@ -350,15 +424,23 @@ static tribo_status take_step(cvode_integrator *c)
     return TRIBO_OK;
 }
 
+static double dense_component(const cvode_integrator *c, double u, int i)
+{
+    double v = c->taylor[c->taylor_order][i];
+    for (int k = c->taylor_order - 1; k >= 0; k--)
+        v = v * u + c->taylor[k][i];
+    return v;
+}
+
 static void dense(cvode_integrator *c, double t, double *y)
 {
-    const double u = t - c->taylor_t;
-    for (int i = 0; i < c->n; i++) {
-        double v = c->taylor[c->taylor_order][i];
-        for (int k = c->taylor_order - 1; k >= 0; k--)
-            v = v * u + c->taylor[k][i];
-        y[i] = v;
+    if (!tribo_touching(&c->phase)) {
+        tribo_flight_state(&c->flight, c->dyn, t, y);
+        return;
     }
+    const double u = t - c->taylor_t;
+    for (int i = 0; i < c->n; i++)
+        y[i] = dense_component(c, u, i);
 }
 
 /* CVODE sees a switch only where a root function has changed sign between the ends of a
@@ -412,7 +494,7 @@ static void find_grazing_switch(cvode_integrator *c, double t_start)
         }
         c->t_end = b;
         dense(c, b, c->y_end);
-        hold_lock(c, c->y_end);
+        hold_phase(c, c->y_end);
         c->ends_at_root = 1;
         for (int i = 0; i < N_ROOTS; i++)
             c->roots[i] = i == found ? dir[i] : 0;
@@ -441,9 +523,16 @@ static void probe(void *ctx, double t, double *s_centre, double *half_width, dou
                   tribo_contact_kinematics *k)
 {
     cvode_integrator *c = ctx;
+    /* the components tribo_probe_contact reads: the sweep probes often */
+    static const int read[] = {TRIBO_IGAP, TRIBO_IPHI, TRIBO_IU, TRIBO_IOMEGA};
     double y[TRIBO_NSTATE_MAX];
-    dense(c, t, y);
+    const double u = t - c->taylor_t;
+    for (size_t i = 0; i < sizeof read / sizeof read[0]; i++)
+        y[read[i]] = dense_component(c, u, read[i]);
     tribo_probe_contact(c->m, y, s_centre, half_width, centre_speed, k);
+    /* the rigid stick does not slip: no frictional work (model.md §3b) */
+    if (c->phase.tangent == TRIBO_TANGENT_RIGID && tribo_touching(&c->phase))
+        k->vs = 0.0;
 }
 
 /* Charge over [a, b] inside the open step, advancing p's quadratures and charge globals:
@@ -463,7 +552,7 @@ static void fill_point(cvode_integrator *c, tribo_point *p, double t, const doub
 {
     p->t = t;
     memcpy(p->y, y, sizeof p->y);
-    hold_lock(c, p->y);
+    hold_phase(c, p->y);
     tribo_contact_at(c->dyn, &c->phase, p->y, &p->contact);
     if (tribo_touching(&c->phase)) {
         /* the phase decides contact, also where rounding makes delta_y = -1e-17 */
@@ -622,7 +711,7 @@ typedef struct saved {
     double y_restart[TRIBO_NSTATE_MAX];
     long long steps_since_restart;
     long long open;
-    long long contact, normal, tangent;
+    long long contact, normal, tangent, started_at_rest;
     double normal_sign, slip_sign;
     double last_event_t;
     long long events_at_instant, events_in_a_row;
@@ -648,6 +737,7 @@ static void state_save(const void *data, unsigned char *b)
     s.tangent = c->phase.tangent;
     s.normal_sign = c->phase.normal_sign;
     s.slip_sign = c->phase.slip_sign;
+    s.started_at_rest = c->phase.started_at_rest;
     s.last_event_t = c->last_event_t;
     s.events_at_instant = c->events_at_instant;
     s.events_in_a_row = c->events_in_a_row;
@@ -660,9 +750,17 @@ static int saved_valid(const cvode_integrator *c, const saved *s)
     int ok = isfinite(s->t_restart) && s->steps_since_restart >= 0 &&
              s->steps_since_restart <= STEPS_PER_RESTART && (s->open == 0 || s->open == 1) &&
              (s->contact == 0 || s->contact == 1) &&
-             (s->normal == TRIBO_NORMAL_SIGN || s->normal == TRIBO_NORMAL_LOCK) &&
-             (s->tangent == TRIBO_TANGENT_STICK || s->tangent == TRIBO_TANGENT_SLIP) &&
+             (s->normal == TRIBO_NORMAL_SIGN || s->normal == TRIBO_NORMAL_LOCK ||
+              (s->normal == TRIBO_NORMAL_CREEP && c->dyn->rigid_stick && s->contact == 1 &&
+               c->dyn->damping_point == TRIBO_DAMPING_CONTACT_POINT &&
+               (s->normal_sign == 1.0 || s->normal_sign == -1.0))) &&
+             (s->tangent == TRIBO_TANGENT_STICK || s->tangent == TRIBO_TANGENT_SLIP ||
+              (s->tangent == TRIBO_TANGENT_RIGID && c->dyn->rigid_stick && s->contact == 1 &&
+               (s->normal == TRIBO_NORMAL_LOCK || s->normal == TRIBO_NORMAL_CREEP) &&
+               c->dyn->damping_point == TRIBO_DAMPING_CONTACT_POINT)) &&
              (s->normal_sign == 1.0 || s->normal_sign == -1.0 || s->normal_sign == 0.0) &&
+             (s->started_at_rest == 0 ||
+              (s->started_at_rest == 1 && s->contact == 1 && s->normal == TRIBO_NORMAL_SIGN)) &&
              (s->slip_sign == 1.0 || s->slip_sign == -1.0 || s->slip_sign == 0.0) &&
              (isfinite(s->last_event_t) || s->last_event_t == -INFINITY) &&
              s->events_at_instant >= 0 && s->events_at_instant <= MAX_EVENTS_AT_ONE_INSTANT &&
@@ -690,6 +788,7 @@ static tribo_status state_load(tribo_model *m, void *data, const unsigned char *
     ph.tangent = (tribo_tangent_rule)s.tangent;
     ph.normal_sign = s.normal_sign;
     ph.slip_sign = s.slip_sign;
+    ph.started_at_rest = (int)s.started_at_rest;
     /* CVODE is deterministic: the same restart and steps give the same open step. They must
        reach the committed point, time and motion (but for the stretch, which a slip holds at
        its limit there): the steps before the open one end there, and the open one holds the

@@ -23,7 +23,7 @@
  * On a chute of finite length (model.md §9) a step that would carry the centre past its end
  * is cut where it crosses X = chute_length (end_run): the run ends there. With run_end =
  * first_liftoff a step from a point in contact to one in flight is cut the same way where the
- * lowest point's clearance Y - h crosses 0, and the run ends there.
+ * lowest point's clearance G crosses 0, and the run ends there.
  */
 #include "integrator.h"
 
@@ -38,7 +38,7 @@ typedef struct fixed_step {
     long long k;    /* steps taken on the grid */
 } fixed_step;
 
-static const tribo_force_law LAW = {TRIBO_CONTACT_BY_GEOMETRY, TRIBO_NORMAL_REGULARISED, 0.0, TRIBO_TANGENT_CLAMP, 0.0};
+static const tribo_force_law LAW = {TRIBO_CONTACT_BY_GEOMETRY, TRIBO_NORMAL_REGULARISED, 0.0, TRIBO_TANGENT_CLAMP, 0.0, 0};
 
 /* Within this margin of RK4's real stability limit 2.79 */
 #define STABLE_LAMBDA_H 2.0
@@ -54,7 +54,7 @@ static int substeps_needed(const tribo_dyn_params *dp, const tribo_point *p, dou
     const tribo_contact_eval *c = &p->contact;
     /* over the step delta_y and vn move by at most their rates times h */
     const double dy_max =
-        c->pose.h - y[TRIBO_IY] + h * (fabs(y[TRIBO_IV]) + fabs(c->pose.cx * y[TRIBO_IOMEGA]));
+        -y[TRIBO_IGAP] + h * (fabs(y[TRIBO_IV]) + fabs(c->pose.cx * y[TRIBO_IOMEGA]));
     if (dy_max <= 0.0)
         return 1;
     const double force_max = dy_max * (1.0 + dp->nu);
@@ -151,7 +151,7 @@ static void step(tribo_model *m, const tribo_point *p, double h, tribo_point *ne
 
 /* The ends of a run within a step (model.md §9), each a function of the point that crosses
    from below 0 to 0 or above there: the centre passing the end of the chute, X - L; the
-   contact lost, the lowest point's clearance Y - h (the contact is geometric: delta_y > 0). */
+   contact lost, the lowest point's clearance G (the contact is geometric: delta_y > 0). */
 typedef double (*end_function)(const tribo_model *m, const tribo_point *p);
 
 static double past_the_end(const tribo_model *m, const tribo_point *p)
@@ -162,7 +162,7 @@ static double past_the_end(const tribo_model *m, const tribo_point *p)
 static double clearance(const tribo_model *m, const tribo_point *p)
 {
     (void)m;
-    return p->y[TRIBO_IY] - p->contact.pose.h;
+    return p->y[TRIBO_IGAP];
 }
 
 /* Whether the run may end within any step: a step is then booked only once it is known not to. */
@@ -175,7 +175,8 @@ static int run_can_end(const tribo_model *m)
    past it: its length is bracketed, by false position with the Illinois rule, to the
    rounding of the time, between a step that ends before the crossing and one that ends at
    or past it; the latter is the step taken. Deterministic: the same for every advance that
-   meets it. */
+   meets it. Each length tried is the one an advance to its end time would take, t - p->t,
+   so that advancing to the end found is this step bit for bit. */
 static double crossing_step(tribo_model *m, const tribo_point *p, double h_past, end_function fn)
 {
     tribo_point probe;
@@ -188,6 +189,9 @@ static double crossing_step(tribo_model *m, const tribo_point *p, double h_past,
         double h = hi - f_hi * (hi - lo) / (f_hi - f_lo);
         if (!(h > lo && h < hi))
             h = 0.5 * (lo + hi);
+        h = (p->t + h) - p->t;
+        if (!(h > lo && h < hi))
+            break; /* the bracket is one rounding of the time wide */
         step(m, p, h, &probe, &sample, 0);
         const double f = fn(m, &probe);
         if (f >= 0.0) {

@@ -46,6 +46,7 @@ void tribo_derive_params(tribo_model *m)
     d->atol = s->atol;
     d->chute_length = s->chute_length;
     d->end_at_liftoff = s->run_end == TRIBO_RUN_END_FIRST_LIFTOFF;
+    d->rigid_stick = s->stick_model == TRIBO_STICK_RIGID;
 }
 
 /* The initial point of the scene (model.md §7 by default); its contact is evaluated by the
@@ -63,6 +64,7 @@ static void initial_point(const tribo_model *m, tribo_point *p)
     const double direction = beta + s->drop_angle;
     p->y[TRIBO_IX] = s->X0;
     p->y[TRIBO_IY] = pose.h + s->gap0;
+    p->y[TRIBO_IGAP] = s->gap0;
     p->y[TRIBO_IPHI] = s->phi0;
     p->y[TRIBO_IU] = s->drop_speed * sin(direction);
     p->y[TRIBO_IV] = -s->drop_speed * cos(direction);
@@ -154,7 +156,11 @@ void tribo_book_interval(tribo_model *m, const tribo_point *from, tribo_point *t
     const int in_contact = to->contact.in_contact;
     to->contact_time = from->contact_time + (in_contact ? h : 0.0);
     to->motion = from->motion;
-    if (in_contact && !from->contact.in_contact)
+    /* an impact is a contact made while the contact point approaches the plate, vn < 0 beyond
+       its rounding (model.md §3b): a particle set down on it makes none */
+    const double spin = to->contact.pose.cx * to->y[TRIBO_IOMEGA];
+    if (in_contact && !from->contact.in_contact &&
+        to->y[TRIBO_IV] + spin < -tribo_velocity_rounding(&m->dyn, to->y[TRIBO_IV], spin))
         to->motion.impacts++;
     if (!(h > 0.0))
         return;
@@ -249,11 +255,12 @@ void tribo_probe_contact(const tribo_model *m, const double *y, double *s_centre
     const double t_c = tribo_contact_parameter(eps, &g);
     const double rho_c = tribo_contact_curvature_radius(eps2, g.h);
     /* in a contact phase the contact exists even where rounding gives delta_y <= 0 */
-    const double dy = fmax(0.0, g.h - y[TRIBO_IY]);
+    const double dy = fmax(0.0, -y[TRIBO_IGAP]);
     *s_centre = tribo_arclength_at(&m->charging.arc, t_c);
     *half_width = sqrt(rho_c * dy);
-    /* ds_c/dtau = |boundary speed| |dt_c/dphi| |Omega|, dt_c/dphi = -eps / h^2 */
-    *centre_speed = tribo_boundary_speed(eps2, t_c) * eps / (g.h * g.h) * fabs(y[TRIBO_IOMEGA]);
+    /* ds_c/dtau = |boundary speed at t_c| |dt_c/dphi| |Omega| = (eps / h)(eps / h^2) |Omega|:
+       the contact runs along the boundary at the radius of curvature times the spin */
+    *centre_speed = rho_c * fabs(y[TRIBO_IOMEGA]);
     k->mu = m->dyn.mu;
     k->delta_y = dy;
     k->vs = y[TRIBO_IU] + g.h * y[TRIBO_IOMEGA];

@@ -223,6 +223,24 @@ tribo_status tribo_scene_check_combinations(const tribo_scene *scene, char *msg,
                      scene->X0, scene->chute_length);
         return TRIBO_ERR_INVALID_ARGUMENT;
     }
+    /* the rigid stick is a phase of the event-driven integrator, held by the contact point's
+       normal lock (model.md §3b): the fixed step has no phases, and the centre dashpot's
+       lock does not hold the contact point */
+    if (scene->stick_model == TRIBO_STICK_RIGID && scene->integrator == TRIBO_INTEGRATOR_FIXED_STEP) {
+        if (msg && msg_size)
+            snprintf(msg, msg_size,
+                     "stick_model = 1 (rigid) is invalid with integrator = 0 (fixed_step): the rigid "
+                     "stick needs CVODE (integrator = 1 or 2), or set stick_model = 0 (compliant)");
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    }
+    if (scene->stick_model == TRIBO_STICK_RIGID && scene->damping_point == TRIBO_DAMPING_CENTRE) {
+        if (msg && msg_size)
+            snprintf(msg, msg_size,
+                     "stick_model = 1 (rigid) is invalid with damping_point = 1 (centre): the rigid "
+                     "stick needs the contact point's normal lock (damping_point = 0), or set "
+                     "stick_model = 0 (compliant)");
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    }
     return TRIBO_OK;
 }
 

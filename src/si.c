@@ -93,7 +93,7 @@ static const struct mapping {
     {"dt", "dt", SAME},                {"rtol", "rtol", SAME},
     {"atol", "atol", SAME},            {"v_reg", "v_reg", SAME},
     {"damping_point", "damping_point", SAME}, {"work_limit", "work_limit", SAME},
-    {"run_end", "run_end", SAME},
+    {"run_end", "run_end", SAME}, {"stick_model", "stick_model", SAME},
 };
 #define N_MAP (sizeof MAP / sizeof MAP[0])
 

@@ -77,6 +77,13 @@ typedef enum tribo_damping_point {
     TRIBO_DAMPING_CENTRE = 1         /* the centre's V: the paper's text read literally    */
 } tribo_damping_point;
 
+/* How a contact at rest sticks (parameter stick_model, docs/model.md §3b). */
+typedef enum tribo_stick_model {
+    TRIBO_STICK_COMPLIANT = 0, /* the tangential spring of §3 at every scale (the paper's law) */
+    TRIBO_STICK_RIGID = 1      /* in a contact-point normal lock the stick is a constraint,
+                                  vs = 0: the rigid-body limit of the spring */
+} tribo_stick_model;
+
 #define TRIBO_CTYPE_REAL double
 #define TRIBO_CTYPE_INTEGER int
 #define TRIBO_CTYPE_COUNT int

@@ -40,7 +40,11 @@ Test(cvode, contact_onset_at_the_analytic_drop_time)
         const double err = fabs(measured - t_star);
         cr_expect(err <= 10 * rtols[i] * t_star, "rtol %g: onset at %.15g, analytic %.15g", rtols[i],
                   measured, t_star);
-        cr_expect(err <= previous, "error grows as rtol shrinks: %g after %g", err, previous);
+        /* the fall is a parabola, which Adams integrates exactly: below the rounding of the
+           times read back (measured 3.1e-14 and 3.2e-14 at rtol 1e-8 and 1e-10) the error
+           need not shrink */
+        cr_expect(err <= previous || err <= 1e-13, "error grows as rtol shrinks: %g after %g", err,
+                  previous);
         previous = err;
         tribo_free(m);
     }

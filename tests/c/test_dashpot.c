@@ -293,7 +293,7 @@ Test(dashpot, no_lock_where_slip_makes_A_non_positive)
 {
     tribo_scene s = scene_of("epsilon=0.3 mu=3 nu=1");
     tribo_dyn_params p = params_of(&s);
-    const tribo_force_law slip_in = {TRIBO_CONTACT_ON, TRIBO_NORMAL_SIGN, -1.0, TRIBO_TANGENT_SLIP, 1.0};
+    const tribo_force_law slip_in = {TRIBO_CONTACT_ON, TRIBO_NORMAL_SIGN, -1.0, TRIBO_TANGENT_SLIP, 1.0, 0};
     const int fired[TRIBO_N_SWITCHES] = {[TRIBO_SWITCH_NORMAL_A] = 1};
     int found = 0;
     for (int j = -150; j <= 150 && !found; j++) {
@@ -308,6 +308,7 @@ Test(dashpot, no_lock_where_slip_makes_A_non_positive)
         double y[TRIBO_NSTATE_MAX] = {0};
         y[TRIBO_IPHI] = phi;
         y[TRIBO_IY] = g.h - dy;
+        y[TRIBO_IGAP] = -dy;
         y[TRIBO_IOMEGA] = Om;
         y[TRIBO_IV] = -(g.cx * Om); /* vn = 0 */
         y[TRIBO_IU] = 0.05 - g.h * Om; /* slipping forwards */
@@ -353,16 +354,17 @@ Test(dashpot, runs_visit_A_non_positive_without_a_lock_there, .timeout = 60)
                     continue;
                 const double dx = tribo_get(m, TRIBO_Q_DELTA_X);
                 const tribo_force_law slip = {TRIBO_CONTACT_ON, TRIBO_NORMAL_LOCK, 0.0,
-                                              TRIBO_TANGENT_SLIP, dx > 0.0 ? 1.0 : -1.0};
+                                              TRIBO_TANGENT_SLIP, dx > 0.0 ? 1.0 : -1.0, 0};
                 double y[TRIBO_NSTATE_MAX] = {0}, A, g[TRIBO_N_SWITCHES];
                 y[TRIBO_IPHI] = tribo_get(m, TRIBO_Q_PHI);
+                tribo_pose pose;
+                tribo_pose_at(p.eps2, y[TRIBO_IPHI], &pose);
                 y[TRIBO_IY] = tribo_get(m, TRIBO_Q_Y);
+                y[TRIBO_IGAP] = y[TRIBO_IY] - pose.h;
                 y[TRIBO_IOMEGA] = tribo_get(m, TRIBO_Q_OMEGA);
                 y[TRIBO_IV] = tribo_get(m, TRIBO_Q_V);
                 y[TRIBO_IU] = tribo_get(m, TRIBO_Q_U);
                 y[TRIBO_IDX] = dx;
-                tribo_pose pose;
-                tribo_pose_at(p.eps2, y[TRIBO_IPHI], &pose);
                 tribo_lock_force(&p, &slip, &pose, y, &A);
                 if (locked(m)) {
                     slipping_locks++;

@@ -7,7 +7,7 @@
 #include "support.h"
 #include "tribo.h"
 
-static const tribo_force_law LAW = {TRIBO_CONTACT_BY_GEOMETRY, TRIBO_NORMAL_REGULARISED, 0.0, TRIBO_TANGENT_CLAMP, 0.0};
+static const tribo_force_law LAW = {TRIBO_CONTACT_BY_GEOMETRY, TRIBO_NORMAL_REGULARISED, 0.0, TRIBO_TANGENT_CLAMP, 0.0, 0};
 
 static tribo_dyn_params params(double eps, double mu, double nu)
 {
@@ -33,6 +33,7 @@ static void state(double *y, double eps, double phi, double depth, double U, dou
     for (int i = 0; i < TRIBO_NSTATE_MAX; i++)
         y[i] = 0.0;
     y[TRIBO_IY] = g.h - depth;
+    y[TRIBO_IGAP] = -depth;
     y[TRIBO_IPHI] = phi;
     y[TRIBO_IU] = U;
     y[TRIBO_IV] = V;

@@ -344,6 +344,12 @@ Test(hostile, every_parameter_at_the_ends_of_its_range_computes, .timeout = 240)
                 tribo_param_write(&s, p, v);
                 char err[512];
                 tribo_model *m = tribo_create(&s, err, sizeof err);
+                if (s.stick_model == TRIBO_STICK_RIGID && s.integrator == TRIBO_INTEGRATOR_FIXED_STEP) {
+                    /* the one combination refused: the fixed step has no rigid stick */
+                    cr_expect(!m && strstr(err, "stick_model = 1") == err, "%s", err);
+                    tribo_free(m);
+                    continue;
+                }
                 cr_assert(m, "%s = %g: %s", p->name, v, err);
                 /* a short run: at most ~1e5 fixed steps */
                 const double t = fmin(1.0, 1e5 * s.dt);

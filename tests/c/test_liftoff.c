@@ -49,11 +49,12 @@ Test(liftoff, the_first_liftoff_ends_the_run_where_the_contact_is_lost)
         cr_expect_eq(tribo_get(m, TRIBO_Q_IN_CONTACT), 0.0);
         cr_expect_eq(tribo_get(m, TRIBO_Q_IMPACTS), 1.0);
         /* against the exact contact, measured (fixed step dt 1e-3 / CVODE Adams / BDF at rtol
-           1e-9): the lift-off time 4.5e-9 / 4.8e-9 / 2.9e-7, the speed 2.4e-10 / 1.9e-10 /
-           6.0e-9, the contact time 1.5e-4 (the fixed step books contact by whole steps) /
-           4.8e-9 / 2.4e-7; bounds about 4x those */
-        const double tol_t[] = {2e-8, 2e-8, 1.2e-6}, tol_v[] = {1e-9, 1e-9, 2.5e-8},
-                     tol_contact[] = {1e-3, 2e-8, 1e-6};
+           1e-9): the lift-off time 4.5e-9 / 1.8e-8 / 6.6e-9, the speed 2.4e-10 / 2.8e-9 /
+           2.7e-9, the contact time 1.5e-4 (the fixed step books contact by whole steps) /
+           1.8e-8 / 3.1e-9; bounds about 4x those. (CVODE's errors follow rtol: at 1e-7 and
+           1e-11 the speed's are 8.4e-8 and 1.9e-11 for Adams.) */
+        const double tol_t[] = {2e-8, 8e-8, 2.5e-8}, tol_v[] = {1e-9, 1.2e-8, 1.2e-8},
+                     tol_contact[] = {1e-3, 8e-8, 1.2e-8};
         const double t = tribo_get(m, TRIBO_Q_TIME);
         cr_expect(fabs(t - t_lift) <= tol_t[k], "integrator %d: lift-off at %.12g, exact %.12g",
                   s.integrator, t, t_lift);
@@ -62,10 +63,11 @@ Test(liftoff, the_first_liftoff_ends_the_run_where_the_contact_is_lost)
                   tribo_get(m, TRIBO_Q_CONTACT_TIME), contact_duration());
         cr_expect(fabs(tribo_get(m, TRIBO_Q_V) - v) <= tol_v[k], "integrator %d: V = %.12g, exact %.12g",
                   s.integrator, tribo_get(m, TRIBO_Q_V), v);
-        /* at the lowest point's clearance 0 */
+        /* at the lowest point's clearance 0: the run ends where the integrated clearance G
+           reaches 0 from below; the height Y is integrated beside it, and Y - h differs from G
+           by their roundings (measured -3.3e-16 for the fixed step) */
         const double clearance = tribo_get(m, TRIBO_Q_Y) - 1.0;
-        cr_expect(clearance >= 0.0 && clearance <= 1e-12, "integrator %d: clearance %.3g",
-                  s.integrator, clearance);
+        cr_expect(fabs(clearance) <= 1e-12, "integrator %d: clearance %.3g", s.integrator, clearance);
 
         /* every output frozen there, nothing can be changed, a reset runs it again */
         double before[TRIBO_Q_COUNT];

@@ -76,7 +76,7 @@ Test(si, the_shared_dimensionless_parameters_are_the_models)
                       si[i].variability == model->variability,
                   "%s differs from the model's", si[i].name);
     }
-    cr_expect_eq(shared, 16); /* run_end (issue 13) is the 16th */
+    cr_expect_eq(shared, 17);
 }
 
 Test(si, every_si_value_out_of_range_is_refused_with_its_message)

@@ -16,12 +16,19 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 MODEL_DESCRIPTION = os.path.join(ROOT, "modelDescription", "fmi3.xml")
 
 
+def rigid_stick_valid(values):
+    return values["stick_model"] == 0 or (values["integrator"] != 0 and
+                                           values["damping_point"] == 0)
+
+
 class Dimensionless:
     """The model's own variables."""
 
     def scene_valid(self, values):
-        """The drop lies on the chute (the core's one combination)."""
-        return values["X0"] < values["chute_length"]
+        """The core's combinations: the drop lies on the chute, and the rigid stick
+        (docs/model.md section 3b) needs the event-driven integrator and the dashpot at
+        the centre."""
+        return values["X0"] < values["chute_length"] and rigid_stick_valid(values)
 
     def inputs_valid(self, values):
         return True
@@ -58,7 +65,8 @@ class SI:
            "n_segments": ("n_segments", "same"), "charge_model": ("charge_model", "same"),
            "integrator": ("integrator", "same"), "dt": ("dt", "same"), "rtol": ("rtol", "same"),
            "atol": ("atol", "same"), "v_reg": ("v_reg", "same"),
-           "damping_point": ("damping_point", "same"), "work_limit": ("work_limit", "same")}
+           "damping_point": ("damping_point", "same"), "stick_model": ("stick_model", "same"),
+           "work_limit": ("work_limit", "same")}
     INPUTS = {"F_T_ext": "F_T_ext", "F_N_ext": "F_N_ext"}
 
     def __init__(self):
@@ -93,7 +101,7 @@ class SI:
         return math.isfinite(x) and lo <= x <= hi
 
     def scene_valid(self, values):
-        if not values["x0"] < values["chute_length"]:
+        if not (values["x0"] < values["chute_length"] and rigid_stick_valid(values)):
             return False
         u = self.units(values)
         for si, (model, how) in self.MAP.items():

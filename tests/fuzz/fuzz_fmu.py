@@ -315,10 +315,13 @@ class Fuzzer:
     def base_states(self, count):
         """Instances in states worth mutating: each integrator, off the step grid, in
         Step Mode, Initialization Mode, Instantiated, and (FMI 2.0) a discarded step."""
-        scenes = [{"integrator": 0}, {"integrator": 1}, {"integrator": 2}, {"integrator": 1, "mu": 1.0, "nu": 1.0},
-                  {"integrator": 0, "work_limit": 50, "discard": True}, {"lifecycle": INITIALIZATION},
+        compliant = {"integrator": 0, "stick_model": 0}  # the fixed step has no rigid stick
+        scenes = [compliant, {"integrator": 1}, {"integrator": 2},
+                  {"integrator": 1, "stick_model": 1, "mu": 1.0, "epsilon": 0.5},
+                  {"integrator": 1, "mu": 1.0, "nu": 1.0},
+                  {**compliant, "work_limit": 50, "discard": True}, {"lifecycle": INITIALIZATION},
                   {"lifecycle": INSTANTIATED}, {"integrator": 1, "chute_length": 0.01},
-                  {"integrator": 0, "chute_length": 0.01}]
+                  {**compliant, "chute_length": 0.01}]
         for scene in scenes[:count]:
             inst = Instance(self.fmu_dir, self.version)
             model = Model(inst.md, self.fmu_dir, self.version, False)

@@ -14,31 +14,9 @@
    recorded again with the default, the dashpot on the contact point
    (study_contact_point/...).
 
-   Re-recorded on purpose (each time checked by a record whose hash leaves the change out):
-   - issue 10, the output Sigma_mean (vr 230): every "hash" line changes (the hash covers
-     every output) and each run gains a "Sigma_mean" line; no other value moved (the hash
-     without Sigma_mean reproduced the previous golden.txt byte for byte).
-   - issue 10, the fixed step books the frictional work of a step that ends in flight into
-     Sigma_s (model.md §5b; it was lost): Sigma_s, Q_sliding, Sigma_mean and the sliding
-     segment array moved in the fixed-step runs that lift off (the study grid's low
-     friction, 18 of the stability cases), by at most 1.6e-7 relative (Sigma_s); nothing
-     of CVODE's runs, and no other output, moved (checked by diffing the records).
-   - issue 10, a contact point leaving vn = 0 in a sign phase starts vn a tolerance's size
-     on its side (force_phases.c, leave_rest): only study_contact_point/ moved.
-   - issue 10, a stick/slip switch that ties at first order sticks; a contact-point lock is
-     decided under the tangential rule it would have: only study_contact_point/ moved.
-   - issue 11, the charge means are compensated running sums (O(1) outputs): Q_static,
-     Q_sliding and Sigma_mean moved in their last bits (at most 1.9e-14 relative); every
-     other output at every run's last sample is bit-identical.
-   - issue 12, CVODE's longest step grows as 1/sqrt(Gamma) below Gamma = 1e-3 (it was 1 at
-     every Gamma): only the stability case Gamma = 1e-6 moved, with CVODE (Adams and BDF).
-   - issue 12, the chute (model.md §9) and the outputs exited, exit_time and impacts (vr
-     231-233): every "hash" line changes and each run gains their lines; nothing else moved
-     (the record with a hash that leaves them out reproduced the previous golden.txt byte for
-     byte).
-   - issue 13, the output lifted_off (vr 234, with the parameter run_end): every "hash" line
-     changes and each run gains its line; nothing else moved (the record with a hash that
-     leaves it out reproduced the previous golden.txt byte for byte). */
+   A change that moves the record on purpose re-records it and says in its commit message
+   what moved, by how much and why (git log tests/regression/golden.txt), checked where it
+   can be by a record whose hash leaves the change out. */
 #include <inttypes.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -46,6 +24,7 @@
 #include <string.h>
 
 #include "matrix.h"
+#include "physical_scale.h"
 
 static uint64_t fnv1a(const void *data, size_t n, uint64_t h)
 {
@@ -127,6 +106,49 @@ static void record_study(const char *prefix, int damping_point)
     }
 }
 
+/* Physical set-ups with the SI front end's defaults (the rigid stick, CVODE): the reference
+   case, the micro-scale one and the grid of Young's moduli and sizes, each sampled at
+   0.01, 0.03, 0.1 and 0.3 s and at the chute's exit, runs named physical/<n>. */
+static void record_physical(void)
+{
+    const double times_s[] = {0.01, 0.03, 0.1, 0.3, 10.0};
+    const int n_times = sizeof times_s / sizeof *times_s;
+    char settings[64][160];
+    int n = 0;
+    snprintf(settings[n++], sizeof settings[0], "%s", PHYSICAL_REFERENCE);
+    snprintf(settings[n++], sizeof settings[0], "%s", PHYSICAL_MICRO);
+    for (int e = 0; e < N_PHYSICAL_MODULI; e++)
+        for (int z = 0; z < N_PHYSICAL_SIZES; z++)
+            snprintf(settings[n++], sizeof settings[0],
+                     "youngs_modulus_particle=%.17g semi_major_axis=%.17g", PHYSICAL_MODULI[e],
+                     0.5 * PHYSICAL_SIZES[z]);
+    for (int c = 0; c < n; c++) {
+        char run[32], err[512];
+        snprintf(run, sizeof run, "physical/%d", c);
+        tribo_si_derived d;
+        if (physical_derive(settings[c], &d, err, sizeof err) != TRIBO_OK) {
+            printf("%s derive-failed %s\n", run, err);
+            continue;
+        }
+        tribo_model *m = tribo_create(&d.scene, err, sizeof err);
+        if (!m) {
+            printf("%s create-failed %s\n", run, err);
+            continue;
+        }
+        for (int k = 0; k < n_times; k++) {
+            const tribo_status status = tribo_advance_fully(m, times_s[k] / d.t_star);
+            if (status != TRIBO_OK && status != TRIBO_ENDED) {
+                printf("%s %a advance-failed %s\n", run, times_s[k], tribo_last_error(m));
+                break;
+            }
+            print_outputs(run, m, status == TRIBO_ENDED || k == n_times - 1);
+            if (status == TRIBO_ENDED)
+                break;
+        }
+        tribo_free(m);
+    }
+}
+
 int main(void)
 {
     record_study("study", TRIBO_DAMPING_CENTRE);
@@ -167,7 +189,8 @@ int main(void)
         }
     }
 
-    /* The default since issue 10: the study grid with the dashpot on the contact point. */
+    /* The default: the study grid with the dashpot on the contact point. */
     record_study("study_contact_point", TRIBO_DAMPING_CONTACT_POINT);
+    record_physical();
     return 0;
 }

@@ -25,5 +25,7 @@ void physical_run(const tribo_si_derived *d, int integrator, double t_end_s, dou
 {
     tribo_scene s = d->scene;
     s.integrator = integrator;
+    if (integrator == TRIBO_INTEGRATOR_FIXED_STEP)
+        s.stick_model = TRIBO_STICK_COMPLIANT; /* the fixed step has no rigid stick */
     stability_run_scene(&s, d, t_end_s / d->t_star, every_s / d->t_star, r);
 }
