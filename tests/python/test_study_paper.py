@@ -26,7 +26,7 @@ def tiny_study(fmu_file, tmp_path_factory):
 
 def test_writes_tables_and_figures(tiny_study):
     out, _, stdout = tiny_study
-    assert "local cluster (2 worker processes)" in stdout
+    assert "local cluster (2 threads)" in stdout
     for name in FIGURES:
         with open(out / name, "rb") as f:
             assert f.read(8) == b"\x89PNG\r\n\x1a\n", name
@@ -114,7 +114,7 @@ def test_the_study_uses_the_fmus_default_tolerances(tiny_study, tiny_result, fmu
     assert "(the FMU's defaults)" in (out / "study.md").read_text()
     row = runs.iloc[0]
     params = {n: row[n] for n in ("epsilon", "mu", "nu", "n_segments", "charge_model", "integrator",
-                                  "damping_point", "Gamma", "beta", "tau0", "Sigma0", "eta", "tau_r",
+                                  "damping_point", "Gamma", "beta_deg", "tau0", "Sigma0", "eta", "tau_r",
                                   "drop_speed")}
     from tribo.fmu import FmuImage
     fmu = FmuImage.load(fmu_file(3))
