@@ -161,12 +161,14 @@ def test_run_refuses_a_bad_value_with_the_fmus_reason(fmu_file):
 
 
 def test_sweep_and_load_results(fmu_file, tmp_path):
-    out = str(tmp_path / "results.csv")
+    out = str(tmp_path / "sweep")
     df = tribo.sweep({"epsilon": [0.3, 1.0], "n_segments": [64]}, t_end=20.0, out=out,
                      fmu=fmu_file(3), serial=True)
     assert list(df["epsilon"]) == [0.3, 1.0] and (df["t_end"] == 20.0).all()
-    loaded = tribo.load_results(out)
+    assert (tmp_path / "sweep" / "results.png").exists()
+    loaded = tribo.load_results(out)  # the folder, or its file
     pd.testing.assert_frame_equal(loaded, df)
+    pd.testing.assert_frame_equal(tribo.load_results(str(tmp_path / "sweep" / "results.csv")), df)
     one = tribo.run(epsilon=1.0, mu=0.1, n_segments=64, t_end=20.0, fmu=fmu_file(3))
     assert loaded["Q_static_end"].iloc[1] == one["Q_static"].iloc[-1]
 
