@@ -9,7 +9,7 @@ PE on 0.3 m of steel, seed 1; short runs and a tail of slow ones, which sets the
 time), the same feed on a 5 cm chute (4x as many particles, each a few tens of
 milliseconds: the most Python per unit of FMU work, the worst case for threads), and the
 paper's grid as a sweep (epsilon 0.1 ... 1.0, both frictions, tau to 5000, recorded every
-time unit: few long runs). Prints one line per round and the median of each, then, run
+time unit: few long runs). Prints the cluster's start time, one line per round and the median of each, then, run
 serially, the share of each workload's CPU time spent inside the FMU's doStep, where the
 GIL is released (the rest, Python, holds it: threads cannot overlap it); docs/sweeps.md
 quotes them.
@@ -84,6 +84,14 @@ def fmu_share(work, n) -> float:
     return inside[0] / cpu
 
 
+def start_time(processes: bool, workers: int) -> float:
+    """From entering the executor to the first (empty) task's result."""
+    started = time.perf_counter()
+    with DaskExecutor(workers=workers, processes=processes) as executor:
+        executor.client.submit(int).result()
+        return time.perf_counter() - started
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--rounds", type=int, default=3)
@@ -92,6 +100,10 @@ def main():
     args = p.parse_args()
     print(f"{available_cores()} cores, {args.workers} workers, load average before: "
           f"{', '.join(f'{x:.2f}' for x in os.getloadavg())}", flush=True)
+    for processes in (False, True):
+        starts = [start_time(processes, args.workers) for _ in range(3)]
+        print(f"start of the local cluster, {'processes' if processes else 'threads'}: median "
+              f"{statistics.median(starts):.2f} s of 3", flush=True)
     walls = {}
     for r in range(args.rounds):
         for name, work in (("population", population), ("short runs", short_population),

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The population benchmark (issue 13): 1000 particles of the SI reference case's feed
+# The population benchmark: 1000 particles of the SI reference case's feed
 # (epsilon 0.3-1, sizes 0.2-2 mm, random orientation; PE on 0.3 m of steel at 30 degrees)
 # through tribo-population on a local Dask cluster of 1 and of 2 workers: wall time and
 # CPU time per particle. Usage: scripts/bench_population.sh [N] [WORKERS...]
