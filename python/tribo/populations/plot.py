@@ -13,7 +13,7 @@ beside their panels, clear of the data."""
 import math
 
 import numpy as np
-from matplotlib.ticker import NullFormatter
+from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 from ..plotting import distinct_colours, legend, plt, save
 from .summary import class_edges, classes_of, statistics
@@ -62,7 +62,13 @@ def _scatter(ax, groups, colours, x, y, xlabel, ylabel, title, logx=False, logy=
     ax.set_title(title, fontsize=10)
     if logx:
         ax.set_xscale("log")
-        ax.xaxis.set_minor_formatter(NullFormatter())  # less than a decade: labels collide
+        lo, hi = ax.get_xlim()
+        if hi < 30 * lo:
+            # 1, 2, 5 in each decade, as plain numbers: a population's sizes span about one
+            # decade, which a log axis would label once or not at all
+            ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+            ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+            ax.xaxis.set_minor_formatter(NullFormatter())
     if logy:
         ax.set_yscale("log")
     legend(ax, outside=True)
