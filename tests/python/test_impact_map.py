@@ -49,9 +49,15 @@ def test_an_episode_that_outlasts_its_limit_counts_as_sustained_contact(si_image
 def small_map(si_image, tmp_path_factory):
     out = tmp_path_factory.mktemp("map")
     grid = Grid.of(speed=[1.0, 3.0], angle_deg=[30.0, 60.0, 90.0], phi0_deg=[0.0, 30.0], epsilon=[0.5, 1.0])
-    report = run_impact_map(grid, "PE", "steel", SETTINGS, 200.0, si_image, str(out), SerialExecutor(),
-                            progress=False)
+    titles = []
+    original = impact_plot.save
+    with pytest.MonkeyPatch.context() as mp:  # the figure as written, its title kept
+        mp.setattr(impact_plot, "save", lambda fig, path: titles.append(fig._suptitle.get_text())
+                   or original(fig, path))
+        report = run_impact_map(grid, "PE", "steel", SETTINGS, 200.0, si_image, str(out),
+                                SerialExecutor(), progress=False)
     assert report.table is not None and not report.failed
+    report.titles = titles
     return str(out), report
 
 
@@ -70,6 +76,8 @@ def test_the_map_is_written_with_its_metadata(small_map):
                         "n_segments": 400}
     for column, value in (("particle", "PE"), ("wall", "steel"), ("size", 1e-3), ("cylinder_length", 1e-3)):
         assert (m.table[column] == value).all(), column
+    assert report.titles == ["charge per impact: PE on steel, size 2a = 0.001 m, cylinder depth "
+                             "ℓ = 0.001 m"]
 
 
 def test_the_lookup_is_the_episode_at_grid_points(small_map, si_image):

@@ -9,6 +9,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from figure_checks import assert_legends_cover_no_data
 from study_support import command
 from tribo.study.figures import FIGURES
 
@@ -151,6 +152,20 @@ def test_every_panel_has_a_legend_and_distinct_lines(tiny_result, name):
         styles = [(to_hex(line.get_color()), line.get_marker(), line.get_linestyle())
                   for line in ax.get_lines() if not line.get_label().startswith("_")]
         assert len(set(styles)) == len(styles), (name, ax.get_title(), styles)
+    assert_legends_cover_no_data(fig)
+
+
+def test_the_legend_check_sees_a_legend_over_a_line():
+    from tribo.plotting import legend, plt
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [0.5, 0.5], label="a line across the middle")
+    ax.plot([0, 1], [0.0, 1.0], label="another")
+    legend(ax, loc="center")
+    with pytest.raises(AssertionError, match="covers"):
+        assert_legends_cover_no_data(fig)
+    legend(ax, outside=True)
+    assert_legends_cover_no_data(fig)
+    plt.close(fig)
 
 
 def test_axes_say_what_is_normalised_by_what(tiny_result):
