@@ -15,7 +15,6 @@ CSV.
 """
 
 import argparse
-import math
 import os
 import time
 
@@ -34,12 +33,13 @@ CHUTE = dict(chute_length=0.3)
 SWEEP_TOLERANCE = dict()
 SIZES_MM = [0.1, 0.2, 0.5, 1.0, 2.0, 5.0]
 EPSILONS = [0.3, 0.6, 1.0]
-# two orientations, not more: runs ending in sustained contact cost up to tens of seconds
-PHI0 = [0.0, math.pi / 4]
+# two orientations (degrees), not more: runs ending in sustained contact cost up to tens of
+# seconds
+PHI0_DEG = [0.0, 45.0]
 
 
 def trajectory(out):
-    df = tribo.run_si("PE", "steel", semi_major_axis=0.5e-3, record_interval=1e-4, **CHUTE)
+    df = tribo.run_si("PE", "steel", size=1e-3, record_interval=1e-4, **CHUTE)
     t_ms = 1e3 * df["time"]
     exit_ms = 1e3 * df["exit_time"].iloc[-1]
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
@@ -69,16 +69,18 @@ def sweep(out):
              "charge_to_mass_sliding"]
     for size in SIZES_MM:
         for eps in EPSILONS:
-            for phi0 in PHI0:
+            for phi0_deg in PHI0_DEG:
                 cpu = time.process_time()
-                df = tribo.run_si("PE", "steel", semi_major_axis=size * 0.5e-3, epsilon=eps,
-                                  phi0=phi0, t_end=2.0, record_interval=0.01, outputs=names,
-                                  **SWEEP_TOLERANCE, **CHUTE)
+                # 2 * (size * 0.5e-3): the FMU's semi-major axis exactly as before (halving
+                # and doubling are exact)
+                df = tribo.run_si("PE", "steel", size=2 * (size * 0.5e-3), epsilon=eps,
+                                  phi0_deg=phi0_deg, t_end=2.0, record_interval=0.01,
+                                  outputs=names, **SWEEP_TOLERANCE, **CHUTE)
                 cpu = time.process_time() - cpu
                 last = df.iloc[-1]
-                rows.append(dict(size_mm=size, epsilon=eps, phi0=phi0, cpu_s=cpu,
+                rows.append(dict(size_mm=size, epsilon=eps, phi0_deg=phi0_deg, cpu_s=cpu,
                                  **{n: float(last[n]) for n in names}))
-                print(f"2a {size} mm, epsilon {eps}, phi0 {phi0:.4f}: exit {last['exit_time']:.4g} s, "
+                print(f"2a {size} mm, epsilon {eps}, phi0 {phi0_deg:g} deg: exit {last['exit_time']:.4g} s, "
                       f"{last['impacts']:.0f} impacts, CPU {cpu:.3g} s", flush=True)
     res = pd.DataFrame(rows)
     res.to_csv(os.path.join(out, "sweep.csv"), index=False)
@@ -96,7 +98,7 @@ def sweep(out):
         ax.set_yscale("log")
         ax.set_xlabel("particle size 2a [mm]")
         ax.set_ylabel("−q/m at the exit [µC/kg]")
-        ax.set_title(f"{label}: mean and range over {len(PHI0)} orientations φ0", fontsize=10)
+        ax.set_title(f"{label}: mean and range over {len(PHI0_DEG)} orientations φ0", fontsize=10)
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=8)
     fig.suptitle("PE on steel, 30°, 0.3 m chute, 10 mm drop (q/m < 0: plotted −q/m); "

@@ -6,18 +6,22 @@ The API (each function documented where it is defined, in tribo/api.py):
     import tribo
     df = tribo.run(epsilon=0.3, mu=1.0, nu=1.0, t_end=200)       # one particle -> DataFrame
     df = tribo.run("epsilon=0.3 mu=1 nu=1", t_end=200)           # the same, as a scene text
-    df = tribo.run_si("PE", "steel", semi_major_axis=0.5e-3, chute_length=0.3)
+    df = tribo.run_si("PE", "steel", size=1e-3, chute_length=0.3, tilt_deg=30)
                                                                   # a real particle, SI units
     res = tribo.sweep({"epsilon": [0.3, 0.6, 1.0], "mu": [0.1, 1.0]}, t_end=500,
-                      out="out/sweep/results.csv")                # a parameter sweep
-    res = tribo.load_results("out/sweep/results.csv")             # its results file
+                      out="out/sweep")                            # a parameter sweep
+    res = tribo.load_results("out/sweep")                         # its results
     path = tribo.find_fmu()                                       # the FMU used by default
     start = tribo.materials.start_values("PE", "steel", semi_major_axis=0.5e-3)
-                                                                  # SI start values of a pair
+                                                                  # the FMU's start values of a pair
     pop = tribo.population(1000, seed=1, out="out/population")   # a feed down the chute
     pop.summary                                                   # q/m by shape, size class
-    m = tribo.impact_map(speed=[1, 5], angle=[30, 90], phi0=[0, 45], epsilon=[0.5, 1])
-    m("charge_static", speed=3, angle=60, phi0=20, epsilon=0.7)  # C per impact
+    m = tribo.impact_map(speed=[1, 5], angle_deg=[30, 90], phi0_deg=[0, 45], epsilon=[0.5, 1])
+    m("charge_static", speed=3, angle_deg=60, phi0_deg=20, epsilon=0.7)  # C per impact
+
+Names and units (tribo/fmu/names.py): angles in degrees, named <name>_deg; the SI size as
+size, the long diameter 2a in m; the rest the FMU's names and SI units. Results go into an
+output folder (out=) that holds one function's results of one set-up (tribo/batch/folder.py).
 
 The commands: tribo-study (the paper's study), tribo-sweep (parameter sweeps),
 tribo-population (particle populations) and tribo-impact-map (charge-per-impact maps), each
@@ -31,11 +35,13 @@ Its subpackages, by concern (each module's docstring says what it does):
                  FMU's start values
     plotting     what every figure shares (axis labels, colours, legends; matplotlib)
     fmu/         the fmpy driver, shared with the tests: instance, image (an FMU as bytes),
-                 locate (where the FMUs are), parameters (values checked by the FMU)
+                 locate (where the FMUs are), names (the package's names and units),
+                 parameters (values checked by the FMU)
     batch/       many runs of the FMU: specs (a run and its key), grid (a sweep's runs),
                  particle (one run: series, segment charges, summary row), summary (what a
                  series is summarised into), results (the results CSV), executors (serial
-                 or Dask), sweep (skip finished runs, run the rest, record them), plot
+                 or Dask), folder (an output folder: its record and lock), sweep (skip
+                 finished runs, run the rest, record them), plot
     study/       the paper's study (docs/model.md section 7): paper (its runs), runner,
                  transition (eps_t), figures, tables
     populations/ particle populations down the chute (SI FMU): distributions, feed (a feed,

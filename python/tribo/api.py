@@ -1,31 +1,53 @@
-"""The package's functions for users: one particle as a DataFrame, a sweep, its results."""
+"""The package's functions for users: one particle as a DataFrame, a sweep, its results, a
+population, an impact map.
+
+Names and units are the package's (tribo/fmu/names.py): angles in degrees as <name>_deg
+(beta_deg, tilt_deg, phi0_deg, ...), the SI FMUs' size as `size` (the long diameter 2a,
+m), everything else the FMU's. Each function that writes results takes a folder `out`,
+which holds one function's (or command's) results of one set-up (tribo/batch/folder.py):
+another's is refused in one line, a second process on it is locked out.
+"""
+
+import os
 
 import pandas as pd
 
 from .batch.executors import DaskExecutor, SerialExecutor
+from .batch.folder import claim
 from .batch.grid import PAPER_BASE, build_specs, values_of
 from .batch.particle import simulate
 from .batch.results import read_results
-from .batch.sweep import run_sweep
+from .batch.sweep import FIGURE, RESULTS, SERIES, check_out_folder, run_sweep, sweep_setup
 from .fmu import FmuImage
 from .fmu.locate import find_fmu
+from .fmu.names import ParameterError, output_names
 from .fmu.parameters import check_names, check_values, integer_names
 from .impact.episode import DEFAULT_LIMIT, Grid
-from .impact.map import ImpactMap, run_impact_map
-from .materials import start_values
+from .impact.map import EPISODES, ImpactMap, map_setup, prepare_map, run_impact_map
+from .materials import pair_values
 from .populations.feed import DEFAULT_CHUTE, Feed, check_measured, read_measured
-from .populations.runner import run_population
+from .populations.runner import PARTICLES, population_setup, prepare_population, run_population
 
 
 def scene_of(scene: str | dict | None = None, **parameters) -> dict:
     """Parameters from a mapping or a text "name=value name=value ...", updated by the
-    keyword arguments."""
+    keyword arguments. ParameterError, one line naming the parameter, for a text item that
+    is not name=number."""
     if isinstance(scene, str):
         pairs = [item.partition("=") for item in scene.split()]
-        bad = [name for name, sep, value in pairs if not sep or not value]
+        bad = [name for name, sep, value in pairs if not sep or not value or not name]
         if bad:
-            raise ValueError(f"scene {scene!r}: expected name=value items, not {' '.join(bad)}")
-        scene = {name: float(value) for name, _, value in pairs}
+            raise ParameterError(f"scene {scene!r}: expected name=value items, not {' '.join(bad)}")
+        parsed = {}
+        for name, _, value in pairs:
+            if name in parsed:
+                raise ParameterError(f"scene {scene!r}: {name} is given twice")
+            try:
+                parsed[name] = float(value)
+            except ValueError:
+                raise ParameterError(f"{name} = {value!r} is not a number (in the scene "
+                                     f"{scene!r})") from None
+        scene = parsed
     return dict(scene or {}, **parameters)
 
 
@@ -41,13 +63,13 @@ def run(scene: str | dict | None = None, *, t_end: float = 100.0, record_interva
     at epsilon 0.5, mu = nu = 0.1), the tolerances included. outputs: the names to record
     (default: every scalar output). fmu: a path, or 2 / 3 for the build's FMI 2.0 / 3.0
     FMU (default 3); variant: "dimensionless" (tribo_fmi<v>) or "si" (tribo_si_fmi<v>, in
-    SI units: time and t_end in seconds)."""
+    SI units: time and t_end in seconds). Angles in degrees, named <name>_deg (beta_deg,
+    phi0_deg; the output phi_deg), as everywhere in the package."""
     image = FmuImage.load(find_fmu(fmu, variant))
-    md = image.model_description()
     params = scene_of(scene, **parameters)
     check_values(image, {name: [value] for name, value in params.items()})
     if outputs is None:
-        outputs = [v.name for v in md.modelVariables if v.causality == "output" and not v.dimensions]
+        outputs = output_names(image.model_description())
     return simulate(image, params, t_end, record_interval, outputs).series
 
 
@@ -61,43 +83,54 @@ def run_si(particle: str | None = None, wall: str | None = None, *, t_end: float
 
     particle, wall: names of the materials table (tribo.materials), whose elastic
     constants, density and sigma0 become start values; keyword arguments are SI parameters
-    by name (semi_major_axis=0.5e-3, chute_length=0.3, ...) and win. Without materials,
-    parameters not given keep the SI FMU's start values (the reference case, on an endless
-    chute). fmu: a path, or 2 / 3 for the build's SI FMU (default 3)."""
+    by the package's names (size=1e-3: the long diameter 2a in m; tilt_deg=30;
+    chute_length=0.3, ...) and win. Without materials, parameters not given keep the SI
+    FMU's start values (the reference case, on an endless chute). fmu: a path, or 2 / 3
+    for the build's SI FMU (default 3)."""
     if (particle is None) != (wall is None):
         raise ValueError("give both a particle and a wall material, or neither")
-    params = start_values(particle, wall, **parameters) if particle else dict(parameters)
+    params = dict(pair_values(particle, wall, sigma0="sigma0" not in parameters), **parameters) \
+        if particle else dict(parameters)
     image = FmuImage.load(find_fmu(fmu, variant="si"))
-    md = image.model_description()
     check_values(image, {name: [value] for name, value in params.items()})
     if outputs is None:
-        outputs = [v.name for v in md.modelVariables if v.causality == "output" and not v.dimensions]
+        outputs = output_names(image.model_description())
     return simulate(image, params, t_end, record_interval, outputs).series
 
 
-def sweep(grid: dict, *, t_end: float, out: str, record_interval: float = 1.0,
+def sweep(grid: dict, *, t_end: float, out: str = "out/sweep", record_interval: float = 1.0,
           base: str = "paper", tie: bool = True, fmu: str | int | None = None,
           scheduler: str | None = None, workers: int | None = None, serial: bool = False,
-          fresh: bool = False, series_dir: str | None = None, progress: bool = False) -> pd.DataFrame:
+          processes: bool = False, fresh: bool = False, series: bool = False,
+          figure: bool = True, progress: bool = False) -> pd.DataFrame:
     """Run every combination of the values in `grid` (parameter name -> values), one row
-    per run appended to the CSV `out` as it finishes; runs already in the file are not
-    run again. Returns the sweep's rows (the columns of tribo-sweep --help).
+    per run appended to <out>/results.csv as it finishes; runs already there are not run
+    again; the figure <out>/results.png. Returns the sweep's rows (the columns of
+    tribo-sweep --help).
 
     base: "paper" (docs/model.md section 7, CVODE) or "fmu" (the FMU's start values) for
     the parameters not swept; the tolerances are the FMU's unless swept. tie: nu follows
-    mu and tau_r follows tau0 unless they are swept too. Runs on a local Dask cluster, on
-    the one at `scheduler`, or in this process (serial=True). fresh: start the file over,
-    keeping the old one as <name>.backup-<n>.csv."""
+    mu and tau_r follows tau0 unless they are swept too. Runs on a local Dask cluster
+    (threads; processes=True: worker processes), on the one at `scheduler`, or in this
+    process (serial=True). fresh: start the folder over, keeping what it held in
+    <out>/backup-<n>/. series: also each run's time series, in <out>/series/."""
+    check_out_folder(out)
     image = FmuImage.load(find_fmu(fmu))
     md = image.model_description()
     check_names(md, grid)
     specs = build_specs([(n, list(v)) for n, v in grid.items()], PAPER_BASE if base == "paper" else {},
                         integer_names(md), t_end, record_interval, tie)
     check_values(image, values_of(specs))
-    executor = SerialExecutor() if serial else DaskExecutor(scheduler, workers)
-    with executor:
-        report = run_sweep(specs, image, out, executor, resume=not fresh, series_dir=series_dir,
-                           progress=progress)
+    executor = _executor(serial, scheduler, workers, processes)
+    with claim(out, "sweep", sweep_setup(list(grid), base, tie), image.sha256, fresh):
+        with executor:
+            report = run_sweep(specs, image, os.path.join(out, RESULTS), executor,
+                               series_dir=os.path.join(out, SERIES) if series else None,
+                               progress=progress)
+        if figure and len(report.results):
+            # matplotlib only when a figure is drawn: `import tribo` stays without it
+            from .batch.plot import write_sweep_figure
+            write_sweep_figure(report.results, list(grid), os.path.join(out, FIGURE))
     if report.failed:
         spec, error = report.failed[0]
         raise RuntimeError(f"{len(report.failed)} run(s) failed, e.g. {spec.params}: {error}")
@@ -105,8 +138,22 @@ def sweep(grid: dict, *, t_end: float, out: str, record_interval: float = 1.0,
 
 
 def load_results(path: str) -> pd.DataFrame:
-    """A results file of a sweep or a study (runs/results.csv), floats exactly as written."""
+    """The rows of a results file, floats exactly as written: the file, or the output
+    folder of a sweep (results.csv), a study (runs/results.csv), a population
+    (particles.csv) or an impact map (episodes.csv)."""
+    if os.path.isdir(path):
+        for name in (RESULTS, os.path.join("runs", RESULTS), PARTICLES, EPISODES):
+            if os.path.isfile(os.path.join(path, name)):
+                return read_results(os.path.join(path, name))
+        raise FileNotFoundError(f"{path} holds no results file ({RESULTS}, runs/{RESULTS}, "
+                                f"{PARTICLES} or {EPISODES})")
     return read_results(path)
+
+
+def _executor(serial: bool, scheduler: str | None, workers: int | None, processes: bool):
+    if serial:
+        return SerialExecutor()
+    return DaskExecutor(scheduler, workers, processes=processes)
 
 
 def population(n: int, *, seed: int = 0, particle: str = "PE", wall: str = "steel",
@@ -114,49 +161,59 @@ def population(n: int, *, seed: int = 0, particle: str = "PE", wall: str = "stee
                chute: dict | None = None, settings: dict | None = None, t_end: float = 5.0,
                out: str = "out/population", fmu: str | int | None = None,
                scheduler: str | None = None, workers: int | None = None, serial: bool = False,
-               fresh: bool = False, progress: bool = False, shape_edges=None, size_edges=None):
+               processes: bool = False, fresh: bool = False, progress: bool = False,
+               shape_edges=None, size_edges=None):
     """Draw n particles from a feed with the seed and run each down the chute through the
-    SI FMU (tribo.populations.feed: the feed variables epsilon, size, phi0, omega0, drop_height,
-    drop_speed, drop_angle, each a distribution text like "uniform:0.3:1" or a number;
-    measured: a CSV path or DataFrame of measured values whose rows are drawn instead).
-    chute: SI chute parameters (default chute_length 0.3 m); settings: any other SI
-    parameter. Results go into the folder `out` (particles.csv, summary.csv,
-    population.png); an interrupted population resumes. Returns the report: .results (a
-    row per particle), .summary (q/m statistics overall, per shape and size class)."""
+    SI FMU (tribo.populations.feed: the feed variables epsilon, size (the long diameter 2a,
+    m), phi0_deg, omega0, drop_height, drop_speed, drop_angle_deg, each a distribution
+    text like "uniform:0.3:1" or a number; measured: a CSV path or DataFrame of measured
+    values whose rows are drawn instead). chute: chute_length (m, default 0.3) and
+    tilt_deg (default 30); settings: any other SI parameter. Results go into the folder
+    `out` (particles.csv, summary.csv, population.png, population.json); an interrupted
+    population resumes. Returns the report: .results (a row per particle), .summary (q/m
+    statistics overall, per shape and size class)."""
     if isinstance(measured, str):
         measured = read_measured(measured)
     elif measured is not None:
         measured = check_measured(measured)
-    feed = Feed(particle, wall, dict(distributions or {}), dict(chute or DEFAULT_CHUTE),
+    feed = Feed(particle, wall, dict(distributions or {}), dict(DEFAULT_CHUTE, **(chute or {})),
                 dict(settings or {}), measured)
     image = FmuImage.load(find_fmu(fmu, "si"))
-    executor = SerialExecutor() if serial else DaskExecutor(scheduler, workers)
-    report = run_population(feed, n, seed, t_end, image, out, executor, resume=not fresh,
-                            progress=progress, shape_edges=shape_edges, size_edges=size_edges)
+    specs = prepare_population(feed, n, seed, t_end, image)
+    executor = _executor(serial, scheduler, workers, processes)
+    with claim(out, "population", population_setup(feed, n, seed, t_end), image.sha256,
+               fresh) as folder:
+        report = run_population(feed, n, seed, t_end, image, out, executor, progress=progress,
+                                shape_edges=shape_edges, size_edges=size_edges, specs=specs)
+    report.backup = folder.backup
     if report.failed:
         spec, error = report.failed[0]
         raise RuntimeError(f"{len(report.failed)} particle(s) failed, e.g.: {error}")
     return report
 
 
-def impact_map(*, speed, angle, phi0, epsilon, particle: str = "PE", wall: str = "steel",
-               settings: dict | None = None, limit: float | None = None, omega0: float = 0.0,
-               out: str = "out/impact_map", fmu: str | int | None = None,
+def impact_map(*, speed, angle_deg, phi0_deg, epsilon, particle: str = "PE",
+               wall: str = "steel", settings: dict | None = None, limit: float | None = None,
+               omega0: float = 0.0, out: str = "out/impact_map", fmu: str | int | None = None,
                scheduler: str | None = None, workers: int | None = None, serial: bool = False,
-               fresh: bool = False, progress: bool = False):
+               processes: bool = False, fresh: bool = False, progress: bool = False):
     """The charge-per-impact map of a materials pair over the grid of impact speeds (m/s),
-    angles (deg from the plate's surface, 90 head-on), orientations phi0 (deg) and
-    roundness values (tribo.impact.episode): one SI FMU episode per point, from first
-    contact to the lift-off or the time limit (`limit` in t*; default DEFAULT_LIMIT).
-    settings: other SI parameters (semi_major_axis, ...). Written into `out`
-    (impact_map.csv, impact_map.json, impact_map.png), resumable; returns tribo.ImpactMap
-    for lookups."""
-    grid = Grid.of(speed=speed, angle=angle, phi0=phi0, epsilon=epsilon)
+    angles (angle_deg: degrees from the plate's surface, 90 head-on), orientations
+    (phi0_deg, degrees) and roundness values (tribo.impact.episode): one SI FMU episode per
+    point, from first contact to the lift-off or the time limit (`limit` in t*; default
+    DEFAULT_LIMIT). settings: other SI parameters (size, cylinder_length, ...). Written
+    into `out` (impact_map.csv, impact_map.json, impact_map.png, episodes.csv), resumable;
+    returns tribo.ImpactMap for lookups."""
+    grid = Grid.of(speed=speed, angle_deg=angle_deg, phi0_deg=phi0_deg, epsilon=epsilon)
+    settings = dict(settings or {})
+    limit = DEFAULT_LIMIT if limit is None else limit
     image = FmuImage.load(find_fmu(fmu, "si"))
-    executor = SerialExecutor() if serial else DaskExecutor(scheduler, workers)
-    report = run_impact_map(grid, particle, wall, dict(settings or {}),
-                            DEFAULT_LIMIT if limit is None else limit, image, out, executor,
-                            omega0=omega0, resume=not fresh, progress=progress)
+    specs = prepare_map(grid, particle, wall, settings, limit, image, omega0)
+    executor = _executor(serial, scheduler, workers, processes)
+    with claim(out, "impact map", map_setup(grid, particle, wall, settings, limit, omega0),
+               image.sha256, fresh):
+        report = run_impact_map(grid, particle, wall, settings, limit, image, out, executor,
+                                omega0=omega0, progress=progress, specs=specs)
     if report.failed:
         spec, error = report.failed[0]
         raise RuntimeError(f"{len(report.failed)} episode(s) failed, e.g.: {error}")

@@ -117,13 +117,23 @@ def interface_capacitance() -> float:
 
 
 def start_values(particle: str, wall: str, **overrides) -> dict[str, float]:
-    """The SI FMU's start values of a particle on a wall: E, Poisson's ratio and density of
-    the particle, E and Poisson's ratio of the wall, the pair's sigma0, kappa; then the
-    overrides (SI parameter names, SI units), which win."""
+    """The SI FMU's start values of a particle on a wall, for any importer: E, Poisson's
+    ratio and density of the particle, E and Poisson's ratio of the wall, the pair's sigma0,
+    kappa; then the overrides, which win. The FMU's own names and units (SI, angles in
+    radians: `tilt`, `phi0`; the size as `semi_major_axis` a), since these go to the FMU
+    as they are; the package's functions take angles in degrees and the size as `size`."""
     unknown = [k for k in overrides if k not in SI_PARAMETERS]
     if unknown:
         raise MaterialError(f"unknown SI parameter {unknown[0]!r}; known: "
                             f"{', '.join(SI_PARAMETERS)}")
+    values = pair_values(particle, wall, sigma0="sigma0" not in overrides)
+    values.update(overrides)
+    return values
+
+
+def pair_values(particle: str, wall: str, sigma0: bool = True) -> dict[str, float]:
+    """The SI FMU's values that the pair sets: E, Poisson's ratio and density of the
+    particle, E and Poisson's ratio of the wall, kappa and (if `sigma0`) the pair's sigma0."""
     p = material(particle, "particle")
     w = material(wall, "wall")
     values = {
@@ -134,7 +144,6 @@ def start_values(particle: str, wall: str, **overrides) -> dict[str, float]:
         "poisson_ratio_wall": w.poisson_ratio,
         "interface_capacitance": interface_capacitance(),
     }
-    if "sigma0" not in overrides:
+    if sigma0:
         values["sigma0"] = pair_sigma0(p.key, w.key)
-    values.update(overrides)
     return values

@@ -113,7 +113,9 @@ def test_simulate_and_the_api_record_an_early_end(fmu_file, monkeypatch):
         return DISCARD, True, False, reached
 
     monkeypatch.setattr(Instance, "_do_step3", do_step3)
-    recording = simulate(FmuImage.load(fmu_file(3)), {"n_segments": 64}, 5.0, 1.0, NAMES, segments=True)
+    # the package's names: phi in degrees
+    names = [n if n != "phi" else "phi_deg" for n in NAMES]
+    recording = simulate(FmuImage.load(fmu_file(3)), {"n_segments": 64}, 5.0, 1.0, names, segments=True)
     assert list(recording.series["time"]) == [0.0, 1.0, 2.0, END]
     assert len(recording.segments) == 64  # read where the run ended
     assert recording.segments["static"].mean() == pytest.approx(recording.series["Q_static"].iloc[-1],

@@ -12,8 +12,9 @@ from tribo.fmu import FmuImage
 from tribo.impact import plot as impact_plot
 from tribo.impact.episode import Grid, ImpactError, episode_specs, run_episode
 from tribo.impact.map import ImpactMap, run_impact_map
+from figure_checks import assert_legends_cover_no_data
 
-SETTINGS = {"semi_major_axis": 0.5e-3, "n_segments": 400}
+SETTINGS = {"size": 1e-3, "n_segments": 400}
 
 
 @pytest.fixture(scope="module")
@@ -21,8 +22,8 @@ def si_image():
     return FmuImage.load(tribo.find_fmu(variant="si"))
 
 
-def episode(image, speed, angle, phi0, epsilon, limit=200.0):
-    grid = Grid.of(speed=[speed], angle=[angle], phi0=[phi0], epsilon=[epsilon])
+def episode(image, speed, angle_deg, phi0_deg, epsilon, limit=200.0):
+    grid = Grid.of(speed=[speed], angle_deg=[angle_deg], phi0_deg=[phi0_deg], epsilon=[epsilon])
     return run_episode(image, episode_specs(grid, "PE", "steel", SETTINGS, limit)[0]).row
 
 
@@ -30,7 +31,7 @@ def test_a_head_on_impact_of_a_disc_rebounds_straight_up_once(si_image):
     row = episode(si_image, 2.0, 90.0, 0.0, 1.0)
     assert row["lifted_off"] == 1
     # straight back up, slower (the dashpot, nu = 0.3), no spin, one contact of ~pi t*
-    assert row["rebound_angle"] == pytest.approx(90.0, abs=1e-9)
+    assert row["rebound_angle_deg"] == pytest.approx(90.0, abs=1e-9)
     assert 0.2 * 2.0 < row["rebound_speed"] < 2.0
     assert abs(row["rebound_omega"]) < 1e-6
     assert 2.0 * row["t_star"] < row["contact_time"] < 5.0 * row["t_star"]
@@ -47,22 +48,36 @@ def test_an_episode_that_outlasts_its_limit_counts_as_sustained_contact(si_image
 @pytest.fixture(scope="module")
 def small_map(si_image, tmp_path_factory):
     out = tmp_path_factory.mktemp("map")
-    grid = Grid.of(speed=[1.0, 3.0], angle=[30.0, 60.0, 90.0], phi0=[0.0, 30.0], epsilon=[0.5, 1.0])
-    report = run_impact_map(grid, "PE", "steel", SETTINGS, 200.0, si_image, str(out), SerialExecutor(),
-                            progress=False)
+    grid = Grid.of(speed=[1.0, 3.0], angle_deg=[30.0, 60.0, 90.0], phi0_deg=[0.0, 30.0], epsilon=[0.5, 1.0])
+    titles = []
+    original = impact_plot.save
+    with pytest.MonkeyPatch.context() as mp:  # the figure as written, its title kept
+        mp.setattr(impact_plot, "save", lambda fig, path: titles.append(fig._suptitle.get_text())
+                   or original(fig, path))
+        report = run_impact_map(grid, "PE", "steel", SETTINGS, 200.0, si_image, str(out),
+                                SerialExecutor(), progress=False)
     assert report.table is not None and not report.failed
+    report.titles = titles
     return str(out), report
 
 
 def test_the_map_is_written_with_its_metadata(small_map):
     out, report = small_map
     m = ImpactMap.load(out)
-    assert len(m.table) == 24 and list(m.table.columns[:4]) == ["speed", "angle", "phi0", "epsilon"]
+    assert len(m.table) == 24 and list(m.table.columns[:4]) == ["speed", "angle_deg", "phi0_deg", "epsilon"]
     meta = m.metadata
     assert meta["particle"] == "PE" and meta["wall"] == "steel"
-    assert meta["grid"]["angle"]["values"] == [30.0, 60.0, 90.0]
+    assert meta["grid"]["angle_deg"]["values"] == [30.0, 60.0, 90.0]
     assert len(meta["model"]["fmu_sha256"]) == 64 and meta["model"]["instantiation_token"]
-    assert meta["columns"]["charge_static"] == "C"
+    assert meta["columns"]["charge_static"].startswith("C, on the cylinder of depth")
+    # what the charges in C depend on beyond the grid, in the table and the metadata: the
+    # size as set, the cylinder depth as the FMU's default
+    assert m.set_up == {"particle": "PE", "wall": "steel", "size": 1e-3, "cylinder_length": 1e-3,
+                        "n_segments": 400}
+    for column, value in (("particle", "PE"), ("wall", "steel"), ("size", 1e-3), ("cylinder_length", 1e-3)):
+        assert (m.table[column] == value).all(), column
+    assert report.titles == ["charge per impact: PE on steel, size 2a = 0.001 m, cylinder depth "
+                             "ℓ = 0.001 m"]
 
 
 def test_the_lookup_is_the_episode_at_grid_points(small_map, si_image):
@@ -94,14 +109,14 @@ def test_the_lookup_between_grid_points(small_map, si_image):
 
 def test_a_point_outside_the_grid_is_refused_naming_the_axis(small_map):
     m = ImpactMap.load(small_map[0])
-    with pytest.raises(ValueError, match=r"angle = 20 is outside the map's grid \[30, 90\]"):
+    with pytest.raises(ValueError, match=r"angle_deg = 20 is outside the map's grid \[30, 90\]"):
         m("charge_static", 2.0, 20.0, 0.0, 0.5)
     with pytest.raises(KeyError, match="not a column"):
         m("charge", 2.0, 60.0, 0.0, 0.5)
 
 
 def test_a_map_resumes_after_an_interruption(tmp_path, si_image, small_map):
-    grid = Grid.of(speed=[1.0, 3.0], angle=[30.0, 60.0, 90.0], phi0=[0.0, 30.0], epsilon=[0.5, 1.0])
+    grid = Grid.of(speed=[1.0, 3.0], angle_deg=[30.0, 60.0, 90.0], phi0_deg=[0.0, 30.0], epsilon=[0.5, 1.0])
     part = run_impact_map(grid, "PE", "steel", SETTINGS, 200.0, si_image, str(tmp_path), SerialExecutor(),
                           progress=False, max_runs=5, figure=False)
     assert part.table is None and part.executed == 5
@@ -114,12 +129,13 @@ def test_a_map_resumes_after_an_interruption(tmp_path, si_image, small_map):
 
 
 @pytest.mark.parametrize("axes, says", [
-    (dict(speed=[0.0], angle=[90.0], phi0=[0.0], epsilon=[1.0]), "speed = 0"),
-    (dict(speed=[1.0], angle=[95.0], phi0=[0.0], epsilon=[1.0]), "angle = 95"),
-    (dict(speed=[1.0], angle=[0.0], phi0=[0.0], epsilon=[1.0]), "angle = 0"),
-    (dict(speed=[3.0, 1.0], angle=[90.0], phi0=[0.0], epsilon=[1.0]), "must increase"),
-    (dict(speed=[1.0], angle=[90.0], phi0=[0.0], epsilon=[1.5]), "epsilon = 1.5"),
-    (dict(speed=[1.0], angle=[90.0], phi0=[0.0]), "missing epsilon"),
+    (dict(speed=[0.0], angle_deg=[90.0], phi0_deg=[0.0], epsilon=[1.0]), "speed = 0"),
+    (dict(speed=[1.0], angle_deg=[95.0], phi0_deg=[0.0], epsilon=[1.0]), "angle_deg = 95"),
+    (dict(speed=[1.0], angle_deg=[0.0], phi0_deg=[0.0], epsilon=[1.0]), "angle_deg = 0"),
+    (dict(speed=[3.0, 1.0], angle_deg=[90.0], phi0_deg=[0.0], epsilon=[1.0]), "must increase"),
+    (dict(speed=[1.0], angle_deg=[90.0], phi0_deg=[0.0], epsilon=[1.5]), "epsilon = 1.5"),
+    (dict(speed=[1.0], angle_deg=[90.0], phi0_deg=[0.0]), "missing epsilon"),
+    (dict(speed=[1.0], angle=[90.0], phi0_deg=[0.0], epsilon=[1.0]), "unknown angle"),
 ])
 def test_a_bad_grid_is_one_line(axes, says):
     with pytest.raises(ImpactError, match=says) as e:
@@ -128,11 +144,12 @@ def test_a_bad_grid_is_one_line(axes, says):
 
 
 @pytest.mark.parametrize("argv, says", [
-    (["--speed", "1", "--angle", "90", "--limit", "0"], "time limit"),
-    (["--speed", "1:5", "--angle", "90"], "expected a:b:n"),
-    (["--speed", "1", "--angle", "90", "--wall", "wood"], "unknown wall material 'wood'"),
-    (["--speed", "1", "--angle", "90", "--set", "semi_major_axis=-1"], "semi_major_axis"),
-    (["--speed", "2000", "--angle", "90"], "speed = 2000"),
+    (["--speed", "1", "--angle-deg", "90", "--limit", "0"], "time limit"),
+    (["--speed", "1:5", "--angle-deg", "90"], "expected a:b:n"),
+    (["--speed", "1", "--angle-deg", "90", "--wall", "wood"], "unknown wall material 'wood'"),
+    (["--speed", "1", "--angle-deg", "90", "--set", "size=-1"], "size = -1 is invalid: the valid range is 2e-07 <= size <= 2"),
+    (["--speed", "1", "--angle-deg", "90", "--set", "semi_major_axis=1e-3"], "the package takes this parameter as size"),
+    (["--speed", "2000", "--angle-deg", "90"], "speed = 2000"),
 ])
 def test_bad_input_to_the_command_is_one_line(tmp_path, capsys, argv, says):
     try:
@@ -149,6 +166,7 @@ def test_the_figure_has_a_legend_on_every_panel(small_map, monkeypatch, tmp_path
     figures = []
     monkeypatch.setattr(impact_plot, "save", lambda fig, path: figures.append(fig) or path)
     impact_plot.write_impact_figure(small_map[1].table, str(tmp_path / "f.png"), "t")
+    assert_legends_cover_no_data(figures[0])
     assert len(figures[0].axes) == 4
     for ax in figures[0].axes:
         assert ax.get_legend() is not None and len(ax.get_legend().get_texts()) == 2

@@ -2,6 +2,7 @@
 the physical bounds on its numbers, and its one-line errors."""
 
 import math
+import os
 import pathlib
 import re
 
@@ -160,3 +161,39 @@ def test_a_pair_without_sigma0_names_it_and_the_pairs_with_one():
 def test_an_unknown_parameter_names_it():
     msg = one_line_error(lambda: materials.start_values("PE", "steel", radius=1e-3))
     assert "'radius'" in msg and "semi_major_axis" in msg
+
+
+def pairs_used() -> set:
+    """Every particle/wall pair README.md, the user guide and the commands' --help use:
+    run_si("P", "W", ...), particle="P", wall="W", --particle P --wall W (the defaults,
+    PE and steel, where one of the two is left out)."""
+    import subprocess
+
+    from study_support import command
+    from test_examples import guide_pages
+    from tribo_fmu import ROOT
+
+    texts = [open(os.path.join(ROOT, p), encoding="utf-8").read() for p in guide_pages()]
+    texts += [subprocess.run([command(c), "--help"], capture_output=True, text=True, check=True,
+                             timeout=60).stdout for c in ("tribo-population", "tribo-impact-map")]
+    pairs = set()
+    for text in texts:
+        text = " ".join(text.split())
+        pairs |= set(re.findall(r"run_si\(\"(\w+)\", \"(\w+)\"", text))
+        for call in re.findall(r"tribo\.(?:population|impact_map)\((.*?)\)", text):
+            p = re.search(r"particle=\"(\w+)\"", call)
+            w = re.search(r"wall=\"(\w+)\"", call)
+            pairs.add((p.group(1) if p else "PE", w.group(1) if w else "steel"))
+        for line in re.findall(r"tribo-(?:population|impact-map) [^\n]*?(?=tribo-|$)", text):
+            p = re.search(r"--particle (\w+)", line)
+            w = re.search(r"--wall (\w+)", line)
+            pairs.add((p.group(1) if p else "PE", w.group(1) if w else "steel"))
+    # the usage line's metavars
+    return {(p, w) for p, w in pairs if (p, w) != ("PARTICLE", "WALL")}
+
+
+def test_every_pair_the_docs_and_help_use_has_sigma0():
+    pairs = pairs_used()
+    assert {("PE", "steel"), ("PP", "glass"), ("PP", "aluminium")} <= pairs
+    for particle, wall in sorted(pairs):
+        assert abs(materials.pair_sigma0(particle, wall)) <= materials.breakdown_limit(), (particle, wall)

@@ -10,9 +10,10 @@ from tribo.batch.executors import SerialExecutor
 from tribo.cli import population as cli
 from tribo.fmu import FmuImage
 from tribo.populations import plot as population_plot
-from tribo.populations.feed import Feed, draw, particle_parameters
+from tribo.populations.feed import Feed, FeedError, draw, particle_parameters
 from tribo.populations.runner import run_population
-from tribo.populations.summary import summarize_population
+from tribo.populations.summary import statistics, summarize_population
+from figure_checks import assert_legends_cover_no_data
 
 # a short chute: each particle a few impacts, ~0.05 s of CPU
 SHORT = {"chute_length": 0.02}
@@ -35,9 +36,12 @@ def test_the_draw_is_reproducible_by_seed_and_measured_rows_stay_together():
     d = draw(Feed(measured=measured), 40, 3)
     pairs = set(zip(measured["epsilon"], measured["size"]))
     assert set(zip(d["epsilon"], d["size"])) <= pairs and len(set(d["epsilon"])) > 1
-    # size is the long diameter: the FMU's semi-major axis is half of it
+    # the package's names: the size (the long diameter), angles in degrees; the chute's
+    # tilt set explicitly (the reference case's 30 degrees)
     params = particle_parameters(feed, a.head(2))
-    assert params[0]["semi_major_axis"] == a["size"][0] / 2 and params[0]["sigma0"] == -1e-5
+    assert params[0]["size"] == a["size"][0] and params[0]["sigma0"] == -1e-5
+    assert params[0]["tilt_deg"] == 30.0 and 0 <= params[0]["phi0_deg"] <= 180
+    assert not {"semi_major_axis", "tilt", "phi0"} & set(params[0])
 
 
 def test_a_population_resumes_after_an_interruption_with_the_same_numbers(tmp_path, si_image):
@@ -92,6 +96,10 @@ def test_the_summary_is_the_direct_computation():
     (["-n", "3", "--set", "mu=-1"], "mu"),
     (["-n", "3", "--epsilon", "2"], "epsilon"),
     (["-n", "3", "--t-end", "0"], "horizon"),
+    (["-n", "3", "--tilt-deg", "95"], "tilt_deg = 95 is invalid: the valid range is 0 <= tilt_deg < 90"),
+    (["-n", "3", "--set", "tilt=0.6"], "the package takes this parameter as tilt_deg"),
+    (["-n", "3", "--set", "epsilon=0.5"], "epsilon is a feed variable"),
+    (["-n", "3", "--set", "chute_length=-0.3"], "chute_length = -0.3 is invalid"),
 ])
 def test_bad_input_is_one_line_before_anything_runs(tmp_path, capsys, argv, says):
     assert cli.main(argv + ["--out", str(tmp_path / "p"), "--serial"]) == 2
@@ -108,22 +116,65 @@ def test_measured_values_with_an_unknown_column_are_one_line(tmp_path, capsys):
     assert "diameter" in err and len(err.strip().splitlines()) == 1
 
 
-def test_the_figure_has_a_legend_on_every_panel(tmp_path, monkeypatch):
-    rng = np.random.default_rng(1)
-    n = 60
-    results = pd.DataFrame({"epsilon": rng.uniform(0.3, 1, n), "size": rng.uniform(2e-4, 2e-3, n),
-                            "charge_to_mass_static": -rng.lognormal(-20, 1, n),
-                            "charge_to_mass_sliding": -rng.lognormal(-10, 1, n),
-                            "charge_static": -rng.lognormal(-27, 1, n),
-                            "charge_sliding": -rng.lognormal(-23, 1, n),
-                            "exit_speed": rng.uniform(0.5, 1, n)})
-    figures = []
-    monkeypatch.setattr(population_plot, "save", lambda fig, path: figures.append(fig) or path)
-    population_plot.write_population_figure(results, str(tmp_path / "p.png"))
-    axes = figures[0].axes
+def synthetic_population(n, seed=1):
+    """Rows as a population of a negatively charging pair gives them: a bimodal static q/m
+    (most grains barely charged, a few much more), sizes in m."""
+    rng = np.random.default_rng(seed)
+    few = rng.random(n) < 0.15
+    return pd.DataFrame({"epsilon": rng.uniform(0.3, 1, n), "size": rng.uniform(2e-4, 2e-3, n),
+                         "charge_to_mass_static": -np.where(few, rng.lognormal(-14, 1, n),
+                                                            rng.lognormal(-19, 0.3, n)),
+                         "charge_to_mass_sliding": -rng.lognormal(-10, 1, n),
+                         "charge_static": -rng.lognormal(-27, 1, n),
+                         "charge_sliding": -rng.lognormal(-23, 1, n),
+                         "exit_speed": rng.uniform(0.5, 1, n)})
+
+
+def test_the_figure_has_a_legend_beside_every_panel_and_says_its_units():
+    results = synthetic_population(60)
+    fig = population_plot.population_figure(results)
+    axes = fig.axes
     assert len(axes) == 8
     for ax in axes:
         assert ax.get_legend() is not None and ax.get_xlabel() and ax.get_ylabel(), ax.get_title()
+    assert_legends_cover_no_data(fig)
+    # the pair charges negatively: the log axes show -q/m; sizes in m, as in the tables
+    assert axes[0].get_xlabel().startswith("−q/m, static model (µC/kg)")
+    assert axes[2].get_xlabel() == "size, the long diameter 2a (m)"
+    assert any("(m)" in t.get_text() or " m (" in t.get_text()
+               for t in axes[1].get_legend().get_texts())
+
+
+def test_the_figures_mean_and_percentiles_are_the_summarys():
+    results = synthetic_population(200, seed=3)
+    summary = summarize_population(results)
+    fig = population_plot.population_figure(results)
+    for ax, model in ((fig.axes[0], "static"), (fig.axes[4], "sliding")):
+        row = summary[(summary.grouping == "all") & (summary.model == model)].iloc[0]
+        lines = {line.get_label().split(" ")[0] if "percentile" not in line.get_label()
+                 else " ".join(line.get_label().split(" ")[:2]): line
+                 for line in ax.get_lines()}
+        for label, column in (("mean", "mean"), ("median", "p50"), ("5th percentile", "p5"),
+                              ("95th percentile", "p95")):
+            line = lines[label]
+            # drawn at the magnitude, labelled with the signed value of summary.csv
+            assert line.get_xdata()[0] == pytest.approx(abs(row[column]) * 1e6, rel=1e-12)
+            assert f"{row[column] * 1e6:.3g} µC/kg" in line.get_label()
+    # the CSV's 5th percentile of a negative q/m is the largest magnitude: its line is
+    # right of the 95th's on the magnitude axis
+    assert lines["5th percentile"].get_xdata()[0] > lines["95th percentile"].get_xdata()[0]
+
+
+@pytest.mark.parametrize("n", [30, 100, 1000])
+def test_the_histograms_bins_follow_the_number_of_particles(n):
+    results = synthetic_population(n, seed=n)
+    fig = population_plot.population_figure(results)
+    bars = [p for p in fig.axes[0].patches]
+    assert len(bars) == population_plot.histogram_bins(n)
+    assert population_plot.histogram_bins(30) >= 5  # not 3
+    assert population_plot.histogram_bins(30) < population_plot.histogram_bins(100) \
+        < population_plot.histogram_bins(1000)
+    assert sum(b.get_height() for b in bars) == n
 
 
 def test_the_api_runs_a_population_and_the_command_says_how_it_went(tmp_path, capsys):
@@ -133,6 +184,13 @@ def test_the_api_runs_a_population_and_the_command_says_how_it_went(tmp_path, ca
     assert (tmp_path / "api" / "population.png").exists()
     overall = report.summary[(report.summary.grouping == "all")]
     assert list(overall["n"]) == [4, 4]
+    # each row says what it is: the materials, the seed, the chute, the cylinder depth
+    rows = tribo.load_results(str(tmp_path / "api"))
+    assert list(rows.columns[:4]) == ["key", "particle", "wall", "seed"]
+    assert (rows["particle"] == "PE").all() and (rows["wall"] == "steel").all()
+    assert (rows["seed"] == 2).all() and (rows["chute_length"] == 0.02).all()
+    assert (rows["tilt_deg"] == 30.0).all() and (rows["cylinder_length"] == 1e-3).all()
+    assert {"size", "phi0_deg", "drop_angle_deg"} <= set(rows.columns)
     # the command over the same folder: everything already there
     assert cli.main(["-n", "4", "--seed", "2", "--chute-length", "0.02", "--t-end", "1",
                      "--out", str(tmp_path / "api"), "--serial", "--no-progress"]) == 0

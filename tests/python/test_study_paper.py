@@ -9,6 +9,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from figure_checks import assert_legends_cover_no_data
 from study_support import command
 from tribo.study.figures import FIGURES
 
@@ -26,7 +27,7 @@ def tiny_study(fmu_file, tmp_path_factory):
 
 def test_writes_tables_and_figures(tiny_study):
     out, _, stdout = tiny_study
-    assert "local cluster (2 worker processes)" in stdout
+    assert "local cluster (2 threads)" in stdout
     for name in FIGURES:
         with open(out / name, "rb") as f:
             assert f.read(8) == b"\x89PNG\r\n\x1a\n", name
@@ -114,7 +115,7 @@ def test_the_study_uses_the_fmus_default_tolerances(tiny_study, tiny_result, fmu
     assert "(the FMU's defaults)" in (out / "study.md").read_text()
     row = runs.iloc[0]
     params = {n: row[n] for n in ("epsilon", "mu", "nu", "n_segments", "charge_model", "integrator",
-                                  "damping_point", "Gamma", "beta", "tau0", "Sigma0", "eta", "tau_r",
+                                  "damping_point", "Gamma", "beta_deg", "tau0", "Sigma0", "eta", "tau_r",
                                   "drop_speed")}
     from tribo.fmu import FmuImage
     fmu = FmuImage.load(fmu_file(3))
@@ -151,6 +152,20 @@ def test_every_panel_has_a_legend_and_distinct_lines(tiny_result, name):
         styles = [(to_hex(line.get_color()), line.get_marker(), line.get_linestyle())
                   for line in ax.get_lines() if not line.get_label().startswith("_")]
         assert len(set(styles)) == len(styles), (name, ax.get_title(), styles)
+    assert_legends_cover_no_data(fig)
+
+
+def test_the_legend_check_sees_a_legend_over_a_line():
+    from tribo.plotting import legend, plt
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [0.5, 0.5], label="a line across the middle")
+    ax.plot([0, 1], [0.0, 1.0], label="another")
+    legend(ax, loc="center")
+    with pytest.raises(AssertionError, match="covers"):
+        assert_legends_cover_no_data(fig)
+    legend(ax, outside=True)
+    assert_legends_cover_no_data(fig)
+    plt.close(fig)
 
 
 def test_axes_say_what_is_normalised_by_what(tiny_result):

@@ -161,8 +161,8 @@ def test_a_file_of_other_parameters_is_refused_saying_which(image, tmp_path):
     path = str(tmp_path / "results.csv")
     with SerialExecutor() as ex:
         run_sweep(SPECS[:1], image, path, ex, progress=False)
-        with pytest.raises(ValueError, match=r"other columns \(these runs have phi0\).*--fresh"):
-            run_sweep([short_spec(0.3, "low", t_end=100.0, phi0=0.1)], image, path, ex, progress=False)
+        with pytest.raises(ValueError, match=r"other columns \(these runs have phi0_deg\).*--fresh"):
+            run_sweep([short_spec(0.3, "low", t_end=100.0, phi0_deg=5.0)], image, path, ex, progress=False)
     assert len(read_results(path)) == 1  # untouched
 
 
@@ -280,7 +280,7 @@ def listening_addresses(procs) -> list[str]:
 def test_sweep_cli_runs_and_resumes(fmu_file, tmp_path):
     out = tmp_path / "results.csv"
     cmd = [command("tribo-sweep"), "--param", "epsilon=0.4,1.0",
-           "--param", "mu=0.1,1.0", "--param", "n_segments=64", "--t-end", "60", "--out", str(out),
+           "--param", "mu=0.1,1.0", "--param", "n_segments=64", "--t-end", "60", "--out", str(tmp_path),
            "--fmu", fmu_file(2), "--serial", "--no-progress", "--no-plot"]
     first = subprocess.run(cmd + ["--max-runs", "3"], capture_output=True, text=True, check=True)
     assert "3 executed, 0 already in the file" in first.stdout

@@ -1,12 +1,14 @@
-"""tribo-sweep as a new user tries it: a scheduler that does not answer, or an address
-without a scheme or port; bad values and horizons; unwritable outputs; Ctrl-C; a longer
-horizon into the same file; --fresh; the embedded cluster's network exposure; the figure.
-Each mistake is one line on stderr, before any cluster starts or any run is made."""
+"""tribo-sweep as a new user tries it: a scheduler that does not answer, an HTTP server or
+a scheduler without workers at the address, or an address without a scheme or port; bad
+values and horizons; unwritable outputs; Ctrl-C; a longer horizon into the same folder;
+--fresh; the embedded cluster's network exposure; the figure. Each mistake is one line on
+stderr, within the connect timeout, before any run is made."""
 
 import os
 import signal
 import socket
 import subprocess
+import sys
 import time
 import urllib.error
 import urllib.request
@@ -14,6 +16,8 @@ import urllib.request
 import pandas as pd
 import psutil
 import pytest
+
+from figure_checks import assert_legends_cover_no_data
 
 from study_support import command
 from tribo.batch.executors import DaskExecutor, scheduler_address
@@ -58,11 +62,72 @@ def test_scheduler_addresses_without_scheme_or_port_are_understood():
 def test_a_scheduler_that_does_not_answer_is_one_line_within_seconds(fmu_file, tmp_path):
     port = free_port()  # nothing listens there
     done, elapsed = sweep("--param", "epsilon=0.5", *SMALL, "--t-end", "10", "--fmu", fmu_file(3),
-                          "--out", str(tmp_path / "r.csv"), "--scheduler", f"localhost:{port}",
+                          "--out", str(tmp_path / "r"), "--scheduler", f"localhost:{port}",
                           "--connect-timeout", "2")
     assert_one_line_error(done, f"no Dask scheduler answered at tcp://localhost:{port} within 2 s")
     assert elapsed < 15  # was 31 s with Dask's default timeout; here the timeout and the start-up
-    assert not (tmp_path / "r.csv").exists()
+    assert not (tmp_path / "r" / "results.csv").exists()
+
+
+@pytest.fixture
+def http_server():
+    """An HTTP server on a free port of 127.0.0.1 (as a Dask dashboard is): it takes a
+    connection and waits for a request."""
+    port = free_port()
+    p = subprocess.Popen([sys.executable, "-m", "http.server", str(port), "--bind", "127.0.0.1"],
+                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.monotonic() + 20
+        while time.monotonic() < deadline:
+            try:
+                socket.create_connection(("127.0.0.1", port), timeout=1).close()
+                break
+            except OSError:
+                time.sleep(0.1)
+        yield port
+    finally:
+        p.terminate()
+        p.wait(timeout=10)
+
+
+def test_an_http_server_at_the_address_is_one_line_within_the_timeout(fmu_file, tmp_path, http_server):
+    done, elapsed = sweep("--param", "epsilon=0.5", *SMALL, "--t-end", "10", "--fmu", fmu_file(3),
+                          "--out", str(tmp_path / "r"), "--scheduler", f"127.0.0.1:{http_server}",
+                          "--connect-timeout", "2", timeout=60)
+    assert_one_line_error(done, f"tcp://127.0.0.1:{http_server} is not a Dask scheduler",
+                          "said nothing within 2 s")
+    assert elapsed < 15  # Dask's client alone waited for ever (killed after minutes)
+
+
+@pytest.fixture
+def scheduler_without_workers():
+    port = free_port()
+    p = subprocess.Popen([command("dask"), "scheduler", "--host", "127.0.0.1", "--port", str(port),
+                          "--dashboard-address", "127.0.0.1:0", "--no-dashboard"],
+                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline:
+            try:
+                socket.create_connection(("127.0.0.1", port), timeout=1).close()
+                break
+            except OSError:
+                time.sleep(0.2)
+        yield port
+    finally:
+        p.terminate()
+        p.wait(timeout=20)
+
+
+def test_a_scheduler_without_workers_is_one_line_within_the_timeout(fmu_file, tmp_path,
+                                                                     scheduler_without_workers):
+    port = scheduler_without_workers
+    done, elapsed = sweep("--param", "epsilon=0.5", *SMALL, "--t-end", "10", "--fmu", fmu_file(3),
+                          "--out", str(tmp_path / "r"), "--scheduler", f"127.0.0.1:{port}",
+                          "--connect-timeout", "2", timeout=60)
+    assert_one_line_error(done, f"the Dask scheduler at tcp://127.0.0.1:{port} has no workers",
+                          f"dask worker tcp://127.0.0.1:{port}")
+    assert elapsed < 15  # a 40-line traceback before
 
 
 @pytest.mark.parametrize("args, words", [
@@ -77,30 +142,44 @@ def test_a_scheduler_that_does_not_answer_is_one_line_within_seconds(fmu_file, t
     (["--param", "epsilon=0.5", "--t-end", "10.5"], ["not a whole number of record intervals"]),
     (["--param", "epsilon=0.5", "--t-end", "abc"], ["--t-end", "invalid float value"]),
     (["--param", "epsilon=0.5", "--scheduler", "localhost:port"], ["port must be a number"]),
+    (["--param", "epsilon=0.5", "--connect-timeout", "0"], ["--connect-timeout", "must be a positive number"]),
     (["--t-end", "10"], ["--param"]),
+    (["--param", "beta=0.5"], ["beta: the package takes this parameter as beta_deg"]),
+    (["--param", "beta_deg=90"], ["beta_deg = 90 is invalid: the valid range is 0 <= beta_deg < 90"]),
+    (["--param", "epsilon=-0.30"], ["epsilon = -0.3 is invalid"]),
 ], ids=["integer", "range", "negative", "text", "unknown", "t_end 0", "t_end -5", "t_end nan",
-        "t_end interval", "t_end text", "address", "no param"])
+        "t_end interval", "t_end text", "address", "timeout", "no param", "radians", "degrees",
+        "as typed"])
 def test_bad_values_are_one_line_before_anything_starts(fmu_file, tmp_path, args, words):
-    done, elapsed = sweep(*args, "--fmu", fmu_file(3), "--out", str(tmp_path / "r.csv"))
+    done, elapsed = sweep(*args, "--fmu", fmu_file(3), "--out", str(tmp_path / "r"))
     assert_one_line_error(done, *words)
-    assert not (tmp_path / "r.csv").exists()
+    assert not (tmp_path / "r" / "results.csv").exists()
 
 
 def test_unwritable_outputs_are_one_line_before_any_run(fmu_file, tmp_path):
     a_file = tmp_path / "a_file"
     a_file.write_text("")
-    for out in (a_file / "results.csv", "/proc/tribo/results.csv", tmp_path):
+    for out, says in ((a_file / "sweep", "cannot write"), ("/proc/tribo/sweep", "cannot write"),
+                      (a_file, "cannot write"),
+                      # --out is a folder, for every command: an earlier version's file name is
+                      # refused, not made into a folder (or a file named like the folder)
+                      (tmp_path / "new" / "results.csv", "--out names the output folder, not a file")):
         done, _ = sweep("--param", "epsilon=0.5", *SMALL, "--t-end", "10", "--fmu", fmu_file(3),
                         "--serial", "--out", str(out))
-        assert_one_line_error(done, "cannot write")
-    done, _ = sweep("--param", "epsilon=0.5", *SMALL, "--t-end", "10", "--fmu", fmu_file(3), "--serial",
-                    "--out", str(tmp_path / "r.csv"), "--series-dir", str(a_file / "series"))
-    assert_one_line_error(done, "cannot write into", "a_file")
-    assert not (tmp_path / "r.csv").exists()
+        assert_one_line_error(done, says)
+    assert not (tmp_path / "new").exists()
 
 
-def test_a_longer_horizon_goes_into_the_same_file_and_fresh_keeps_a_backup(fmu_file, tmp_path):
-    out = tmp_path / "results.csv"
+def test_the_out_folder_is_made_with_its_parents(fmu_file, tmp_path):
+    out = tmp_path / "new" / "dir" / "bad"
+    done, _ = sweep("--param", "epsilon=0.5", *SMALL, "--t-end", "10", "--fmu", fmu_file(3),
+                    "--serial", "--out", str(out), "--no-plot", "--series")
+    assert done.returncode == 0, done.stderr
+    assert out.is_dir() and (out / "results.csv").is_file() and (out / "series").is_dir()
+
+
+def test_a_longer_horizon_goes_into_the_same_folder_and_fresh_keeps_a_backup(fmu_file, tmp_path):
+    out = tmp_path / "sweep"
     base = ["--param", "epsilon=0.4,1.0", *SMALL, "--fmu", fmu_file(3), "--serial", "--out", str(out),
             "--no-plot"]
     first, _ = sweep(*base, "--t-end", "20")
@@ -108,22 +187,23 @@ def test_a_longer_horizon_goes_into_the_same_file_and_fresh_keeps_a_backup(fmu_f
     longer, _ = sweep(*base, "--t-end", "40")
     assert longer.returncode == 0, longer.stderr
     assert "2 executed, 0 already in the file" in longer.stdout
-    df = pd.read_csv(out)
+    df = pd.read_csv(out / "results.csv")
     assert sorted(df["t_end"]) == [20.0, 20.0, 40.0, 40.0]
     fresh, _ = sweep(*base, "--t-end", "20", "--fresh")
     assert fresh.returncode == 0, fresh.stderr
-    backup = tmp_path / "results.backup-1.csv"
+    backup = out / "backup-1"
     assert f"the earlier results are kept in {backup}" in fresh.stdout
-    assert pd.read_csv(backup).equals(df) and len(pd.read_csv(out)) == 2
+    assert pd.read_csv(backup / "results.csv").equals(df) and len(pd.read_csv(out / "results.csv")) == 2
 
 
-@pytest.mark.parametrize("where", [["--serial"], ["--workers", "2"]], ids=["serial", "dask"])
+@pytest.mark.parametrize("where", [["--serial"], ["--workers", "2"], ["--processes", "--workers", "2"]],
+                         ids=["serial", "dask threads", "dask processes"])
 def test_ctrl_c_keeps_the_finished_runs_and_says_how_to_resume(fmu_file, tmp_path, where):
     """SIGINT to the whole process group, as Ctrl-C in a terminal sends it: one message, no
     traceback, no process left behind; the same command then runs only the rest."""
-    out = tmp_path / "results.csv"
+    out = tmp_path / "sweep" / "results.csv"
     cmd = [command("tribo-sweep"), "--param", "epsilon=0.2:1.0:6", "--param", "mu=1.0", *SMALL,
-           "--t-end", "600", "--fmu", fmu_file(3), "--out", str(out), "--no-plot", *where]
+           "--t-end", "600", "--fmu", fmu_file(3), "--out", str(out.parent), "--no-plot", *where]
     p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                          start_new_session=True)
     deadline = time.monotonic() + 120
@@ -158,8 +238,9 @@ def _session_alive(sid):
     return False
 
 
-def test_the_embedded_cluster_listens_on_loopback_only_and_has_no_dashboard():
-    with DaskExecutor(workers=1) as executor:
+@pytest.mark.parametrize("processes", [False, True], ids=["threads", "processes"])
+def test_the_embedded_cluster_listens_on_loopback_only_and_has_no_dashboard(processes):
+    with DaskExecutor(workers=1, processes=processes) as executor:
         me = psutil.Process()
         listening = [c.laddr for q in [me] + me.children(recursive=True)
                      for c in q.net_connections(kind="inet") if c.status == psutil.CONN_LISTEN]
@@ -174,7 +255,7 @@ def test_the_embedded_cluster_listens_on_loopback_only_and_has_no_dashboard():
 def test_the_sweep_plots_its_results(fmu_file, tmp_path):
     out = tmp_path / "results.csv"
     done, _ = sweep("--param", "epsilon=0.3,0.6,1.0", "--param", "mu=0.1,1.0", *SMALL, "--t-end", "30",
-                    "--fmu", fmu_file(3), "--serial", "--out", str(out))
+                    "--fmu", fmu_file(3), "--serial", "--out", str(tmp_path))
     assert done.returncode == 0, done.stderr
     png = tmp_path / "results.png"
     assert f"figure {png}" in done.stdout
@@ -192,6 +273,7 @@ def test_the_sweep_plots_its_results(fmu_file, tmp_path):
     finally:
         sp.save = original
     fig = seen["fig"]
+    assert_legends_cover_no_data(fig)
     for ax in fig.axes:
         assert [t.get_text() for t in ax.get_legend().get_texts()] == ["mu = 0.1", "mu = 1"]
         assert ax.get_xlabel() == "epsilon"

@@ -6,7 +6,9 @@ parameter sweeps, which the study, populations and impact maps run on too.
     particle   one particle's run: series, segment charges, summary row
     summary    what a time series is summarised into (bounce envelope, charges, motion classes)
     results    the results CSV: append a row per finished run, resume, backups
-    executors  where runs execute: serially here, or on Dask (local cluster or address)
+    executors  where runs execute: serially here, or on Dask (a local cluster of threads or
+               processes, or an address)
+    folder     an output folder: one command's results of one set-up, its record and lock
     sweep      a sweep: skip finished runs, run the rest, record them as they finish
     plot       a sweep's figure
 """

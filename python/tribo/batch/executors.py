@@ -1,12 +1,22 @@
 """Where runs execute: in this process, one after the other (`SerialExecutor`), or as
-Dask tasks (`DaskExecutor`): by default on a local cluster embedded in this process
-(one worker process per core, one thread each: a run is single-threaded C), or on an
-existing cluster when given its scheduler address.
+Dask tasks (`DaskExecutor`): by default on a local cluster embedded in this process, or
+on an existing cluster when given its scheduler address.
 
-The embedded cluster listens on 127.0.0.1 only and opens no dashboard (its scheduler's
-HTTP server, which Dask always starts, takes a free port on 127.0.0.1 and serves no
-dashboard pages). Its worker processes ignore SIGINT: Ctrl-C in a terminal reaches the
-whole process group, and it is this process that stops the sweep and closes the cluster.
+The local cluster runs its tasks in threads of this process, one per core: the FMU's
+calls release the GIL (ctypes), so runs proceed in parallel, and no process is spawned,
+which would import the user's script again in each worker (a script without an
+`if __name__ == "__main__":` guard would start clusters recursively); docs/sweeps.md
+has the measurement against worker processes, which `processes=True` still gives. The
+cluster's scheduler and workers talk in-process (with processes: over 127.0.0.1), and it
+opens no dashboard: the HTTP servers Dask always starts take free ports on 127.0.0.1 and
+serve no dashboard pages. Worker processes ignore SIGINT: Ctrl-C in a
+terminal reaches the whole process group, and it is this process that stops the sweep
+and closes the cluster.
+
+An existing cluster is checked before it is used, each mistake one line within the
+connect timeout: nothing listening, something that is not a Dask scheduler (a Dask
+scheduler speaks first on connection; an HTTP server, such as its dashboard, waits for a
+request), a scheduler without workers.
 
 Both have the same interface: a context manager whose `run(function, image, specs)`
 yields (index into specs, RunResult or the exception the run raised) as runs finish.
@@ -18,8 +28,10 @@ import contextlib
 import logging
 import os
 import signal
+import socket
 import tempfile
 import threading
+import time
 import zipfile
 from typing import Callable, Iterator
 
@@ -27,11 +39,13 @@ from typing import Callable, Iterator
 PACKAGE_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DEFAULT_SCHEDULER_PORT = 8786  # Dask's
 CONNECT_TIMEOUT_S = 5.0
+# what a Dask scheduler's first message (its handshake) holds, in msgpack
+DASK_HANDSHAKE = b"compression"
 
 
 class ClusterUnreachable(ConnectionError):
-    """The scheduler at the address given did not answer (the message says where and how
-    long it was tried)."""
+    """The scheduler at the address given did not answer, is not a Dask scheduler or has
+    no workers (the message says which, where and how long it was tried)."""
 
 
 def scheduler_address(text: str) -> str:
@@ -91,17 +105,25 @@ class SerialExecutor:
 
 
 class DaskExecutor:
-    """Runs as Dask tasks: a local cluster of `workers` processes (default: one per
-    core), or the existing cluster at `address` (e.g. "tcp://10.0.0.5:8786", see
-    `scheduler_address`), whose workers receive this package on connection (they need
-    fmpy, numpy and pandas). An address that does not answer within `connect_timeout`
-    seconds raises ClusterUnreachable."""
+    """Runs as Dask tasks: a local cluster of `workers` threads (default: one per core;
+    processes=True: worker processes, one thread each), or the existing cluster at
+    `address` (e.g. "tcp://10.0.0.5:8786", see `scheduler_address`), whose workers receive
+    this package on connection (they need fmpy, numpy and pandas). An address where no
+    Dask scheduler with workers answers within `connect_timeout` seconds raises
+    ClusterUnreachable."""
 
     def __init__(self, address: str | None = None, workers: int | None = None,
-                 connect_timeout: float = CONNECT_TIMEOUT_S):
+                 connect_timeout: float = CONNECT_TIMEOUT_S, processes: bool = False):
+        if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
+                                    or workers < 1):
+            raise ValueError(f"workers = {workers!r}: a whole number, at least 1")
+        if not (isinstance(connect_timeout, (int, float)) and connect_timeout > 0
+                and connect_timeout < float("inf")):
+            raise ValueError(f"connect timeout = {connect_timeout!r}: a positive number of seconds")
         self.address = scheduler_address(address) if address else None
         self.n_workers = workers or available_cores()
-        self.connect_timeout = connect_timeout
+        self.connect_timeout = float(connect_timeout)
+        self.processes = processes
         self._cluster = None
         self._client = None
         self._scattered = {}  # FMU sha256 -> future of its image on the workers
@@ -111,20 +133,24 @@ class DaskExecutor:
         from distributed import Client, LocalCluster
 
         if self.address:
-            try:
-                self._client = Client(self.address, timeout=self.connect_timeout)
-            except OSError as e:
-                raise ClusterUnreachable(
-                    f"no Dask scheduler answered at {self.address} within "
-                    f"{self.connect_timeout:g} s ({_first_line(e)})") from None
+            self._client = _connect(self.address, self.connect_timeout)
             _ship_package(self._client)
-        else:
+        elif self.processes:
             with _sigint_ignored():  # inherited by the worker processes
                 self._cluster = LocalCluster(
                     n_workers=self.n_workers, threads_per_worker=1, processes=True,
                     host="127.0.0.1", dashboard_address=None,
                     scheduler_kwargs={"dashboard": False, "dashboard_address": "127.0.0.1:0"},
                     silence_logs=logging.ERROR)
+            self._client = Client(self._cluster)
+        else:
+            # in-process: the scheduler and the worker talk through memory; their HTTP
+            # servers on 127.0.0.1 (Dask's default for the worker's is every interface)
+            self._cluster = LocalCluster(
+                n_workers=1, threads_per_worker=self.n_workers, processes=False,
+                dashboard_address=None, worker_dashboard_address="127.0.0.1:0",
+                scheduler_kwargs={"dashboard": False, "dashboard_address": "127.0.0.1:0"},
+                silence_logs=logging.ERROR)
             self._client = Client(self._cluster)
         return self
 
@@ -152,7 +178,8 @@ class DaskExecutor:
         return max(1, sum(w.get("nthreads", 1) for w in info.values()))
 
     def describe(self) -> str:
-        where = self.address or f"local cluster ({self.n_workers} worker processes)"
+        kind = "worker processes" if self.processes else "threads"
+        where = self.address or f"local cluster ({self.n_workers} {kind})"
         return f"Dask, {where}"
 
     def run(self, function: Callable, image, specs) -> Iterator:
@@ -176,6 +203,61 @@ class DaskExecutor:
         finally:
             for f in futures:
                 f.cancel()
+
+
+def _connect(address: str, timeout: float):
+    """A client of the Dask scheduler at `address` that has at least one worker, all
+    within `timeout` seconds; ClusterUnreachable, in one line, otherwise."""
+    from distributed import Client  # lazily, as in DaskExecutor.__enter__
+
+    deadline = time.monotonic() + timeout
+    _probe(address, timeout)
+    try:
+        client = Client(address, timeout=max(0.1, deadline - time.monotonic()))
+    except (OSError, TimeoutError) as e:
+        raise ClusterUnreachable(f"no Dask scheduler answered at {address} within {timeout:g} s "
+                                 f"({_first_line(e)})") from None
+    try:
+        client.wait_for_workers(1, timeout=max(0.1, deadline - time.monotonic()))
+    except (OSError, TimeoutError):
+        client.close()
+        raise ClusterUnreachable(f"the Dask scheduler at {address} has no workers (none joined "
+                                 f"within {timeout:g} s): start one with `dask worker {address}`") from None
+    return client
+
+
+def _probe(address: str, timeout: float) -> None:
+    """Connect to a tcp:// address and read what it says first: a Dask scheduler sends its
+    handshake at once; anything else (an HTTP server waits for a request) would leave
+    Dask's client waiting for ever. Other protocols (tls, ws) are left to Dask."""
+    scheme, _, rest = address.partition("://")
+    if scheme != "tcp":
+        return
+    host, _, port = rest.rpartition(":")
+    deadline = time.monotonic() + timeout
+    try:
+        sock = socket.create_connection((host.strip("[]"), int(port)), timeout=timeout)
+    except OSError as e:
+        why = "no answer" if isinstance(e, socket.timeout) else (e.strerror or type(e).__name__).lower()
+        raise ClusterUnreachable(f"no Dask scheduler answered at {address} within {timeout:g} s "
+                                 f"({why})") from None
+    said = b""
+    with sock:
+        try:
+            while DASK_HANDSHAKE not in said and len(said) < 4096:
+                sock.settimeout(max(0.01, deadline - time.monotonic()))
+                chunk = sock.recv(4096)
+                if not chunk:
+                    break
+                said += chunk
+        except OSError:  # the time is up, or the peer hung up
+            pass
+    if DASK_HANDSHAKE not in said:
+        what = "said nothing" if not said else "spoke another protocol"
+        raise ClusterUnreachable(f"{address} is not a Dask scheduler: it took the connection but "
+                                 f"{what} within {timeout:g} s (an HTTP server, such as a "
+                                 f"dashboard? Dask schedulers listen on port {DEFAULT_SCHEDULER_PORT} "
+                                 f"unless told otherwise)")
 
 
 def _ship_package(client) -> None:

@@ -7,7 +7,6 @@ follows tau0 unless they are swept too (tie=False: they don't).
 """
 
 import itertools
-import math
 
 import numpy as np
 
@@ -19,7 +18,7 @@ from .specs import RunSpec, normalise_values
 # The study sets epsilon, mu and nu per run; a sweep's paper base takes PAPER_BASE's.
 PAPER_SETUP = {
     "Gamma": 0.001,
-    "beta": 45 * (math.pi / 180.0),  # rad
+    "beta_deg": 45.0,  # the FMU's beta is pi/4 rad (fmu/names.py)
     "tau0": 1.0,
     "Sigma0": 0.01,
     "eta": 0.1,

@@ -16,11 +16,12 @@ import pandas as pd
 from fmpy.fmi1 import FMICallException
 
 from ..fmu import ERROR, FmuImage, Instance, record, unpacked
+from ..fmu.names import fmu_outputs, from_fmu_column, in_package_terms, to_fmu
 from .specs import RunSpec
 from .summary import MOTION_CLASSES, summarize
 
 # The outputs the study records at every communication point (its summary and figures use them).
-RECORDED = ["X", "Y", "phi", "U", "V", "Omega", "delta_y", "in_contact", "Q_static", "Q_sliding",
+RECORDED = ["X", "Y", "phi_deg", "U", "V", "Omega", "delta_y", "in_contact", "Q_static", "Q_sliding",
             "contact_fraction", "turns", "motion_class"] \
            + [f"fraction_{m}" for m in MOTION_CLASSES] \
            + ["assumption_warnings"]
@@ -65,29 +66,35 @@ def simulate(image: FmuImage, params: dict, t_end: float, record_interval: float
              outputs=tuple(RECORDED), segments: bool = False) -> Recording:
     """Run the FMU from 0 to t_end with `params`, recording `outputs` every
     record_interval (and, if `segments` and the FMU has the arrays, each segment's charge
-    at the end). A run the FMU ends early is recorded up to where it ended."""
+    at the end). Parameters and outputs by the package's names and in its units
+    (fmu/names.py: angles in degrees). A run the FMU ends early is recorded up to where it
+    ended."""
     times = communication_points(t_end, record_interval)
+    md = image.model_description()
     outputs = list(outputs)
+    fmu_params, fmu_names = to_fmu(md, params), fmu_outputs(md, outputs)
     with unpacked(image) as fmu_dir:
         instance = Instance(fmu_dir, name="tribo")
         stage = "setting the parameters"
         try:
-            instance.set_parameters(params)
+            instance.set_parameters(fmu_params)
             stage = "initialization"
             instance.init(0.0, t_end)
             stage = "the run"
-            reached, data = record(instance, times, outputs)
+            reached, data = record(instance, times, fmu_names)
             arrays = {model: instance.get(name) for model, name in SEGMENT_ARRAYS.items()
                       if segments and name in instance.variables}
             instance.terminate()
         except FMICallException as e:
             errors = [m for status, _, m in instance.messages if status >= ERROR]
             where = stage if stage != "the run" else f"the step from time {instance.t:g}"
-            raise RuntimeError(f"the FMU failed in {where} with {params}: {e}; "
-                               f"it logged: {errors}") from e
+            raise RuntimeError(f"the FMU failed in {where}: "
+                               f"{in_package_terms(md, errors[-1]) if errors else e}") from None
         finally:
             instance.free()
-    series = pd.DataFrame(data, columns=outputs)
+    series = pd.DataFrame({name: from_fmu_column(md, fmu_name, data[:, i])[1]
+                           for i, (name, fmu_name) in enumerate(zip(outputs, fmu_names))},
+                          columns=outputs)
     series.insert(0, "time", reached)
     return Recording(series, pd.DataFrame(arrays) if arrays else None, instance.messages)
 

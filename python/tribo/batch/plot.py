@@ -35,7 +35,7 @@ def write_sweep_figure(results, swept: list[str], path: str) -> str:
         ax.set_xlabel(x)
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)
-        legend(ax, fontsize=7)
+        legend(ax, fontsize=7, outside=True)
     horizons = ", ".join(f"{t:g}" for t in sorted(results["t_end"].unique()))
     fig.suptitle(f"sweep over {', '.join(swept)}: {len(results)} runs, at the horizon τ = {horizons}",
                  fontsize=10)

@@ -28,7 +28,9 @@ class ResultsFile:
     def __init__(self, path: str, columns: list[str], fresh: bool = False):
         if columns[0] != KEY:
             raise ValueError(f"the first column must be {KEY!r}")
-        self.path = path
+        # absolute: FMU runs in other threads change the working directory for a moment
+        # (fmu/instance.py)
+        self.path = os.path.abspath(path)
         self.columns = list(columns)
         self.backup = None  # where fresh=True moved an earlier file
         if fresh and os.path.exists(path):

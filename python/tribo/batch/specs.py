@@ -29,10 +29,10 @@ class RunSpec:
                            "record_interval": self.record_interval}, sort_keys=True)
 
 
-def normalise_values(params: dict, integer_names, exact_names=("beta", "phi0", "Omega0")) -> dict:
-    """Integers (integer_names: the FMU's, parameters.integer_names) as int, angles (in
-    rad: no decimal numbers) as they are, everything else as a float rounded to DECIMALS
-    places."""
+def normalise_values(params: dict, integer_names, exact_names=("Omega0",)) -> dict:
+    """Integers (integer_names: the FMU's, parameters.integer_names) as int, the exact
+    names (in rad/tau, no decimal numbers: multiples of pi) as they are, everything else
+    (angles in degrees too) as a float rounded to DECIMALS places."""
     out = {}
     for name, value in params.items():
         if name in integer_names:

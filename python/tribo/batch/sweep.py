@@ -22,6 +22,8 @@ from .specs import RunSpec, run_key
 from .summary import summary_columns
 
 RUN_COLUMNS = ["t_end", "record_interval", "fmu_sha256"]
+# what a sweep writes into its output folder (--out, out=)
+RESULTS, FIGURE, SERIES = "results.csv", "results.png", "series"
 TIMING_COLUMNS = ["cpu_s", "wall_s"]  # differ from one execution of a run to the next
 
 
@@ -39,14 +41,33 @@ class SweepReport:
         return len(self.results) == len(self.keys)
 
 
-def sweep_columns(specs: list[RunSpec], result_columns: list[str] | None = None) -> list[str]:
-    """The results file's header: the key, the parameters, the run's set-up, the result
-    columns (default: the study's summary) and the timings."""
+def sweep_columns(specs: list[RunSpec], result_columns: list[str] | None = None,
+                  constants: dict | None = None) -> list[str]:
+    """The results file's header: the key, the constants (e.g. the materials), the
+    parameters, the run's set-up, the result columns (default: the study's summary) and
+    the timings."""
     names = list(specs[0].params)
     if any(list(s.params) != names for s in specs):
         raise ValueError("the runs of one sweep must set the same parameters")
     results = summary_columns() if result_columns is None else list(result_columns)
-    return [KEY] + names + RUN_COLUMNS + results + TIMING_COLUMNS
+    return [KEY] + list(constants or {}) + names + RUN_COLUMNS + results + TIMING_COLUMNS
+
+
+def sweep_setup(swept: list[str], base: str, tie: bool) -> dict:
+    """What gives a sweep's rows their meaning beyond their columns (an output folder's
+    record, batch/folder.py): the parameters swept (the rows of other values or horizons
+    of the same ones can share the folder), the base of the others, whether nu and tau_r
+    follow mu and tau0."""
+    return {"swept": list(swept), "base": base, "tie": bool(tie)}
+
+
+def check_out_folder(out: str) -> None:
+    """ValueError, one line, for an --out that names a results file rather than a folder
+    (as an earlier version took it)."""
+    if out.lower().endswith((".csv", ".png")):
+        parent = os.path.dirname(out) or "."
+        raise ValueError(f"{out}: --out names the output folder, not a file ({RESULTS} and "
+                         f"{FIGURE} go into it): e.g. {parent}")
 
 
 def keys_of(specs: list[RunSpec], image: FmuImage) -> list[str]:
@@ -67,18 +88,23 @@ def kept(results_path: str, keys: list[str]) -> int:
 def run_sweep(specs: list[RunSpec], image: FmuImage, results_path: str, executor, *,
               resume: bool = True, series_dir: str | None = None, max_runs: int | None = None,
               progress: bool = True, desc: str = "runs", run=run_fmu,
-              result_columns: list[str] | None = None) -> SweepReport:
+              result_columns: list[str] | None = None, constants: dict | None = None) -> SweepReport:
     """Run `specs` (skipping finished ones if `resume`), appending a row per finished run
     to `results_path` and, if `series_dir` is given, writing each run's time series to
     <series_dir>/<key>.csv. `max_runs` caps the runs this call executes (the rest stay
     to be done). `run(image, spec)` -> RunResult is the function the executor runs;
-    `result_columns` the names of its row (default: the study's summary)."""
+    `result_columns` the names of its row (default: the study's summary); `constants`
+    columns with the same value on every row (what the runs share but do not pass to
+    the FMU by name, e.g. the materials' names), after the key."""
     keys = [run_key(s, image.sha256) for s in specs]
     unique = list(dict.fromkeys(keys))
     spec_of = dict(zip(keys, specs))
-    results = ResultsFile(results_path, sweep_columns(specs, result_columns), fresh=not resume)
+    constants = dict(constants or {})
+    results = ResultsFile(results_path, sweep_columns(specs, result_columns, constants),
+                          fresh=not resume)
     backup = results.backup
     if series_dir:
+        series_dir = os.path.abspath(series_dir)  # as the results file's path (results.py)
         os.makedirs(series_dir, exist_ok=True)
 
     def finished(key):
@@ -104,7 +130,7 @@ def run_sweep(specs: list[RunSpec], image: FmuImage, results_path: str, executor
                 if outcome.segments is not None:
                     write_series(outcome.segments, segments_path(series_dir, key))
                 write_series(outcome.series, series_path(series_dir, key))
-            row = {KEY: key, **spec.params, "t_end": spec.t_end,
+            row = {KEY: key, **constants, **spec.params, "t_end": spec.t_end,
                    "record_interval": spec.record_interval, "fmu_sha256": image.sha256,
                    **outcome.row}
             results.append(row)

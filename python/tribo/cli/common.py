@@ -1,5 +1,6 @@
 """What the commands share: errors in one line, the checks made before any run (the
-output is writable, the scheduler's address is one Dask takes) and where runs execute."""
+output is writable, the scheduler's address is one Dask takes), the output folder (--out,
+the same for every command) and where runs execute."""
 
 import argparse
 import os
@@ -73,6 +74,8 @@ def check_writable_file(path: str) -> None:
 
 def check_writable_dir(path: str) -> None:
     """OSError, naming the path, unless files can be made in the folder (made if missing)."""
+    if os.path.exists(path) and not os.path.isdir(path):
+        raise OSError(f"cannot write into {path}: a file, not a folder")
     try:
         os.makedirs(path, exist_ok=True)
         with tempfile.NamedTemporaryFile(dir=path, prefix=".tribo_write_check_"):
@@ -81,15 +84,39 @@ def check_writable_dir(path: str) -> None:
         raise OSError(f"cannot write into {path}: {e.strerror or e}") from None
 
 
+def positive_number(text: str) -> float:
+    """argparse type: a positive number."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not (value > 0 and value < float("inf")):
+        raise argparse.ArgumentTypeError(f"{text}: must be a positive number")
+    return value
+
+
+def add_out_option(p: argparse.ArgumentParser, default: str) -> None:
+    p.add_argument("--out", default=default, metavar="FOLDER",
+                   help=f"the output folder (default {default}): it holds one command's "
+                        f"results of one set-up; another's is refused, --fresh starts it over "
+                        f"(what it held is kept in FOLDER/backup-<n>/)")
+
+
 def add_execution_options(p: argparse.ArgumentParser) -> None:
     where = p.add_mutually_exclusive_group()
     where.add_argument("--scheduler", metavar="ADDRESS",
                        help="run on the existing Dask cluster at ADDRESS: [tcp://]host[:port], "
-                            "port 8786 if none (default: a local cluster on 127.0.0.1, no dashboard)")
+                            "port 8786 if none (default: a local cluster in this process, on "
+                            "127.0.0.1 only, no dashboard)")
     where.add_argument("--serial", action="store_true", help="run in this process, without Dask")
-    p.add_argument("--workers", type=int, help="worker processes of the local cluster (default: one per core)")
-    p.add_argument("--connect-timeout", type=float, default=5.0, metavar="S",
-                   help="seconds to wait for --scheduler to answer (default 5)")
+    where.add_argument("--processes", action="store_true",
+                       help="the local cluster's workers as processes on 127.0.0.1 instead of "
+                            "threads (many cores and short runs: docs/sweeps.md)")
+    p.add_argument("--workers", type=int,
+                   help="threads (with --processes: processes) of the local cluster (default: one per core)")
+    p.add_argument("--connect-timeout", type=positive_number, default=5.0, metavar="S",
+                   help="seconds within which --scheduler must answer as a Dask scheduler with "
+                        "workers (default 5)")
 
 
 def executor_of(args):
@@ -99,4 +126,5 @@ def executor_of(args):
         return SerialExecutor()
     if args.workers is not None and args.workers < 1:
         raise ValueError(f"--workers {args.workers}: at least 1")
-    return DaskExecutor(args.scheduler, args.workers, connect_timeout=args.connect_timeout)
+    return DaskExecutor(args.scheduler, args.workers, connect_timeout=args.connect_timeout,
+                        processes=args.processes)

@@ -1,38 +1,45 @@
 """tribo-impact-map: the charge one wall impact transfers, as a map over impact speed,
 impact angle, orientation and roundness for a materials pair, through the SI FMU on Dask.
 
-    tribo-impact-map --speed 0.5:10:5 --angle 15:90:6 --phi0 0:90:4 --epsilon 0.4,0.7,1 \\
-        --particle PE --wall steel --out out/impact_map
+    tribo-impact-map --speed 0.5:10:5 --angle-deg 15:90:6 --phi0-deg 0:90:4 \\
+        --epsilon 0.4,0.7,1 --particle PE --wall steel --out out/impact_map
+    tribo-impact-map --speed 1,4 --angle-deg 45,90 --set size=4e-4 --out out/impact_small
 
-Each grid point is one impact episode (tribo/impact/episode.py): the particle arrives with its lowest
-point touching a level plate, at the speed (m/s) and angle (degrees from the plate's surface;
-90 is head-on), orientation phi0 (degrees) and spin --omega0 (rad/s); the SI FMU runs it
-with run_end = first_liftoff and ends it exactly where it leaves the plate, or at the time
-limit (--limit, in t*, default 200: counted as sustained contact, lifted_off = 0). VALUES:
-a:b:n (n values from a to b), v1,v2,... or one value.
+Each grid point is one impact episode (tribo/impact/episode.py): the particle arrives with
+its lowest point touching a level plate, at the speed (m/s) and angle (--angle-deg:
+degrees from the plate's surface; 90 is head-on), orientation (--phi0-deg: degrees) and
+spin --omega0 (rad/s); the SI FMU runs it with run_end = first_liftoff and ends it
+exactly where it leaves the plate, or at the time limit (--limit, in t*, default 200:
+counted as sustained contact, lifted_off = 0). VALUES: a:b:n (n values from a to b),
+v1,v2,... or one value. The particle's size (--set size=..., the long diameter 2a in m,
+default 1e-3) and the cylinder depth (--set cylinder_length=..., m, default 1e-3) are the
+SI FMU's: the charges in C are for that depth (q/m does not depend on it).
 
-Writes into --out: impact_map.csv (speed, angle, phi0, epsilon, then charge_static,
-charge_sliding (C per impact on the cylinder of the depth set), charge_to_mass_static,
-charge_to_mass_sliding (C/kg), rebound_u, rebound_v, rebound_speed (m/s), rebound_angle
-(deg), rebound_omega (rad/s), contact_time (s), lifted_off, time_end, t_star),
-impact_map.json (materials, settings, grid, time limit, the FMU and package versions),
-impact_map.png and episodes.csv (the runs as they finish: an interrupted map resumes when
-the same command is run again). A wall model looks charges up with tribo.ImpactMap.load(out).
-Dask: as tribo-sweep (a local cluster on 127.0.0.1 without dashboard, or --scheduler).
+Writes into the folder --out: impact_map.csv (speed, angle_deg, phi0_deg, epsilon, then
+charge_static, charge_sliding (C per impact on the cylinder of the depth set),
+charge_to_mass_static, charge_to_mass_sliding (C/kg), rebound_u, rebound_v, rebound_speed
+(m/s), rebound_angle_deg, rebound_omega (rad/s), contact_time (s), lifted_off, time_end,
+t_star, then the set-up on every row: particle, wall, size, cylinder_length),
+impact_map.json (the set-up, the grid, time limit, the FMU and package versions),
+impact_map.png (its title the set-up) and episodes.csv (the runs as they finish: an
+interrupted map resumes when the same command is run again; another set-up or grid needs
+another --out, or --fresh). A wall model looks charges up with tribo.ImpactMap.load(out).
+Dask: as tribo-sweep (a local cluster in this process, or --scheduler).
 """
 
 import os
 import sys
 
 from ..batch.executors import ClusterUnreachable
+from ..batch.folder import FolderError, claim
 from ..batch.sweep import keys_of, kept
 from ..fmu import FmuImage
 from ..fmu.locate import find_fmu
 from ..impact.episode import DEFAULT_LIMIT, Grid
-from ..impact.map import EPISODES, prepare_map, run_impact_map
+from ..impact.map import EPISODES, map_setup, prepare_map, run_impact_map
 from ..materials import MaterialError
-from .common import (add_execution_options, check_writable_dir, command_parser, executor_of, fail,
-                     name_value, value_list)
+from .common import (add_execution_options, add_out_option, check_writable_dir, command_parser,
+                     executor_of, fail, name_value, value_list)
 
 PROG = "tribo-impact-map"
 
@@ -41,9 +48,9 @@ PROG = "tribo-impact-map"
 def parse_args(argv=None):
     p = command_parser(PROG, __doc__)
     p.add_argument("--speed", type=value_list, required=True, metavar="VALUES", help="impact speeds, m/s")
-    p.add_argument("--angle", type=value_list, required=True, metavar="VALUES",
+    p.add_argument("--angle-deg", type=value_list, required=True, metavar="VALUES",
                    help="impact angles, degrees from the plate's surface (90: head-on)")
-    p.add_argument("--phi0", type=value_list, default=[0.0], metavar="VALUES",
+    p.add_argument("--phi0-deg", type=value_list, default=[0.0], metavar="VALUES",
                    help="orientations of the long axis, degrees (default 0)")
     p.add_argument("--epsilon", type=value_list, default=[0.6], metavar="VALUES",
                    help="roundness values b/a (default 0.6)")
@@ -51,13 +58,15 @@ def parse_args(argv=None):
     p.add_argument("--particle", default="PE", help="particle material (default PE)")
     p.add_argument("--wall", default="steel", help="wall material (default steel)")
     p.add_argument("--set", type=name_value, action="append", default=[], metavar="NAME=VALUE",
-                   help="any other SI parameter (semi_major_axis=2e-4, mu=0.5, ...)")
+                   help="any other SI parameter by the package's names (size=4e-4, "
+                        "cylinder_length=2e-3, mu=0.5, ...)")
     p.add_argument("--limit", type=float, default=DEFAULT_LIMIT,
                    help=f"time limit of an episode in t* (default {DEFAULT_LIMIT:g})")
-    p.add_argument("--out", default=os.path.join("out", "impact_map"), help="output folder")
+    add_out_option(p, os.path.join("out", "impact_map"))
     p.add_argument("--fmu", help="the SI FMU (default: tribo_si_fmi3.fmu of the build)")
     add_execution_options(p)
-    p.add_argument("--fresh", action="store_true", help="start over (the old file is kept as a backup)")
+    p.add_argument("--fresh", action="store_true",
+                   help="start the folder over (what it held is kept in <out>/backup-<n>/)")
     p.add_argument("--max-runs", type=int, help="run at most this many episodes now (the rest later)")
     p.add_argument("--no-plot", action="store_true", help="no figure")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
@@ -70,7 +79,8 @@ def main(argv=None) -> int:
     path = os.path.join(args.out, EPISODES)
     try:
         try:
-            grid = Grid.of(speed=args.speed, angle=args.angle, phi0=args.phi0, epsilon=args.epsilon)
+            grid = Grid.of(speed=args.speed, angle_deg=args.angle_deg, phi0_deg=args.phi0_deg,
+                           epsilon=args.epsilon)
             image = FmuImage.load(find_fmu(args.fmu, "si"))
             settings = dict(args.set)
             specs = prepare_map(grid, args.particle, args.wall, settings, args.limit, image, args.omega0)
@@ -81,20 +91,22 @@ def main(argv=None) -> int:
             keys = keys_of(specs, image)
         except (ValueError, OSError, MaterialError) as e:
             return fail(PROG, str(e))
-        print(f"impact map: {len(specs)} episodes of {args.particle} on {args.wall} into "
-              f"{args.out}", flush=True)
-        report = run_impact_map(grid, args.particle, args.wall, settings, args.limit, image,
-                                args.out, executor, omega0=args.omega0, resume=not args.fresh,
-                                max_runs=args.max_runs, progress=not args.no_progress,
-                                figure=not args.no_plot, specs=specs)
-    except ClusterUnreachable as e:
+        setup = map_setup(grid, args.particle, args.wall, settings, args.limit, args.omega0)
+        with claim(args.out, "impact map", setup, image.sha256, args.fresh) as folder:
+            if folder.note:
+                print(f"impact map: {folder.note}", flush=True)
+            print(f"impact map: {len(specs)} episodes of {args.particle} on {args.wall} into "
+                  f"{args.out}", flush=True)
+            report = run_impact_map(grid, args.particle, args.wall, settings, args.limit, image,
+                                    args.out, executor, omega0=args.omega0,
+                                    max_runs=args.max_runs, progress=not args.no_progress,
+                                    figure=not args.no_plot, specs=specs)
+    except (ClusterUnreachable, FolderError) as e:
         return fail(PROG, str(e))
     except KeyboardInterrupt:
         print(f"{PROG}: interrupted: {kept(path, keys)} of {len(keys)} episodes kept in {path}; "
               f"run the same command to resume", file=sys.stderr, flush=True)
         return 130
-    if report.backup:
-        print(f"impact map: the earlier episodes are kept in {report.backup}")
     print(f"impact map: {report.executed} run, {report.skipped} already in the file, "
           f"{len(report.failed)} failed; {report.total} episodes")
     if report.table is not None:

@@ -3,39 +3,46 @@ particles drawn from a feed with a seed, one row per particle, the q/m summary a
 
     tribo-population -n 1000 --seed 1 --out out/population
     tribo-population -n 200 --particle PP --wall glass --epsilon uniform:0.5:1 \\
-        --size lognormal:1e-3:0.3 --chute-length 0.5 --set tilt=0.6
-    tribo-population -n 500 --measured sieve.csv      # rows of measured values, drawn
+        --size lognormal:1e-3:0.3 --chute-length 0.5 --tilt-deg 35 --out out/pp-glass
+    tribo-population -n 500 --measured sieve.csv --out out/sieve   # measured rows, drawn
 
 The feed variables (tribo/populations/feed.py) take a number or a distribution: uniform:LOW:HIGH,
 normal:MEAN:SD, lognormal:MEDIAN:SIGMA, choice:V1,V2,...; --measured CSV gives columns of
-measured values (any of epsilon, size, phi0, omega0, drop_height, drop_speed, drop_angle),
-whose rows are drawn with replacement instead. Defaults: the SI reference case's feed
-(epsilon uniform 0.3-1, size = the long diameter 2a uniform 0.2-2 mm, phi0 uniform 0-pi,
-dropped at rest from 10 mm onto 0.3 m of steel tilted 30 degrees).
+measured values (any of epsilon, size, phi0_deg, omega0, drop_height, drop_speed,
+drop_angle_deg), whose rows are drawn with replacement instead. Units: size is the long
+diameter 2a in m, angles in degrees (phi0_deg, drop_angle_deg, --tilt-deg), omega0 in
+rad/s, drop_height in m, drop_speed in m/s. Defaults: the SI reference case's feed
+(epsilon uniform 0.3-1, size uniform 0.2-2 mm, phi0_deg uniform 0-180, dropped at rest
+from 10 mm onto 0.3 m of steel tilted 30 degrees).
 
-Writes into --out: particles.csv (one row per particle: its parameters, exited,
-exit_time, u, v, exit_speed, omega, charge_static, charge_sliding (C), charge_to_mass_static,
-charge_to_mass_sliding (C/kg), contact_fraction, impacts (contacts made after a flight, the
-drop's first contact included), fraction_flight ... fraction_bouncing, cpu_s, wall_s),
-summary.csv (q/m: n, mean, std, percentiles 5 25 50 75 95, overall and per shape and size
-class), population.png and population.json. An interrupted population (Ctrl-C) resumes when
-the same command is run again; --fresh starts over, keeping the old particles.csv as a backup.
-Dask: as tribo-sweep (a local cluster on 127.0.0.1 without dashboard, or --scheduler).
+Writes into the folder --out: particles.csv (one row per particle: the materials, the seed,
+every parameter of its run (the feed variables, the chute, the materials' constants), then
+exited, exit_time, u, v, exit_speed, omega, charge_static, charge_sliding (C, on the
+cylinder of depth cylinder_length), charge_to_mass_static, charge_to_mass_sliding (C/kg),
+contact_fraction, impacts (contacts made after a flight, the drop's first contact
+included), fraction_flight ... fraction_bouncing, cpu_s, wall_s), summary.csv (q/m in C/kg:
+n, mean, std, percentiles 5 25 50 75 95, overall and per shape and size class),
+population.png and population.json. Read the mean for what a stream carries (README.md,
+docs/populations.md). An interrupted population (Ctrl-C) resumes when the same command
+is run again; another set-up needs another --out, or --fresh (the folder's earlier
+contents are kept in <out>/backup-<n>/). Dask: as tribo-sweep (a local cluster in this
+process, or --scheduler).
 """
 
 import os
 import sys
 
 from ..batch.executors import ClusterUnreachable
+from ..batch.folder import FolderError, claim
 from ..batch.sweep import keys_of, kept
 from ..fmu import FmuImage
 from ..fmu.locate import find_fmu
 from ..materials import MaterialError
 from ..populations.distributions import DistributionError
-from ..populations.feed import DEFAULT_CHUTE, FEED_VARIABLES, Feed, read_measured
-from ..populations.runner import PARTICLES, prepare_population, run_population
-from .common import (add_execution_options, check_writable_dir, command_parser, executor_of, fail,
-                     name_value, numbers)
+from ..populations.feed import DEFAULT_CHUTE, FEED_UNITS, FEED_VARIABLES, Feed, read_measured
+from ..populations.runner import PARTICLES, population_setup, prepare_population, run_population
+from .common import (add_execution_options, add_out_option, check_writable_dir, command_parser,
+                     executor_of, fail, name_value, numbers)
 
 PROG = "tribo-population"
 
@@ -48,21 +55,26 @@ def parse_args(argv=None):
     p.add_argument("--wall", default="steel", help="wall material (default steel)")
     for name in FEED_VARIABLES:
         p.add_argument(f"--{name.replace('_', '-')}", dest=name, metavar="DIST",
-                       help=f"distribution of {name}")
+                       help=f"distribution of {name} ({FEED_UNITS[name]})")
     p.add_argument("--measured", metavar="CSV", help="measured values, a column per feed variable")
     p.add_argument("--chute-length", type=float, default=DEFAULT_CHUTE["chute_length"],
-                   help="length of the chute, m (default 0.3)")
+                   help=f"length of the chute, m (default {DEFAULT_CHUTE['chute_length']:g})")
+    p.add_argument("--tilt-deg", type=float, default=DEFAULT_CHUTE["tilt_deg"],
+                   help=f"tilt of the chute from the horizontal, degrees (default "
+                        f"{DEFAULT_CHUTE['tilt_deg']:g})")
     p.add_argument("--set", type=name_value, action="append", default=[], metavar="NAME=VALUE",
-                   help="any other SI parameter (tilt=0.6, mu=0.5, n_segments=500, ...)")
+                   help="any other SI parameter by the package's names (mu=0.5, "
+                        "cylinder_length=2e-3, n_segments=500, ...)")
     p.add_argument("--t-end", type=float, default=5.0, help="horizon of each particle, s (default 5)")
     p.add_argument("--shape-classes", type=numbers, metavar="E0,E1,...",
                    help="edges of the shape classes (default: 4 equal classes over the range)")
     p.add_argument("--size-classes", type=numbers, metavar="S0,S1,...",
                    help="edges of the size classes, m (default: 4 equal classes over the range)")
-    p.add_argument("--out", default=os.path.join("out", "population"), help="output folder")
+    add_out_option(p, os.path.join("out", "population"))
     p.add_argument("--fmu", help="the SI FMU (default: tribo_si_fmi3.fmu of the build)")
     add_execution_options(p)
-    p.add_argument("--fresh", action="store_true", help="start over (the old file is kept as a backup)")
+    p.add_argument("--fresh", action="store_true",
+                   help="start the folder over (what it held is kept in <out>/backup-<n>/)")
     p.add_argument("--max-runs", type=int, help="run at most this many particles now (the rest later)")
     p.add_argument("--no-plot", action="store_true", help="no figure")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
@@ -75,8 +87,8 @@ def prepare(args):
     measured = read_measured(args.measured) if args.measured else None
     distributions = {n: getattr(args, n) for n in FEED_VARIABLES if getattr(args, n) is not None}
     settings = dict(args.set)
-    feed = Feed(args.particle, args.wall, distributions, {"chute_length": args.chute_length},
-                settings, measured)
+    feed = Feed(args.particle, args.wall, distributions,
+                {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg}, settings, measured)
     image = FmuImage.load(find_fmu(args.fmu, "si"))
     specs = prepare_population(feed, args.particles, args.seed, args.t_end, image)
     if args.max_runs is not None and args.max_runs < 0:
@@ -95,22 +107,24 @@ def main(argv=None) -> int:
             keys = keys_of(specs, image)
         except (ValueError, OSError, DistributionError, MaterialError) as e:
             return fail(PROG, str(e))
-        print(f"population: {args.particles} particles of {feed.particle} on {feed.wall} "
-              f"(seed {args.seed}) into {args.out}", flush=True)
-        report = run_population(feed, args.particles, args.seed, args.t_end, image, args.out,
-                                executor, resume=not args.fresh, max_runs=args.max_runs,
-                                progress=not args.no_progress, figure=not args.no_plot,
-                                shape_edges=args.shape_classes, size_edges=args.size_classes,
-                                specs=specs)
-    except ClusterUnreachable as e:
+        setup = population_setup(feed, args.particles, args.seed, args.t_end)
+        with claim(args.out, "population", setup, image.sha256, args.fresh) as folder:
+            if folder.note:
+                print(f"population: {folder.note}", flush=True)
+            print(f"population: {args.particles} particles of {feed.particle} on {feed.wall} "
+                  f"(seed {args.seed}) into {args.out}", flush=True)
+            report = run_population(feed, args.particles, args.seed, args.t_end, image, args.out,
+                                    executor, max_runs=args.max_runs,
+                                    progress=not args.no_progress, figure=not args.no_plot,
+                                    shape_edges=args.shape_classes, size_edges=args.size_classes,
+                                    specs=specs)
+    except (ClusterUnreachable, FolderError) as e:
         return fail(PROG, str(e))
     except KeyboardInterrupt:
         n = kept(path, keys)
         print(f"{PROG}: interrupted: {n} of {args.particles} particles kept in {path}; run the "
               f"same command to resume", file=sys.stderr, flush=True)
         return 130
-    if report.backup:
-        print(f"population: the earlier results are kept in {report.backup}")
     print(f"population: {report.executed} run, {report.skipped} already in the file, "
           f"{len(report.failed)} failed; {len(report.results)} of {report.total} done")
     if report.summary is not None:
@@ -118,7 +132,8 @@ def main(argv=None) -> int:
         for c in table.columns[5:]:
             if c != "n":
                 table[c] = table[c] * 1e6
-        print("q/m (µC/kg):")
+        print("q/m (µC/kg; size classes in m; the mean is what the stream carries per kg, the "
+              "median the typical grain: docs/populations.md):")
         print(table.drop(columns=["low", "high"]).to_string(index=False, float_format=lambda v: f"{v:.4g}"))
         print(f"population: wrote {', '.join(report.files)}")
     return 1 if report.failed else 0

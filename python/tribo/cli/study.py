@@ -7,13 +7,14 @@ roundness eps_t of each friction case; figures and tables.
     tribo-study --scheduler tcp://host:8786      # an existing Dask cluster
     tribo-study --full --dashpots 0,1    # with the centre dashpot too
 
-Writes into --out: study.md (set-up, definitions, eps_t, tables, run time, figures),
-study_runs.csv, transition_points.csv, the PNG figures, and runs/ (every run's summary
-row in runs/results.csv, its time series and segment charges in runs/series/). An
-interrupted study (Ctrl-C) resumes from runs/ when the same command is run again;
---fresh starts over, keeping the old runs/results.csv as a backup. The runs use the FMU's
-default tolerances unless --rtol / --atol are given. The segment charge map needs the
-FMI 3.0 FMU (the default), whose arrays hold each segment's charge.
+Writes into the folder --out: study.md (set-up, definitions, eps_t, tables, run time,
+figures), study_runs.csv, transition_points.csv, the PNG figures, and runs/ (every run's
+summary row in runs/results.csv, its time series and segment charges in runs/series/). An
+interrupted study (Ctrl-C) resumes from runs/ when the same command is run again; a study
+of other settings needs another --out, or --fresh (the folder's earlier contents are kept
+in <out>/backup-<n>/). The runs use the FMU's default tolerances unless --rtol / --atol
+are given. The segment charge map needs the FMI 3.0 FMU (the default), whose arrays hold
+each segment's charge.
 """
 
 import argparse
@@ -21,9 +22,10 @@ import os
 import shlex
 import sys
 import time
-from dataclasses import replace
+from dataclasses import asdict, replace
 
 from ..batch.executors import ClusterUnreachable
+from ..batch.folder import FolderError, claim
 from ..batch.particle import communication_points
 from ..batch.results import read_results
 from ..fmu import FmuImage
@@ -49,7 +51,10 @@ def parse_args(argv=None):
     p = command_parser(PROG, __doc__)
     p.add_argument("--full", action="store_true",
                    help="the paper's study: epsilon 0.1..1.0, tau to 5000 (default: reduced)")
-    p.add_argument("--out", help="output directory (default out/study or out/study-full)")
+    p.add_argument("--out", metavar="FOLDER",
+                   help="the output folder (default out/study, with --full out/study-full): it "
+                        "holds one command's results of one set-up; another's is refused, "
+                        "--fresh starts it over (what it held is kept in FOLDER/backup-<n>/)")
     p.add_argument("--fmu", help="the FMU (FMI 3.0 or 2.0; default: tribo_fmi3.fmu of "
                                  "$TRIBO_BUILD_DIR or the checkout's build/)")
     add_execution_options(p)
@@ -103,8 +108,7 @@ def prepare(args):
             values.setdefault(name, []).append(value)
     check_values(image, values)
     out = args.out or os.path.join("out", "study-full" if args.full else "study")
-    check_writable_dir(out)
-    check_writable_dir(os.path.join(out, "runs", "series"))
+    check_writable_dir(out)  # runs/ is made when the folder is claimed and the runs start
     return settings, image, out, executor_of(args)
 
 
@@ -124,15 +128,18 @@ def main(argv=None) -> int:
             settings, image, out, executor = prepare(args)
         except (ValueError, OSError) as e:
             return fail(PROG, str(e))
-        print(f"study: {len(settings.epsilons)} roundness values x {len(settings.frictions)} "
-              f"friction cases to tau = {settings.t_end:g}, damping_point "
-              f"{', '.join(map(str, settings.dashpots))}, FMU {image.name}, into {out}", flush=True)
-        with executor:
-            print(f"study: running on {executor.describe()}", flush=True)
-            result = run_study(settings, image, out, executor, resume=args.resume,
-                               progress=not args.no_progress, command=command_line(argv),
-                               started=started)
-    except ClusterUnreachable as e:
+        with claim(out, "study", asdict(settings), image.sha256, not args.resume) as folder:
+            if folder.note:
+                print(f"study: {folder.note}", flush=True)
+            print(f"study: {len(settings.epsilons)} roundness values x {len(settings.frictions)} "
+                  f"friction cases to tau = {settings.t_end:g}, damping_point "
+                  f"{', '.join(map(str, settings.dashpots))}, FMU {image.name}, into {out}",
+                  flush=True)
+            with executor:
+                print(f"study: running on {executor.describe()}", flush=True)
+                result = run_study(settings, image, out, executor, progress=not args.no_progress,
+                                   command=command_line(argv), started=started)
+    except (ClusterUnreachable, FolderError) as e:
         return fail(PROG, str(e))
     except KeyboardInterrupt:
         path = os.path.join(out, "runs", "results.csv") if out else None
@@ -140,8 +147,6 @@ def main(argv=None) -> int:
         print(f"{PROG}: interrupted: {n} runs kept in {path or 'nothing'}; run the same command "
               f"to resume", file=sys.stderr, flush=True)
         return 130
-    if result.backup:
-        print(f"study: the earlier runs are kept in {result.backup}")
     for friction, t in result.transitions.items():
         print(f"study: {friction} friction: {t.describe()}")
     print(f"study: {result.executed} of {result.total_runs} runs executed, "

@@ -4,6 +4,8 @@
                 that notice an FMU ending the run early; `record`, `status_of`
     image       an .fmu file as bytes (`FmuImage`) for any Dask worker; `unpacked`
     locate      where the build's FMUs are (`find_fmu`)
+    names       the package's names and units of the FMUs' variables: angles in degrees
+                (<name>_deg), the SI FMUs' size as the long diameter `size`
     parameters  parameter names and values checked by the FMU before any run
 
 The driver's names are importable from here (`from tribo.fmu import Instance, FmuImage`).

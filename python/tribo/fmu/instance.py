@@ -7,6 +7,7 @@ that returns Discard and asks to terminate, as a particle leaving the chute does
 `step_to` then returns False and the instance's time is the last time the FMU reached.
 """
 
+import threading
 from ctypes import byref, c_double, c_void_p
 from functools import lru_cache
 
@@ -39,6 +40,13 @@ def _fmi2_dispatch(environment, instance_name, status, category, message):
 
 _FMI2_LOGGER = fmi2CallbackLoggerTYPE(_fmi2_dispatch)
 
+# fmpy loads an FMU's library with the working directory changed to the library's folder
+# and back: the working directory is the process's, so two threads loading at once (the
+# local Dask cluster's runs) would each restore the other's. One load at a time; and the
+# package's own file paths are absolute while runs go on (other threads' relative paths
+# would resolve in the library's folder for that moment).
+_LIBRARY_LOAD = threading.Lock()
+
 
 @lru_cache(maxsize=32)
 def model_description(path: str):
@@ -58,8 +66,9 @@ class Instance:
         self.messages = []  # (status, category, message) as the logger received them
         self.logged_instance_names = []  # FMI 2.0 passes the instance name to the logger
         cls = FMU2Slave if self.version == 2 else FMU3Slave
-        self.fmu = cls(guid=self.md.guid, unzipDirectory=fmu_dir,
-                       modelIdentifier=self.md.coSimulation.modelIdentifier, instanceName=name)
+        with _LIBRARY_LOAD:
+            self.fmu = cls(guid=self.md.guid, unzipDirectory=fmu_dir,
+                           modelIdentifier=self.md.coSimulation.modelIdentifier, instanceName=name)
         self.instantiate(logging_on)
         self.t = 0.0
         self.ended = False  # the FMU ended the run before the time asked for (see step_to)

@@ -1,8 +1,9 @@
 """Charge per impact: one impact episode of the SI FMU, and the episodes of a map's grid.
 
 An episode is a particle arriving at a level plate (tilt 0) with its lowest point touching
-it (drop_height 0) at `speed`, at `angle` from the plate's surface (90 degrees: head-on;
-towards +x), with orientation phi0 and spin omega0, run with run_end = first_liftoff: the
+it (drop_height 0) at `speed`, at `angle_deg` from the plate's surface (90 degrees:
+head-on; towards +x), with orientation phi0_deg and spin omega0, run with run_end =
+first_liftoff: the
 FMU ends the run where the contact made is lost (located exactly, docs/model.md section 9),
 or at the time limit (`limit` contact periods' worth of t*, read from the FMU): a sustained
 contact, `lifted_off` = 0. Gravity stays on (its effect over an impact of microseconds is
@@ -10,10 +11,10 @@ the model's, not removed).
 
 Its results (EPISODE_COLUMNS): the charge each model transferred (C on the cylinder of the
 depth set, and per unit mass), the rebound (velocity along and normal to the plate, speed,
-angle from the surface, spin), the contact time and whether it lifted off.
+angle from the surface in degrees, spin), the contact time and whether it lifted off.
 
-A map's grid point is (speed m/s, angle deg, phi0 deg, epsilon); the angles are in degrees
-here (the table's columns), in radians in the FMU.
+A map's grid point is (speed m/s, angle_deg, phi0_deg, epsilon): angles in degrees, as
+everywhere in the package (tribo/fmu/names.py converts them for the FMU).
 """
 
 import itertools
@@ -26,19 +27,20 @@ from fmpy.fmi1 import FMICallException
 from ..batch.particle import RunResult
 from ..batch.specs import RunSpec
 from ..fmu import ERROR, FmuImage, Instance, unpacked
-from ..materials import start_values
+from ..fmu.names import in_package_terms, to_fmu
+from ..materials import pair_values
 
-AXES = ("speed", "angle", "phi0", "epsilon")
-AXIS_UNITS = {"speed": "m/s", "angle": "deg from the plate's surface (90: head-on)",
-              "phi0": "deg, long axis from the plate", "epsilon": "b/a"}
-AXIS_RANGES = {"speed": (0.0, 1e3, False), "angle": (0.0, 90.0, False), "phi0": (-180.0, 180.0, True),
-               "epsilon": (1e-3, 1.0, True)}  # low, high, low end included
+AXES = ("speed", "angle_deg", "phi0_deg", "epsilon")
+AXIS_UNITS = {"speed": "m/s", "angle_deg": "deg from the plate's surface (90: head-on)",
+              "phi0_deg": "deg, long axis from the plate", "epsilon": "b/a"}
+AXIS_RANGES = {"speed": (0.0, 1e3, False), "angle_deg": (0.0, 90.0, False),
+               "phi0_deg": (-180.0, 180.0, True), "epsilon": (1e-3, 1.0, True)}  # low, high, low end included
 EPISODE_OUTPUTS = ["charge_static", "charge_sliding", "charge_to_mass_static",
                    "charge_to_mass_sliding", "u", "v", "omega", "contact_time", "lifted_off",
                    "impacts"]
 EPISODE_COLUMNS = ["charge_static", "charge_sliding", "charge_to_mass_static",
                    "charge_to_mass_sliding", "rebound_u", "rebound_v", "rebound_speed",
-                   "rebound_angle", "rebound_omega", "contact_time", "lifted_off", "time_end",
+                   "rebound_angle_deg", "rebound_omega", "contact_time", "lifted_off", "time_end",
                    "t_star"]
 DEFAULT_LIMIT = 200.0  # contact periods' worth of t* before an episode counts as sustained
 
@@ -47,11 +49,11 @@ class ImpactError(ValueError):
     """A grid or an episode the FMU cannot run (the message names the value)."""
 
 
-def episode_parameters(base: dict, speed: float, angle: float, phi0: float, epsilon: float,
-                       omega0: float = 0.0) -> dict:
-    """The SI FMU's parameters of an episode (angles in degrees)."""
-    return dict(base, tilt=0.0, drop_height=0.0, drop_speed=float(speed),
-                drop_angle=math.radians(90.0 - float(angle)), phi0=math.radians(float(phi0)),
+def episode_parameters(base: dict, speed: float, angle_deg: float, phi0_deg: float,
+                       epsilon: float, omega0: float = 0.0) -> dict:
+    """The SI FMU's parameters of an episode, by the package's names."""
+    return dict(base, tilt_deg=0.0, drop_height=0.0, drop_speed=float(speed),
+                drop_angle_deg=90.0 - float(angle_deg), phi0_deg=float(phi0_deg),
                 epsilon=float(epsilon), omega0=float(omega0), run_end=1)
 
 
@@ -72,8 +74,8 @@ def check_axis(name: str, values) -> list[float]:
 @dataclass(frozen=True)
 class Grid:
     speed: tuple
-    angle: tuple
-    phi0: tuple
+    angle_deg: tuple
+    phi0_deg: tuple
     epsilon: tuple
 
     @classmethod
@@ -87,7 +89,7 @@ class Grid:
         return cls(**{a: tuple(check_axis(a, axes[a])) for a in AXES})
 
     def points(self) -> list[tuple]:
-        return list(itertools.product(self.speed, self.angle, self.phi0, self.epsilon))
+        return list(itertools.product(self.speed, self.angle_deg, self.phi0_deg, self.epsilon))
 
     def axes(self) -> dict:
         return {a: list(getattr(self, a)) for a in AXES}
@@ -99,7 +101,7 @@ def episode_specs(grid: Grid, particle: str, wall: str, settings: dict, limit: f
     t_end is the time limit in units of t* (the FMU's, which depends on the point)."""
     if not (math.isfinite(limit) and limit > 0):
         raise ImpactError(f"the time limit must be a positive number of t*, got {limit!r}")
-    base = start_values(particle, wall, **settings)
+    base = dict(pair_values(particle, wall, sigma0="sigma0" not in settings), **settings)
     return [RunSpec(episode_parameters(base, *point, omega0=omega0), float(limit), float(limit))
             for point in grid.points()]
 
@@ -107,10 +109,11 @@ def episode_specs(grid: Grid, particle: str, wall: str, settings: dict, limit: f
 def run_episode(image: FmuImage, spec: RunSpec) -> RunResult:
     """One impact episode: its row (EPISODE_COLUMNS)."""
     wall0, cpu0 = time.perf_counter(), time.thread_time()
+    md = image.model_description()
     with unpacked(image) as fmu_dir:
         instance = Instance(fmu_dir, name="tribo_impact")
         try:
-            instance.set_parameters(spec.params)
+            instance.set_parameters(to_fmu(md, spec.params))
             instance.init(0.0)
             t_star = instance.get("t_star")
             instance.step_to(spec.t_end * t_star)
@@ -119,8 +122,8 @@ def run_episode(image: FmuImage, spec: RunSpec) -> RunResult:
             instance.terminate()
         except FMICallException as e:
             errors = [m for status, _, m in instance.messages if status >= ERROR]
-            raise RuntimeError(f"the impact episode failed with {spec.params}: {e}; "
-                               f"it logged: {errors}") from e
+            raise RuntimeError(f"the impact episode failed: "
+                               f"{in_package_terms(md, errors[-1]) if errors else e}") from None
         finally:
             instance.free()
     row = {"charge_static": end["charge_static"], "charge_sliding": end["charge_sliding"],
@@ -128,7 +131,7 @@ def run_episode(image: FmuImage, spec: RunSpec) -> RunResult:
            "charge_to_mass_sliding": end["charge_to_mass_sliding"],
            "rebound_u": end["u"], "rebound_v": end["v"],
            "rebound_speed": math.hypot(end["u"], end["v"]),
-           "rebound_angle": math.degrees(math.atan2(end["v"], end["u"])),
+           "rebound_angle_deg": math.degrees(math.atan2(end["v"], end["u"])),
            "rebound_omega": end["omega"], "contact_time": end["contact_time"],
            "lifted_off": int(end["lifted_off"]), "time_end": reached, "t_star": t_star}
     row.update(cpu_s=time.thread_time() - cpu0, wall_s=time.perf_counter() - wall0)

@@ -3,14 +3,17 @@ orientation, roundness) for a materials pair, run resumably (batch.sweep.run_swe
 written as a table with its metadata, and the lookup a DEM or CFD wall model calls.
 
     <out>/episodes.csv     the runs, one row each as they finish (resumable)
-    <out>/impact_map.csv   the map: the grid's axes (speed, angle, phi0, epsilon), then the
-                           episode's results (episode.EPISODE_COLUMNS), in the grid's order
-    <out>/impact_map.json  metadata: materials, settings, the time limit, the grid, the FMU
-                           (name, SHA-256, instantiation token, generation tool), the package
-    <out>/impact_map.png   the figure
+    <out>/impact_map.csv   the map: the grid's axes (speed, angle_deg, phi0_deg, epsilon),
+                           the episode's results (episode.EPISODE_COLUMNS), in the grid's
+                           order, then the set-up the charges depend on (SET_UP_COLUMNS:
+                           materials, size, cylinder depth), the same on every row
+    <out>/impact_map.json  metadata: the set-up (materials, size, cylinder depth, every SI
+                           parameter set), the time limit, the grid, the FMU (name,
+                           SHA-256, instantiation token, generation tool), the package
+    <out>/impact_map.png   the figure, its title the set-up
 
     m = tribo.ImpactMap.load("out/impact_map")
-    m("charge_static", speed=3.0, angle=45.0, phi0=10.0, epsilon=0.6)   # C per impact
+    m("charge_static", speed=3.0, angle_deg=45.0, phi0_deg=10.0, epsilon=0.6)   # C per impact
 
 The lookup interpolates linearly (scipy's RegularGridInterpolator) over the axes with more
 than one value; an axis with one value takes only that value. A point outside the grid is
@@ -28,10 +31,15 @@ import pandas as pd
 from ..batch.grid import values_of
 from ..batch.sweep import keys_of, run_sweep
 from ..fmu import FmuImage
+from ..fmu.names import format_number, start_value
 from ..fmu.parameters import check_values
+from ..materials import material
 from .episode import AXES, AXIS_UNITS, EPISODE_COLUMNS, Grid, episode_specs, run_episode
 
 EPISODES, TABLE, METADATA, FIGURE = "episodes.csv", "impact_map.csv", "impact_map.json", "impact_map.png"
+# what a charge per impact depends on beyond the grid: the pair, the size, and the depth of
+# the cylinder the 2D particle stands for (the charges in C scale with it; q/m does not)
+SET_UP_COLUMNS = ["particle", "wall", "size", "cylinder_length"]
 
 
 @dataclass
@@ -53,6 +61,31 @@ def prepare_map(grid: Grid, particle: str, wall: str, settings: dict, limit: flo
     return specs
 
 
+def map_setup(grid: Grid, particle: str, wall: str, settings: dict, limit: float,
+              omega0: float) -> dict:
+    """What makes a map this one (an output folder's record, batch/folder.py)."""
+    return {"particle": material(particle, "particle").key, "wall": material(wall, "wall").key,
+            "settings": dict(settings), "time_limit_t_star": limit, "omega0_rad_s": omega0,
+            "grid": grid.axes()}
+
+
+def map_set_up(particle: str, wall: str, settings: dict, image: FmuImage) -> dict:
+    """The set-up of a map's episodes: the materials, the size (m) and the cylinder depth
+    (m) as set or the FMU's defaults, then every other SI parameter set."""
+    md = image.model_description()
+    set_up = {"particle": material(particle, "particle").key, "wall": material(wall, "wall").key}
+    for name in ("size", "cylinder_length"):
+        set_up[name] = float(settings[name]) if name in settings else start_value(md, name)
+    set_up.update({k: v for k, v in settings.items() if k not in set_up})
+    return set_up
+
+
+def set_up_title(set_up: dict) -> str:
+    """The set-up in a line, for a figure's title."""
+    return (f"{set_up['particle']} on {set_up['wall']}, size 2a = {format_number(set_up['size'])} m, "
+            f"cylinder depth ℓ = {format_number(set_up['cylinder_length'])} m")
+
+
 def map_metadata(grid: Grid, particle: str, wall: str, settings: dict, limit: float,
                  omega0: float, image: FmuImage) -> dict:
     md = image.model_description()
@@ -60,21 +93,24 @@ def map_metadata(grid: Grid, particle: str, wall: str, settings: dict, limit: fl
         version = package_metadata.version("tribo")
     except package_metadata.PackageNotFoundError:
         version = None
-    return {"particle": particle, "wall": wall, "settings": settings, "omega0_rad_s": omega0,
+    return {"particle": particle, "wall": wall, "set_up": map_set_up(particle, wall, settings, image),
+            "settings": settings, "omega0_rad_s": omega0,
             "time_limit_t_star": limit,
             "grid": {a: {"values": list(getattr(grid, a)), "unit": AXIS_UNITS[a]} for a in AXES},
-            "columns": {c: _unit(c) for c in EPISODE_COLUMNS},
+            "columns": {c: _unit(c) for c in EPISODE_COLUMNS + SET_UP_COLUMNS},
             "model": {"fmu": image.name, "fmu_sha256": image.sha256,
                       "instantiation_token": md.guid, "generation_tool": md.generationTool,
                       "package_version": version}}
 
 
 def _unit(column: str) -> str:
-    return {"charge_static": "C", "charge_sliding": "C", "charge_to_mass_static": "C/kg",
+    per_depth = "C, on the cylinder of depth cylinder_length"
+    return {"charge_static": per_depth, "charge_sliding": per_depth, "charge_to_mass_static": "C/kg",
             "charge_to_mass_sliding": "C/kg", "rebound_u": "m/s", "rebound_v": "m/s",
-            "rebound_speed": "m/s", "rebound_angle": "deg from the surface",
+            "rebound_speed": "m/s", "rebound_angle_deg": "deg from the surface",
             "rebound_omega": "rad/s", "contact_time": "s", "lifted_off": "1 (0: sustained contact)",
-            "time_end": "s", "t_star": "s"}[column]
+            "time_end": "s", "t_star": "s", "particle": "material", "wall": "material",
+            "size": "m, the long diameter 2a", "cylinder_length": "m"}[column]
 
 
 def run_impact_map(grid: Grid, particle: str, wall: str, settings: dict, limit: float,
@@ -95,6 +131,8 @@ def run_impact_map(grid: Grid, particle: str, wall: str, settings: dict, limit: 
         by_key = report.results.set_index("key")
         points = pd.DataFrame(grid.points(), columns=list(AXES))
         table = pd.concat([points, by_key.loc[keys, EPISODE_COLUMNS].reset_index(drop=True)], axis=1)
+        set_up = map_set_up(particle, wall, settings, image)
+        table = table.assign(**{c: set_up[c] for c in SET_UP_COLUMNS})
         table.to_csv(os.path.join(out, TABLE), index=False)
         with open(os.path.join(out, METADATA), "w") as f:
             json.dump(map_metadata(grid, particle, wall, settings, limit, omega0, image), f, indent=2)
@@ -103,7 +141,7 @@ def run_impact_map(grid: Grid, particle: str, wall: str, settings: dict, limit: 
             # matplotlib only when a figure is drawn: `import tribo` stays without it
             from .plot import write_impact_figure
             files.append(write_impact_figure(table, os.path.join(out, FIGURE),
-                                             f"charge per impact, {particle} on {wall}"))
+                                             f"charge per impact: {set_up_title(set_up)}"))
     return MapReport(table, len(report.keys), report.executed, report.skipped, report.failed,
                      files, report.backup)
 
@@ -112,6 +150,11 @@ class ImpactMap:
     """A map's table and metadata, and the lookup (see the module's text)."""
 
     def __init__(self, table: pd.DataFrame, metadata: dict):
+        missing = [a for a in AXES if a not in metadata.get("grid", {})]
+        if missing:
+            raise ValueError(f"the map's metadata has no axis {', '.join(missing)} (its axes: "
+                             f"{', '.join(metadata.get('grid', {}))}): a map of an earlier "
+                             f"version, whose angles were named angle and phi0; make it again")
         self.table = table
         self.metadata = metadata
         self.axes = {a: np.asarray(metadata["grid"][a]["values"], dtype=float) for a in AXES}
@@ -143,11 +186,16 @@ class ImpactMap:
                 bounds_error=True) if self.varying else None
         return self._interpolators[quantity]
 
-    def __call__(self, quantity: str, speed, angle, phi0, epsilon):
+    @property
+    def set_up(self) -> dict:
+        """The materials, size (m), cylinder depth (m) and other SI parameters of the map."""
+        return dict(self.metadata["set_up"])
+
+    def __call__(self, quantity: str, speed, angle_deg, phi0_deg, epsilon):
         """The quantity (a column of the map, e.g. "charge_static" in C per impact) at the
         point(s): scalars or arrays that broadcast together."""
         point = dict(zip(AXES, np.broadcast_arrays(*(np.asarray(v, dtype=float)
-                                                     for v in (speed, angle, phi0, epsilon)))))
+                                                     for v in (speed, angle_deg, phi0_deg, epsilon)))))
         for a in AXES:
             lo, hi = self.axes[a][0], self.axes[a][-1]
             outside = (point[a] < lo) | (point[a] > hi) | ~np.isfinite(point[a])

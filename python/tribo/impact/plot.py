@@ -1,6 +1,7 @@
 """The figure of a charge-per-impact map: for each charge model (a row), the charge per
 impact against the impact angle (at the map's highest speed) and against the impact speed
-(at its most head-on angle), a line per roundness, each the mean over the orientations."""
+(at its most head-on angle), a line per roundness, each the mean over the orientations;
+the title says the set-up (materials, size, cylinder depth: the charges in C are on it)."""
 
 from ..plotting import distinct_colours, legend, plt, save
 
@@ -9,25 +10,31 @@ CHARGE_UNIT, CHARGE_FACTOR = "pC", 1e12
 
 def write_impact_figure(table, path: str, title: str) -> str:
     """table: the map (impact_map.csv)."""
+    return save(impact_figure(table, title), path)
+
+
+def impact_figure(table, title: str):
+    """The figure (see the module's text), its legends beside the panels."""
     epsilons = sorted(table["epsilon"].unique())
     colours = distinct_colours(len(epsilons))
-    top_speed, top_angle = table["speed"].max(), table["angle"].max()
-    n_phi = table["phi0"].nunique()
-    fig, axes = plt.subplots(2, 2, figsize=(13, 9), layout="constrained")
+    top_speed, top_angle = table["speed"].max(), table["angle_deg"].max()
+    n_phi = table["phi0_deg"].nunique()
+    fig, axes = plt.subplots(2, 2, figsize=(14, 9), layout="constrained")
     for row, model in zip(axes, ("static", "sliding")):
         column = f"charge_{model}"
-        for ax, x, fixed, fixed_value, unit in ((row[0], "angle", "speed", top_speed, "m/s"),
-                                                (row[1], "speed", "angle", top_angle, "deg")):
+        for ax, x, fixed, fixed_value, unit in ((row[0], "angle_deg", "speed", top_speed, "m/s"),
+                                                (row[1], "speed", "angle_deg", top_angle, "deg")):
             for colour, eps in zip(colours, epsilons):
                 g = table[(table["epsilon"] == eps) & (table[fixed] == fixed_value)]
                 mean = g.groupby(x)[column].mean().abs() * CHARGE_FACTOR
                 ax.plot(mean.index, mean.to_numpy(), "o-", ms=4, color=colour, label=f"ε = {eps:g}")
-            ax.set_xlabel({"angle": "impact angle from the plate's surface (deg; 90: head-on)",
+            ax.set_xlabel({"angle_deg": "impact angle from the plate's surface (deg; 90: head-on)",
                            "speed": "impact speed (m/s)"}[x])
             ax.set_ylabel(f"|charge| per impact, {model} model ({CHARGE_UNIT})")
-            ax.set_title(f"{model} model, {fixed} = {fixed_value:g} {unit}, mean over "
-                         f"{n_phi} orientation{'s' if n_phi > 1 else ''}")
+            name = {"speed": "speed", "angle_deg": "angle"}[fixed]
+            ax.set_title(f"{model} model, {name} = {fixed_value:g} {unit}, mean over "
+                         f"{n_phi} orientation{'s' if n_phi > 1 else ''}", fontsize=10)
             ax.grid(alpha=0.3)
-            legend(ax)
+            legend(ax, outside=True)
     fig.suptitle(title)
-    return save(fig, path)
+    return fig

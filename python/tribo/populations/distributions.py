@@ -16,6 +16,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..fmu.names import format_number
+
 KINDS = ("uniform", "normal", "lognormal", "choice")
 
 
@@ -40,10 +42,11 @@ class Distribution:
         return rng.choice(np.array(self.args), n)
 
     def text(self) -> str:
+        """The distribution as it is written, each number in full (reads back the same)."""
         if self.kind == "fixed":
-            return f"{self.args[0]:g}"
+            return format_number(self.args[0])
         sep = "," if self.kind == "choice" else ":"
-        return f"{self.kind}:" + sep.join(f"{a:g}" for a in self.args)
+        return f"{self.kind}:" + sep.join(format_number(a) for a in self.args)
 
 
 def parse(name: str, text) -> Distribution:

@@ -1,18 +1,18 @@
 """A particle population: a feed description, N particles drawn from it with a seed, each
 run through the SI FMU down the chute, one row per particle.
 
-A feed is the particle and wall materials (tribo.materials), the chute (SI parameters:
-chute_length, tilt), any other SI parameter, and a distribution (distributions.py) or
-measured values (a CSV, its rows drawn with replacement, so that values measured together
-stay together) for each of
+A feed is the particle and wall materials (tribo.materials), the chute (chute_length in
+m, tilt_deg in degrees), any other SI parameter (by the package's names, fmu/names.py),
+and a distribution (distributions.py) or measured values (a CSV, its rows drawn with
+replacement, so that values measured together stay together) for each of
 
-    epsilon       roundness b/a
-    size          the particle's size, its long diameter 2a (m)
-    phi0          orientation of the long axis at the drop (rad)
-    omega0        spin at the drop (rad/s)
-    drop_height   height of the lowest point above the chute (m)
-    drop_speed    speed at the drop (m/s), in the direction drop_angle
-    drop_angle    from the vertical, positive towards down-slope (rad)
+    epsilon         roundness b/a
+    size            the particle's size, its long diameter 2a (m)
+    phi0_deg        orientation of the long axis at the drop (degrees)
+    omega0          spin at the drop (rad/s)
+    drop_height     height of the lowest point above the chute (m)
+    drop_speed      speed at the drop (m/s), in the direction drop_angle_deg
+    drop_angle_deg  from the vertical, positive towards down-slope (degrees)
 
 The draw uses numpy's generator seeded with `seed`, the variables in that order: the same
 feed and seed give the same particles. Each particle is a run of the SI FMU (no unit
@@ -20,13 +20,15 @@ conversion here: the FMU maps the SI set-up onto the model) from the drop to the
 exit or the horizon, keyed like a sweep's run (batch.specs.run_key), so that a population is
 resumable like a sweep (batch.sweep.run_sweep).
 
-Per particle (RESULT_COLUMNS): size; whether and when it left the chute; its velocity
+Per particle (RESULT_COLUMNS), after the materials and every parameter of its run (the
+feed variables, the chute, the materials' constants): whether and when it left the chute; its velocity
 there (u along, v normal to the chute, the speed, the spin); both models' charge and
 charge-to-mass ratio; the contact fraction; impacts, the contacts made after a flight
 (the core's count, model.md section 9: each bounce is one, the drop's first contact
 included); the fraction of the time in each motion class.
 """
 
+import hashlib
 import math
 import time
 from dataclasses import dataclass, field
@@ -38,26 +40,28 @@ from ..batch.particle import RunResult, simulate
 from ..batch.specs import RunSpec
 from ..batch.summary import MOTION_CLASSES
 from ..fmu import FmuImage
-from ..materials import start_values
+from ..materials import material, pair_values
 from .distributions import Distribution, parse
 
-# feed variable -> the SI FMU's parameter it sets (size: the long diameter, 2a)
-FEED_VARIABLES = {"epsilon": "epsilon", "size": "semi_major_axis", "phi0": "phi0",
-                  "omega0": "omega0", "drop_height": "drop_height", "drop_speed": "drop_speed",
-                  "drop_angle": "drop_angle"}
+# the SI FMU's parameters a feed draws, by the package's names (fmu/names.py)
+FEED_VARIABLES = ("epsilon", "size", "phi0_deg", "omega0", "drop_height", "drop_speed",
+                  "drop_angle_deg")
+FEED_UNITS = {"epsilon": "b/a", "size": "the long diameter 2a, m", "phi0_deg": "degrees",
+              "omega0": "rad/s", "drop_height": "m", "drop_speed": "m/s",
+              "drop_angle_deg": "degrees from the vertical, + down-slope"}
 # the SI reference case's feed (README, docs/reference_case.md): shapes 0.3-1, sizes
 # 0.2-2 mm, random orientation, dropped from 10 mm at rest onto 0.3 m of steel at 30 degrees
 DEFAULT_DISTRIBUTIONS = {"epsilon": "uniform:0.3:1", "size": "uniform:2e-4:2e-3",
-                         "phi0": f"uniform:0:{math.pi!r}", "omega0": 0.0, "drop_height": 0.01,
-                         "drop_speed": 0.0, "drop_angle": 0.0}
-DEFAULT_CHUTE = {"chute_length": 0.3}
+                         "phi0_deg": "uniform:0:180", "omega0": 0.0, "drop_height": 0.01,
+                         "drop_speed": 0.0, "drop_angle_deg": 0.0}
+DEFAULT_CHUTE = {"chute_length": 0.3, "tilt_deg": 30.0}
 
 MODELS = ("static", "sliding")
 OUTPUTS = (["exited", "exit_time", "u", "v", "omega", "contact_fraction", "impacts",
             "assumption_warnings"]
            + [f"charge_{m}" for m in MODELS] + [f"charge_to_mass_{m}" for m in MODELS]
            + [f"fraction_{c}" for c in MOTION_CLASSES])
-RESULT_COLUMNS = ["size", "exited", "exit_time", "time_end", "u", "v", "exit_speed", "omega",
+RESULT_COLUMNS = ["exited", "exit_time", "time_end", "u", "v", "exit_speed", "omega",
                   "charge_static", "charge_sliding", "charge_to_mass_static",
                   "charge_to_mass_sliding", "contact_fraction", "impacts"] \
     + [f"fraction_{c}" for c in MOTION_CLASSES] + ["assumption_warnings"]
@@ -79,7 +83,7 @@ class Feed:
     particle: str = "PE"
     wall: str = "steel"
     distributions: dict = field(default_factory=dict)  # feed variable -> text or Distribution
-    chute: dict = field(default_factory=lambda: dict(DEFAULT_CHUTE))
+    chute: dict = field(default_factory=lambda: dict(DEFAULT_CHUTE))  # the defaults for those not given
     settings: dict = field(default_factory=dict)  # any other SI parameter by name
     measured: pd.DataFrame | None = None  # columns among FEED_VARIABLES
 
@@ -89,6 +93,11 @@ class Feed:
         if unknown:
             raise FeedError(f"not feed variables: {', '.join(unknown)} (they are: "
                             f"{', '.join(FEED_VARIABLES)})")
+        drawn_too = [n for n in list(self.chute) + list(self.settings) if n in FEED_VARIABLES]
+        if drawn_too:
+            raise FeedError(f"{drawn_too[0]} is a feed variable, drawn for each particle: give it "
+                            f"as a distribution or a number (--{drawn_too[0].replace('_', '-')}), "
+                            f"not as a setting")
         out = {}
         for name in FEED_VARIABLES:
             d = self.distributions.get(name, DEFAULT_DISTRIBUTIONS[name])
@@ -96,12 +105,18 @@ class Feed:
         return out
 
     def describe(self) -> dict:
-        """The feed as plain values (for a results folder's metadata)."""
+        """The feed as plain values (for a results folder's metadata and record)."""
         measured = list(self.measured.columns) if self.measured is not None else []
-        return {"particle": self.particle, "wall": self.wall, "chute": dict(self.chute),
-                "settings": dict(self.settings), "measured_columns": measured,
-                "distributions": {n: d.text() for n, d in self.resolved().items()
-                                  if n not in measured}}
+        out = {"particle": material(self.particle, "particle").key,
+               "wall": material(self.wall, "wall").key,
+               "chute": dict(DEFAULT_CHUTE, **self.chute), "settings": dict(self.settings),
+               "measured_columns": measured,
+               "distributions": {n: d.text() for n, d in self.resolved().items()
+                                 if n not in measured}}
+        if self.measured is not None:  # the values themselves, by their digest
+            text = self.measured.to_csv(index=False, float_format="%.17g").encode()
+            out["measured_sha256"] = hashlib.sha256(text).hexdigest()
+        return out
 
 
 def read_measured(path: str) -> pd.DataFrame:
@@ -147,24 +162,21 @@ def draw(feed: Feed, n: int, seed: int) -> pd.DataFrame:
     return pd.DataFrame(columns)
 
 
-def particle_parameters(feed: Feed, drawn: pd.DataFrame) -> list[dict]:
-    """The SI FMU's parameters of each drawn particle."""
-    base = start_values(feed.particle, feed.wall, **{"work_limit": WORK_LIMIT, **feed.chute,
-                                                     **feed.settings})
-    out = []
-    for row in drawn.itertuples(index=False):
-        params = dict(base)
-        for name, value in zip(drawn.columns, row):
-            params[FEED_VARIABLES[name]] = float(value) / 2.0 if name == "size" else float(value)
-        out.append(params)
-    return out
+def particle_parameters(feed: Feed, drawn: pd.DataFrame, defaults: dict | None = None) -> list[dict]:
+    """The SI FMU's parameters of each drawn particle, by the package's names; `defaults`
+    (e.g. the FMU's cylinder depth) unless the feed sets them."""
+    settings = {**(defaults or {}), **dict(DEFAULT_CHUTE, **feed.chute), **feed.settings}
+    base = dict(pair_values(feed.particle, feed.wall, sigma0="sigma0" not in settings),
+                work_limit=WORK_LIMIT, **settings)
+    return [dict(base, **{name: float(value) for name, value in zip(drawn.columns, row)})
+            for row in drawn.itertuples(index=False)]
 
 
-def specs_of(feed: Feed, n: int, seed: int, t_end: float) -> list[RunSpec]:
+def specs_of(feed: Feed, n: int, seed: int, t_end: float, defaults: dict | None = None) -> list[RunSpec]:
     if not (math.isfinite(t_end) and t_end > 0):
         raise FeedError(f"the horizon t_end must be a positive number of seconds, got {t_end!r}")
     return [RunSpec(p, float(t_end), float(t_end) / STEPS_PER_RUN)
-            for p in particle_parameters(feed, draw(feed, n, seed))]
+            for p in particle_parameters(feed, draw(feed, n, seed), defaults)]
 
 
 def run_particle(image: FmuImage, spec: RunSpec) -> RunResult:
@@ -172,8 +184,7 @@ def run_particle(image: FmuImage, spec: RunSpec) -> RunResult:
     wall0, cpu0 = time.perf_counter(), time.thread_time()
     recording = simulate(image, spec.params, spec.t_end, spec.record_interval, OUTPUTS)
     end = recording.series.iloc[-1]
-    row = {"size": 2.0 * spec.params["semi_major_axis"], "time_end": float(end["time"]),
-           "exit_speed": math.hypot(end["u"], end["v"])}
+    row = {"time_end": float(end["time"]), "exit_speed": math.hypot(end["u"], end["v"])}
     row.update({name: float(end[name]) for name in OUTPUTS})
     row["exited"] = int(row["exited"])
     row["impacts"] = int(row["impacts"])

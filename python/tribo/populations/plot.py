@@ -1,25 +1,54 @@
-"""The figure of a population: for each charge model (a row), the q/m histogram, q/m against
-roundness (a colour per size class) and against size (a colour per shape class), and the
-exit speed against the charge (a colour per shape class). Charges are drawn as magnitudes
-on log axes (their sign is sigma0's, the same for every particle of a pair), since a
-population's q/m spans decades."""
+"""The figure of a population: for each charge model (a row), the q/m histogram with the
+summary's mean and percentiles, q/m against roundness (a colour per size class) and
+against size (a colour per shape class), and the exit speed against the charge (a colour
+per shape class).
+
+A population's q/m spans decades, so the panels use log axes of its magnitude, drawn with
+the polarity of the pair: −q/m when every particle charges negatively (σ0 < 0), q/m when
+positively. The mean and the percentiles are those of summary.csv, of the signed values,
+each line labelled with its signed value: the figure's "5th percentile" is the CSV's p5
+(for a negative pair the largest magnitude). Sizes are in m, as in the tables; legends sit
+beside their panels, clear of the data."""
+
+import math
 
 import numpy as np
+from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 from ..plotting import distinct_colours, legend, plt, save
-from .summary import class_edges, classes_of
+from .summary import class_edges, classes_of, statistics
 
 QM_UNIT, QM_FACTOR = "µC/kg", 1e6
 CHARGE_UNIT, CHARGE_FACTOR = "pC", 1e12
-SIZE_UNIT, SIZE_FACTOR = "mm", 1e3
+MIN_BINS, MAX_BINS = 5, 50
+MARKED = (("mean", "-.", "mean"), ("p5", ":", "5th percentile"), ("p50", "-", "median"),
+          ("p95", "--", "95th percentile"))
 
 
-def _by_class(results, column, edges, unit_factor, unit):
+def histogram_bins(n: int) -> int:
+    """Bins of a histogram of n values: the square-root rule, within MIN_BINS..MAX_BINS."""
+    return int(min(MAX_BINS, max(MIN_BINS, math.ceil(math.sqrt(max(n, 1))))))
+
+
+def polarity(values) -> int:
+    """-1 if no value is positive (a negatively charging pair), +1 if none is negative, 0
+    for both signs."""
+    v = np.asarray(values, dtype=float)
+    if (v <= 0).all():
+        return -1
+    return 1 if (v >= 0).all() else 0
+
+
+def _magnitude_label(sign: int, what: str) -> str:
+    return {-1: f"−{what}", 1: what, 0: f"|{what}|"}[sign]
+
+
+def _by_class(results, column, edges, unit):
     labels = classes_of(results[column], edges)
     groups = []
     for i, interval in enumerate(labels.cat.categories):
-        lo, hi = edges[i] * unit_factor, edges[i + 1] * unit_factor
-        name = {"epsilon": f"ε {lo:.2f}–{hi:.2f}", "size": f"size {lo:.2f}–{hi:.2f} {unit}"}[column]
+        lo, hi = edges[i], edges[i + 1]
+        name = {"epsilon": f"ε {lo:.2f}–{hi:.2f}", "size": f"size {lo:.3g}–{hi:.3g} {unit}"}[column]
         groups.append((name, results[labels == interval]))
     return groups
 
@@ -30,47 +59,79 @@ def _scatter(ax, groups, colours, x, y, xlabel, ylabel, title, logx=False, logy=
         ax.scatter(x(g), y(g), s=10, color=colour, label=f"{name} ({len(g)})")
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
-    ax.set_title(title)
+    ax.set_title(title, fontsize=10)
     if logx:
         ax.set_xscale("log")
+        lo, hi = ax.get_xlim()
+        if hi < 30 * lo:
+            # 1, 2, 5 in each decade, as plain numbers: a population's sizes span about one
+            # decade, which a log axis would label once or not at all
+            ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+            ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+            ax.xaxis.set_minor_formatter(NullFormatter())
     if logy:
         ax.set_yscale("log")
-    legend(ax)
+    legend(ax, outside=True)
+
+
+def _histogram(ax, qm, model):
+    """The q/m histogram of a charge model on a log axis of its magnitude, with the mean and
+    percentiles of the signed values (summary.statistics, as in summary.csv)."""
+    sign = polarity(qm)
+    shown = np.abs(qm.to_numpy(dtype=float)) * QM_FACTOR
+    positive = shown[shown > 0]
+    n_bins = histogram_bins(len(positive))
+    if len(positive) and positive.max() > positive.min():
+        bins = np.geomspace(positive.min(), positive.max(), n_bins + 1)
+    elif len(positive):
+        bins = np.geomspace(positive.min() / 1.5, positive.min() * 1.5, n_bins + 1)
+    else:
+        bins = n_bins
+    ax.hist(positive, bins=bins, color="tab:blue", alpha=0.8,
+            label=f"{len(positive)} particles, {n_bins} bins")
+    zero = len(shown) - len(positive)
+    if zero:
+        ax.plot([], [], " ", label=f"{zero} with q/m = 0 (not on the log axis)")
+    stats = statistics(qm)
+    for column, style, name in MARKED:
+        value = stats[column] * QM_FACTOR
+        if value != 0 and np.isfinite(value):
+            ax.axvline(abs(value), color="black", ls=style, lw=1.2,
+                       label=f"{name} {value:.3g} {QM_UNIT}")
+    ax.set_xscale("log")
+    ax.set_xlabel(f"{_magnitude_label(sign, 'q/m')}, {model} model ({QM_UNIT})")
+    ax.set_ylabel("particles")
+    ax.set_title(f"q/m distribution, {model} model", fontsize=10)
+    legend(ax, outside=True)
+    return sign
+
+
+def population_figure(results, shape_edges=None, size_edges=None, title: str = ""):
+    """results: the population's rows (one per particle)."""
+    shapes = _by_class(results, "epsilon", class_edges(results["epsilon"], shape_edges), "")
+    sizes = _by_class(results, "size", class_edges(results["size"], size_edges), "m")
+    shape_colours = distinct_colours(len(shapes))
+    size_colours = distinct_colours(len(sizes))
+    fig, axes = plt.subplots(2, 4, figsize=(26, 10), layout="constrained")
+    for row, model in zip(axes, ("static", "sliding")):
+        sign = _histogram(row[0], results[f"charge_to_mass_{model}"], model)
+        label = f"{_magnitude_label(sign, 'q/m')}, {model} model ({QM_UNIT})"
+        qm_of = lambda g: g[f"charge_to_mass_{model}"].abs() * QM_FACTOR  # noqa: E731
+        _scatter(row[1], sizes, size_colours, lambda g: g["epsilon"], qm_of,
+                 "roundness ε = b/a", label, "q/m against roundness", logy=True)
+        _scatter(row[2], shapes, shape_colours, lambda g: g["size"], qm_of,
+                 "size, the long diameter 2a (m)", label, "q/m against size", logx=True, logy=True)
+        _scatter(row[3], shapes, shape_colours, lambda g: g[f"charge_{model}"].abs() * CHARGE_FACTOR,
+                 lambda g: g["exit_speed"],
+                 f"{_magnitude_label(sign, 'charge')}, {model} model ({CHARGE_UNIT}, on the "
+                 f"cylinder of the depth set)", "speed at the exit (m/s)",
+                 "exit speed against charge", logx=True)
+        for ax in row:
+            ax.grid(alpha=0.3)
+    fig.suptitle(title or f"population of {len(results)} particles")
+    return fig
 
 
 def write_population_figure(results, path: str, shape_edges=None, size_edges=None,
                             title: str = "") -> str:
-    """results: the population's rows (one per particle)."""
-    shapes = _by_class(results, "epsilon", class_edges(results["epsilon"], shape_edges), 1.0, "")
-    sizes = _by_class(results, "size", class_edges(results["size"], size_edges), SIZE_FACTOR, SIZE_UNIT)
-    shape_colours = distinct_colours(len(shapes))
-    size_colours = distinct_colours(len(sizes))
-    fig, axes = plt.subplots(2, 4, figsize=(20, 9), layout="constrained")
-    for row, model in zip(axes, ("static", "sliding")):
-        qm = results[f"charge_to_mass_{model}"].abs() * QM_FACTOR
-        label = f"|q/m|, {model} model ({QM_UNIT})"
-        ax = row[0]
-        positive = qm[qm > 0]
-        bins = np.geomspace(positive.min(), positive.max() * 1.0001, min(40, max(5, len(qm) // 10))) \
-            if len(positive) else 10
-        ax.hist(qm, bins=bins, color="tab:blue", alpha=0.8, label=f"{len(qm)} particles")
-        ax.set_xscale("log")
-        for p, style in ((5, ":"), (50, "-"), (95, "--")):
-            ax.axvline(np.percentile(qm, p), color="black", ls=style, lw=1, label=f"{p}th percentile")
-        ax.set_xlabel(label)
-        ax.set_ylabel("particles")
-        ax.set_title(f"q/m distribution, {model} model")
-        legend(ax)
-        qm_of = lambda g: g[f"charge_to_mass_{model}"].abs() * QM_FACTOR  # noqa: E731
-        _scatter(row[1], sizes, size_colours, lambda g: g["epsilon"], qm_of,
-                 "roundness ε = b/a", label, "q/m against roundness", logy=True)
-        _scatter(row[2], shapes, shape_colours, lambda g: g["size"] * SIZE_FACTOR, qm_of,
-                 f"size, long diameter 2a ({SIZE_UNIT})", label, "q/m against size", logy=True)
-        _scatter(row[3], shapes, shape_colours, lambda g: g[f"charge_{model}"].abs() * CHARGE_FACTOR,
-                 lambda g: g["exit_speed"],
-                 f"|charge|, {model} model ({CHARGE_UNIT}, cylinder of the depth set)",
-                 "speed at the exit (m/s)", "exit speed against charge", logx=True)
-        for ax in row:
-            ax.grid(alpha=0.3)
-    fig.suptitle(title or f"population of {len(results)} particles")
-    return save(fig, path)
+    return save(population_figure(results, shape_edges, size_edges, title), path)

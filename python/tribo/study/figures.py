@@ -163,7 +163,9 @@ def contact_modes(result):
         twin.set_ylabel(f"turns |φ − φ0| / 2π by τ = {result.settings.t_end:g}", color="tab:purple")
         ax.set_title(_title(result, "time in contact and turns made", friction), fontsize=10)
         ax.grid(alpha=0.3)
-        legend(ax, [contact, turns], ["contact fraction (left)", "turns (right, log)"], loc="center left")
+        # beside the panel, past the twin axis' label: inside, it would cover a line
+        legend(ax, [contact, turns], ["contact fraction (left)", "turns (right, log)"],
+               loc="upper left", bbox_to_anchor=(1.16, 1.0), borderaxespad=0.0)
     return fig
 
 
@@ -177,7 +179,7 @@ def trajectory(result):
         for e in epsilons:
             s = result.series_of(d, friction, e)
             axes[0][j].plot(s["time"], s["Y"], color=colours[e], lw=0.8, label=f"ε = {e:g}")
-            revolutions = (s["phi"] - s["phi"].iloc[0]) / (2 * np.pi)
+            revolutions = (s["phi_deg"] - s["phi_deg"].iloc[0]) / 360.0
             axes[1][j].plot(s["time"], revolutions, color=colours[e], lw=1, label=f"ε = {e:g}")
         axes[0][j].set_yscale("log")
         axes[0][j].set_ylabel(HEIGHT_LABEL)
@@ -254,5 +256,5 @@ def transition(result):
         ax.set_xlabel(EPSILON_LABEL)
         ax.set_ylabel(f"most turns |φ − φ0| / 2π up to τ = {result.settings.t_end:g}")
         ax.grid(alpha=0.3, which="both")
-        legend(ax, handles, labels, fontsize=7, loc="center left")
+        legend(ax, handles, labels, fontsize=7, outside=True)
     return fig
