@@ -183,6 +183,7 @@ int main(int argc, char **argv)
     /* 3. the fixed step */
     tribo_si_scene fixed = si;
     fixed.integrator = TRIBO_INTEGRATOR_FIXED_STEP;
+    fixed.stick_model = TRIBO_STICK_COMPLIANT; /* the fixed step has only the spring */
     fixed.dt = 8e-5;
     double tau_flight = 0.0, tau_contact = 0.0;
     const double rate_flight = fixed_rate(&fixed, slice, &tau_flight);
