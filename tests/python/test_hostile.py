@@ -216,3 +216,50 @@ def test_a_set_with_one_refused_value_applies_none(fmu_dir, output_names, versio
     assert s.get("mu") == 0.1 and s.get("F_T_ext") == 0.0
     undisturbed = Slave(fmu_dir(version), version).init(**SMALL).run([0.5, 1.0], output_names)[-1]
     assert s.run([1.0], output_names)[-1] == undisturbed
+
+
+# ---- a refused call changes nothing -----------------------------------------------------------
+
+def serialized(s):
+    """The instance's own state, as bytes."""
+    state = s.get_state()
+    data = s.serialize(state)
+    s.free_state(state)
+    return data
+
+
+def restores(s):
+    """Whether the instance takes back its own state (logging why not)."""
+    state = s.get_state()
+    try:
+        return status_of(s.set_state, state) == OK
+    finally:
+        s.free_state(state)
+
+
+def set_up_experiment(s, tolerance, start, stop):
+    """fmi2SetupExperiment, or fmi3EnterInitializationMode: the status."""
+    f = s.fmu._functions
+    if s.version == 2:
+        return f["fmi2SetupExperiment"](s.fmu.component, 1, tolerance, start, 1, stop)
+    return f["fmi3EnterInitializationMode"](s.fmu.component, True, tolerance, start, True, stop)
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+@pytest.mark.parametrize("tolerance", (2.0, math.nan, 0.0, -1e-6))
+@pytest.mark.parametrize("explicit", ({}, {"rtol": 1e-6, "atol": 1e-8}),
+                         ids=("tolerance used", "rtol and atol set"))
+def test_a_refused_experiment_changes_nothing(fmu_dir, version, tolerance, explicit):
+    s = Slave(fmu_dir(version), version)
+    s.set(**explicit)
+    before = serialized(s)
+    assert set_up_experiment(s, tolerance, 5.0, 10.0) == ERROR
+    assert "tolerance" in s.errors()[-1] and "rtol" in s.errors()[-1], s.errors()[-1]
+    assert serialized(s) == before  # was: start and stop times kept
+    if version == 2:
+        s.fmu.enterInitializationMode()
+    else:
+        s.fmu.enterInitializationMode(startTime=0.0)
+    s.fmu.exitInitializationMode()
+    assert s.get("time") == 0.0  # was: 5, and a step from 0 refused
+    assert s.do_step(0.0, 0.5)[0] == OK
