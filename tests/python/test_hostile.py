@@ -263,3 +263,74 @@ def test_a_refused_experiment_changes_nothing(fmu_dir, version, tolerance, expli
     s.fmu.exitInitializationMode()
     assert s.get("time") == 0.0  # was: 5, and a step from 0 refused
     assert s.do_step(0.0, 0.5)[0] == OK
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+@pytest.mark.parametrize("params, huge", [({"integrator": 1}, 1e300),
+                                          ({"integrator": 0, "dt": 1e-9}, 4e4)],
+                         ids=("beyond the core's time", "beyond the fixed step's grid"))
+def test_a_step_refused_for_its_size_leaves_the_inputs_pending(fmu_dir, output_names, version,
+                                                               params, huge):
+    s = Slave(fmu_dir(version), version).init(**SMALL, **params)
+    undisturbed = Slave(fmu_dir(version), version).init(**SMALL, **params)
+    for x in (s, undisturbed):
+        x.set(F_T_ext=0.5)
+    before = serialized(s)
+    assert s.do_step(0.0, huge)[0] == ERROR
+    assert "cannot advance" in s.errors()[-1], s.errors()[-1]
+    assert serialized(s) == before  # was: the inputs handed to the model, its integrator restarted
+    assert s.run([1e-5], output_names) == undisturbed.run([1e-5], output_names)
+
+# ---- the FMU's time is the model's, and never goes back ---------------------------------------
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_a_step_that_would_end_before_the_fmus_time_is_refused(fmu_dir, version):
+    # at 1e9 a communication point may be off by up to 1 (rounding): 0.9 behind is the FMU's
+    # time, but a step of 0.1 from there ends 0.8 before it
+    s = Slave(fmu_dir(version), version).init(start=1e9, **SMALL)
+    before = serialized(s)
+    for _ in range(3):  # was: OK each time, the time walking back below the start time
+        assert s.do_step(1e9 - 0.9, 0.1)[0] == ERROR
+        message = s.errors()[-1]
+        assert "999999999.2" in message and "1000000000" in message and "cannot go back" in message
+        assert s.get("time") == 1e9 and serialized(s) == before
+    assert restores(s), s.errors()[-1]  # was: "the state is corrupt: its time ..."
+    assert s.do_step(1e9, 0.5)[0] == OK and s.get("time") == 1e9 + 0.5
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_a_point_a_rounding_behind_steps_the_model_to_the_steps_end(fmu_dir, output_names, version):
+    s = Slave(fmu_dir(version), version).init(start=1e9, **SMALL)
+    end = (1e9 - 0.05) + 0.1
+    assert s.do_step(1e9 - 0.05, 0.1)[0] == OK
+    assert s.get("time") == end and restores(s)
+    # the model's time is the FMU's less the start time: where a run from 0 is after a step there
+    from_zero = Slave(fmu_dir(version), version).init(**SMALL)
+    from_zero.step_to(end - 1e9)
+    assert s.get_many(output_names) == from_zero.get_many(output_names)
+
+
+# ---- a step the work limit ends early ends before the step's end ------------------------------
+
+@pytest.mark.parametrize("version", VERSIONS)
+@pytest.mark.parametrize("integrator", (0, 1), ids=integrator_id)
+def test_a_step_ended_early_reports_a_time_before_its_end(fmu_dir, output_names, version, integrator):
+    # from 1e15 the FMU's time moves in steps of 0.125: the time the work limit stops at
+    # rounds to the step's end, 1e15 + 0.125
+    s = Slave(fmu_dir(version), version).init(start=1e15, integrator=integrator, work_limit=1083)
+    end = 1e15 + 0.1
+    status, reached, early = s.do_step(1e15, 0.1)
+    assert status == DISCARD and not early
+    assert 1e15 <= reached < end, reached  # was: reached == end with Discard
+    assert s.get("time") == reached and restores(s), s.errors()[-1:]
+    if version == 2:
+        return
+    # FMI 3.0 goes on from the time reached, to the run of a step without a limit
+    for _ in range(10):
+        status, reached, _ = s.do_step(reached, end - reached)
+        if status == OK:
+            break
+    assert status == OK and reached == end
+    whole = Slave(fmu_dir(version), version).init(integrator=integrator)
+    whole.step_to(end - 1e15)
+    assert s.get_many(output_names) == whole.get_many(output_names)
