@@ -234,43 +234,81 @@ fmu_status fmu_enter_initialization(fmu_instance *inst, const char *fn)
     return FMU_OK;
 }
 
+/* A core instance of the current parameters, made aside (the instance does not change):
+   NULL after logging why not. */
+static tribo_model *make_model(fmu_instance *inst, const char *fn, fmu_derived *derived)
+{
+    char why[512];
+    tribo_model *model = NULL;
+    if (fmu_front_derive(&inst->scene, derived, why, sizeof why) != TRIBO_OK ||
+        !(model = tribo_create(fmu_front_model_scene(derived), why, sizeof why))) {
+        fmu_error(inst, "%s: the model cannot be created: %s", fn, why);
+        return NULL;
+    }
+    tribo_set_logger(model, fmu_core_logger, inst);
+    return model;
+}
+
+static void install_model(fmu_instance *inst, tribo_model *model, const fmu_derived *derived)
+{
+    tribo_free(inst->model);
+    inst->model = model;
+    inst->derived = *derived;
+    inst->model_outdated = 0;
+}
+
 fmu_status fmu_ensure_model(fmu_instance *inst, const char *fn)
 {
     if (inst->model && !inst->model_outdated)
         return FMU_OK;
-    char why[512];
     fmu_derived derived;
-    tribo_model *model = NULL;
-    if (fmu_front_derive(&inst->scene, &derived, why, sizeof why) != TRIBO_OK ||
-        !(model = tribo_create(fmu_front_model_scene(&derived), why, sizeof why)))
-        return fmu_error(inst, "%s: the model cannot be created: %s", fn, why);
-    tribo_free(inst->model);
-    inst->model = model;
-    inst->derived = derived;
-    inst->model_outdated = 0;
-    tribo_set_logger(model, fmu_core_logger, inst);
+    tribo_model *model = make_model(inst, fn, &derived);
+    if (!model)
+        return FMU_ERROR;
+    install_model(inst, model, &derived);
+    return FMU_OK;
+}
+
+/* The importer's inputs, converted by the front end (what it derived for `model`), to the
+   core instance `model`. */
+static fmu_status pass_inputs_to(fmu_instance *inst, const char *fn, tribo_model *model,
+                                 const fmu_derived *derived)
+{
+    double model_inputs[TRIBO_INPUT_COUNT];
+    char why[512];
+    if (fmu_front_model_inputs(derived, inst->inputs, model_inputs, why, sizeof why) != TRIBO_OK)
+        return fmu_error(inst, "%s: %s", fn, why);
+    if (tribo_set_inputs(model, model_inputs) != TRIBO_OK)
+        return fmu_error(inst, "%s: %s", fn, tribo_last_error(model));
     return FMU_OK;
 }
 
 fmu_status fmu_pass_inputs(fmu_instance *inst, const char *fn)
 {
-    double model_inputs[TRIBO_INPUT_COUNT];
-    char why[512];
-    if (fmu_front_model_inputs(&inst->derived, inst->inputs, model_inputs, why, sizeof why) != TRIBO_OK)
-        return fmu_error(inst, "%s: %s", fn, why);
-    if (tribo_set_inputs(inst->model, model_inputs) != TRIBO_OK)
-        return fmu_error(inst, "%s: %s", fn, tribo_last_error(inst->model));
-    return FMU_OK;
+    return pass_inputs_to(inst, fn, inst->model, &inst->derived);
 }
 
 fmu_status fmu_exit_initialization(fmu_instance *inst, const char *fn)
 {
     if (!inst || !fmu_lifecycle_allows(inst, fn, FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_INITIALIZATION)))
         return FMU_ERROR;
-    /* on failure the instance stays in Initialization Mode, where parameters can
-       still be changed */
-    if (fmu_ensure_model(inst, fn) != FMU_OK || fmu_pass_inputs(inst, fn) != FMU_OK)
-        return FMU_ERROR;
+    /* a refusal leaves the instance as it was, in Initialization Mode (where parameters can
+       still be changed): a core instance it needs is made aside, and kept only once it has
+       taken the inputs (the SI front end refuses inputs whose model values are out of range) */
+    if (inst->model && !inst->model_outdated) {
+        if (fmu_pass_inputs(inst, fn) != FMU_OK)
+            return FMU_ERROR;
+    } else {
+        fmu_derived derived;
+        tribo_model *model = make_model(inst, fn, &derived);
+        if (!model)
+            return FMU_ERROR;
+        if (pass_inputs_to(inst, fn, model, &derived) != FMU_OK) {
+            tribo_free(model);
+            return FMU_ERROR;
+        }
+        install_model(inst, model, &derived);
+    }
     inst->lifecycle = FMU_LIFECYCLE_STEP;
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s() at time %.17g", fn, inst->time);
     return FMU_OK;

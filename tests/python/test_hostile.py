@@ -266,6 +266,21 @@ def test_a_refused_experiment_changes_nothing(fmu_dir, version, tolerance, expli
 
 
 @pytest.mark.parametrize("version", VERSIONS)
+def test_an_initialization_refused_for_its_inputs_changes_nothing(fmu_dir, version):
+    # the SI FMU's input is in its declared range, its model value (F / (k' a)) is not
+    s = Slave(fmu_dir(version, "tribo_si"), version)
+    s.set(F_T_ext=1e12)
+    enter_initialization(s)
+    before = serialized(s)
+    assert status_of(s.fmu.exitInitializationMode) == ERROR
+    assert "F_T_ext" in s.errors()[-1] and "-10 <= F_T_ext <= 10" in s.errors()[-1], s.errors()[-1]
+    assert serialized(s) == before  # was: the core instance made for the inputs kept
+    s.set(F_T_ext=1.0)
+    s.fmu.exitInitializationMode()
+    assert s.do_step(0.0, 1e-4)[0] == OK
+
+
+@pytest.mark.parametrize("version", VERSIONS)
 @pytest.mark.parametrize("params, huge", [({"integrator": 1}, 1e300),
                                           ({"integrator": 0, "dt": 1e-9}, 4e4)],
                          ids=("beyond the core's time", "beyond the fixed step's grid"))
