@@ -48,15 +48,18 @@ class Instance:
         self.calls += 1
         self.fmu.freeInstance()
 
-    def setup_experiment(self, start, stop):
-        """FMI 2.0's fmi2SetupExperiment; FMI 3.0 takes the same with initialization."""
-        return self._call("SetupExperiment", 0, 0.0, start, int(stop is not None),
+    def setup_experiment(self, start, stop, tolerance=None):
+        """FMI 2.0's fmi2SetupExperiment (None: undefined); FMI 3.0 takes the same with
+        initialization."""
+        return self._call("SetupExperiment", int(tolerance is not None),
+                          0.0 if tolerance is None else tolerance, start, int(stop is not None),
                           0.0 if stop is None else stop)
 
-    def enter_initialization(self, start=0.0, stop=None):
+    def enter_initialization(self, start=0.0, stop=None, tolerance=None):
         if self.version == 2:
             return self._call("EnterInitializationMode")
-        return self._call("EnterInitializationMode", False, 0.0, start, stop is not None,
+        return self._call("EnterInitializationMode", tolerance is not None,
+                          0.0 if tolerance is None else tolerance, start, stop is not None,
                           0.0 if stop is None else stop)
 
     def exit_initialization(self):

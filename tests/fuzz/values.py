@@ -69,17 +69,27 @@ def step_size(rng, model):
 
 
 def communication_point(rng, model):
-    """The importer's current time: the FMU's, or the FMU's up to rounding, or off it."""
+    """The importer's current time: the FMU's, or the FMU's up to rounding (either side, up
+    to nearly all the rounding allowed: at a large time a step may then end before the
+    FMU's time), or off it."""
     r = rng.random()
     if r < 0.85:
         return model.time
     if r < 0.92:
-        return model.time * (1 + 1e-12) + 1e-12
+        allowance = 0.9 * model.rounding_tolerance()
+        return rng.choice([model.time * (1 + 1e-12) + 1e-12, model.time - allowance,
+                           model.time + allowance])
     return rng.choice([model.time + 1.0, model.time - 0.5, math.nan, math.inf, -1e300])
 
 
 def experiment(rng):
-    """A start time and a stop time (None: undefined)."""
-    start = rng.choice([0.0, 0.0, 0.0, 1.5, -3.0, 1e6, 1e12, 1e300, math.nan, math.inf])
+    """A start time, a stop time and a tolerance (None: undefined). Large start times are
+    those where the FMU's time is coarse: at 1e9 it may be off by 1 (rounding), from 1e15 it
+    moves by 0.125."""
+    start = rng.choice([0.0, 0.0, 0.0, 1.5, -3.0, 1e6, 1e9, 1e12, 1e15, 1e300, math.nan, math.inf])
     stop = rng.choice([None, None, None, start + 5.0, start + 1e6, start - 1.0, math.nan])
-    return start, stop
+    # valid tolerances, and ones out of rtol's range [1e-14, 1). Not its lowest end: at rtol =
+    # 1e-14 one CVODE step's charging sweep can run for minutes, the work limit being
+    # checked only between steps (the core's accounting of the work, not the FMU's contract)
+    tolerance = rng.choice([None, None, None, 1e-6, 1e-9, 1e-12, 0.5, 2.0, 0.0, -1e-6, math.nan])
+    return start, stop, tolerance
