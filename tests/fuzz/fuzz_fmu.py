@@ -298,7 +298,7 @@ class Fuzzer:
                                        "changed": changed})
             return
         self.check_outputs(inst, model)
-        if self.rng.random() < 0.25:
+        if self.rng.random() < 0.1:  # besides those of op_state: right after the steps
             self.own_state_restores(inst, what, model)
 
     def op_terminate(self, inst, model):
