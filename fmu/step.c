@@ -5,11 +5,11 @@
 
 double fmu_rounding_tolerance(double time) { return 1e-9 * fmax(1.0, fabs(time)); }
 
-/* The time a step that stopped early reached: the core's, as the FMU's time (the start time
-   plus the core's time in the front end's unit, rounded as the outputs' times are), kept
-   inside the step: never before the FMU's time, and before `end` where the step ended early
-   (at most `end` where the run ended), which the rounding of a large time may otherwise
-   reach (from 1e15 in steps of 0.1 the FMU's time moves by 0.125). */
+/* The time a step that stopped early (the work limit, or the run's end) reached: the core's
+   as the FMU's time (the start time plus the core's time in the front end's unit, rounded to
+   the nearest), kept inside the step: never before the FMU's time, and before `end` where
+   the step ended early (at most `end` where the run ended), which the rounding of a large
+   time may otherwise reach (from 1e15 the FMU's time moves by 0.125). */
 static double reached_time(const fmu_instance *inst, double end, int before_end)
 {
     const double unit = fmu_front_time_unit(&inst->derived);
