@@ -13,8 +13,12 @@ UINT_LIMITS = {"UInt8": 8, "UInt16": 16, "UInt32": 32, "UInt64": 64}
 CHEAP = {"n_segments": [16, 64, 500, 2000], "dt": [1e-3, 8e-5, 0.1], "work_limit": [1, 50, 1000, 100000, 1000000],
          # mostly no end; else one the drop may reach (or start beyond: refused at initialization)
          "chute_length": [math.inf, math.inf, 1e6, 2.0, 0.05, 5e-324]}
-# the expensive ends of those ranges, now and then
-COSTLY = {"n_segments": [100000], "dt": [1e-9], "nu": [1e3]}
+# the expensive ends of those ranges, now and then; and of CVODE's tolerances, where one
+# step's charging sweep runs for seconds to minutes past the work limit (the core checks it
+# only between steps: its accounting of the work, not the FMU's contract)
+COSTLY = {"n_segments": [100000], "dt": [1e-9], "nu": [1e3], "rtol": [1e-14], "atol": [1e-20]}
+# the tolerances otherwise, log-uniform short of those ends
+CHEAP_RANGE = {"rtol": (1e-12, 0.5), "atol": (1e-16, 1.0)}
 
 UNKNOWN_VRS = [27, 99, 103, 200, 235, 300, 303, 999, 2**31, 2**32 - 1]
 
@@ -24,7 +28,7 @@ def valid_value(rng, v):
         return rng.choice(COSTLY[v.name])
     if v.name in CHEAP:
         return rng.choice(CHEAP[v.name])
-    lo, hi = v.min, v.max
+    lo, hi = CHEAP_RANGE.get(v.name, (v.min, v.max))
     if v.is_integer:
         return rng.randint(int(lo), int(min(hi, lo + 1000)))
     if lo > 0 and hi / lo > 100:  # log-uniform over a wide positive range
