@@ -142,28 +142,35 @@ static void set_parameter(fmu_instance *inst, const tribo_param_info *p, double 
    ratio to it: atol = atol's default * tolerance / rtol's default (= tolerance / 100), so
    that the default experiment's tolerance, rtol's default, gives the defaults bit for bit.
    rtol or atol set by the importer wins, whenever it was set. The fixed step ignores both
-   (dt sets its accuracy). */
-static fmu_status use_tolerance(fmu_instance *inst, const char *fn, double tolerance)
+   (dt sets its accuracy). A tolerance that would give either out of its range is refused
+   even where both were set (it is the importer's mistake all the same); checked before the
+   experiment changes anything, applied after (use_tolerance). */
+static fmu_status check_tolerance(fmu_instance *inst, const char *fn, double tolerance)
+{
+    const tribo_param_info *rtol = fmu_front_param_find("rtol"), *atol = fmu_front_param_find("atol");
+    char msg[512];
+    if (tribo_param_check(rtol, tolerance, msg, sizeof msg) != TRIBO_OK ||
+        tribo_param_check(atol, atol->start * (tolerance / rtol->start), msg, sizeof msg) != TRIBO_OK)
+        return fmu_error(inst,
+                         "%s: tolerance = %.17g is invalid: it sets CVODE's rtol (and atol = rtol "
+                         "/ %g): %s",
+                         fn, tolerance, rtol->start / atol->start, msg);
+    return FMU_OK;
+}
+
+static void use_tolerance(fmu_instance *inst, const char *fn, double tolerance)
 {
     const tribo_param_info *rtol = fmu_front_param_find("rtol"), *atol = fmu_front_param_find("atol");
     if (inst->rtol_set && inst->atol_set) {
         fmu_log(inst, FMU_OK, FMU_LOG_CALLS,
                 "%s: tolerance = %g not used: rtol = %g and atol = %g were set explicitly", fn,
                 tolerance, fmu_scene_value(inst, "rtol"), fmu_scene_value(inst, "atol"));
-        return FMU_OK;
+        return;
     }
-    const double atol_value = atol->start * (tolerance / rtol->start);
-    char msg[512];
-    if (tribo_param_check(rtol, tolerance, msg, sizeof msg) != TRIBO_OK ||
-        tribo_param_check(atol, atol_value, msg, sizeof msg) != TRIBO_OK)
-        return fmu_error(inst,
-                         "%s: tolerance = %.17g is invalid: it sets CVODE's rtol (and atol = rtol "
-                         "/ %g): %s",
-                         fn, tolerance, rtol->start / atol->start, msg);
     if (!inst->rtol_set)
         set_parameter(inst, rtol, tolerance);
     if (!inst->atol_set)
-        set_parameter(inst, atol, atol_value);
+        set_parameter(inst, atol, atol->start * (tolerance / rtol->start));
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s: tolerance = %g: rtol = %g (%s), atol = %g (%s)%s",
             fn, tolerance, fmu_scene_value(inst, "rtol"),
             inst->rtol_set ? "set explicitly" : "the tolerance", fmu_scene_value(inst, "atol"),
@@ -171,9 +178,9 @@ static fmu_status use_tolerance(fmu_instance *inst, const char *fn, double toler
             fmu_scene_value(inst, "integrator") == TRIBO_INTEGRATOR_FIXED_STEP
                 ? "; the fixed-step integrator uses neither: dt sets its accuracy"
                 : "");
-    return FMU_OK;
 }
 
+/* Every argument is checked before any applies: a refused experiment changes nothing. */
 fmu_status fmu_setup_experiment(fmu_instance *inst, const char *fn, int tolerance_defined,
                                 double tolerance, double start_time, int stop_time_defined,
                                 double stop_time)
@@ -187,13 +194,17 @@ fmu_status fmu_setup_experiment(fmu_instance *inst, const char *fn, int toleranc
                          "%s: stopTime = %.17g is invalid: it must be finite and >= startTime = "
                          "%.17g",
                          fn, stop_time, start_time);
+    if (tolerance_defined && check_tolerance(inst, fn, tolerance) != FMU_OK)
+        return FMU_ERROR;
     inst->start_time = start_time;
     inst->time = start_time;
     inst->stop_time_defined = stop_time_defined != 0;
     inst->stop_time = stop_time_defined ? stop_time : 0.0;
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s(startTime = %.17g, stopTime = %s%.17g)", fn,
             start_time, stop_time_defined ? "" : "(undefined) ", stop_time);
-    return tolerance_defined ? use_tolerance(inst, fn, tolerance) : FMU_OK;
+    if (tolerance_defined)
+        use_tolerance(inst, fn, tolerance);
+    return FMU_OK;
 }
 
 fmu_status fmu_enter_configuration(fmu_instance *inst, const char *fn)
@@ -223,43 +234,81 @@ fmu_status fmu_enter_initialization(fmu_instance *inst, const char *fn)
     return FMU_OK;
 }
 
+/* A core instance of the current parameters, made aside (the instance does not change):
+   NULL after logging why not. */
+static tribo_model *make_model(fmu_instance *inst, const char *fn, fmu_derived *derived)
+{
+    char why[512];
+    tribo_model *model = NULL;
+    if (fmu_front_derive(&inst->scene, derived, why, sizeof why) != TRIBO_OK ||
+        !(model = tribo_create(fmu_front_model_scene(derived), why, sizeof why))) {
+        fmu_error(inst, "%s: the model cannot be created: %s", fn, why);
+        return NULL;
+    }
+    tribo_set_logger(model, fmu_core_logger, inst);
+    return model;
+}
+
+static void install_model(fmu_instance *inst, tribo_model *model, const fmu_derived *derived)
+{
+    tribo_free(inst->model);
+    inst->model = model;
+    inst->derived = *derived;
+    inst->model_outdated = 0;
+}
+
 fmu_status fmu_ensure_model(fmu_instance *inst, const char *fn)
 {
     if (inst->model && !inst->model_outdated)
         return FMU_OK;
-    char why[512];
     fmu_derived derived;
-    tribo_model *model = NULL;
-    if (fmu_front_derive(&inst->scene, &derived, why, sizeof why) != TRIBO_OK ||
-        !(model = tribo_create(fmu_front_model_scene(&derived), why, sizeof why)))
-        return fmu_error(inst, "%s: the model cannot be created: %s", fn, why);
-    tribo_free(inst->model);
-    inst->model = model;
-    inst->derived = derived;
-    inst->model_outdated = 0;
-    tribo_set_logger(model, fmu_core_logger, inst);
+    tribo_model *model = make_model(inst, fn, &derived);
+    if (!model)
+        return FMU_ERROR;
+    install_model(inst, model, &derived);
+    return FMU_OK;
+}
+
+/* The importer's inputs, converted by the front end (what it derived for `model`), to the
+   core instance `model`. */
+static fmu_status pass_inputs_to(fmu_instance *inst, const char *fn, tribo_model *model,
+                                 const fmu_derived *derived)
+{
+    double model_inputs[TRIBO_INPUT_COUNT];
+    char why[512];
+    if (fmu_front_model_inputs(derived, inst->inputs, model_inputs, why, sizeof why) != TRIBO_OK)
+        return fmu_error(inst, "%s: %s", fn, why);
+    if (tribo_set_inputs(model, model_inputs) != TRIBO_OK)
+        return fmu_error(inst, "%s: %s", fn, tribo_last_error(model));
     return FMU_OK;
 }
 
 fmu_status fmu_pass_inputs(fmu_instance *inst, const char *fn)
 {
-    double model_inputs[TRIBO_INPUT_COUNT];
-    char why[512];
-    if (fmu_front_model_inputs(&inst->derived, inst->inputs, model_inputs, why, sizeof why) != TRIBO_OK)
-        return fmu_error(inst, "%s: %s", fn, why);
-    if (tribo_set_inputs(inst->model, model_inputs) != TRIBO_OK)
-        return fmu_error(inst, "%s: %s", fn, tribo_last_error(inst->model));
-    return FMU_OK;
+    return pass_inputs_to(inst, fn, inst->model, &inst->derived);
 }
 
 fmu_status fmu_exit_initialization(fmu_instance *inst, const char *fn)
 {
     if (!inst || !fmu_lifecycle_allows(inst, fn, FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_INITIALIZATION)))
         return FMU_ERROR;
-    /* on failure the instance stays in Initialization Mode, where parameters can
-       still be changed */
-    if (fmu_ensure_model(inst, fn) != FMU_OK || fmu_pass_inputs(inst, fn) != FMU_OK)
-        return FMU_ERROR;
+    /* a refusal leaves the instance as it was, in Initialization Mode (where parameters can
+       still be changed): a core instance it needs is made aside, and kept only once it has
+       taken the inputs (the SI front end refuses inputs whose model values are out of range) */
+    if (inst->model && !inst->model_outdated) {
+        if (fmu_pass_inputs(inst, fn) != FMU_OK)
+            return FMU_ERROR;
+    } else {
+        fmu_derived derived;
+        tribo_model *model = make_model(inst, fn, &derived);
+        if (!model)
+            return FMU_ERROR;
+        if (pass_inputs_to(inst, fn, model, &derived) != FMU_OK) {
+            tribo_free(model);
+            return FMU_ERROR;
+        }
+        install_model(inst, model, &derived);
+    }
     inst->lifecycle = FMU_LIFECYCLE_STEP;
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s() at time %.17g", fn, inst->time);
     return FMU_OK;

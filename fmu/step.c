@@ -5,6 +5,19 @@
 
 double fmu_rounding_tolerance(double time) { return 1e-9 * fmax(1.0, fabs(time)); }
 
+/* The time a step that stopped early (the work limit, or the run's end) reached: the core's
+   as the FMU's time (the start time plus the core's time in the front end's unit, rounded to
+   the nearest), kept inside the step: never before the FMU's time, and before `end` where
+   the step ended early (at most `end` where the run ended), which the rounding of a large
+   time may otherwise reach (from 1e15 the FMU's time moves by 0.125). */
+static double reached_time(const fmu_instance *inst, double end, int before_end)
+{
+    const double unit = fmu_front_time_unit(&inst->derived);
+    double t = inst->start_time + unit * tribo_get(inst->model, TRIBO_Q_TIME);
+    t = fmin(t, before_end ? nextafter(end, -INFINITY) : end);
+    return fmax(t, inst->time);
+}
+
 /* A step the core ended early (tribo_stop_early, for the reason it gives): the instance
    stays at the time reached. */
 static fmu_status ended_early(fmu_instance *inst, const char *fn, double end, int *early_return)
@@ -42,6 +55,28 @@ static fmu_status exited(fmu_instance *inst, const char *fn, double end, int *ea
     return inst->fmi_version == 2 ? FMU_DISCARD : FMU_OK;
 }
 
+/* Whether the core can advance to t, checked before the step changes anything (the core
+   refuses these times too, but only after the inputs handed to it have restarted its
+   integrator): beyond TRIBO_TIME_MAX, and the fixed step's grid where t / dt reaches 2^45
+   (src/integrator_fixed_step.c, GRID_MAX_STEPS). */
+static fmu_status check_core_time(fmu_instance *inst, const char *fn, double current_time,
+                                  double step, double t)
+{
+    if (t > TRIBO_TIME_MAX)
+        return fmu_error(inst,
+                         "%s: the step from %.17g by %.17g cannot advance the model to t = %.17g: "
+                         "beyond t = %g its time is not resolved finely enough to integrate",
+                         fn, current_time, step, t, TRIBO_TIME_MAX);
+    const tribo_scene *scene = tribo_get_scene(inst->model);
+    if (scene->integrator == TRIBO_INTEGRATOR_FIXED_STEP && !(t / scene->dt < 0x1p45))
+        return fmu_error(inst,
+                         "%s: the step from %.17g by %.17g cannot advance the fixed step to t = "
+                         "%.17g: steps of dt = %g are not resolved there (t / dt must stay below "
+                         "2^45)",
+                         fn, current_time, step, t, scene->dt);
+    return FMU_OK;
+}
+
 fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, double step,
                        double *reached, int *early_return, int *terminate)
 {
@@ -73,35 +108,52 @@ fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, 
                          "%s: communicationStepSize = %.17g is lost in the rounding of the time "
                          "%.17g (the step would end where it starts)",
                          fn, step, current_time);
+    /* a communication point a rounding before the FMU's time is that time, but the step must
+       still end after it: the time never goes back */
+    if (!(end > inst->time))
+        return fmu_error(inst,
+                         "%s: a step from %.17g by %.17g ends at %.17g, not after the FMU's time "
+                         "%.17g: the time cannot go back",
+                         fn, current_time, step, end, inst->time);
     if (inst->stop_time_defined && end > inst->stop_time + fmu_rounding_tolerance(inst->stop_time))
         return fmu_error(inst,
                          "%s: a step from %.17g by %.17g ends at %.17g, after the stop time %.17g "
                          "set at initialization",
                          fn, current_time, step, end, inst->stop_time);
+    tribo_model *m = inst->model;
+    /* the FMU's time is the start time plus the core's, in the front end's unit: the step
+       ends where the core's time is end's, which must lie after the core's time now, else
+       the FMU's time would move and the model's not */
+    const double unit = fmu_front_time_unit(&inst->derived);
+    const double core_now = tribo_get(m, TRIBO_Q_TIME), core_end = (end - inst->start_time) / unit;
+    if (!(core_end > core_now))
+        return fmu_error(inst,
+                         "%s: communicationStepSize = %.17g is lost in the rounding of the time: "
+                         "the step from %.17g to %.17g does not move the model's time t = %.17g",
+                         fn, step, current_time, end, core_now);
+    if (check_core_time(inst, fn, current_time, step, core_end) != FMU_OK)
+        return FMU_ERROR;
 
     /* inputs set since the last step hold from this communication point on (checked when
        set: a refusal here changes nothing) */
     if (fmu_pass_inputs(inst, fn) != FMU_OK)
         return FMU_ERROR;
-    tribo_model *m = inst->model;
-    /* the FMU's time is the start time plus the core's, in the front end's unit */
-    const double unit = fmu_front_time_unit(&inst->derived);
-    /* the communication point may lie a rounding error before the core's time */
-    const double core_end = fmax((end - inst->start_time) / unit, tribo_get(m, TRIBO_Q_TIME));
     tribo_status st = tribo_advance(m, core_end);
     if (st == TRIBO_INCOMPLETE || st == TRIBO_ENDED) {
-        inst->time = inst->start_time + unit * tribo_get(m, TRIBO_Q_TIME);
+        inst->time = reached_time(inst, end, st == TRIBO_INCOMPLETE);
         *reached = inst->time;
         return st == TRIBO_ENDED ? exited(inst, fn, end, early_return, terminate)
                                  : ended_early(inst, fn, end, early_return);
     }
     if (st != TRIBO_OK) {
-        /* a time the core refuses changes nothing; any other failure leaves it broken */
+        /* a time the core refuses changes nothing (check_core_time refused those it knows
+           before the inputs were handed over); any other failure leaves it broken */
         if (st != TRIBO_ERR_TIME)
             inst->lifecycle = FMU_LIFECYCLE_FAILED;
         return fmu_error(inst, "%s: the step from %.17g to %.17g failed: %s", fn, current_time, end,
                          tribo_last_error(m));
     }
+    /* the core is at core_end, the model's time of end */
     inst->time = end;
     *reached = end;
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s(currentCommunicationPoint = %.17g, "

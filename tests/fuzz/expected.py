@@ -5,7 +5,13 @@ nothing and the instance stays usable) and the state it leaves the instance in.
 Where the FMU may choose, the model accepts each choice it may make: a step that spends
 the work limit ends early (Discard, or an early return where allowed), and one in which the
 particle leaves the chute ends the run there (Discard with fmi2Terminated; FMI 3.0 OK with
-terminateSimulation)."""
+terminateSimulation). After such a step the model knows the core's time only as far as the
+FMU's time resolves it, and accepts either answer to a step whose end lies that close to it.
+
+The time (fmu/README.md): a communication point is the FMU's time up to rounding, a step
+must end after the FMU's time and move the model's time (the FMU's less the start time, in
+the model's unit), and the time a step reaches is never before the FMU's time, and before
+the step's end where it ended early."""
 
 import copy
 import math
@@ -23,6 +29,8 @@ DISCARDED = "Step Discarded"  # FMI 2.0's stepFailed
 TERMINATED = "Terminated"
 FAILED = "failed"
 EXITED = "Exited"  # the particle left the chute: the run is over
+
+EITHER = "either"  # expect_step: the model cannot tell whether the step is refused
 
 READABLE = {INITIALIZATION, STEP, DISCARDED, TERMINATED, FAILED, EXITED}  # outputs from here on
 TIME_MAX = 1e12  # beyond it the core refuses (src/tribo.h)
@@ -88,10 +96,16 @@ class Model:
         self.lifecycle = INSTANTIATED
         self.values = {v.name: v.start for v in self.variables if v.settable}
         self.start, self.stop, self.time, self.core_time = 0.0, None, 0.0, 0.0
+        # the core's time is core_time exactly, or (after a step that ended early) only up to
+        # the resolution of the FMU's time
+        self.core_time_exact = True
+        # rtol, atol set by the importer: the experiment's tolerance leaves them
+        self.explicit = set()
 
     def copy(self):
         other = copy.copy(self)
         other.values = dict(self.values)
+        other.explicit = set(self.explicit)
         return other
 
     # ---- values ------------------------------------------------------------------------
@@ -165,18 +179,38 @@ class Model:
     def apply(self, assignments):
         for v, value in assignments:
             self.values[v.name] = float(value)
+            if v.name in ("rtol", "atol"):
+                self.explicit.add(v.name)
 
     # ---- the life cycle ------------------------------------------------------------------
 
-    def experiment_valid(self, start, stop):
+    def _tolerances(self, tolerance):
+        """rtol and atol of an experiment's tolerance: atol keeps the defaults' ratio."""
+        rtol, atol = (next(v for v in self.variables if v.name == n) for n in ("rtol", "atol"))
+        return (rtol, tolerance), (atol, atol.start * (tolerance / rtol.start))
+
+    def experiment_valid(self, start, stop, tolerance=None):
+        """Whether the experiment is taken: a start and stop time, and a tolerance that gives
+        rtol and atol in their ranges (even where both were set, which it does not change)."""
+        if tolerance is not None and not all(v.valid(x) for v, x in self._tolerances(tolerance)):
+            return False
         return math.isfinite(start) and (stop is None or (math.isfinite(stop) and stop >= start))
 
-    def set_experiment(self, start, stop):
+    def set_experiment(self, start, stop, tolerance=None):
         self.start, self.stop, self.time, self.core_time = start, stop, start, 0.0
+        self.core_time_exact = True
+        if tolerance is not None:
+            for v, x in self._tolerances(tolerance):
+                if v.name not in self.explicit:
+                    self.values[v.name] = x
+
+    def rounding_tolerance(self):
+        return rounding_tolerance(self.time)
 
     def expect_step(self, current, h):
-        """ERROR for a step the FMU must refuse, else None (it computes: OK, or it ends
-        early)."""
+        """ERROR for a step the FMU must refuse, None if it computes (OK, or it ends early),
+        EITHER where the model cannot tell (the step's end lies within the resolution of the
+        FMU's time of the core's time, which the model knows only that far)."""
         if self.lifecycle != STEP:
             return ERROR
         if not math.isfinite(current) or abs(current - self.time) > rounding_tolerance(self.time):
@@ -186,14 +220,23 @@ class Model:
         end = current + h
         if not (math.isfinite(end) and end > current):
             return ERROR
+        if not end > self.time:  # the time never goes back
+            return ERROR
         if self.stop is not None and end > self.stop + rounding_tolerance(self.stop):
             return ERROR
-        core_end = max((end - self.start) / self.front.time_unit(self.values), self.core_time)
+        unit = self.front.time_unit(self.values)
+        core_end = (end - self.start) / unit
         if core_end > TIME_MAX:
             return ERROR
         if self.values["integrator"] == 0 and not core_end / self.values["dt"] < GRID_MAX_STEPS:
             return ERROR
-        return None
+        # the step must move the model's time
+        if self.core_time_exact:
+            return None if core_end > self.core_time else ERROR
+        resolution = 2.0 * math.ulp(max(abs(self.time), abs(self.start))) / unit
+        if core_end <= self.core_time - resolution:
+            return ERROR
+        return EITHER if core_end <= self.core_time + resolution else None
 
     def step_allowed(self, status, early, current, h, reached, terminate=False):
         """Whether a computed step's answer is one the FMU may give; updates the model. A
@@ -202,32 +245,34 @@ class Model:
         the chute: FMI 2.0 Discard, FMI 3.0 OK with an early return where allowed, at the
         exit time."""
         end = current + h
+        unit = self.front.time_unit(self.values)
         if status == ERROR:
             self.lifecycle = FAILED
             return True
         if terminate:
             if (status, early) != ((DISCARD, False) if self.version == 2 else (OK, self.early_return)):
                 return False
-            if not (min(current, self.time) <= reached <= end):
+            if not (self.time <= reached <= end):
                 return False
             self.time = reached
-            self.core_time = (reached - self.start) / self.front.time_unit(self.values)
+            self.core_time, self.core_time_exact = (reached - self.start) / unit, False
             self.lifecycle = EXITED
             return True
         if status == OK and not early:
             if reached != end:
                 return False
             self.time = end
-            self.core_time = max((end - self.start) / self.front.time_unit(self.values), self.core_time)
+            self.core_time, self.core_time_exact = (end - self.start) / unit, True
             return True
         ended_early = (status == OK and early and self.early_return) or \
             (status == DISCARD and not early)
-        # from the FMU's own time on, which the importer's may pass by its rounding (the
-        # core then integrates to the importer's end, as FMI 2.0's 4.2.2 suggests)
-        if not ended_early or not (min(current, self.time) <= reached < end):
+        # at the time reached: not before the FMU's time (the importer's point may lie a
+        # rounding before it), before the step's end (the importer's, which its point may
+        # pass by a rounding: the core then integrates to it, as FMI 2.0's 4.2.2 suggests)
+        if not ended_early or not (self.time <= reached < end):
             return False
         self.time = reached
-        self.core_time = (reached - self.start) / self.front.time_unit(self.values)
+        self.core_time, self.core_time_exact = (reached - self.start) / unit, False
         if status == DISCARD and self.version == 2:
             self.lifecycle = DISCARDED
         return True

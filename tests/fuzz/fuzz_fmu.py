@@ -7,9 +7,12 @@ against a model of the status each call must return (expected.py), and mutations
 
 It asserts: no crash (the process would end), no call over the timeout (a watchdog ends
 the process, naming the call), every status the model expects, no non-finite output after
-a call that returned OK, and that a refused FMU state leaves the instance unchanged (its
-own state, serialized, the same bytes) and usable. Exit status 0 if all held; a summary
-with the counts goes to --json."""
+a call that returned OK, that every call refused (Error for its arguments or the state it
+came in, a refused FMU state included) leaves the instance unchanged: its own state,
+serialized, the same bytes before and after; that every state the instance saves restores
+into it (its serialized bytes deserialized and set back, the instance then saving the same
+bytes); and that an instance stays usable. Exit status 0 if all held; a summary with the
+counts goes to --json."""
 
 import argparse
 import json
@@ -28,7 +31,7 @@ import zipfile
 # modules import as they are
 from fmpy import read_model_description
 
-from expected import (CONFIGURATION, DISCARDED, EXITED, FAILED, INITIALIZATION,
+from expected import (CONFIGURATION, DISCARDED, EITHER, EXITED, FAILED, INITIALIZATION,
                       INSTANTIATED, READABLE, STEP, TERMINATED, Model)
 from fmi_calls import DISCARD, ERROR, OK, Instance
 from values import (UNKNOWN_VRS, communication_point, experiment, hostile_value, step_size,
@@ -41,6 +44,20 @@ NUMERIC_TYPES = {2: ["Real", "Integer", "Boolean"],
 
 class Finding(Exception):
     """A call answered otherwise than the model expects."""
+
+
+# Defects of the core that refuse an instance's own state, each where the chute is shorter
+# than any the root finding resolves, each with a test that fails until the core is fixed
+# (tests/python/test_hostile.py, xfail strict). There, and only there, such a refusal is
+# counted in the summary (known_core_defects) instead of ending the sequence; the instance
+# must still be unchanged by it.
+KNOWN_CORE_DEFECTS = {
+    "(the end of the run of the committed point)":
+        "test_own_state_restores_after_a_step_past_a_very_short_chutes_end",
+    "(contact time of the committed point)":
+        "test_a_run_past_a_chute_of_dbl_min_keeps_its_contact_time_and_its_state",
+}
+TINY_CHUTE = 1e-250
 
 
 class Watchdog:
@@ -77,6 +94,9 @@ class Fuzzer:
         self.core_failures = []
         self.slow_steps = []
         self.exits = 0  # steps in which the particle left the chute
+        self.refusals = 0  # refused calls found to change nothing
+        self.restores = 0  # own states found to restore
+        self.known_core_defects = []  # own states refused by a known defect (KNOWN_CORE_DEFECTS)
 
     # ---- one call, checked ------------------------------------------------------------
 
@@ -87,6 +107,53 @@ class Fuzzer:
     def expect(self, what, status, allowed):
         if status not in allowed:
             raise Finding(f"{what}: status {status}, expected one of {sorted(allowed)}")
+
+    def checked(self, inst, what, allowed, fn, *args):
+        """Make a call the model expects to answer with one of `allowed`; where that may be a
+        refusal (ERROR), the instance's own state is compared before and after it: a refused
+        call changes nothing. Returns the call's result."""
+        before = self.call("snapshot", inst.snapshot) if ERROR in allowed else None
+        result = self.call(what, fn, *args)
+        status = result[0] if isinstance(result, tuple) else result
+        self.expect(what, status, allowed)
+        if status == ERROR:
+            self.unchanged(inst, what, before)
+        return result
+
+    def unchanged(self, inst, what, before):
+        """The instance's own state is still `before` (bytes; None: it has none to give)."""
+        after = self.call("snapshot", inst.snapshot)
+        if after != before:
+            raise Finding(f"{what}: refused, but the instance changed "
+                          f"({len(before or b'')} bytes before, {len(after or b'')} after)")
+        self.refusals += 1
+
+    def own_state_restores(self, inst, what, model=None):
+        """The instance's own state, saved, serialized, deserialized and set back, is taken,
+        and the instance then saves the same bytes. Returns them (None: it has no state)."""
+        status, state = self.call("getFMUState", inst.get_state)
+        if status != OK:
+            return None
+        status, data = self.call("serialize", inst.serialize, state)
+        self.expect("serialize", status, {OK})
+        self.call("freeFMUState", inst.free_state, state)
+        status, state = self.call("deserialize", inst.deserialize, data)
+        self.expect(f"deserialize the own state ({what})", status, {OK})
+        status = self.call("setFMUState", inst.set_state, state)
+        self.call("freeFMUState", inst.free_state, state)
+        if status != OK:
+            reason = inst.errors()[-1] if inst.errors() else ""
+            known = [test for message, test in KNOWN_CORE_DEFECTS.items() if message in reason]
+            if not (known and model is not None and model.values["chute_length"] <= TINY_CHUTE):
+                raise Finding(f"{what}: the instance refused its own state: {reason}")
+            self.known_core_defects.append({"call": what, "reason": reason, "test": known[0],
+                                            "values": dict(model.values)})
+            self.unchanged(inst, f"setFMUState of the own state ({what})", data)
+            return data
+        if self.call("snapshot", inst.snapshot) != data:
+            raise Finding(f"{what}: the own state set back saves other bytes")
+        self.restores += 1
+        return data
 
     def check_outputs(self, inst, model):
         """After an OK call: every output (scalars and arrays) a finite number, every
@@ -141,8 +208,7 @@ class Fuzzer:
             values.append(inst.c_value(ftype, 1))
         expected, assignments = model.expect_set(ftype, vrs, values)
         what = f"set{ftype} {[(model.by_vr[r].name if r in model.by_vr else r) for r in vrs]} = {values}"
-        status = self.call(what, inst.set, ftype, vrs, values)
-        self.expect(what, status, {expected})
+        status = self.checked(inst, what, {expected}, inst.set, ftype, vrs, values)
         if status == OK:
             model.apply(assignments)
 
@@ -157,34 +223,36 @@ class Fuzzer:
             n_values += self.rng.choice([-1, 1])
         allowed = model.expect_get(ftype, vrs, max(0, n_values))
         what = f"get{ftype} {vrs} ({n_values} values)"
-        status, _ = self.call(what, inst.get, ftype, vrs, max(0, n_values))
-        self.expect(what, status, allowed)
+        self.checked(inst, what, allowed, inst.get, ftype, vrs, max(0, n_values))
 
     def op_initialize(self, inst, model):
-        start, stop = experiment(self.rng)
+        start, stop, tolerance = experiment(self.rng)
+        ok = model.lifecycle == INSTANTIATED and model.experiment_valid(start, stop, tolerance)
         if self.version == 2:
-            ok = model.lifecycle == INSTANTIATED and model.experiment_valid(start, stop)
             if self.rng.random() < 0.8:
-                status = self.call(f"setupExperiment({start}, {stop})", inst.setup_experiment, start, stop)
-                self.expect("setupExperiment", status, {OK if ok else ERROR})
+                status = self.checked(inst, f"setupExperiment({start}, {stop}, tolerance {tolerance})",
+                                      {OK if ok else ERROR}, inst.setup_experiment, start, stop,
+                                      tolerance)
                 if ok:
-                    model.set_experiment(start, stop)
-            status = self.call("enterInitializationMode", inst.enter_initialization)
-            self.expect("enterInitializationMode", status, {OK if model.lifecycle == INSTANTIATED else ERROR})
+                    model.set_experiment(start, stop, tolerance)
+            status = self.checked(inst, "enterInitializationMode",
+                                  {OK if model.lifecycle == INSTANTIATED else ERROR},
+                                  inst.enter_initialization)
         else:
-            ok = model.lifecycle == INSTANTIATED and model.experiment_valid(start, stop)
-            status = self.call(f"enterInitializationMode({start}, {stop})", inst.enter_initialization, start, stop)
-            self.expect("enterInitializationMode", status, {OK if ok else ERROR})
+            status = self.checked(inst, f"enterInitializationMode({start}, {stop}, tolerance {tolerance})",
+                                  {OK if ok else ERROR}, inst.enter_initialization, start, stop,
+                                  tolerance)
             if ok:
-                model.set_experiment(start, stop)
+                model.set_experiment(start, stop, tolerance)
         if status == OK:
             model.lifecycle = INITIALIZATION
         if self.rng.random() < 0.3:
             self.check_outputs(inst, model)
         if self.rng.random() < 0.9:
-            status = self.call("exitInitializationMode", inst.exit_initialization)
-            self.expect("exitInitializationMode", status,
-                        {OK if model.lifecycle == INITIALIZATION and model.initialization_valid() else ERROR})
+            status = self.checked(
+                inst, "exitInitializationMode",
+                {OK if model.lifecycle == INITIALIZATION and model.initialization_valid() else ERROR},
+                inst.exit_initialization)
             if status == OK:
                 model.lifecycle = STEP
 
@@ -196,22 +264,25 @@ class Fuzzer:
             self.expect("exitConfigurationMode", status, {OK})
             model.lifecycle = INSTANTIATED
         else:
-            status = self.call("enterConfigurationMode", inst.enter_configuration)
-            self.expect("enterConfigurationMode", status, {OK if model.lifecycle == INSTANTIATED else ERROR})
+            status = self.checked(inst, "enterConfigurationMode",
+                                  {OK if model.lifecycle == INSTANTIATED else ERROR},
+                                  inst.enter_configuration)
             if status == OK:
                 model.lifecycle = CONFIGURATION
 
     def op_step(self, inst, model):
         current, h = communication_point(self.rng, model), step_size(self.rng, model)
-        what = f"doStep({current!r}, {h!r})"
+        what = f"doStep({current!r}, {h!r}) at {model.time!r}"
         refused = model.expect_step(current, h)
+        before = self.call("snapshot", inst.snapshot) if refused is not None else None
         started = time.monotonic()
         status, reached, early, terminate = self.call(what, inst.do_step, current, h)
         if time.monotonic() - started > 1.0:  # for the summary: what the slow steps were
             self.slow_steps.append({"call": what, "seconds": round(time.monotonic() - started, 2),
                                     "values": dict(model.values)})
-        if refused is not None:
+        if refused == ERROR or (refused == EITHER and status == ERROR):
             self.expect(what, status, {ERROR})
+            self.unchanged(inst, what, before)
             return
         changed = {k: v for k, v in model.values.items()
                    if v != next(x.start for x in model.variables if x.name == k)}
@@ -227,10 +298,13 @@ class Fuzzer:
                                        "changed": changed})
             return
         self.check_outputs(inst, model)
+        if self.rng.random() < 0.1:  # besides those of op_state: right after the steps
+            self.own_state_restores(inst, what, model)
 
     def op_terminate(self, inst, model):
-        status = self.call("terminate", inst.terminate)
-        self.expect("terminate", status, {OK if model.lifecycle in (STEP, DISCARDED, EXITED) else ERROR})
+        status = self.checked(inst, "terminate",
+                              {OK if model.lifecycle in (STEP, DISCARDED, EXITED) else ERROR},
+                              inst.terminate)
         if status == OK:
             model.lifecycle = TERMINATED
 
@@ -242,8 +316,8 @@ class Fuzzer:
     def op_state(self, inst, model, states):
         r = self.rng.random()
         if r < 0.5 or not states:
-            status, state = self.call("getFMUState", inst.get_state)
-            self.expect("getFMUState", status, {ERROR if model.lifecycle == FAILED else OK})
+            status, state = self.checked(inst, "getFMUState",
+                                         {ERROR if model.lifecycle == FAILED else OK}, inst.get_state)
             if status == OK:
                 if self.rng.random() < 0.5:  # through its serialized bytes
                     status, data = self.call("serialize", inst.serialize, state)
@@ -252,6 +326,8 @@ class Fuzzer:
                     status, state = self.call("deserialize", inst.deserialize, data)
                     self.expect("deserialize", status, {OK})
                 states.append((state, model.copy()))
+                if self.rng.random() < 0.5:  # half of them: a restore costs a replay
+                    self.own_state_restores(inst, "getFMUState", model)
         elif r < 0.9:
             state, saved = self.rng.choice(states)
             status = self.call("setFMUState", inst.set_state, state)
@@ -372,7 +448,7 @@ class Fuzzer:
     def mutate(self, inst, model, per_field):
         """Offer every mutation of the instance's own state to it. Returns the number
         offered."""
-        original = inst.snapshot()
+        original = self.own_state_restores(inst, "a base state of the mutations")
         assert original is not None
         count = 0
         for what, data in self.mutations(original, per_field):
@@ -381,14 +457,14 @@ class Fuzzer:
             status, state = self.call(f"deserialize ({what})", inst.deserialize, data)
             if status != OK:
                 self.expect(f"deserialize ({what})", status, {ERROR})
+                self.unchanged(inst, f"deserialize ({what})", original)
                 continue
             status = self.call(f"setFMUState ({what})", inst.set_state, state)
             self.call("freeFMUState", inst.free_state, state)
             self.expect(f"setFMUState ({what})", status, {OK, ERROR})
             if status == ERROR:
                 # refused: the instance is as it was, its state the same bytes
-                if self.call("snapshot", inst.snapshot) != original:
-                    raise Finding(f"{what}: refused, but the instance changed")
+                self.unchanged(inst, f"setFMUState ({what})", original)
                 continue
             self.accepted(inst, what, model.time_scale())
             restore, state = self.call("deserialize", inst.deserialize, original)
@@ -466,12 +542,14 @@ def main():
                "seconds": round(time.monotonic() - started, 1),
                "slowest_call_seconds": round(dog.slowest, 3),
                "core_failures": fuzzer.core_failures, "slow_steps": fuzzer.slow_steps,
-               "exits": fuzzer.exits,
+               "exits": fuzzer.exits, "refusals_unchanged": fuzzer.refusals,
+               "own_states_restored": fuzzer.restores,
+               "known_core_defects": fuzzer.known_core_defects,
                "findings": findings}
     if args.json:
         with open(args.json, "w") as f:
             json.dump(summary, f, indent=1)
-    print(json.dumps({k: (len(v) if k in ("core_failures", "slow_steps") else v)
+    print(json.dumps({k: (len(v) if k in ("core_failures", "slow_steps", "known_core_defects") else v)
                       for k, v in summary.items() if k != "findings"}))
     for f in findings[:10]:
         print("FINDING:", json.dumps(f), file=sys.stderr)

@@ -13,8 +13,12 @@ UINT_LIMITS = {"UInt8": 8, "UInt16": 16, "UInt32": 32, "UInt64": 64}
 CHEAP = {"n_segments": [16, 64, 500, 2000], "dt": [1e-3, 8e-5, 0.1], "work_limit": [1, 50, 1000, 100000, 1000000],
          # mostly no end; else one the drop may reach (or start beyond: refused at initialization)
          "chute_length": [math.inf, math.inf, 1e6, 2.0, 0.05, 5e-324]}
-# the expensive ends of those ranges, now and then
-COSTLY = {"n_segments": [100000], "dt": [1e-9], "nu": [1e3]}
+# the expensive ends of those ranges, now and then; and of CVODE's tolerances, where one
+# step's charging sweep runs for seconds to minutes past the work limit (the core checks it
+# only between steps: its accounting of the work, not the FMU's contract)
+COSTLY = {"n_segments": [100000], "dt": [1e-9], "nu": [1e3], "rtol": [1e-14], "atol": [1e-20]}
+# the tolerances otherwise, log-uniform short of those ends
+CHEAP_RANGE = {"rtol": (1e-12, 0.5), "atol": (1e-16, 1.0)}
 
 UNKNOWN_VRS = [27, 99, 103, 200, 235, 300, 303, 999, 2**31, 2**32 - 1]
 
@@ -24,7 +28,7 @@ def valid_value(rng, v):
         return rng.choice(COSTLY[v.name])
     if v.name in CHEAP:
         return rng.choice(CHEAP[v.name])
-    lo, hi = v.min, v.max
+    lo, hi = CHEAP_RANGE.get(v.name, (v.min, v.max))
     if v.is_integer:
         return rng.randint(int(lo), int(min(hi, lo + 1000)))
     if lo > 0 and hi / lo > 100:  # log-uniform over a wide positive range
@@ -69,17 +73,28 @@ def step_size(rng, model):
 
 
 def communication_point(rng, model):
-    """The importer's current time: the FMU's, or the FMU's up to rounding, or off it."""
+    """The importer's current time: the FMU's, or the FMU's up to rounding (either side, up
+    to nearly all the rounding allowed: at a large time a step may then end before the
+    FMU's time), or off it."""
     r = rng.random()
     if r < 0.85:
         return model.time
     if r < 0.92:
-        return model.time * (1 + 1e-12) + 1e-12
+        allowance = 0.9 * model.rounding_tolerance()
+        return rng.choice([model.time * (1 + 1e-12) + 1e-12, model.time - allowance,
+                           model.time + allowance])
     return rng.choice([model.time + 1.0, model.time - 0.5, math.nan, math.inf, -1e300])
 
 
 def experiment(rng):
-    """A start time and a stop time (None: undefined)."""
-    start = rng.choice([0.0, 0.0, 0.0, 1.5, -3.0, 1e6, 1e12, 1e300, math.nan, math.inf])
+    """A start time, a stop time and a tolerance (None: undefined). Large start times are
+    those where the FMU's time is coarse: at 1e9 it may be off by 1 (rounding), from 1e15 it
+    moves by 0.125."""
+    start = rng.choice([0.0, 0.0, 0.0, 1.5, -3.0, 1e6, 1e9, 1e12, 1e15, 1e300, math.nan, math.inf])
     stop = rng.choice([None, None, None, start + 5.0, start + 1e6, start - 1.0, math.nan])
-    return start, stop
+    # valid tolerances, and ones out of rtol's range [1e-14, 1). Not its tight end: at rtol =
+    # 1e-14 one CVODE step's charging sweep can run for minutes (1e-12: seconds), the work
+    # limit being checked only between steps (the core's accounting of the work, not the
+    # FMU's contract, which these tolerances test)
+    tolerance = rng.choice([None, None, None, 1e-4, 1e-6, 1e-9, 0.5, 2.0, 0.0, -1e-6, math.nan])
+    return start, stop, tolerance

@@ -84,7 +84,9 @@ def test_fuzz_every_fmu_release_and_sanitized():
               f"{counts['mutated_states']} mutated states, {counts['seconds']} s "
               f"(slowest call {counts['slowest_call_seconds']} s, "
               f"{len(counts['core_failures'])} failures of the core reported, "
-              f"{counts['exits']} exits from the chute)")
+              f"{counts['exits']} exits from the chute; {counts['refusals_unchanged']} refused "
+              f"calls changed nothing, {counts['own_states_restored']} own states restored, "
+              f"{len(counts['known_core_defects'])} refused by a known defect of the core)")
         if counts["findings"]:
             failures.append(f"{what}: " + json.dumps(counts["findings"][:3], indent=1))
     assert not failures, "\n".join(failures)
