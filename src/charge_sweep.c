@@ -23,6 +23,7 @@ typedef struct sweep {
     tribo_sample_sink sink;
     void *sink_ctx;
     int status;
+    double cost; /* probes and covered segments so far (tribo_charging_sweep's budget) */
 } sweep;
 
 static probe_point probe_at(sweep *w, double t, const probe_point *near)
@@ -30,6 +31,7 @@ static probe_point probe_at(sweep *w, double t, const probe_point *near)
     double s_c, half, speed;
     tribo_contact_kinematics k;
     w->probe->at(w->probe->ctx, t, &s_c, &half, &speed, &k);
+    w->cost += 1.0;
     if (near)
         s_c -= w->perimeter * floor((s_c - 0.5 * (near->lo + near->hi)) / w->perimeter + 0.5);
     probe_point pt = {t, s_c - half, s_c + half, speed, {0}, {0}};
@@ -253,6 +255,7 @@ static void charge_piece(sweep *w, const probe_point *pts, const double *S0, con
                 s.globals_end[g] = S0[g] + u1 * (c1[g] + u1 * c2[g]);
             }
             w->status = w->sink(w->sink_ctx, &s);
+            w->cost += TRIBO_SWEEP_CELL_COST * fmin(cell[1] - cell[0] + 1.0, w->c->n);
             t0 = t1;
         }
         if (i < n)
@@ -308,11 +311,14 @@ static int advance_states(sweep *w, const probe_point *pts, double h, double rto
 
 int tribo_charging_sweep(tribo_charging *c, const tribo_scene *s, const tribo_contact_probe *probe,
                          double a, double b, double rtol, double atol, double *quadratures,
-                         double *globals, tribo_sample_sink sink, void *sink_ctx)
+                         double *globals, tribo_sample_sink sink, void *sink_ctx, double budget,
+                         double *reached)
 {
+    if (reached)
+        *reached = b;
     if (!(b > a))
         return 0;
-    sweep w = {c, s, probe, c->arc.perimeter, c->arc.perimeter / c->n, rtol, sink, sink_ctx, 0};
+    sweep w = {c, s, probe, c->arc.perimeter, c->arc.perimeter / c->n, rtol, sink, sink_ctx, 0, 0.0};
     const size_t q_bytes = (size_t)c->n_quadratures * sizeof(double);
     const size_t g_bytes = (size_t)c->n_globals * sizeof(double);
     const int with_states = has_states(c);
@@ -358,6 +364,11 @@ int tribo_charging_sweep(tribo_charging *c, const tribo_scene *s, const tribo_co
             memcpy(globals, g_end, g_bytes);
             cur = pts[4];
             trial = 2.0 * h;
+            if (w.cost >= budget && cur.t < b) {
+                if (reached)
+                    *reached = cur.t;
+                break;
+            }
         } else {
             trial *= 0.5;
         }

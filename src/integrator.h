@@ -95,9 +95,21 @@ typedef enum tribo_counter {
 } tribo_counter;
 void tribo_count(tribo_model *m, tribo_counter which, long long n);
 
-/* Book work of the advance under way, in internal steps (the unit of the scene's
-   work_limit: the cost of an RK4 step). The charging services book their own. */
-void tribo_work(tribo_model *m, double steps);
+/* The work the scene's work_limit bounds: each kind of work weighs what it costs, so that a
+   unit is about the same CPU time whatever the inputs (measured over scenes where one kind
+   dominates and random scenes at the ends of the parameters' ranges: docs/fmu.md, "The work
+   limit"). The default limit then bounds an advance to under a second of CPU, and the
+   paper's fixed step in communication steps of 100 stays within it. */
+#define TRIBO_WORK_FIXED_STEP 0.6        /* an RK4 step or sub-step                          */
+#define TRIBO_WORK_CVODE_STEP 8.0        /* a CVODE step with its root finding, grazing
+                                            samples and interpolant                          */
+#define TRIBO_WORK_FLIGHT_PIECE 1.0      /* a piece of a closed-form flight (flight.h) ...   */
+#define TRIBO_WORK_FLIGHT_EVALUATION 0.2 /* ... and each look at its clearance              */
+#define TRIBO_WORK_PROBE 0.2             /* a look of the charging sweep at the contact     */
+#define TRIBO_WORK_SEGMENT_UPDATE 0.0013 /* charging one segment value                      */
+/* Book work of the advance under way (the units above). The charging services book their
+   own. */
+void tribo_work(tribo_model *m, double units);
 /* Whether the advance under way has spent its work limit. */
 int tribo_work_spent(const tribo_model *m);
 /* Why an advance ends before the asked time. */
@@ -139,9 +151,15 @@ tribo_status tribo_charge_sample(tribo_model *m, const tribo_contact_sample *sam
 void tribo_probe_contact(const tribo_model *m, const double *y, double *s_centre,
                          double *half_width, double *centre_speed, tribo_contact_kinematics *k);
 /* Sweep a contact over [a, b] seen through the probe (tribo_charging_sweep), to the
-   scene's rtol / atol, advancing p's quadratures and charge globals. */
+   scene's rtol / atol, advancing p's quadratures and charge globals. The sweep of one
+   integrator step is bounded: it ends early, at *reached < b, once it has cost
+   TRIBO_SWEEP_BUDGET (in tribo_charging_sweep's units), and the integrator then ends its
+   step there. Where it ends depends on a alone, not on b, so the committed run stays
+   independent of the times asked for and of the work limit. */
+#define TRIBO_SWEEP_BUDGET 1e5
 tribo_status tribo_charge_sweep(tribo_model *m, const tribo_contact_probe *probe, double a,
-                                double b, tribo_point *p, tribo_charge_destination where);
+                                double b, tribo_point *p, tribo_charge_destination where,
+                                double *reached);
 
 extern const tribo_integrator_ops tribo_fixed_step_ops;
 extern const tribo_integrator_ops tribo_cvode_ops;

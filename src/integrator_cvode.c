@@ -56,9 +56,6 @@
 
 /* A restart every so many steps bounds the replay a state load costs. */
 #define STEPS_PER_RESTART 2000
-/* A step with its root finding, its samples for grazing switches and its dense output
-   costs about as much as this many RK4 steps (the unit of work_limit). */
-#define STEP_WORK 50.0
 /* Guards against runaway integration. */
 #define MAX_EVENTS_AT_ONE_INSTANT 64
 #define MAX_EVENTS_IN_A_ROW 100000
@@ -101,6 +98,7 @@ typedef struct cvode_integrator {
     double t_end;
     double y_end[TRIBO_NSTATE_MAX];
     int ends_at_root;
+    int ends_early; /* ended where its charging sweep spent its budget: CVODE restarts there */
     int roots[N_ROOTS];
     tribo_stop_reason ending; /* why close_step ended the run (when it returns TRIBO_ENDED) */
 
@@ -209,6 +207,7 @@ static tribo_status restart_at(cvode_integrator *c, double t, const double *y, c
     memcpy(c->y_restart, y, sizeof c->y_restart);
     c->steps_since_restart = 0;
     c->open = 0;
+    c->ends_early = 0;
     if (!tribo_touching(ph)) {
         tribo_flight_start(&c->flight, c->dyn, t, y, c->n);
         c->flight_pieces = 0;
@@ -359,8 +358,6 @@ static void find_grazing_switch(cvode_integrator *c, double t_start);
    that a flight that never comes down, or spins fast, is taken in bounded pieces). */
 #define FLIGHT_PIECE_STEPS 1000.0
 #define FLIGHT_PIECE_EVALUATIONS 64
-/* An evaluation of the clearance costs about as much as this many RK4 steps. */
-#define FLIGHT_EVALUATION_WORK 0.2
 
 /* The next piece of a flight: from the end of the last one (or the restart), to the flight's
    end (flight.h) or as far as the piece may go; it becomes the open step. */
@@ -387,7 +384,7 @@ static tribo_status take_flight_piece(cvode_integrator *c)
         c->roots[TRIBO_SWITCH_EXIT] = -1;
     if (!c->replaying) {
         tribo_count(c->m, TRIBO_COUNT_STEPS, 1);
-        tribo_work(c->m, 1.0 + FLIGHT_EVALUATION_WORK * (double)used);
+        tribo_work(c->m, TRIBO_WORK_FLIGHT_PIECE + TRIBO_WORK_FLIGHT_EVALUATION * (double)used);
     }
     return TRIBO_OK;
 }
@@ -419,7 +416,7 @@ static tribo_status take_step(cvode_integrator *c)
         find_grazing_switch(c, tribo_committed(c->m)->t);
     if (!c->replaying) {
         tribo_count(c->m, TRIBO_COUNT_STEPS, 1);
-        tribo_work(c->m, STEP_WORK);
+        tribo_work(c->m, TRIBO_WORK_CVODE_STEP);
     }
     return TRIBO_OK;
 }
@@ -538,12 +535,27 @@ static void probe(void *ctx, double t, double *s_centre, double *half_width, dou
 /* Charge over [a, b] inside the open step, advancing p's quadratures and charge globals:
    committed, or queued for the output point. */
 static tribo_status sweep_charges(cvode_integrator *c, double a, double b, tribo_point *p,
-                                  tribo_charge_destination where)
+                                  tribo_charge_destination where, double *reached)
 {
+    *reached = b;
     if (!tribo_touching(&c->phase) || !(b > a))
         return TRIBO_OK;
     const tribo_contact_probe pr = {probe, c};
-    return tribo_charge_sweep(c->m, &pr, a, b, p, where);
+    return tribo_charge_sweep(c->m, &pr, a, b, p, where, reached);
+}
+
+/* End the open step at t, inside it, where its charging sweep spent its budget (a contact
+   that sweeps the boundary very fast, e.g. a spinning needle, or a wide contact on many
+   segments): the step's work stays bounded, and CVODE restarts there once it is closed. */
+static void end_step_early(cvode_integrator *c, double t)
+{
+    c->t_end = t;
+    dense(c, t, c->y_end);
+    hold_phase(c, c->y_end);
+    c->ends_at_root = 0;
+    for (int i = 0; i < N_ROOTS; i++)
+        c->roots[i] = 0;
+    c->ends_early = 1;
 }
 
 /* The point at time t (with y there) in the current phase. */
@@ -587,25 +599,35 @@ static tribo_status close_step(cvode_integrator *c)
     memcpy(next.charge_globals, committed->charge_globals, sizeof next.charge_globals);
     /* the quadratures are the sweep's, not CVODE's (it holds them constant) */
     memcpy(next.y + TRIBO_NMOTION, committed->y + TRIBO_NMOTION, quadratures);
-    tribo_status st = sweep_charges(c, committed->t, c->t_end, &next, TRIBO_CHARGE_COMMIT);
+    /* the exit is where the centre reaches L: CVODE locates the root in time to its own
+       tolerance, which can leave X a rounding short of L (model.md §9) */
+    if (c->ends_at_root && c->roots[TRIBO_SWITCH_EXIT] && c->y_end[TRIBO_IX] < c->dyn->chute_length)
+        c->y_end[TRIBO_IX] = c->dyn->chute_length;
+    double reached;
+    tribo_status st = sweep_charges(c, committed->t, c->t_end, &next, TRIBO_CHARGE_COMMIT, &reached);
     if (st != TRIBO_OK)
         return st;
+    if (reached < c->t_end)
+        end_step_early(c, reached);
     memcpy(c->y_end + TRIBO_NMOTION, next.y + TRIBO_NMOTION, quadratures);
     fill_point(c, &next, c->t_end, c->y_end, committed, 1);
     tribo_commit(m, &next);
     c->open = 0;
 
-    if (!c->ends_at_root && !(c->y_end[TRIBO_IX] < c->dyn->chute_length)) {
+    if (!c->roots[TRIBO_SWITCH_EXIT] && !(c->y_end[TRIBO_IX] < c->dyn->chute_length)) {
         /* past the end without the exit root: the root finding cannot resolve L - X where
-           it is below its resolution (a chute of 5e-324): the run ends at the step's end */
+           it is below its resolution (a chute of 5e-324), also where the step ends at
+           another switch's root: the run ends at the step's end */
         c->ending = TRIBO_STOP_EXIT;
         st = restart_at(c, c->t_end, tribo_committed(m)->y, &c->phase);
         return st == TRIBO_OK ? TRIBO_ENDED : st;
     }
     if (!c->ends_at_root) {
         c->events_in_a_row = 0;
-        if (c->steps_since_restart >= STEPS_PER_RESTART)
+        if (c->ends_early || c->steps_since_restart >= STEPS_PER_RESTART) {
+            c->ends_early = 0;
             return restart_at(c, c->t_end, c->y_end, &c->phase);
+        }
         return TRIBO_OK;
     }
 
@@ -667,6 +689,7 @@ static tribo_status advance(tribo_model *m, void *data, double t)
     const double max_steps = 1e5 + MAX_STEPS_PER_TIME_UNIT * fmax(0.0, t - t_start);
     long long steps = 0;
     tribo_status st;
+next_step:
     for (;;) {
         if (c->open && t <= c->t_end)
             break;
@@ -699,7 +722,15 @@ static tribo_status advance(tribo_model *m, void *data, double t)
            (size_t)(c->n - TRIBO_NMOTION) * sizeof(double));
     memcpy(out.charge_globals, committed->charge_globals, sizeof out.charge_globals);
     fill_point(c, &out, t, y, committed, 0);
-    st = sweep_charges(c, committed->t, t, &out, TRIBO_CHARGE_PENDING);
+    double reached;
+    st = sweep_charges(c, committed->t, t, &out, TRIBO_CHARGE_PENDING, &reached);
+    if (st == TRIBO_OK && reached < t) {
+        /* the step's sweep ends before t: the step ends there, as it would without the
+           output (tribo_charging_sweep), and the advance goes on from it */
+        tribo_output_begin(m);
+        end_step_early(c, reached);
+        goto next_step;
+    }
     tribo_output_set(m, &out);
     return st;
 }
@@ -812,7 +843,11 @@ static tribo_status state_load(tribo_model *m, void *data, const unsigned char *
         return tribo_fail(m, TRIBO_ERR_STATE, "the CVODE state does not replay: %s",
                           tribo_last_error(m));
     const double at = s.open ? before : reached;
-    const double *y_at = s.open ? y_before : y_reached;
+    /* the committed point is the step's end put back on the phase's constraints once more
+       (fill_point), which in the rigid stick can move the last bit */
+    double y_at[TRIBO_NSTATE_MAX];
+    memcpy(y_at, s.open ? y_before : y_reached, sizeof y_at);
+    hold_phase(c, y_at);
     int same = at == t && (!s.open || (s.steps_since_restart > 0 && t_out <= reached));
     for (int i = 0; same && i < TRIBO_NMOTION; i++)
         same = i == TRIBO_IDX || y_at[i] == tribo_committed(m)->y[i];

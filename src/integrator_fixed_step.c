@@ -140,7 +140,7 @@ static void step(tribo_model *m, const tribo_point *p, double h, tribo_point *ne
     rk4(m, next->y, h / n);
     if (n > 1)
         tribo_count(m, TRIBO_COUNT_SUBSTEPS, n - 1);
-    tribo_work(m, n);
+    tribo_work(m, TRIBO_WORK_FIXED_STEP * n);
 
     const double dx = clamp_stretch(dp, next->y, ev);
     next->slipping = ev->in_contact && fabs(dx) >= ev->limit && (ev->limit > 0.0 || ev->vs != 0.0);

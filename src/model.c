@@ -117,10 +117,7 @@ static tribo_status ended(tribo_model *m)
                       m->out.t, m->scene.chute_length);
 }
 
-/* Charging this many segment values costs about one internal step (an RK4 step). */
-#define SEGMENT_UPDATES_PER_STEP 250.0
-
-void tribo_work(tribo_model *m, double steps) { m->work += steps; }
+void tribo_work(tribo_model *m, double units) { m->work += units; }
 
 int tribo_work_spent(const tribo_model *m) { return m->work >= (double)m->scene.work_limit; }
 
@@ -137,7 +134,7 @@ tribo_status tribo_stop_early(tribo_model *m, tribo_stop_reason why)
     }
     return tribo_fail(m, TRIBO_INCOMPLETE,
                       "stopped early at t = %.17g: the advance spent its work limit (work_limit = "
-                      "%d internal steps; take shorter steps, or raise it)",
+                      "%d units of work; take shorter steps, or raise it)",
                       m->committed.t, m->scene.work_limit);
 }
 
@@ -218,7 +215,7 @@ tribo_status tribo_charge_sample(tribo_model *m, const tribo_contact_sample *sam
     if (where == TRIBO_CHARGE_PENDING)
         return pending_push(m, sample);
     const long updates = tribo_charging_apply(&m->charging, &m->scene, sample, TRIBO_CHARGE_COMMITTED);
-    tribo_work(m, (double)updates / SEGMENT_UPDATES_PER_STEP);
+    tribo_work(m, TRIBO_WORK_SEGMENT_UPDATE * (double)updates);
     return TRIBO_OK;
 }
 
@@ -279,25 +276,27 @@ static int sink(void *ctx, const tribo_contact_sample *sample)
     return tribo_charge_sample(s->m, sample, s->where) != TRIBO_OK;
 }
 
-/* The integrator's probe, each look at the contact counted as an internal step (it costs
-   about as much as an RK4 step). */
+/* The integrator's probe, each look at the contact booked as work. */
 static void counted_probe(void *ctx, double t, double *s_centre, double *half_width,
                           double *centre_speed, tribo_contact_kinematics *k)
 {
     sweep_target *s = ctx;
-    tribo_work(s->m, 1.0);
+    tribo_work(s->m, TRIBO_WORK_PROBE);
     s->probe->at(s->probe->ctx, t, s_centre, half_width, centre_speed, k);
 }
 
 tribo_status tribo_charge_sweep(tribo_model *m, const tribo_contact_probe *probe, double a,
-                                double b, tribo_point *p, tribo_charge_destination where)
+                                double b, tribo_point *p, tribo_charge_destination where,
+                                double *reached)
 {
+    *reached = b;
     if (!m->charging.any_selected)
         return TRIBO_OK;
     sweep_target target = {m, where, probe};
     const tribo_contact_probe counted = {counted_probe, &target};
     if (tribo_charging_sweep(&m->charging, &m->scene, &counted, a, b, m->scene.rtol, m->scene.atol,
-                             p->y + TRIBO_NMOTION, p->charge_globals, sink, &target) != 0)
+                             p->y + TRIBO_NMOTION, p->charge_globals, sink, &target,
+                             TRIBO_SWEEP_BUDGET, reached) != 0)
         return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
     return TRIBO_OK;
 }

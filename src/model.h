@@ -31,8 +31,7 @@ struct tribo_model {
     int pending_sums_valid;
     double pending_sums[TRIBO_CHARGE_MAX_MODELS];
 
-    /* the work done by the advance under way, in internal steps (quantities.def:
-       work_limit) */
+    /* the work done by the advance under way (integrator.h: the units of work_limit) */
     double work;
     /* why the run is over (model.md §9), for good: 0 it is not, TRIBO_END_EXIT the particle
        left the chute, TRIBO_END_LIFTOFF it lifted off (run_end = first_liftoff); the output

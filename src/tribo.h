@@ -186,8 +186,8 @@ tribo_status tribo_reset(tribo_model *model);
 /* Advance to time t >= the current time. The committed integration is independent
    of the times asked for: advancing in n calls to t1 < ... < tn gives bit-identical
    results to one call to tn (with constant inputs and parameters).
-   One call does at most the scene's work_limit of work (internal steps, quantities.def);
-   when that is spent it stops after a whole step and returns TRIBO_INCOMPLETE, at an
+   One call does at most the scene's work_limit of work (in units of about half a
+   microsecond of CPU: integrator.h); when that is spent it stops after a whole step and returns TRIBO_INCOMPLETE, at an
    earlier time (tribo_get TRIBO_Q_TIME) from which the next call goes on, with the same
    results as if it had not stopped. A time the integrator cannot resolve (beyond
    TRIBO_TIME_MAX, or a fixed step's grid finer than the rounding of t) is refused

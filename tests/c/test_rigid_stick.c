@@ -211,6 +211,41 @@ Test(rigid_stick, its_phases_save_and_load_bit_for_bit, .timeout = 60)
     }
 }
 
+/* A flat grain pressed onto the plate rolls in the rigid stick for thousands of CVODE steps
+   between restarts; a state saved where the work limit stopped an advance loads again: its
+   replayed steps reach the committed point bit for bit, also where putting the point back on
+   the constraints a second time (as committing does) moves the last bit of a velocity. */
+Test(rigid_stick, a_state_saved_after_a_long_rigid_stretch_loads_again, .timeout = 60)
+{
+    tribo_si_scene si;
+    tribo_si_scene_defaults(&si);
+    si.epsilon = 0.22511708985426643;
+    char err[512];
+    tribo_si_derived d;
+    cr_assert_eq(tribo_si_derive(&si, &d, err, sizeof err), TRIBO_OK, "%s", err);
+    tribo_model *m = make(&d.scene);
+    double in[TRIBO_SI_INPUT_COUNT] = {0}, model_in[TRIBO_INPUT_COUNT];
+    in[TRIBO_SI_INPUT_F_N] = -833.7959160855213; /* N/m, pressing it onto the plate */
+    cr_assert_eq(tribo_si_model_inputs(&d, in, model_in, err, sizeof err), TRIBO_OK, "%s", err);
+    cr_assert_eq(tribo_set_inputs(m, model_in), TRIBO_OK);
+    cr_assert_eq(tribo_advance(m, 4.118101206701782e-07 / d.t_star), TRIBO_OK);
+    int stops = 0;
+    for (int k = 0; k < 3; k++) {
+        const tribo_status st = tribo_advance(m, 0.4118105324802988 / d.t_star);
+        cr_assert(st == TRIBO_OK || st == TRIBO_INCOMPLETE, "%s", tribo_last_error(m));
+        stops += st == TRIBO_INCOMPLETE;
+        size_t size;
+        unsigned char *bytes = saved_state(m, &size);
+        tribo_model *loaded = make(&d.scene);
+        cr_expect_eq(tribo_state_load(loaded, bytes, size), TRIBO_OK, "at t = %.17g: %s",
+                     tribo_get(m, TRIBO_Q_TIME), tribo_last_error(loaded));
+        free(bytes);
+        tribo_free(loaded);
+    }
+    cr_expect(stops > 0, "no advance stopped at the work limit");
+    tribo_free(m);
+}
+
 /* The rigid stick is a phase of the event-driven integrator in the contact point's lock: the
    fixed step and the centre dashpot refuse it in one line that says what to set. */
 Test(rigid_stick, the_fixed_step_and_the_centre_dashpot_refuse_it)

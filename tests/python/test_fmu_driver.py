@@ -7,6 +7,7 @@ real step to the end time, then the FMI status and flags an ending FMU gives."""
 
 import numpy as np
 import pytest
+from fmpy import simulate_fmu
 from fmpy.fmi1 import FMICallException
 
 from tribo.batch.particle import simulate
@@ -79,13 +80,13 @@ def test_an_fmi2_discard_without_terminate_is_an_error(fmu_dir):
 
 @pytest.mark.parametrize("early_return", [False, True])
 def test_fmi3_steps_cut_by_the_work_limit_go_on_to_the_same_run(fmu_dir, early_return):
-    """A work limit of 1000 units per doStep (a CVODE step is one) cuts the paper's case's steps 8 times
+    """A work limit of 150 units per doStep (a CVODE step is 8) cuts the paper's case's steps
     (Discard, or an early return where allowed); step_to goes on from the time reached,
     and the run is the one without the limit, bit for bit (fmu/README.md, "Work limit")."""
     times = [0.0, 10.0, 20.0, 30.0, 40.0, 50.0]
     _, full = reference(fmu_dir(3), times)
     with Instance(fmu_dir(3), early_return=early_return) as s:
-        s.init(n_segments=64, work_limit=1000)
+        s.init(n_segments=64, work_limit=150)
         reached, rows = record(s, times, NAMES)
         assert s.work_limit_returns >= 5 and not s.ended
     assert list(reached) == times
@@ -120,3 +121,15 @@ def test_simulate_and_the_api_record_an_early_end(fmu_file, monkeypatch):
     assert len(recording.segments) == 64  # read where the run ended
     assert recording.segments["static"].mean() == pytest.approx(recording.series["Q_static"].iloc[-1],
                                                                 rel=1e-12)
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_the_papers_fixed_step_in_steps_of_100_stays_within_the_default_work_limit(fmu_file,
+                                                                                  version):
+    """fmpy's simulate_fmu with the paper's fixed step (dt = 8e-5) and an output interval of
+    100: each doStep is 1.25e6 RK4 steps, within the default work limit (fmu/README.md,
+    "Work limit"), so none is cut and fmpy does not raise."""
+    result = simulate_fmu(fmu_file(version), stop_time=200.0, output_interval=100.0,
+                          start_values={"integrator": 0}, output=["X", "Q_static"])
+    assert list(result["time"]) == [0.0, 100.0, 200.0]
+    assert np.all(np.isfinite(result["X"]))
