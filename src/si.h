@@ -113,10 +113,11 @@ static inline double tribo_si_charge_per_length(const tribo_si_derived *d, doubl
     return d->perimeter * sigma_mean;
 }
 
-/* A density of the sliding model in C/m^2 (model.md §8: sign(sigma0) Sigma sqrt(kappa k' a)). */
+/* A density of the sliding model in C/m^2 (model.md §8: sign(sigma0) Sigma sqrt(kappa k' a);
+   sigma0 = 0, a neutral pair, charges nothing). */
 static inline double tribo_si_sliding_density(const tribo_si_derived *d, double Sigma)
 {
-    return (d->sigma0 < 0.0 ? -1.0 : 1.0) * Sigma * d->sigma_scale;
+    return (double)((d->sigma0 > 0.0) - (d->sigma0 < 0.0)) * Sigma * d->sigma_scale;
 }
 
 #ifdef __cplusplus
