@@ -31,12 +31,6 @@ const tribo_param_info *tribo_si_param_table(size_t *count)
 
 const tribo_param_info *tribo_si_param_find(const char *name) { return tribo_table_find(TABLE, name); }
 
-tribo_status tribo_si_scene_set(tribo_si_scene *s, const char *name, double value, char *msg,
-                                size_t msg_size)
-{
-    return tribo_table_set(TABLE, s, name, value, msg, msg_size);
-}
-
 tribo_status tribo_si_scene_apply(tribo_si_scene *s, const char *settings, char *msg, size_t msg_size)
 {
     return tribo_table_apply(TABLE, s, settings, msg, msg_size);
