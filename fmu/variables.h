@@ -47,7 +47,7 @@ typedef enum fmu_variability {
 typedef enum fmu_mapping {
     FMU_MAPS_TO_TIME,       /* the FMU's time: start time + the core's time */
     FMU_MAPS_TO_PARAMETER,  /* the scene parameter of the same name         */
-    FMU_MAPS_TO_INPUT,      /* index: FMU_INPUT_*                           */
+    FMU_MAPS_TO_INPUT,      /* index: the front end's input (tribo_input order) */
     FMU_MAPS_TO_QUANTITY,   /* index: the front end's quantity (fmu_front_get) */
     FMU_MAPS_TO_SEGMENTS    /* index: tribo_segment_charge, n_segments values */
 } fmu_mapping;

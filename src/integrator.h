@@ -11,11 +11,12 @@
  * steps that end at or before the asked time.
  *
  * An advance may end early, and only between steps: when tribo_work_spent says the work
- * limit of the advance is spent, or when the step just committed ends where the particle
- * leaves the chute (model.md §9: the exit switch of force_phases.h, located exactly), it
- * returns tribo_stop_early() with the reason (the output point at the committed one). That
- * is the one way of stopping short of the asked time: after the work limit the next advance
- * goes on from there as if nothing had stopped; after the exit the run is over.
+ * limit of the advance is spent, or when the step just committed ends the run (model.md §9:
+ * where the particle leaves the chute, the exit switch of force_phases.h, or with run_end =
+ * first_liftoff where the first contact is lost again, each located exactly), it returns
+ * tribo_stop_early() with the reason (the output point at the committed one). Every early
+ * stop goes through it: after the work limit the next advance goes on from there as if
+ * nothing had stopped; after the exit or the lift-off the run is over.
  */
 #ifndef TRIBO_INTEGRATOR_H
 #define TRIBO_INTEGRATOR_H

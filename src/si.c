@@ -31,12 +31,6 @@ const tribo_param_info *tribo_si_param_table(size_t *count)
 
 const tribo_param_info *tribo_si_param_find(const char *name) { return tribo_table_find(TABLE, name); }
 
-tribo_status tribo_si_scene_set(tribo_si_scene *s, const char *name, double value, char *msg,
-                                size_t msg_size)
-{
-    return tribo_table_set(TABLE, s, name, value, msg, msg_size);
-}
-
 tribo_status tribo_si_scene_apply(tribo_si_scene *s, const char *settings, char *msg, size_t msg_size)
 {
     return tribo_table_apply(TABLE, s, settings, msg, msg_size);
@@ -53,7 +47,7 @@ const tribo_param_info *tribo_si_input_table(size_t *count)
 
 /* How an SI parameter (or input) becomes the model's: as it is, or in the model's units. */
 typedef enum conversion {
-    SAME,    /* dimensionless (or an angle, a choice)          */
+    SAME,    /* the same quantity (dimensionless, an angle, a choice) */
     LENGTH,  /* / a                                            */
     TIME,    /* / t_star                                       */
     SPEED,   /* / (a / t_star)                                 */
@@ -76,24 +70,14 @@ static double convert(const tribo_si_derived *d, conversion how, double v)
     return v;
 }
 
-/* Every parameter of the model's scene but Gamma, from one SI parameter. */
+/* Every parameter of the model's scene that one SI parameter sets, and the inputs: the
+   TRIBO_MAPS rows of si_quantities.def. */
 static const struct mapping {
     const char *si, *model;
     conversion how;
 } MAP[] = {
-    {"epsilon", "epsilon", SAME},      {"mu", "mu", SAME},
-    {"nu", "nu", SAME},                {"eta", "eta", SAME},
-    {"tilt", "beta", SAME},            {"charging_time", "tau0", TIME},
-    {"backflow_time", "tau_r", TIME},  {"sigma0", "Sigma0", DENSITY},
-    {"chute_length", "chute_length", LENGTH}, {"drop_height", "gap0", LENGTH},
-    {"drop_speed", "drop_speed", SPEED}, {"drop_angle", "drop_angle", SAME},
-    {"x0", "X0", LENGTH},              {"phi0", "phi0", SAME},
-    {"omega0", "Omega0", RATE},        {"n_segments", "n_segments", SAME},
-    {"charge_model", "charge_model", SAME}, {"integrator", "integrator", SAME},
-    {"dt", "dt", SAME},                {"rtol", "rtol", SAME},
-    {"atol", "atol", SAME},            {"v_reg", "v_reg", SAME},
-    {"damping_point", "damping_point", SAME}, {"work_limit", "work_limit", SAME},
-    {"run_end", "run_end", SAME}, {"stick_model", "stick_model", SAME},
+#define TRIBO_MAPS(name, model, how) {#name, #model, how},
+#include "si_quantities.def"
 };
 #define N_MAP (sizeof MAP / sizeof MAP[0])
 
@@ -205,8 +189,12 @@ tribo_status tribo_si_derive(const tribo_si_scene *si, tribo_si_derived *d, char
     tribo_scene_defaults(&d->scene);
     char made_of[400];
     for (size_t i = 0; i < N_MAP; i++) {
+        if (MAP[i].how == FORCE)
+            continue; /* an input */
         const tribo_param_info *model = tribo_param_find(MAP[i].model);
         const double v = convert(d, MAP[i].how, tribo_param_read(si, tribo_si_param_find(MAP[i].si)));
+        if (MAP[i].how == DENSITY && v == 0.0)
+            continue; /* a neutral pair: the model's default, every charge output times 0 */
         describe_inputs(made_of, sizeof made_of, si, d, MAP[i].si, MAP[i].how);
         if ((st = check_derived(model, v, made_of, msg, msg_size)) != TRIBO_OK)
             return st;
@@ -225,7 +213,7 @@ tribo_status tribo_si_model_param(const tribo_si_derived *d, const tribo_param_i
                                   char *msg, size_t msg_size)
 {
     const struct mapping *map = mapping_of(p->name);
-    if (!map) {
+    if (!map || map->how == FORCE) {
         if (msg && msg_size)
             snprintf(msg, msg_size, "%s is not a parameter of the model", p->name);
         return TRIBO_ERR_INVALID_ARGUMENT;

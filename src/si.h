@@ -38,9 +38,7 @@ void tribo_si_scene_defaults(tribo_si_scene *scene);
 /* The SI parameters (their rows, for tribo_param_check, tribo_param_read, messages). */
 const tribo_param_info *tribo_si_param_table(size_t *count);
 const tribo_param_info *tribo_si_param_find(const char *name);
-/* Set one, checked against its range; apply "name=value ..."; each as for tribo_scene_*. */
-tribo_status tribo_si_scene_set(tribo_si_scene *scene, const char *name, double value, char *msg,
-                                size_t msg_size);
+/* Apply "name=value ...", each checked against its range, as tribo_scene_apply. */
 tribo_status tribo_si_scene_apply(tribo_si_scene *scene, const char *settings, char *msg,
                                   size_t msg_size);
 
@@ -113,10 +111,11 @@ static inline double tribo_si_charge_per_length(const tribo_si_derived *d, doubl
     return d->perimeter * sigma_mean;
 }
 
-/* A density of the sliding model in C/m^2 (model.md §8: sign(sigma0) Sigma sqrt(kappa k' a)). */
+/* A density of the sliding model in C/m^2 (model.md §8: sign(sigma0) Sigma sqrt(kappa k' a);
+   sigma0 = 0, a neutral pair, charges nothing). */
 static inline double tribo_si_sliding_density(const tribo_si_derived *d, double Sigma)
 {
-    return (d->sigma0 < 0.0 ? -1.0 : 1.0) * Sigma * d->sigma_scale;
+    return (double)((d->sigma0 > 0.0) - (d->sigma0 < 0.0)) * Sigma * d->sigma_scale;
 }
 
 #ifdef __cplusplus

@@ -3,8 +3,8 @@
  * Layout (native byte order, doubles and 64-bit integers):
  *   magic "TRIBOST1", version, total size,
  *   every scene parameter (in the order of the parameter table),
- *   the external force, the output time, the work counters, whether the run has ended
- *   (the particle left the chute),
+ *   the external force, the output time, the work counters, how the run has ended (not,
+ *   at the chute's exit, or at the first lift-off),
  *   the committed point (with the charge models' quadratures and global states), for each
  *   selected charge model its committed per-segment charges and their running sum (value
  *   and compensation), the integrator's own bytes.

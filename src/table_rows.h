@@ -6,6 +6,12 @@
 #ifndef TRIBO_PARAMETER
 #define TRIBO_PARAMETER(name, type, vr, unit, min, min_end, max, max_end, start, variability, description)
 #endif
+#ifndef TRIBO_MAPS
+#define TRIBO_MAPS(name, model, how)
+#endif
+#ifndef TRIBO_DERIVES
+#define TRIBO_DERIVES(model, description)
+#endif
 #ifndef TRIBO_TIME
 #define TRIBO_TIME(id, name, vr, unit, description, value)
 #endif

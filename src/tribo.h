@@ -43,11 +43,13 @@ typedef enum tribo_status {
     TRIBO_INCOMPLETE,           /* not an error: an advance spent its work limit and
                                    stopped early, at tribo_get(model, TRIBO_Q_TIME); the
                                    instance is consistent there and advances on from it */
-    TRIBO_ENDED                 /* not an error: the particle left the chute (model.md §9)
-                                   at tribo_get(model, TRIBO_Q_EXIT_TIME), where the run is
-                                   over and every output stays; any later advance past it
-                                   returns this again and changes nothing (reset to run
-                                   again) */
+    TRIBO_ENDED                 /* not an error: the run is over where the scene ends it
+                                   (run_end, model.md §9): the particle left the chute (at
+                                   tribo_get(model, TRIBO_Q_EXIT_TIME)) or, with run_end =
+                                   first_liftoff, its first contact was lost again (output
+                                   lifted_off); every output stays there, and any later
+                                   advance past it returns this again and changes nothing
+                                   (reset to run again) */
 } tribo_status;
 
 /* ---- the scene: every parameter of the table (quantities.def) ------------------- */
@@ -194,14 +196,15 @@ tribo_status tribo_reset(tribo_model *model);
    (TRIBO_ERR_TIME) and nothing changes. An advance that would give a non-finite output
    fails (TRIBO_ERR_INTEGRATOR) naming it. On a chute of finite length (model.md §9) the
    advance that carries the particle past its end stops there, exactly at the crossing, and
-   returns TRIBO_ENDED. */
+   returns TRIBO_ENDED, and so does the one that ends the run at the first lift-off
+   (run_end = first_liftoff). */
 tribo_status tribo_advance(tribo_model *model, double t);
 #define TRIBO_TIME_MAX 1e12
 /* tribo_advance to t, going on after each early stop (for a caller that needs no bound on
-   the work of one call, e.g. a batch run); TRIBO_ENDED if the particle leaves the chute. */
+   the work of one call, e.g. a batch run); TRIBO_ENDED where the run ends (run_end). */
 tribo_status tribo_advance_fully(tribo_model *model, double t);
 
-/* Change a tunable parameter (model.md §1: mu, nu, eta, tau0, tau_r, Sigma0) from the
+/* Change a tunable parameter (the rows of variability TUNABLE in quantities.def) from the
    current time on. Structural and fixed parameters are rejected, and so is any change once
    the run has ended (TRIBO_ENDED). */
 tribo_status tribo_set_param(tribo_model *model, const char *name, double value);

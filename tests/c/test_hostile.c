@@ -1,4 +1,4 @@
-/* Hostile and careless callers (issue 11): each defect that fuzzing the FMUs found, held at
+/* Hostile and careless callers: each defect that fuzzing the FMUs found, held at
    the core where it arose. The FMU-level ones and the fuzz suite: tests/python. */
 #include <criterion/criterion.h>
 #include <math.h>
@@ -39,7 +39,7 @@ static int outputs_finite(tribo_model *m)
     return 1;
 }
 
-/* ---- defect 1: the fixed step restores its own state at any time --------------------------- */
+/* ---- the fixed step restores its own state at any time --------------------------- */
 
 /* An importer that adds 0.1 to its time reaches 0.30000000000000004, 0.9999999999999999...:
    times a rounding error before a grid point. Saving there and loading back must work, into
@@ -82,7 +82,7 @@ Test(hostile, fixed_step_state_at_37_3_loads_into_a_fresh_instance)
     tribo_free(fresh);
 }
 
-/* ---- defect 2: a state brings its tolerances along -------------------------------------------- */
+/* ---- a state brings its tolerances along -------------------------------------------- */
 
 Test(hostile, a_loaded_state_runs_on_with_its_own_tolerances, .timeout = 60)
 {
@@ -108,7 +108,7 @@ Test(hostile, a_loaded_state_runs_on_with_its_own_tolerances, .timeout = 60)
     tribo_free(alone);
 }
 
-/* ---- defect 4: everything a state carries is checked, and a refusal changes nothing ------- */
+/* ---- everything a state carries is checked, and a refusal changes nothing ------- */
 
 /* Offsets in the core's state (state_io.c's layout): the header, the parameters, then the
    external force, the output time, the work counters, the committed point. */
@@ -230,7 +230,7 @@ Test(hostile, corrupt_integrator_bytes_are_refused, .timeout = 120)
     }
 }
 
-/* ---- defect 5: huge steps are refused or bounded, never wrong or endless -------------------- */
+/* ---- huge steps are refused or bounded, never wrong or endless -------------------- */
 
 Test(hostile, huge_times_are_refused_or_bounded, .timeout = 60)
 {
@@ -264,7 +264,7 @@ Test(hostile, huge_times_are_refused_or_bounded, .timeout = 60)
     tribo_free(m);
 }
 
-/* ---- defect 6: the work of one advance is bounded, and stopping early changes nothing ------ */
+/* ---- the work of one advance is bounded, and stopping early changes nothing ------ */
 
 Test(hostile, stopping_at_the_work_limit_gives_the_same_run, .timeout = 120)
 {
@@ -329,7 +329,7 @@ Test(hostile, scalar_outputs_do_not_copy_the_segments)
     }
 }
 
-/* ---- defect 7: every parameter at either end of its range gives finite outputs ------------- */
+/* ---- every parameter at either end of its range gives finite outputs ------------- */
 
 Test(hostile, every_parameter_at_the_ends_of_its_range_computes, .timeout = 240)
 {

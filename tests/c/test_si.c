@@ -59,24 +59,62 @@ Test(si, the_reference_case_maps_as_model_md_section_8_says)
     cr_expect(close_to(dk.t_star, sqrt(dk.mass_per_length / 2e9), 1e-15));
 }
 
-Test(si, the_shared_dimensionless_parameters_are_the_models)
+/* The TRIBO_MAPS and TRIBO_DERIVES rows of the SI table. */
+static const struct {
+    const char *si, *model, *how;
+} MAPS[] = {
+#define TRIBO_MAPS(name, model, how) {#name, #model, #how},
+#define TRIBO_DERIVES(model, description) {NULL, #model, "DERIVED"},
+#include "si_quantities.def"
+};
+#define N_MAPS (sizeof MAPS / sizeof MAPS[0])
+
+Test(si, every_model_parameter_is_reached_by_exactly_one_si_row)
 {
-    /* the SI table repeats the model's own parameters: same type, range and variability */
     size_t n;
-    const tribo_param_info *si = tribo_si_param_table(&n);
-    int shared = 0;
+    const tribo_param_info *model = tribo_param_table(&n);
     for (size_t i = 0; i < n; i++) {
-        const tribo_param_info *model = tribo_param_find(si[i].name);
-        if (!model || strcmp(si[i].unit, model->unit) != 0)
-            continue; /* chute_length: metres against units of a */
-        shared++;
-        cr_expect(si[i].type == model->type && si[i].min == model->min && si[i].max == model->max &&
-                      si[i].min_inclusive == model->min_inclusive &&
-                      si[i].max_inclusive == model->max_inclusive &&
-                      si[i].variability == model->variability,
-                  "%s differs from the model's", si[i].name);
+        int reached = 0;
+        for (size_t k = 0; k < N_MAPS; k++)
+            reached += strcmp(MAPS[k].model, model[i].name) == 0;
+        cr_expect_eq(reached, 1, "the model's %s is reached by %d rows of the SI table", model[i].name,
+                     reached);
     }
-    cr_expect_eq(shared, 17);
+    for (size_t k = 0; k < N_MAPS; k++)
+        cr_expect(MAPS[k].si == NULL || tribo_si_param_find(MAPS[k].si) ||
+                      strcmp(MAPS[k].how, "FORCE") == 0,
+                  "%s is not an SI parameter", MAPS[k].si);
+}
+
+Test(si, a_parameter_mapped_as_it_is_has_the_models_type_range_unit_and_variability)
+{
+    for (size_t k = 0; k < N_MAPS; k++) {
+        if (strcmp(MAPS[k].how, "SAME") != 0)
+            continue;
+        const tribo_param_info *si = tribo_si_param_find(MAPS[k].si);
+        const tribo_param_info *model = tribo_param_find(MAPS[k].model);
+        cr_assert(si && model, "%s -> %s", MAPS[k].si, MAPS[k].model);
+        cr_expect(si->type == model->type && si->min == model->min && si->max == model->max &&
+                      si->min_inclusive == model->min_inclusive &&
+                      si->max_inclusive == model->max_inclusive &&
+                      si->variability == model->variability && strcmp(si->unit, model->unit) == 0,
+                  "%s differs from the model's %s", si->name, model->name);
+    }
+}
+
+Test(si, a_neutral_pair_runs_and_charges_nothing)
+{
+    tribo_si_scene si = si_of("sigma0=0 drop_height=0");
+    const tribo_si_derived d = derived_of(&si);
+    char err[512];
+    tribo_model *m = tribo_create(&d.scene, err, sizeof err);
+    cr_assert(m, "%s", err);
+    cr_assert_eq(tribo_advance_fully(m, 2000.0), TRIBO_OK, "%s", tribo_last_error(m));
+    cr_expect(tribo_get(m, TRIBO_Q_STATIC) != 0.0, "the model charged in its own units");
+    for (int q = TRIBO_SI_Q_CHARGE_STATIC; q <= TRIBO_SI_Q_SIGMA_S; q++)
+        cr_expect_eq(tribo_si_get(&d, m, (tribo_si_quantity)q), 0.0, "%s",
+                     tribo_si_quantity_name((tribo_si_quantity)q));
+    tribo_free(m);
 }
 
 Test(si, every_si_value_out_of_range_is_refused_with_its_message)
@@ -121,22 +159,22 @@ Test(si, a_derived_parameter_out_of_the_models_range_names_what_made_it)
     /* so soft that it would sink: Gamma above 10 */
     expect_refused("semi_major_axis=1 density=1e5 youngs_modulus_particle=1e3 youngs_modulus_wall=1e3",
                    (const char *const[]){"Gamma = ", "<= 10", NULL});
-    /* a charging time beyond the model's 1e9 t_star (t_star = 0.67 us) */
-    expect_refused("charging_time=1e6",
-                   (const char *const[]){"tau0 = ", "charging_time = 1e+06 s", "semi_major_axis", NULL});
-    /* no polarity, no charge: Sigma0 = 0 */
-    expect_refused("sigma0=0", (const char *const[]){"Sigma0 = 0", "sigma0 = 0 C/m2",
-                                                     "interface_capacitance", NULL});
+    /* a charging time beyond the model's 1e9 t_star (t_star = 0.13 ns for a = 0.1 um) */
+    expect_refused("charging_time=100 semi_major_axis=1e-7",
+                   (const char *const[]){"tau0 = ", "charging_time = 100 s", "semi_major_axis", NULL});
+    /* a saturation density below the model's smallest Sigma0 (0 is a neutral pair) */
+    expect_refused("sigma0=1e-12", (const char *const[]){"Sigma0 = ", "sigma0 = 1e-12 C/m2",
+                                                         "interface_capacitance", NULL});
     /* the given stiffness is named as given */
-    expect_refused("contact_stiffness=1e15 semi_major_axis=1e-7",
+    expect_refused("contact_stiffness=1e12 semi_major_axis=1e-7",
                    (const char *const[]){"the model's parameter derived from",
-                                         "contact_stiffness = 1e+15 N/m2", NULL});
+                                         "contact_stiffness = 1e+12 N/m2", NULL});
     /* a drop too fast for the model (more than 10 a / t_star; a / t_star = 23 m/s for E = 1 MPa) */
     expect_refused("drop_speed=1000 youngs_modulus_particle=1e6",
                    (const char *const[]){"drop_speed = ", "drop_speed = 1000 m/s", "youngs_modulus_particle = 1e+06 Pa", NULL});
     /* a start beyond the chute's end */
     expect_refused("chute_length=0.3 x0=0.5", (const char *const[]){"x0 = 0.5 m", "chute_length = 0.3", NULL});
-    expect_refused("x0=999", (const char *const[]){"X0 = ", "x0 = 999 m", NULL});
+    expect_refused("x0=99 semi_major_axis=1e-5", (const char *const[]){"X0 = ", "x0 = 99 m", NULL});
 }
 
 Test(si, tunables_and_inputs_convert_as_the_set_up_does)

@@ -3,17 +3,28 @@ parameters make a model, whether the running model takes an input or a tunable v
 the unit of the FMU's time in the model's.
 
 The dimensionless FMUs pass everything on as it is. The SI FMUs map a physical set-up onto
-the model by docs/model.md section 8: written here again from that section (not from
-src/si.c), with the model's ranges read from the dimensionless FMU's reviewed description
-(modelDescription/fmi3.xml), so that the fuzz suite checks the SI FMU's refusals against an
-independent statement of the mapping."""
+the model by docs/model.md section 8: which model parameter each SI parameter sets, and how,
+is read from the SI table's TRIBO_MAPS rows (src/si_quantities.def, the rows si.c's mapping
+is generated from); the units of each conversion are written here again from section 8 (not
+from src/si.c), and the model's ranges are read from the dimensionless FMU's reviewed
+description (modelDescription/fmi3.xml), so that the fuzz suite checks the SI FMU's refusals
+against an independent statement of the arithmetic."""
 
 import math
 import os
+import re
 import xml.etree.ElementTree as ET
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 MODEL_DESCRIPTION = os.path.join(ROOT, "modelDescription", "fmi3.xml")
+SI_TABLE = os.path.join(ROOT, "src", "si_quantities.def")
+
+
+def si_mapping():
+    """The SI table's TRIBO_MAPS rows: SI name -> (model name, conversion)."""
+    with open(SI_TABLE, encoding="utf-8") as f:
+        rows = re.findall(r"^TRIBO_MAPS\((\w+), (\w+), (\w+)\)", f.read(), re.MULTILINE)
+    return {si: (model, how.lower()) for si, model, how in rows}
 
 
 def rigid_stick_valid(values):
@@ -55,22 +66,12 @@ def model_ranges():
 class SI:
     """docs/model.md section 8."""
 
-    # SI parameter -> (model parameter, conversion)
-    MAP = {"epsilon": ("epsilon", "same"), "mu": ("mu", "same"), "nu": ("nu", "same"),
-           "eta": ("eta", "same"), "tilt": ("beta", "same"), "charging_time": ("tau0", "time"),
-           "backflow_time": ("tau_r", "time"), "sigma0": ("Sigma0", "density"),
-           "chute_length": ("chute_length", "length"), "drop_height": ("gap0", "length"),
-           "drop_speed": ("drop_speed", "speed"), "drop_angle": ("drop_angle", "same"),
-           "x0": ("X0", "length"), "phi0": ("phi0", "same"), "omega0": ("Omega0", "rate"),
-           "n_segments": ("n_segments", "same"), "charge_model": ("charge_model", "same"),
-           "integrator": ("integrator", "same"), "dt": ("dt", "same"), "rtol": ("rtol", "same"),
-           "atol": ("atol", "same"), "v_reg": ("v_reg", "same"),
-           "damping_point": ("damping_point", "same"), "stick_model": ("stick_model", "same"),
-           "work_limit": ("work_limit", "same")}
-    INPUTS = {"F_T_ext": "F_T_ext", "F_N_ext": "F_N_ext"}
-
     def __init__(self):
         self.ranges = model_ranges()
+        mapping = si_mapping()
+        # SI parameter -> (model parameter, conversion); the inputs: SI name -> model name
+        self.MAP = {si: m for si, m in mapping.items() if m[1] != "force"}
+        self.INPUTS = {si: model for si, (model, how) in mapping.items() if how == "force"}
 
     @staticmethod
     def units(v):
@@ -92,7 +93,7 @@ class SI:
     def convert(u, how, x):
         return {"same": lambda: x, "length": lambda: x / u["a"], "time": lambda: x / u["t_star"],
                 "speed": lambda: x / u["velocity"], "rate": lambda: x * u["t_star"],
-                "density": lambda: abs(x) / u["sigma"]}[how]()
+                "density": lambda: abs(x) / u["sigma"], "force": lambda: x / u["force"]}[how]()
 
     def in_range(self, model_name, x):
         lo, hi, bounded = self.ranges[model_name]
@@ -105,6 +106,8 @@ class SI:
             return False
         u = self.units(values)
         for si, (model, how) in self.MAP.items():
+            if how == "density" and values[si] == 0.0:
+                continue  # a neutral pair: the model's default, every charge output times 0
             if not self.in_range(model, self.convert(u, how, values[si])):
                 return False
         return self.in_range("Gamma", u["mass"] * values["gravity"] / u["force"])
@@ -121,6 +124,8 @@ class SI:
         if name in self.INPUTS:
             return self.in_range(self.INPUTS[name], value / u["force"])
         model, how = self.MAP[name]
+        if how == "density" and value == 0.0:
+            return True
         return self.in_range(model, self.convert(u, how, value))
 
 

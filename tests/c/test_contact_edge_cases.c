@@ -1,4 +1,6 @@
-/* Regressions: each case here once went wrong, and what went wrong is asserted. */
+/* Contact edge cases that once went wrong, with what went wrong asserted: a stiff normal lock
+   under the fixed step, a particle set down at rest, a grazing stick-to-slip, a deep
+   indentation. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
@@ -11,7 +13,7 @@
 /* The fixed step's regularised sign is stiff in normal lock (rate nu delta_y / v_reg):
    a soft contact (Gamma = 0.5) hit hard with nu = 1 once blew RK4 up at the paper's
    dt = 8e-5 (lambda dt ~ 3e3). It now sub-steps and agrees with CVODE. */
-Test(regressions, fixed_step_stable_in_a_stiff_normal_lock, .timeout = 60)
+Test(contact_edge_cases, fixed_step_stable_in_a_stiff_normal_lock, .timeout = 60)
 {
     tribo_scene s = scene_of("Gamma=0.5 drop_speed=1.0 nu=1.0");
     s.charge_model = TRIBO_CHARGE_NONE;
@@ -31,7 +33,7 @@ Test(regressions, fixed_step_stable_in_a_stiff_normal_lock, .timeout = 60)
    flight, its contact root zero at the start and a small step later, and let it fall
    through the plate; then, in contact, started it sticking where it slips (the stick /
    slip test tied at first order). It now agrees with the fixed step. */
-Test(regressions, particle_set_down_at_rest)
+Test(contact_edge_cases, particle_set_down_at_rest)
 {
     tribo_scene s = scene_of("drop_speed=0.0 n_segments=400");
     tribo_model *fixed, *cvode;
@@ -57,7 +59,7 @@ Test(regressions, particle_set_down_at_rest)
 /* In stick under normal lock the undamped tangential oscillation can graze the
    (constant) Coulomb limit within one CVODE step; the switch was once missed and the
    stretch went 1.5e-4 past the limit. Sampled finely, it never leaves it. */
-Test(regressions, grazing_stick_to_slip_is_seen)
+Test(contact_edge_cases, grazing_stick_to_slip_is_seen)
 {
     tribo_scene s = scene_of("epsilon=0.01 mu=10.0 nu=3.0");
     s.charge_model = TRIBO_CHARGE_NONE;
@@ -89,7 +91,7 @@ static void logger(void *user, int level, const char *msg)
     }
 }
 
-Test(regressions, deep_indentation_is_reported)
+Test(contact_edge_cases, deep_indentation_is_reported)
 {
     tribo_scene s = scene_of("epsilon=0.6 damping_point=1");
     s.mu = s.nu = 1.0;
