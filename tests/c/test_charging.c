@@ -3,7 +3,7 @@
 #include <criterion/criterion.h>
 #include <math.h>
 
-#include "charge_models.h"
+#include "charge_registry.h"
 #include "charging.h"
 
 /* The registry's models (static, sliding), both selected. */
@@ -50,7 +50,7 @@ Test(charging, exact_for_a_held_contact)
     double T = 0.0;
     for (int k = 1; k <= 50; k++) {
         const tribo_contact_sample s = sample(&c, 0.01 * k, 5.5 * seg, 0.2 * seg, S, S, S);
-        tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMITTED);
+        tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMIT);
         T += s.duration;
     }
     const double *q = static_q(&c), *sigma = sliding_sigma(&c);
@@ -73,7 +73,7 @@ Test(charging, sliding_update_exact_for_quadratic_saturation)
         double *sigma = sliding_sigma(&c);
         sigma[7] = 0.004;
         const tribo_contact_sample s = sample(&c, d, 7.5 * seg, 0.1 * seg, S0, Sm, S1);
-        tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMITTED);
+        tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMIT);
         /* reference: Sigma_s(u) = A + B u + C u^2 through the three values */
         const double C = 2 * (S0 - 2 * Sm + S1), B = S1 - S0 - C;
         double y = 0.004;
@@ -101,11 +101,11 @@ Test(charging, segment_under_a_point_contact_charges)
     const double seg = c.arc.perimeter / 64;
     const double *q = static_q(&c);
     const tribo_contact_sample s = sample(&c, 1.0, 10.3 * seg, 0.0, 0.01, 0.01, 0.01);
-    tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMITTED);
+    tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMIT);
     cr_expect(q[10] > 0.6 && q[9] == 0.0 && q[11] == 0.0);
     /* and a contact across the start of the numbering reaches both ends */
     const tribo_contact_sample w = sample(&c, 1.0, 0.1 * seg, 0.5 * seg, 0.01, 0.01, 0.01);
-    tribo_charging_apply(&c, &P, &w, TRIBO_CHARGE_COMMITTED);
+    tribo_charging_apply(&c, &P, &w, TRIBO_CHARGE_COMMIT);
     cr_expect(q[0] > 0.6 && q[63] > 0.6 && q[1] == 0.0);
     tribo_charging_free(&c);
 }
@@ -143,7 +143,7 @@ static int apply(void *ctx, const tribo_contact_sample *s)
 {
     (void)ctx;
     samples++;
-    tribo_charging_apply(target, &PARAMS, s, TRIBO_CHARGE_COMMITTED);
+    tribo_charging_apply(target, &PARAMS, s, TRIBO_CHARGE_COMMIT);
     return 0;
 }
 
@@ -237,7 +237,7 @@ Test(charging, a_contact_wider_than_the_boundary_charges_each_segment_once)
     const double wide[][2] = {{1.0, 1e148}, {1e148, 1e148}, {3.0, 1e300}};
     for (int k = 0; k < 3; k++) {
         const tribo_contact_sample s = sample(&c, 0.1, wide[k][0], wide[k][1], 0.01, 0.01, 0.01);
-        cr_expect_eq(tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMITTED), 2 * 64);
+        cr_expect_eq(tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMIT), 2 * 64);
     }
     const double *q = static_q(&c);
     double sum = 0.0;
@@ -250,7 +250,7 @@ Test(charging, a_contact_wider_than_the_boundary_charges_each_segment_once)
     const double far[][2] = {{-1e148, 1.0}, {1e300, 0.0}, {-1e300, 1e-300}};
     for (int k = 0; k < 3; k++) {
         const tribo_contact_sample s = sample(&c, 0.1, far[k][0], far[k][1], 0.01, 0.01, 0.01);
-        const long updates = tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMITTED);
+        const long updates = tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMIT);
         cr_expect(updates >= 2 && updates <= 2 * 2, "%ld updates", updates);
     }
     tribo_charging_free(&c);

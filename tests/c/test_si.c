@@ -76,7 +76,7 @@ Test(si, the_shared_dimensionless_parameters_are_the_models)
                       si[i].variability == model->variability,
                   "%s differs from the model's", si[i].name);
     }
-    cr_expect_eq(shared, 17);
+    cr_expect_eq(shared, 17 + TRIBO_SEGMENTS_COUNT); /* and each charge model's switch */
 }
 
 Test(si, every_si_value_out_of_range_is_refused_with_its_message)
