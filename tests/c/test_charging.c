@@ -255,3 +255,36 @@ Test(charging, a_contact_wider_than_the_boundary_charges_each_segment_once)
     }
     tribo_charging_free(&c);
 }
+
+/* ---- the air-breakdown limit (model.md §8b) --------------------------------------------- */
+
+/* One contact held over segment 5 past the limit: each model leaves the segment at its
+   bound, and what it holds plus what it lost is the charge it would have had without the
+   limit (a single sample: the same rate law, to rounding). */
+Test(charging, a_contact_past_the_limit_stays_at_it_and_books_the_rest_as_lost)
+{
+    tribo_charging c = make(0.5, 100);
+    tribo_scene P = params();
+    P.Sigma_bd = 0.004; /* static bound Sigma_bd / Sigma0 = 0.4, sliding bound 0.004 */
+    const double seg = c.arc.perimeter / 100, S = 0.013, T = 5.0;
+    const tribo_contact_sample s = sample(&c, T, 5.5 * seg, 0.2 * seg, S, S, S);
+    cr_expect_eq(tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMIT), 2);
+    const double uncapped[2] = {1.0 - exp(-T / P.tau0), S * (1.0 - exp(-T / P.tau0))};
+    const double bound[2] = {0.4, 0.004};
+    const double *held[2] = {static_q(&c), sliding_sigma(&c)};
+    for (int k = 0; k < 2; k++) {
+        const tribo_charge_slot *slot = &c.slot[k];
+        cr_expect_eq(held[k][5], bound[k], "%s: %.17g", slot->model->name, held[k][5]);
+        cr_expect_float_eq(held[k][5] + tribo_charging_lost(slot), uncapped[k], 4e-16 * uncapped[k],
+                           "%s", slot->model->name);
+        cr_expect_eq(tribo_charging_sum(slot), bound[k]);
+        cr_expect_eq(tribo_charging_capped(slot, &P, s.globals_end, held[k], 100), 1);
+    }
+    /* charging on at the limit only adds to the loss */
+    const double lost = tribo_charging_lost(&c.slot[1]);
+    tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMIT);
+    cr_expect_eq(sliding_sigma(&c)[5], 0.004);
+    cr_expect_float_eq(tribo_charging_lost(&c.slot[1]) - lost,
+                       (S - 0.004) * (1.0 - exp(-T / P.tau0)), 1e-17);
+    tribo_charging_free(&c);
+}
