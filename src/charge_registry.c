@@ -21,7 +21,7 @@ unsigned tribo_charge_selection(const tribo_scene *s)
 {
     unsigned on = 0;
 #define TRIBO_CHARGE_MODEL(id, name, slot, model, on_, values)                                  \
-    if (s->charge_##name)                                                                       \
+    if (s->charge_model_##name)                                                                       \
         on |= 1u << TRIBO_SEGMENTS_##id;
 #include "charge_registry.def"
 #undef TRIBO_CHARGE_MODEL

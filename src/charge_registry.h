@@ -14,7 +14,7 @@ extern const tribo_charge_model *const TRIBO_CHARGE_MODELS[TRIBO_SEGMENTS_COUNT]
 #undef TRIBO_CHARGE_MODEL
 
 /* The registered models a scene includes: bit i for TRIBO_CHARGE_MODELS[i], where its switch
-   charge_<name> is on and, for the first TRIBO_CHARGE_MODEL_LEGACY slots (static, sliding),
+   charge_model_<name> is on and, for the first TRIBO_CHARGE_MODEL_LEGACY slots (static, sliding),
    bit i of the older charge_model is set too. */
 #define TRIBO_CHARGE_MODEL_LEGACY 2
 unsigned tribo_charge_selection(const tribo_scene *s);

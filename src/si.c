@@ -98,7 +98,7 @@ static const struct mapping {
     {"damping_point", "damping_point", SAME}, {"work_limit", "work_limit", SAME},
     {"run_end", "run_end", SAME}, {"stick_model", "stick_model", SAME},
     {"breakdown_density", "Sigma_bd", LIMIT},
-#define TRIBO_CHARGE_MODEL(id, name, ...) {"charge_" #name, "charge_" #name, SAME},
+#define TRIBO_CHARGE_MODEL(id, name, ...) {"charge_model_" #name, "charge_model_" #name, SAME},
 #include "charge_registry.def"
 #undef TRIBO_CHARGE_MODEL
 };

@@ -247,7 +247,7 @@ typedef enum tribo_segment_charge {
 } tribo_segment_charge;
 
 /* Whether the instance's scene includes the charge model of that array (its switch
-   charge_<name>, and the older charge_model). */
+   charge_model_<name>, and the older charge_model). */
 int tribo_includes_charge_model(const tribo_model *model, tribo_segment_charge which);
 
 /* Copy the per-segment charge densities (n = n_segments values) at the current time.
