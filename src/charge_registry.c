@@ -34,7 +34,9 @@ unsigned tribo_charge_selection(const tribo_scene *s)
 double tribo_capped_fraction(tribo_model *m, int index)
 {
     const tribo_charge_view v = tribo_charge_view_of(m, index);
-    if (!v.selected)
+    const tribo_charge_model *model = m->charging.slot[index].model;
+    /* without a limit nothing stands at it: no copy of the segments is made to say so */
+    if (!v.selected || !model->cap || !isfinite(model->cap(&m->scene, v.globals)))
         return 0.0;
     const double *values = tribo_charge_values_of(m, index);
     if (!values)
