@@ -123,12 +123,6 @@ static int model_readable(fmu_instance *inst, const char *fn, const fmu_variable
     return fmu_ensure_model(inst, fn) == FMU_OK;
 }
 
-static int has_charge_model(const fmu_instance *inst, tribo_segment_charge which)
-{
-    const int bit = which == TRIBO_SEGMENTS_STATIC ? TRIBO_CHARGE_STATIC : TRIBO_CHARGE_SLIDING;
-    return ((int)fmu_scene_value(inst, "charge_model") & bit) != 0;
-}
-
 /* Write the values of v at values[k...]. */
 static int read_variable(fmu_instance *inst, const char *fn, const fmu_variable *v,
                          fmu_c_type c_type, void *values, size_t k)
@@ -167,7 +161,7 @@ static int read_variable(fmu_instance *inst, const char *fn, const fmu_variable 
         const size_t n = value_count(inst, v);
         const tribo_segment_charge which = (tribo_segment_charge)v->index;
         /* a charge model the scene leaves out has no charge: zeros, as its mean */
-        if (!has_charge_model(inst, which)) {
+        if (!tribo_includes_charge_model(inst->model, which)) {
             for (size_t i = 0; i < n; i++)
                 out[i] = 0.0;
             return 1;

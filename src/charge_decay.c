@@ -1,5 +1,5 @@
 /* charge_decay.c: the exponentials the charge models' exact updates take (docs/model.md §5). */
-#include "charge_model.h"
+#include "charge_interface.h"
 
 #include <math.h>
 

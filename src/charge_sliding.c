@@ -4,7 +4,7 @@
    contact area omega (a quadrature) and relaxes back to Sigma0 through contact. Q_sliding
    is normalised by Sigma0 at the start of the run (Sigma0,ref, a global state that never
    changes), so that a tunable Sigma0 moves the saturation target, not the charge. */
-#include "charge_models.h"
+#include "charge_registry.h"
 
 #include <math.h>
 
@@ -131,6 +131,13 @@ static int valid(const tribo_scene *s, const double *globals, const double *sigm
     return globals[SIGMA_S] > 0.0 && globals[SIGMA0_REF] > 0.0;
 }
 
+/* Sigma_i is the density itself: |Sigma_i| <= Sigma_bd (§8b). */
+static double cap(const tribo_scene *s, const double *globals)
+{
+    (void)globals;
+    return s->Sigma_bd;
+}
+
 const tribo_charge_model tribo_charge_sliding = {
     .name = "sliding",
     .n_globals = 2,
@@ -143,6 +150,10 @@ const tribo_charge_model tribo_charge_sliding = {
     .charge = charge,
     .segment_values = segment_values,
     .valid = valid,
+    .cap = cap,
+    /* Sigma_i / Sigma0,ref with Sigma0,ref = |sigma0| / sqrt(kappa k' a) (sigma0 is fixed in
+       the SI front end): sigma_i = sigma0 times the value (§8) */
+    .si_unit = TRIBO_CHARGE_PER_SIGMA0,
 };
 
 double tribo_sliding_charge(tribo_model *m)

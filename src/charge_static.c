@@ -1,7 +1,7 @@
 /* charge_static.c: the static (capacitive) charge model, docs/model.md §5a (paper eq. 2).
    Per segment q_i = sigma_i / sigma_0, dq_i/dtau = (1 - q_i) / tau0 in contact; no
    global states. */
-#include "charge_models.h"
+#include "charge_registry.h"
 
 #include <string.h>
 
@@ -36,12 +36,22 @@ static int valid(const tribo_scene *s, const double *globals, const double *q, i
     return 1;
 }
 
+/* The density of a segment is Sigma0 q_i (model.md §8: sigma_i = sigma0 q_i), so the
+   breakdown limit |Sigma_i| <= Sigma_bd is q_i <= Sigma_bd / Sigma0 (§8b). */
+static double cap(const tribo_scene *s, const double *globals)
+{
+    (void)globals;
+    return s->Sigma_bd / s->Sigma0;
+}
+
 const tribo_charge_model tribo_charge_static = {
     .name = "static",
     .cache_size = sizeof(tribo_decay_cache),
     .charge = charge,
     .segment_values = segment_values,
     .valid = valid,
+    .cap = cap,
+    .si_unit = TRIBO_CHARGE_PER_SIGMA0,
 };
 
 double tribo_static_charge(tribo_model *m)

@@ -68,6 +68,7 @@ void tribo_charging_reset(tribo_charging *c)
         if (slot->segments)
             memset(slot->segments, 0, (size_t)c->n * sizeof *slot->segments);
         slot->sum = slot->sum_c = 0.0;
+        slot->lost = slot->lost_c = 0.0;
         if (slot->cache)
             memset(slot->cache, 0, slot->model->cache_size);
     }
@@ -152,11 +153,37 @@ static long segment_run(const tribo_charging *c, const tribo_contact_sample *sam
     return count < n ? (long)count : c->n;
 }
 
+/* Hold values[0..count) within +-cap (§8b: charging that would raise a segment above the
+   limit leaves it there); returns the charge so taken. The rate laws approach their
+   saturation monotonically over a sample, so a value above the cap at its end reached it
+   within the sample and stays: the excess at the end is what went to the gas. */
+static double hold_at_cap(double *values, long count, double cap)
+{
+    double taken = 0.0;
+    for (long i = 0; i < count; i++) {
+        if (values[i] > cap) {
+            taken += values[i] - cap;
+            values[i] = cap;
+        } else if (values[i] < -cap) {
+            taken += values[i] + cap;
+            values[i] = -cap;
+        }
+    }
+    return taken;
+}
+
+/* The bound on a slot's values over a sample (INF: none). */
+static double slot_cap(const tribo_charge_slot *slot, const tribo_scene *s, const double *globals)
+{
+    return slot->model->cap ? slot->model->cap(s, globals + slot->globals_at) : INFINITY;
+}
+
 /* Charge values[first .. first + count) of one model under a sample, in at most two
-   contiguous slices of a ring of n values; returns the change of their sum. */
+   contiguous slices of a ring of n values, held within its breakdown limit; returns the
+   change of their sum, and adds the charge the limit took to *lost. */
 static double charge_run(tribo_charge_slot *slot, const tribo_scene *s,
                          const tribo_contact_sample *sample, double *values, long n, long first,
-                         long count)
+                         long count, double *lost)
 {
     const tribo_charge_forcing f = {sample->duration, sample->globals_begin + slot->globals_at,
                                     sample->globals_mid + slot->globals_at,
@@ -165,23 +192,46 @@ static double charge_run(tribo_charge_slot *slot, const tribo_scene *s,
     double delta = slot->model->charge(slot->cache, s, &f, values + first, head);
     if (count > head)
         delta += slot->model->charge(slot->cache, s, &f, values, count - head);
+    const double cap = slot_cap(slot, s, sample->globals_end);
+    if (isfinite(cap)) { /* (without a limit, nothing more: the paper's model, bit for bit) */
+        double taken = hold_at_cap(values + first, head, cap);
+        if (count > head)
+            taken += hold_at_cap(values, count - head, cap);
+        delta -= taken;
+        *lost += taken;
+    }
     return delta;
 }
 
+long tribo_charging_capped(const tribo_charge_slot *slot, const tribo_scene *s, const double *globals,
+                           const double *values, long n)
+{
+    const double cap = slot_cap(slot, s, globals);
+    long capped = 0;
+    if (isfinite(cap))
+        for (long i = 0; i < n; i++)
+            capped += fabs(values[i]) >= cap; /* held values are the cap exactly */
+    return capped;
+}
+
 long tribo_charging_apply(tribo_charging *c, const tribo_scene *s, const tribo_contact_sample *sample,
-                          tribo_charge_target target)
+                          tribo_charge_destination where)
 {
     long first;
     const long count = segment_run(c, sample, &first);
     long updates = 0;
     for (int k = 0; count > 0 && k < c->n_models; k++) {
         tribo_charge_slot *slot = &c->slot[k];
-        double *values = target == TRIBO_CHARGE_COMMITTED ? slot->segments : slot->segments_out;
+        double *values = where == TRIBO_CHARGE_COMMIT ? slot->segments : slot->segments_out;
         if (!slot->selected || !values)
             continue;
-        const double delta = charge_run(slot, s, sample, values, c->n, first, count);
-        if (target == TRIBO_CHARGE_COMMITTED)
+        double lost = 0.0;
+        const double delta = charge_run(slot, s, sample, values, c->n, first, count, &lost);
+        if (where == TRIBO_CHARGE_COMMIT) {
             tribo_compensated_add(&slot->sum, &slot->sum_c, delta);
+            if (lost != 0.0)
+                tribo_compensated_add(&slot->lost, &slot->lost_c, lost);
+        }
         updates += count;
     }
     return updates;
@@ -191,7 +241,7 @@ long tribo_charging_apply(tribo_charging *c, const tribo_scene *s, const tribo_c
    continuously): the window is copied once and charged in place of the ring. */
 int tribo_charging_pending_sums(tribo_charging *c, const tribo_scene *s,
                                 const tribo_contact_sample *samples, size_t n_samples,
-                                double *deltas)
+                                double *deltas, double *lost)
 {
     const long n = c->n;
     long anchor = -1, lo = 0, hi = 0; /* the window [anchor + lo, anchor + hi), unwrapped */
@@ -214,7 +264,7 @@ int tribo_charging_pending_sums(tribo_charging *c, const tribo_scene *s,
         hi = offset + count > hi ? offset + count : hi;
     }
     for (int k = 0; k < c->n_models; k++)
-        deltas[k] = 0.0;
+        deltas[k] = lost[k] = 0.0;
     if (anchor < 0)
         return 0;
     const long len = hi - lo < n ? hi - lo : n;
@@ -244,7 +294,8 @@ int tribo_charging_pending_sums(tribo_charging *c, const tribo_scene *s,
             if (offset < 0)
                 offset += n;
             /* in a window shorter than the ring a run never wraps: it lies inside */
-            deltas[k] += charge_run(slot, s, &samples[i], slot->window, len, offset, count);
+            deltas[k] += charge_run(slot, s, &samples[i], slot->window, len, offset, count,
+                                    &lost[k]);
         }
     }
     return 0;

@@ -1,10 +1,10 @@
 /* charging.h: an instance's charge models over the particle's boundary segments
    (docs/model.md §5): which segments touch the plate and for how long, and the calls of
-   each selected model's rate law (charge_model.h) over them. */
+   each selected model's rate law (charge_interface.h) over them. */
 #ifndef TRIBO_CHARGING_H
 #define TRIBO_CHARGING_H
 
-#include "charge_model.h"
+#include "charge_interface.h"
 #include "geometry.h"
 
 /* The contact held over an interval of the motion: which arc of the boundary touches
@@ -31,6 +31,9 @@ typedef struct tribo_charge_slot {
     /* the sum of the committed values, kept up to date with each charge (compensated:
        sum_c holds what the additions rounded off), so that a mean costs nothing to read */
     double sum, sum_c;
+    /* the charge the air-breakdown limit took from the committed values (§8b), in the
+       model's own units, compensated like the sum */
+    double lost, lost_c;
     double *window;       /* scratch for the pending updates' effect on the sum */
     size_t window_cap;
     void *cache;
@@ -47,8 +50,9 @@ typedef struct tribo_charging {
     tribo_arclength arc;
 } tribo_charging;
 
-/* Which arrays a sample charges. */
-typedef enum { TRIBO_CHARGE_COMMITTED, TRIBO_CHARGE_OUTPUT_COPY } tribo_charge_target;
+/* Where a sample's charge goes: into the committed charges (and their sums), or queued for
+   the output point, which applies it to copies of them when they are read. */
+typedef enum { TRIBO_CHARGE_COMMIT, TRIBO_CHARGE_PENDING } tribo_charge_destination;
 
 /* Set up the models[0..n_models) (selected by bit i of `selection`) over n segments of
    the ellipse of roundness eps. Returns 0, -1 if out of memory, or -2 if the set does not
@@ -73,22 +77,27 @@ void tribo_charging_step(tribo_charging *c, const tribo_scene *s, const tribo_po
                          const double *g0, double *g1, tribo_contact_sample *sample);
 
 /* Charge the segments under a sample (the overlap of [s_c - Sc, s_c + Sc], §5) with each
-   selected model, in the committed arrays (and their sums) or in the output copies.
-   Returns the number of segment values updated. */
+   selected model, each value then held within the model's breakdown limit (§8b), in the
+   committed arrays (with their sums and the charge lost) or, for a pending sample, in the
+   output copies. Returns the number of segment values updated. */
 long tribo_charging_apply(tribo_charging *c, const tribo_scene *s, const tribo_contact_sample *sample,
-                          tribo_charge_target target);
+                          tribo_charge_destination where);
 
-/* The committed sum of a slot's values. */
+/* The committed sum of a slot's values, and of the charge the breakdown limit took. */
 static inline double tribo_charging_sum(const tribo_charge_slot *slot) { return slot->sum + slot->sum_c; }
+static inline double tribo_charging_lost(const tribo_charge_slot *slot) { return slot->lost + slot->lost_c; }
+/* How many of values[0..n) stand at a slot's breakdown limit (0 without one). */
+long tribo_charging_capped(const tribo_charge_slot *slot, const tribo_scene *s, const double *globals,
+                           const double *values, long n);
 /* Add x to a compensated sum (Neumaier). */
 void tribo_compensated_add(double *sum, double *c, double x);
 
-/* What the samples (in order, not committed) would add to each slot's sum: deltas[k] for
-   slot k (0 for slots not selected). Costs the segments they touch, not n. Returns 0, or
-   -1 if out of memory. */
+/* What the samples (in order, not committed) would add to each slot's sum, deltas[k] for
+   slot k, and to the charge its breakdown limit took, lost[k] (0 for slots not selected).
+   Costs the segments they touch, not n. Returns 0, or -1 if out of memory. */
 int tribo_charging_pending_sums(tribo_charging *c, const tribo_scene *s,
                                 const tribo_contact_sample *samples, size_t n_samples,
-                                double *deltas);
+                                double *deltas, double *lost);
 
 /* The contact along an interval of the motion, as an integrator with dense output sees it
    at time t: the arc-length coordinate of the contact centre, the half-width Sc, the speed

@@ -4,7 +4,7 @@
 #ifndef TRIBO_DYNAMICS_H
 #define TRIBO_DYNAMICS_H
 
-#include "charge_model.h"
+#include "charge_interface.h"
 #include "geometry.h"
 
 /* Components of the state vector. */

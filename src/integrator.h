@@ -70,8 +70,6 @@ const tribo_dyn_params *tribo_dynamics(const tribo_model *m);
 const tribo_point *tribo_committed(const tribo_model *m);
 /* Components of y in use: the motion and the charge models' quadratures. */
 int tribo_state_length(const tribo_model *m);
-/* Whether any charge model is selected. */
-int tribo_charging_on(const tribo_model *m);
 
 /* ---- services: what an integrator writes ------------------------------------------------ */
 
@@ -132,8 +130,7 @@ tribo_status tribo_fail(tribo_model *m, tribo_status status, const char *fmt, ..
 
 /* ---- services: charging ----------------------------------------------------------------- */
 
-/* Where a charge update goes: into the committed charges, or queued for the output point. */
-typedef enum { TRIBO_CHARGE_COMMIT, TRIBO_CHARGE_PENDING } tribo_charge_destination;
+/* Where a charge update goes: tribo_charge_destination (charging.h). */
 
 /* The rates of the charge models' quadratures at a contact evaluation (for an integrator
    that integrates them with the motion; 0 in flight). */

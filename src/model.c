@@ -78,7 +78,6 @@ static void initial_point(const tribo_model *m, tribo_point *p)
 const tribo_dyn_params *tribo_dynamics(const tribo_model *m) { return &m->dyn; }
 const tribo_point *tribo_committed(const tribo_model *m) { return &m->committed; }
 int tribo_state_length(const tribo_model *m) { return m->n_state; }
-int tribo_charging_on(const tribo_model *m) { return m->charging.any_selected; }
 
 static void pending_clear(tribo_model *m)
 {
@@ -214,7 +213,7 @@ tribo_status tribo_charge_sample(tribo_model *m, const tribo_contact_sample *sam
         return TRIBO_OK;
     if (where == TRIBO_CHARGE_PENDING)
         return pending_push(m, sample);
-    const long updates = tribo_charging_apply(&m->charging, &m->scene, sample, TRIBO_CHARGE_COMMITTED);
+    const long updates = tribo_charging_apply(&m->charging, &m->scene, sample, TRIBO_CHARGE_COMMIT);
     tribo_work(m, TRIBO_WORK_SEGMENT_UPDATE * (double)updates);
     return TRIBO_OK;
 }
@@ -321,7 +320,7 @@ static int charges_out(tribo_model *m)
         memcpy(slot->segments_out, slot->segments, bytes);
     }
     for (size_t i = 0; i < m->n_pending; i++)
-        tribo_charging_apply(c, &m->scene, &m->pending[i], TRIBO_CHARGE_OUTPUT_COPY);
+        tribo_charging_apply(c, &m->scene, &m->pending[i], TRIBO_CHARGE_PENDING);
     m->charges_out_valid = 1;
     return 1;
 }
@@ -332,7 +331,7 @@ static int pending_sums(tribo_model *m)
     if (m->pending_sums_valid)
         return 1;
     if (tribo_charging_pending_sums(&m->charging, &m->scene, m->pending, m->n_pending,
-                                    m->pending_sums) != 0)
+                                    m->pending_sums, m->pending_lost) != 0)
         return 0;
     m->pending_sums_valid = 1;
     return 1;
@@ -341,12 +340,24 @@ static int pending_sums(tribo_model *m)
 tribo_charge_view tribo_charge_view_of(tribo_model *m, int index)
 {
     const tribo_charge_slot *slot = &m->charging.slot[index];
-    tribo_charge_view v = {&m->scene, slot->segments != NULL, m->charging.n, 0.0,
+    tribo_charge_view v = {&m->scene, slot->segments != NULL, m->charging.n, 0.0, 0.0,
                            m->out.charge_globals + slot->globals_at,
                            m->out.y + TRIBO_NMOTION + slot->quadratures_at};
-    if (v.selected)
-        v.sum = pending_sums(m) ? tribo_charging_sum(slot) + m->pending_sums[index] : NAN;
+    if (v.selected && pending_sums(m)) {
+        v.sum = tribo_charging_sum(slot) + m->pending_sums[index];
+        v.lost = tribo_charging_lost(slot) + m->pending_lost[index];
+    } else if (v.selected) {
+        v.sum = v.lost = NAN;
+    }
     return v;
+}
+
+const double *tribo_charge_values_of(tribo_model *m, int index)
+{
+    const tribo_charge_slot *slot = &m->charging.slot[index];
+    if (!charges_out(m))
+        return NULL;
+    return m->n_pending ? slot->segments_out : slot->segments;
 }
 
 /* Apply the pending charge updates to the committed charges and make the output point the
@@ -354,7 +365,7 @@ tribo_charge_view tribo_charge_view_of(tribo_model *m, int index)
 static void commit_output(tribo_model *m)
 {
     for (size_t i = 0; i < m->n_pending; i++)
-        tribo_charging_apply(&m->charging, &m->scene, &m->pending[i], TRIBO_CHARGE_COMMITTED);
+        tribo_charging_apply(&m->charging, &m->scene, &m->pending[i], TRIBO_CHARGE_COMMIT);
     m->committed = m->out;
     pending_clear(m);
 }
@@ -386,19 +397,13 @@ tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts
         report(err, err_size, "scene is NULL");
         return NULL;
     }
-    /* charge_model selects among this set's models */
-    tribo_scene checked = *scene;
-    checked.charge_model = 0;
-    if (tribo_scene_validate(&checked, msg, sizeof msg) != TRIBO_OK) {
+    if (tribo_scene_validate(scene, msg, sizeof msg) != TRIBO_OK) {
         report(err, err_size, msg);
         return NULL;
     }
-    const int max_selection = (1 << n_models) - 1;
-    if (scene->charge_model < 0 || scene->charge_model > max_selection) {
-        snprintf(msg, sizeof msg,
-                 "charge_model = %d is invalid: the valid range is an integer with 0 <= "
-                 "charge_model <= %d",
-                 scene->charge_model, max_selection);
+    if (n_models < 32 && parts->charge_selection >> n_models) {
+        snprintf(msg, sizeof msg, "charge models selected (bits 0x%x) beyond the %d of the set",
+                 parts->charge_selection, n_models);
         report(err, err_size, msg);
         return NULL;
     }
@@ -416,9 +421,8 @@ tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts
     }
     m->scene = *scene;
     tribo_derive_params(m);
-    const int st = tribo_charging_init(&m->charging, models, n_models,
-                                       (unsigned)scene->charge_model, scene->epsilon,
-                                       scene->n_segments);
+    const int st = tribo_charging_init(&m->charging, models, n_models, parts->charge_selection,
+                                       scene->epsilon, scene->n_segments);
     if (st != 0) {
         snprintf(msg, sizeof msg,
                  st == -1 ? "out of memory (n_segments = %d)"
@@ -439,6 +443,13 @@ tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts
     return m;
 }
 
+tribo_parts tribo_registry_parts(const tribo_scene *scene)
+{
+    return (tribo_parts){.charge_models = TRIBO_CHARGE_MODELS,
+                         .n_charge_models = TRIBO_SEGMENTS_COUNT,
+                         .charge_selection = tribo_charge_selection(scene)};
+}
+
 tribo_model *tribo_create(const tribo_scene *scene, char *err, size_t err_size)
 {
     if (scene) {
@@ -448,7 +459,7 @@ tribo_model *tribo_create(const tribo_scene *scene, char *err, size_t err_size)
             return NULL;
         }
     }
-    const tribo_parts registry = {TRIBO_CHARGE_MODELS, TRIBO_SEGMENTS_COUNT, NULL};
+    const tribo_parts registry = tribo_registry_parts(scene);
     return tribo_create_from_parts(scene, &registry, err, err_size);
 }
 
@@ -607,16 +618,20 @@ const char *tribo_quantity_name(tribo_quantity q)
     return (unsigned)q < TRIBO_Q_COUNT ? names[q] : NULL;
 }
 
+int tribo_includes_charge_model(const tribo_model *m, tribo_segment_charge which)
+{
+    return (unsigned)which < (unsigned)m->charging.n_models && m->charging.slot[which].selected;
+}
+
 tribo_status tribo_get_segment_charges(tribo_model *m, tribo_segment_charge which, double *out,
                                        size_t n)
 {
     if ((unsigned)which >= (unsigned)m->charging.n_models || !m->charging.slot[which].segments)
         return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT,
-                          "the scene does not include the %s charge model (charge_model = %d)",
+                          "the scene does not include the %s charge model",
                           (unsigned)which < (unsigned)m->charging.n_models
                               ? m->charging.slot[which].model->name
-                              : "requested",
-                          m->scene.charge_model);
+                              : "requested");
     if (n != (size_t)m->charging.n)
         return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT,
                           "segment array of %zu values given, n_segments = %d", n, m->charging.n);

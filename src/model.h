@@ -3,7 +3,7 @@
 #ifndef TRIBO_MODEL_H
 #define TRIBO_MODEL_H
 
-#include "charge_models.h"
+#include "charge_registry.h"
 #include "charging.h"
 #include "dynamics.h"
 #include "integrator.h"
@@ -27,9 +27,11 @@ struct tribo_model {
     tribo_contact_sample *pending;
     size_t n_pending, cap_pending;
     int charges_out_valid;
-    /* what the pending updates add to each model's sum (valid when pending_sums_valid) */
+    /* what the pending updates add to each model's sum and to the charge its breakdown limit
+       took (valid when pending_sums_valid) */
     int pending_sums_valid;
     double pending_sums[TRIBO_CHARGE_MAX_MODELS];
+    double pending_lost[TRIBO_CHARGE_MAX_MODELS];
 
     /* the work done by the advance under way (integrator.h: the units of work_limit) */
     double work;
@@ -48,15 +50,24 @@ struct tribo_model {
     char error[512];
 };
 
-/* What an instance is made of: its charge models (selected by the bits of
-   scene->charge_model, at most 2^n_charge_models - 1) and its integrator (NULL: the one of
-   scene->integrator). tribo_create uses the registry (charge_models.c) and the scene's
-   integrator; a test can plug in models or an integrator of its own. */
+/* What an instance is made of: its charge models, those of charge_selection's bits
+   (bit i: charge_models[i]), and its integrator (NULL: the one of scene->integrator).
+   tribo_create uses the registry (charge_registry.def) with the scene's selection
+   (tribo_charge_selection) and the scene's integrator; a test can plug in models or an
+   integrator of its own. */
 typedef struct tribo_parts {
     const tribo_charge_model *const *charge_models;
     int n_charge_models;
+    unsigned charge_selection;
     const tribo_integrator_ops *integrator;
 } tribo_parts;
+
+/* The registry's models as the scene selects them, with the scene's integrator. */
+tribo_parts tribo_registry_parts(const tribo_scene *scene);
+
+/* The output point's values of the model at `index` (its own units; NULL if out of
+   memory). */
+const double *tribo_charge_values_of(tribo_model *m, int index);
 
 tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts *parts,
                                      char *err, size_t err_size);

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "charge_registry.h"
 #include "geometry.h"
 #include "param_table.h"
 
@@ -53,7 +54,8 @@ typedef enum conversion {
     SPEED,   /* / (a / t_star)                                 */
     RATE,    /* * t_star                                       */
     DENSITY, /* |sigma| / sqrt(kappa k' a): the sign is the polarity */
-    FORCE    /* / (k' a): a force per unit length              */
+    FORCE,   /* / (k' a): a force per unit length              */
+    LIMIT    /* a DENSITY where 0 means none: INF              */
 } conversion;
 
 static double convert(const tribo_si_derived *d, conversion how, double v)
@@ -66,6 +68,7 @@ static double convert(const tribo_si_derived *d, conversion how, double v)
     case RATE: return v * d->t_star;
     case DENSITY: return fabs(v) / d->sigma_scale;
     case FORCE: return v / d->force;
+    case LIMIT: return v > 0.0 ? v / d->sigma_scale : INFINITY; /* model.md §8b */
     }
     return v;
 }
@@ -116,6 +119,8 @@ static void describe_inputs(char *buf, size_t n, const tribo_si_scene *si, const
     if (own)
         append_value(buf, n, si, own, "");
     const int time_scale = how == TIME || how == SPEED || how == RATE || how == FORCE;
+    if (how == LIMIT)
+        how = DENSITY;
     if (how == LENGTH || time_scale || how == DENSITY)
         append_value(buf, n, si, "semi_major_axis", own ? ", " : "");
     if (time_scale && how != FORCE) {
@@ -277,8 +282,10 @@ const char *tribo_si_quantity_name(tribo_si_quantity q)
 
 double tribo_si_segment_factor(const tribo_si_derived *d, tribo_segment_charge which)
 {
-    /* the static q_i = sigma_i / sigma0; the sliding Sigma_i / Sigma0,ref, Sigma0,ref =
-       |sigma0| / sqrt(kappa k' a) (sigma0 is fixed), so sigma_i = sigma0 Sigma_i / Sigma0,ref */
-    (void)which;
-    return d->sigma0;
+    /* each model declares the unit of its values (charge_interface.h, model.md §8) */
+    switch (TRIBO_CHARGE_MODELS[which]->si_unit) {
+    case TRIBO_CHARGE_PER_SIGMA0: return d->sigma0;
+    case TRIBO_CHARGE_PER_SIGMA_SCALE: return tribo_si_sliding_density(d, 1.0);
+    }
+    return NAN;
 }

@@ -6,8 +6,9 @@
  *   the external force, the output time, the work counters, how the run has ended (not,
  *   at the chute's exit, or at the first lift-off),
  *   the committed point (with the charge models' quadratures and global states), for each
- *   selected charge model its committed per-segment charges and their running sum (value
- *   and compensation), the integrator's own bytes.
+ *   selected charge model its committed per-segment charges, their running sum and the
+ *   charge its breakdown limit took (each value and compensation), the integrator's own
+ *   bytes.
  * The output point is not stored: it is recomputed from the committed point exactly as
  * the advance that made it did, so a loaded instance continues bit-identically.
  *
@@ -23,7 +24,7 @@
 #include <string.h>
 
 static const char MAGIC[8] = {'T', 'R', 'I', 'B', 'O', 'S', 'T', '1'};
-enum { STATE_VERSION = 5 };
+enum { STATE_VERSION = 6 };
 
 /* Fields of a point, in order; the contact evaluation is stored with it because some
    integrators (phases of the force law) cannot recompute it from y alone. */
@@ -105,7 +106,7 @@ static size_t charge_count(const tribo_model *m)
     size_t n = 0;
     for (int i = 0; i < m->charging.n_models; i++)
         if (m->charging.slot[i].segments)
-            n += (size_t)m->charging.n + 2;
+            n += (size_t)m->charging.n + 4;
     return n;
 }
 
@@ -150,6 +151,8 @@ tribo_status tribo_state_save(const tribo_model *m, void *buffer, size_t size)
         tribo_write_bytes(&w, slot->segments, (size_t)m->charging.n * sizeof(double));
         tribo_write_double(&w, slot->sum);
         tribo_write_double(&w, slot->sum_c);
+        tribo_write_double(&w, slot->lost);
+        tribo_write_double(&w, slot->lost_c);
     }
     m->integrator->state_save(m->integrator_data, w.p);
     return TRIBO_OK;
@@ -183,6 +186,7 @@ typedef struct loaded {
     tribo_point committed;
     double *segments[TRIBO_CHARGE_MAX_MODELS]; /* owned; NULL for models not selected */
     double sum[TRIBO_CHARGE_MAX_MODELS], sum_c[TRIBO_CHARGE_MAX_MODELS];
+    double lost[TRIBO_CHARGE_MAX_MODELS], lost_c[TRIBO_CHARGE_MAX_MODELS];
     const unsigned char *integrator;           /* into the bytes */
 } loaded;
 
@@ -256,13 +260,20 @@ static const char *end_problem(const loaded *l)
    sum that of the values up to its rounding. */
 static const char *charges_problem(const tribo_model *m, const tribo_charge_slot *slot,
                                    const double *values, double sum, double sum_c,
-                                   const double *globals)
+                                   double lost, double lost_c, const double *globals)
 {
     const int n = m->charging.n;
-    if (!all_finite(values, n) || !isfinite(sum) || !isfinite(sum_c))
+    if (!all_finite(values, n) || !isfinite(sum) || !isfinite(sum_c) || !isfinite(lost) ||
+        !isfinite(lost_c))
         return "values that are not numbers";
     if (slot->model->valid && !slot->model->valid(&m->scene, globals + slot->globals_at, values, n))
         return "values the model cannot produce";
+    /* the breakdown limit holds every value (docs/model.md §8b) */
+    const double cap = slot->model->cap ? slot->model->cap(&m->scene, globals + slot->globals_at)
+                                        : INFINITY;
+    for (int i = 0; i < n; i++)
+        if (fabs(values[i]) > cap)
+            return "values above the breakdown limit";
     double magnitude = 0.0;
     for (int i = 0; i < n; i++)
         magnitude += fabs(values[i]);
@@ -343,8 +354,10 @@ static tribo_status read_state(tribo_model *m, const void *buffer, size_t size, 
         tribo_read_bytes(&r, l->segments[i], bytes);
         l->sum[i] = tribo_read_double(&r);
         l->sum_c[i] = tribo_read_double(&r);
+        l->lost[i] = tribo_read_double(&r);
+        l->lost_c[i] = tribo_read_double(&r);
         problem = check ? charges_problem(m, slot, l->segments[i], l->sum[i], l->sum_c[i],
-                                          l->committed.charge_globals)
+                                          l->lost[i], l->lost_c[i], l->committed.charge_globals)
                         : NULL;
         if (problem)
             return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: the %s charges hold %s",
@@ -371,6 +384,8 @@ static tribo_status apply_state(tribo_model *m, const loaded *l)
         memcpy(slot->segments, l->segments[i], (size_t)m->charging.n * sizeof(double));
         slot->sum = l->sum[i];
         slot->sum_c = l->sum_c[i];
+        slot->lost = l->lost[i];
+        slot->lost_c = l->lost_c[i];
     }
     m->out = m->committed;
     m->n_pending = 0;

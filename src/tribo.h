@@ -249,6 +249,10 @@ typedef enum tribo_segment_charge {
     TRIBO_SEGMENTS_COUNT
 } tribo_segment_charge;
 
+/* Whether the instance's scene includes the charge model of that array (its switch
+   charge_model_<name>, and the older charge_model). */
+int tribo_includes_charge_model(const tribo_model *model, tribo_segment_charge which);
+
 /* Copy the per-segment charge densities (n = n_segments values) at the current time.
    Fails if the scene does not include that model. */
 tribo_status tribo_get_segment_charges(tribo_model *model, tribo_segment_charge which,

@@ -8,7 +8,8 @@
  *   param NAME VALUE   tribo_set_param (a tunable, mid-run)
  *   force F_T F_N      tribo_set_external_force
  *   print              one JSON line: every quantity by its tribo_quantity_name
- *   segments           one JSON line: both segment-charge arrays (null without the model)
+ *   segments           one JSON line: every registered charge model's segment array, by its
+ *                      name (null without the model)
  *
  * Numbers are printed with 17 significant digits, so they read back bit-identically.
  * A failure prints {"error": "..."} and exits with status 1.
@@ -17,6 +18,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "charge_registry.h"
 
 #include "tribo.h"
 
@@ -108,9 +111,10 @@ int main(void)
         } else if (strcmp(cmd, "segments") == 0) {
             const size_t n_seg = (size_t)tribo_get_scene(m)->n_segments;
             putchar('{');
-            print_segments(m, "static", TRIBO_SEGMENTS_STATIC, n_seg);
-            fputs(", ", stdout);
-            print_segments(m, "sliding", TRIBO_SEGMENTS_SLIDING, n_seg);
+            for (int k = 0; k < TRIBO_SEGMENTS_COUNT; k++) {
+                fputs(k ? ", " : "", stdout);
+                print_segments(m, TRIBO_CHARGE_MODELS[k]->name, (tribo_segment_charge)k, n_seg);
+            }
             puts("}");
         } else {
             return fail("unknown command", cmd);

@@ -3,7 +3,7 @@
 #include <criterion/criterion.h>
 #include <math.h>
 
-#include "charge_models.h"
+#include "charge_registry.h"
 #include "charging.h"
 
 /* The registry's models (static, sliding), both selected. */
@@ -50,7 +50,7 @@ Test(charging, exact_for_a_held_contact)
     double T = 0.0;
     for (int k = 1; k <= 50; k++) {
         const tribo_contact_sample s = sample(&c, 0.01 * k, 5.5 * seg, 0.2 * seg, S, S, S);
-        tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMITTED);
+        tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMIT);
         T += s.duration;
     }
     const double *q = static_q(&c), *sigma = sliding_sigma(&c);
@@ -73,7 +73,7 @@ Test(charging, sliding_update_exact_for_quadratic_saturation)
         double *sigma = sliding_sigma(&c);
         sigma[7] = 0.004;
         const tribo_contact_sample s = sample(&c, d, 7.5 * seg, 0.1 * seg, S0, Sm, S1);
-        tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMITTED);
+        tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMIT);
         /* reference: Sigma_s(u) = A + B u + C u^2 through the three values */
         const double C = 2 * (S0 - 2 * Sm + S1), B = S1 - S0 - C;
         double y = 0.004;
@@ -101,11 +101,11 @@ Test(charging, segment_under_a_point_contact_charges)
     const double seg = c.arc.perimeter / 64;
     const double *q = static_q(&c);
     const tribo_contact_sample s = sample(&c, 1.0, 10.3 * seg, 0.0, 0.01, 0.01, 0.01);
-    tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMITTED);
+    tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMIT);
     cr_expect(q[10] > 0.6 && q[9] == 0.0 && q[11] == 0.0);
     /* and a contact across the start of the numbering reaches both ends */
     const tribo_contact_sample w = sample(&c, 1.0, 0.1 * seg, 0.5 * seg, 0.01, 0.01, 0.01);
-    tribo_charging_apply(&c, &P, &w, TRIBO_CHARGE_COMMITTED);
+    tribo_charging_apply(&c, &P, &w, TRIBO_CHARGE_COMMIT);
     cr_expect(q[0] > 0.6 && q[63] > 0.6 && q[1] == 0.0);
     tribo_charging_free(&c);
 }
@@ -143,7 +143,7 @@ static int apply(void *ctx, const tribo_contact_sample *s)
 {
     (void)ctx;
     samples++;
-    tribo_charging_apply(target, &PARAMS, s, TRIBO_CHARGE_COMMITTED);
+    tribo_charging_apply(target, &PARAMS, s, TRIBO_CHARGE_COMMIT);
     return 0;
 }
 
@@ -237,7 +237,7 @@ Test(charging, a_contact_wider_than_the_boundary_charges_each_segment_once)
     const double wide[][2] = {{1.0, 1e148}, {1e148, 1e148}, {3.0, 1e300}};
     for (int k = 0; k < 3; k++) {
         const tribo_contact_sample s = sample(&c, 0.1, wide[k][0], wide[k][1], 0.01, 0.01, 0.01);
-        cr_expect_eq(tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMITTED), 2 * 64);
+        cr_expect_eq(tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMIT), 2 * 64);
     }
     const double *q = static_q(&c);
     double sum = 0.0;
@@ -250,8 +250,41 @@ Test(charging, a_contact_wider_than_the_boundary_charges_each_segment_once)
     const double far[][2] = {{-1e148, 1.0}, {1e300, 0.0}, {-1e300, 1e-300}};
     for (int k = 0; k < 3; k++) {
         const tribo_contact_sample s = sample(&c, 0.1, far[k][0], far[k][1], 0.01, 0.01, 0.01);
-        const long updates = tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMITTED);
+        const long updates = tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMIT);
         cr_expect(updates >= 2 && updates <= 2 * 2, "%ld updates", updates);
     }
+    tribo_charging_free(&c);
+}
+
+/* ---- the air-breakdown limit (model.md §8b) --------------------------------------------- */
+
+/* One contact held over segment 5 past the limit: each model leaves the segment at its
+   bound, and what it holds plus what it lost is the charge it would have had without the
+   limit (a single sample: the same rate law, to rounding). */
+Test(charging, a_contact_past_the_limit_stays_at_it_and_books_the_rest_as_lost)
+{
+    tribo_charging c = make(0.5, 100);
+    tribo_scene P = params();
+    P.Sigma_bd = 0.004; /* static bound Sigma_bd / Sigma0 = 0.4, sliding bound 0.004 */
+    const double seg = c.arc.perimeter / 100, S = 0.013, T = 5.0;
+    const tribo_contact_sample s = sample(&c, T, 5.5 * seg, 0.2 * seg, S, S, S);
+    cr_expect_eq(tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMIT), 2);
+    const double uncapped[2] = {1.0 - exp(-T / P.tau0), S * (1.0 - exp(-T / P.tau0))};
+    const double bound[2] = {0.4, 0.004};
+    const double *held[2] = {static_q(&c), sliding_sigma(&c)};
+    for (int k = 0; k < 2; k++) {
+        const tribo_charge_slot *slot = &c.slot[k];
+        cr_expect_eq(held[k][5], bound[k], "%s: %.17g", slot->model->name, held[k][5]);
+        cr_expect_float_eq(held[k][5] + tribo_charging_lost(slot), uncapped[k], 4e-16 * uncapped[k],
+                           "%s", slot->model->name);
+        cr_expect_eq(tribo_charging_sum(slot), bound[k]);
+        cr_expect_eq(tribo_charging_capped(slot, &P, s.globals_end, held[k], 100), 1);
+    }
+    /* charging on at the limit only adds to the loss */
+    const double lost = tribo_charging_lost(&c.slot[1]);
+    tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMIT);
+    cr_expect_eq(sliding_sigma(&c)[5], 0.004);
+    cr_expect_float_eq(tribo_charging_lost(&c.slot[1]) - lost,
+                       (S - 0.004) * (1.0 - exp(-T / P.tau0)), 1e-17);
     tribo_charging_free(&c);
 }

@@ -1,4 +1,4 @@
-/* The core's seams (src/charge_model.h, src/integrator.h): a charge model defined here,
+/* The core's seams (src/charge_interface.h, src/integrator.h): a charge model defined here,
    in the test, runs through both integrators and the state save/load without any change
    to them; every integrator hook's failure reaches the caller; an unknown integrator kind
    is refused. */
@@ -77,7 +77,8 @@ static const tribo_charge_model constant_rate = {
     .segment_values = segment_values,
 };
 
-/* The registry's two models and this one: one registration line. */
+/* The registry's two models and this one, the test's registry (the FMUs' registry is
+   charge_registry.def: a row there is the same one line). */
 static const tribo_charge_model *const MODELS[] = {&tribo_charge_static, &tribo_charge_sliding,
                                                    &constant_rate};
 enum { CONSTANT = 2 };
@@ -86,8 +87,8 @@ static tribo_model *make_with_constant(int integrator)
 {
     tribo_scene s = scene_of("epsilon=0.3 n_segments=500");
     s.integrator = integrator;
-    s.charge_model = 7; /* all three */
-    const tribo_parts parts = {MODELS, 3, NULL};
+    const tribo_parts parts = {.charge_models = MODELS, .n_charge_models = 3,
+                               .charge_selection = 7 /* all three */};
     char err[512];
     tribo_model *m = tribo_create_from_parts(&s, &parts, err, sizeof err);
     cr_assert(m, "%s", err);
@@ -188,7 +189,8 @@ Test(parts, a_failed_restart_reaches_the_caller)
     tribo_scene s;
     tribo_scene_defaults(&s);
     s.integrator = TRIBO_INTEGRATOR_FIXED_STEP;
-    const tribo_parts parts = {TRIBO_CHARGE_MODELS, TRIBO_SEGMENTS_COUNT, &ops};
+    tribo_parts parts = tribo_registry_parts(&s);
+    parts.integrator = &ops;
     char err[512];
     fail_restart = 0;
     tribo_model *m = tribo_create_from_parts(&s, &parts, err, sizeof err);
@@ -212,7 +214,7 @@ Test(parts, an_unknown_integrator_kind_is_refused)
     cr_expect_null(tribo_integrator_of_kind(-1));
     tribo_scene s = scene_of("");
     s.integrator = 7; /* past the table's range too: set directly */
-    const tribo_parts parts = {TRIBO_CHARGE_MODELS, TRIBO_SEGMENTS_COUNT, NULL};
+    const tribo_parts parts = tribo_registry_parts(&s);
     char err[512];
     cr_expect_null(tribo_create_from_parts(&s, &parts, err, sizeof err));
     cr_expect(strstr(err, "integrator"), "%s", err);
@@ -221,10 +223,9 @@ Test(parts, an_unknown_integrator_kind_is_refused)
 Test(parts, a_selection_beyond_the_model_set_is_refused)
 {
     tribo_scene s = scene_of("");
-    s.charge_model = 4;
-    const tribo_parts parts = {TRIBO_CHARGE_MODELS, TRIBO_SEGMENTS_COUNT, NULL};
+    const tribo_parts parts = {.charge_models = MODELS, .n_charge_models = 3,
+                               .charge_selection = 8};
     char err[512];
     cr_expect_null(tribo_create_from_parts(&s, &parts, err, sizeof err));
-    cr_expect_str_eq(err, "charge_model = 4 is invalid: the valid range is an integer with 0 <= "
-                          "charge_model <= 3");
+    cr_expect_str_eq(err, "charge models selected (bits 0x8) beyond the 3 of the set");
 }

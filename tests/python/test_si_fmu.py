@@ -173,7 +173,7 @@ MODEL_OF_SI = {"epsilon": "epsilon", "mu": "mu", "nu": "nu", "eta": "eta", "tilt
                "rtol": "rtol", "atol": "atol", "v_reg": "v_reg", "damping_point": "damping_point",
                "stick_model": "stick_model", "work_limit": "work_limit", "Gamma": "Gamma", "tau0": "tau0", "tau_r": "tau_r",
                "Sigma0": "Sigma0", "chute_length_scaled": "chute_length",
-               "drop_speed_scaled": "drop_speed"}
+               "drop_speed_scaled": "drop_speed", "Sigma_bd": "Sigma_bd"}
 
 
 def dimensionless_scene(si):

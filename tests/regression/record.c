@@ -4,7 +4,7 @@
      tribo_regression_record > tests/regression/golden.txt
 
    At each sample time one line: run name, time (C99 hex float), "hash" and an FNV-1a hash
-   of the bytes of every output and of both per-segment charge arrays. At the last sample
+   of the bytes of every output and of every per-segment charge array. At the last sample
    of a run, also every output by name with its value in %a, so that a difference can be
    read.
 
@@ -48,7 +48,7 @@ static void print_outputs(const char *run, tribo_model *m, int last)
     }
     const size_t n = (size_t)tribo_get_scene(m)->n_segments;
     double *seg = malloc(n * sizeof *seg);
-    for (int which = 0; which < 2; which++)
+    for (int which = 0; which < TRIBO_SEGMENTS_COUNT; which++)
         if (seg && tribo_get_segment_charges(m, (tribo_segment_charge)which, seg, n) == TRIBO_OK)
             h = fnv1a(seg, n * sizeof *seg, h);
     free(seg);

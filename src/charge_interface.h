@@ -1,6 +1,6 @@
 /*
- * charge_model.h: what a charge model is (docs/model.md §5), as the segment loop, the
- * exact contact-time sweep and both integrators see it.
+ * charge_interface.h: what a charge model is (docs/model.md §5), as the segment loop, the
+ * exact contact-time sweep, both integrators, the saved state and the SI front end see it.
  *
  * A charge model has one value per boundary segment (its charge density), changed only
  * on the segments in contact; it may have global states (the sliding model's dynamic
@@ -9,8 +9,8 @@
  * touch, for how long, the saving and loading of states, the outputs' plumbing) is
  * generic: charging.c, charge_sweep.c, state_io.c.
  *
- * To add a model: one file implementing a tribo_charge_model, and one line registering it
- * in charge_models.c.
+ * To add a model: one file implementing a tribo_charge_model, and one row registering it in
+ * charge_registry.def (CONTRIBUTING.md walks through it).
  */
 #ifndef TRIBO_CHARGE_MODEL_H
 #define TRIBO_CHARGE_MODEL_H
@@ -38,6 +38,10 @@ typedef struct tribo_charge_forcing {
     double duration;
     const double *begin, *mid, *end; /* the model's own globals */
 } tribo_charge_forcing;
+
+/* What a model's values are, for the SI front end (model.md §8): sigma_i over sigma0, or
+   densities Sigma_i in units of sqrt(kappa k' a) (sigma_i = sign(sigma0) Sigma_i sqrt(kappa k' a)). */
+typedef enum { TRIBO_CHARGE_PER_SIGMA0, TRIBO_CHARGE_PER_SIGMA_SCALE } tribo_charge_si_unit;
 
 typedef struct tribo_charge_model {
     const char *name;  /* "static", "sliding": in messages */
@@ -70,13 +74,22 @@ typedef struct tribo_charge_model {
     double (*charge)(void *cache, const tribo_scene *s, const tribo_charge_forcing *f,
                      double *segments, long count);
 
-    /* The per-segment values as tribo_get_segment_charges reports them. */
+    /* The per-segment values as tribo_get_segment_charges reports them: linear in the
+       model's own values (the charge lost to the gas is reported through it too). */
     void (*segment_values)(const tribo_scene *s, const double *globals, const double *segments,
                            double *out, int n);
 
     /* Whether saved values (the model's globals, its n finite segment values) are ones the
        model can produce, for a state being loaded; NULL: any finite values are. */
     int (*valid)(const tribo_scene *s, const double *globals, const double *segments, int n);
+
+    /* The bound on |value| of the model's own per-segment values that the air-breakdown
+       density Sigma_bd sets (docs/model.md §8b); NULL: its values are no densities, the
+       limit does not apply. INF: no limit. */
+    double (*cap)(const tribo_scene *s, const double *globals);
+
+    /* The unit of its reported values in the SI front end. */
+    tribo_charge_si_unit si_unit;
 } tribo_charge_model;
 
 /* ---- exponentials for exact updates over an interval --------------------------------- */
