@@ -1,7 +1,10 @@
 /* The work limit bounds an advance at every valid input, and ordinary runs stay within its
    default (docs/fmu.md, "The work limit"; the CPU figures there come from
    scripts/bench_work_limit.sh). The CPU bound asserted here, 1 s, is the documented one; the
-   measured worst of these scenes is ~0.1-0.2 s on the 2-core development machine. */
+   worst of these scenes measured 0.66 s an advance on the 2-core development machine with both
+   cores busy. Under AddressSanitizer + UndefinedBehaviorSanitizer the same advances took 4.2 s
+   (CI); that build is held to 15 s, which still catches work that is not bounded (the
+   needle's advance took 149 s before the limit). */
 #define _POSIX_C_SOURCE 199309L
 #include <criterion/criterion.h>
 #include <string.h>
@@ -10,6 +13,12 @@
 #include "integrator.h"
 #include "model.h"
 #include "support.h"
+
+#ifdef TRIBO_SANITIZED
+#define ADVANCE_CPU_BOUND 15.0
+#else
+#define ADVANCE_CPU_BOUND 1.0
+#endif
 
 static double cpu(void)
 {
@@ -38,7 +47,7 @@ static void each_advance_is_bounded(const char *settings, int advances)
         const tribo_status st = tribo_advance(m, t + 0.1);
         const double spent = cpu() - c0;
         cr_assert(st == TRIBO_OK || st == TRIBO_INCOMPLETE, "%s", tribo_last_error(m));
-        cr_expect(spent < 1.0, "%s: advance %d took %.2f s of CPU", settings, k, spent);
+        cr_expect(spent < ADVANCE_CPU_BOUND, "%s: advance %d took %.2f s of CPU", settings, k, spent);
         const double reached = tribo_get(m, TRIBO_Q_TIME);
         cr_expect(reached > t, "advance %d made no progress from t = %.17g", k, t);
         t = reached;
