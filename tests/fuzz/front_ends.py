@@ -93,7 +93,9 @@ class SI:
     def convert(u, how, x):
         return {"same": lambda: x, "length": lambda: x / u["a"], "time": lambda: x / u["t_star"],
                 "speed": lambda: x / u["velocity"], "rate": lambda: x * u["t_star"],
-                "density": lambda: abs(x) / u["sigma"], "force": lambda: x / u["force"]}[how]()
+                "density": lambda: abs(x) / u["sigma"], "force": lambda: x / u["force"],
+                # section 8b: a limit of 0 is none
+                "limit": lambda: x / u["sigma"] if x > 0.0 else math.inf}[how]()
 
     def in_range(self, model_name, x):
         lo, hi, bounded = self.ranges[model_name]
