@@ -12,16 +12,24 @@
 #include "tribo.h"
 
 /* A table's rows as tribo_param_info initialisers: a TRIBO_PARAMETER row of the struct
-   `scene_type`, and a TRIBO_INPUT row (a real, tunable, both ends closed, start 0). */
+   `scene_type`, and a TRIBO_INPUT row (a real, tunable, both ends closed, start 0). A row
+   whose range comes from another table (si.c) is initialised in two parts: all but the
+   range, then the range. */
 #define TRIBO_CLOSED 1
 #define TRIBO_OPEN 0
 #define TRIBO_TYPE_ENUM(enumeration) TRIBO_TYPE_ENUM
+#define TRIBO_PARAM_FIELDS_BUT_RANGE(scene_type, name_, type_, vr_, unit_, start_, variability_,  \
+                                     description_)                                             \
+    .name = #name_, .description = description_, .unit = unit_, .vr = vr_,                     \
+    .offset = offsetof(scene_type, name_), .type = TRIBO_TYPE_##type_, .start = start_,         \
+    .variability = TRIBO_PARAM_##variability_
+#define TRIBO_PARAM_RANGE(min_, min_end, max_, max_end)                                          \
+    .min = min_, .max = max_, .min_inclusive = TRIBO_##min_end, .max_inclusive = TRIBO_##max_end
 #define TRIBO_PARAM_INFO(scene_type, name_, type_, vr_, unit_, min_, min_end, max_, max_end,     \
                          start_, variability_, description_)                                    \
-    {.name = #name_, .description = description_, .unit = unit_, .vr = vr_,                    \
-     .offset = offsetof(scene_type, name_), .type = TRIBO_TYPE_##type_, .min = min_,           \
-     .max = max_, .min_inclusive = TRIBO_##min_end, .max_inclusive = TRIBO_##max_end,          \
-     .start = start_, .variability = TRIBO_PARAM_##variability_}
+    {TRIBO_PARAM_FIELDS_BUT_RANGE(scene_type, name_, type_, vr_, unit_, start_, variability_,    \
+                                  description_),                                                \
+     TRIBO_PARAM_RANGE(min_, min_end, max_, max_end)}
 #define TRIBO_INPUT_INFO(name_, vr_, unit_, min_, max_, description_)                           \
     {.name = name_, .description = description_, .unit = unit_, .vr = vr_,                     \
      .type = TRIBO_TYPE_REAL, .min = min_, .max = max_, .min_inclusive = TRIBO_CLOSED,         \
