@@ -40,6 +40,15 @@ typedef struct tribo_param_table_of {
     size_t n;
 } tribo_param_table_of;
 
+/* The name of the scene's parameter `field` as its row in quantities.def gives it, and the
+   name of the item `value` of its enumeration ("?" for none): a message that names a
+   parameter or a choice takes the name from the table, and one naming a field the table no
+   longer has does not compile. */
+#define TRIBO_PARAM_NAME(field) (tribo_param_of_field(offsetof(tribo_scene, field))->name)
+#define TRIBO_PARAM_ITEM_NAME(field, value) tribo_param_item_name(offsetof(tribo_scene, field), value)
+const tribo_param_info *tribo_param_of_field(size_t offset);
+const char *tribo_param_item_name(size_t offset, int value);
+
 /* Every row at its start value (the rest of the struct zero). */
 void tribo_table_defaults(tribo_param_table_of t, void *scene, size_t scene_size);
 /* The row named `name`, or NULL. */
