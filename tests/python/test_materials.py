@@ -40,7 +40,7 @@ def test_exported_from_the_package():
     assert "materials" in tribo.__all__
 
 
-def test_the_lists_hold_the_issues_materials():
+def test_the_lists_hold_the_common_materials():
     assert set(materials.particles()) >= {"PE", "PP", "PS", "PMMA", "PVC", "nylon", "PTFE",
                                           "glass"}
     assert set(materials.walls()) >= {"steel", "aluminium", "PTFE", "glass"}
