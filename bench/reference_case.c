@@ -1,4 +1,4 @@
-/* reference_case: issue 12's reference case measured through the C API (a command, not a test).
+/* reference_case: the SI reference case measured through the C API (a command, not a test).
  *
  *   tribo_reference_case [rounds=3] [slice=2] ["name=value ..." SI settings]
  *

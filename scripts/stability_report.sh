@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Stability report (issue 5): runs the stability matrix (tests/stability/matrix.c) with
+# Stability report: runs the stability matrix (tests/stability/matrix.c) with
 # every integrator and writes docs/stability.md. About 15 s on 2 cores.
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -44,11 +44,11 @@ HEAD
   cat "$TABLE"
   cat <<'HEAD'
 
-## Physical scale (issue 12)
+## Physical scale
 
 The same checks (and every SI output finite) on physical set-ups through the SI front end
 (docs/model.md §8, §9), each run with CVODE from the drop to the chute's exit (the CTest
-`test_physical_scale`, tests/stability/physical_scale.c): issue 12's reference case (a
+`test_physical_scale`, tests/stability/physical_scale.c): the SI reference case (a
 polyethylene grain, a = 0.5 mm, epsilon = 0.6, 950 kg/m3, E = 1 GPa, nu 0.46, dropped 10 mm
 straight down onto a steel chute, 200 GPa, 0.29, tilted 30 deg, mu = nu = 0.3, L = 0.3 m,
 t0 = 1 ms, both charge models), the same grain at a = 50 um, and the grid of the particle's

@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "param_table.h"
+
 tribo_status tribo_fail(tribo_model *m, tribo_status status, const char *fmt, ...)
 {
     va_list ap;
@@ -106,14 +108,16 @@ static tribo_status ended(tribo_model *m)
 {
     if (m->ended == TRIBO_END_LIFTOFF)
         return tribo_fail(m, TRIBO_ENDED,
-                          "the particle lifted off the plate at t = %.17g (run_end = "
-                          "first_liftoff: the run ends at the first contact lost): the run is "
-                          "over there; reset to run again",
-                          m->out.t);
+                          "the particle lifted off the plate at t = %.17g (%s = %s: the run "
+                          "ends at the first contact lost): the run is over there; reset to run "
+                          "again",
+                          m->out.t, TRIBO_PARAM_NAME(run_end),
+                          TRIBO_PARAM_ITEM_NAME(run_end, TRIBO_RUN_END_FIRST_LIFTOFF));
     return tribo_fail(m, TRIBO_ENDED,
-                      "the particle left the chute at t = %.17g (its centre passed X = "
-                      "chute_length = %.17g): the run is over there; reset to run again",
-                      m->out.t, m->scene.chute_length);
+                      "the particle left the chute at t = %.17g (its centre passed %s = %s = "
+                      "%.17g): the run is over there; reset to run again",
+                      m->out.t, tribo_quantity_name(TRIBO_Q_X), TRIBO_PARAM_NAME(chute_length),
+                      m->scene.chute_length);
 }
 
 void tribo_work(tribo_model *m, double units) { m->work += units; }
@@ -132,9 +136,9 @@ tribo_status tribo_stop_early(tribo_model *m, tribo_stop_reason why)
         return ended(m);
     }
     return tribo_fail(m, TRIBO_INCOMPLETE,
-                      "stopped early at t = %.17g: the advance spent its work limit (work_limit = "
-                      "%d units of work; take shorter steps, or raise it)",
-                      m->committed.t, m->scene.work_limit);
+                      "stopped early at t = %.17g: the advance spent its work limit (%s = %d "
+                      "units of work; take shorter steps, or raise it)",
+                      m->committed.t, TRIBO_PARAM_NAME(work_limit), m->scene.work_limit);
 }
 
 void tribo_warn(tribo_model *m, const char *message)
@@ -176,11 +180,12 @@ void tribo_book_interval(tribo_model *m, const tribo_point *from, tribo_point *t
         if (m->log && n <= LOGGED_VIOLATIONS) {
             char msg[512];
             snprintf(msg, sizeof msg,
-                     "t = %.9g: the contact is outside the model's assumptions: delta_y = %.4g "
-                     "exceeds %.2g x min(epsilon = %g, rho_c = %.4g); the linear contact law "
-                     "and the contact width are not meaningful there (counted in "
-                     "assumption_warnings%s)",
-                     to->t, to->contact.delta_y, TRIBO_INDENTATION_LIMIT, m->dyn.eps, rho_c,
+                     "t = %.9g: the contact is outside the model's assumptions: %s = %.4g "
+                     "exceeds %.2g x min(%s = %g, rho_c = %.4g); the linear contact law and "
+                     "the contact width are not meaningful there (counted in %s%s)",
+                     to->t, tribo_quantity_name(TRIBO_Q_DELTA_Y), to->contact.delta_y,
+                     TRIBO_INDENTATION_LIMIT, TRIBO_PARAM_NAME(epsilon), m->dyn.eps, rho_c,
+                     tribo_quantity_name(TRIBO_Q_ASSUMPTION_WARNINGS),
                      n == LOGGED_VIOLATIONS ? "; further ones are counted, not logged" : "");
             m->log(m->log_user, 1, msg);
         }
@@ -410,7 +415,8 @@ tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts
     const tribo_integrator_ops *integrator =
         parts->integrator ? parts->integrator : tribo_integrator_of_kind(scene->integrator);
     if (!integrator) {
-        snprintf(msg, sizeof msg, "integrator = %d is not a known integrator", scene->integrator);
+        snprintf(msg, sizeof msg, "%s = %d is not a known integrator", TRIBO_PARAM_NAME(integrator),
+                 scene->integrator);
         report(err, err_size, msg);
         return NULL;
     }
@@ -425,10 +431,10 @@ tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts
                                        scene->epsilon, scene->n_segments);
     if (st != 0) {
         snprintf(msg, sizeof msg,
-                 st == -1 ? "out of memory (n_segments = %d)"
+                 st == -1 ? "out of memory (%s = %d)"
                           : "the charge models need more global states or quadratures than a "
-                            "point holds (n_segments = %d)",
-                 scene->n_segments);
+                            "point holds (%s = %d)",
+                 TRIBO_PARAM_NAME(n_segments), scene->n_segments);
         report(err, err_size, msg);
         tribo_free(m);
         return NULL;
@@ -634,7 +640,8 @@ tribo_status tribo_get_segment_charges(tribo_model *m, tribo_segment_charge whic
                               : "requested");
     if (n != (size_t)m->charging.n)
         return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT,
-                          "segment array of %zu values given, n_segments = %d", n, m->charging.n);
+                          "segment array of %zu values given, %s = %d", n,
+                          TRIBO_PARAM_NAME(n_segments), m->charging.n);
     if (!charges_out(m))
         return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
     const tribo_charge_slot *slot = &m->charging.slot[which];

@@ -12,16 +12,24 @@
 #include "tribo.h"
 
 /* A table's rows as tribo_param_info initialisers: a TRIBO_PARAMETER row of the struct
-   `scene_type`, and a TRIBO_INPUT row (a real, tunable, both ends closed, start 0). */
+   `scene_type`, and a TRIBO_INPUT row (a real, tunable, both ends closed, start 0). A row
+   whose range comes from another table (si.c) is initialised in two parts: all but the
+   range, then the range. */
 #define TRIBO_CLOSED 1
 #define TRIBO_OPEN 0
 #define TRIBO_TYPE_ENUM(enumeration) TRIBO_TYPE_ENUM
+#define TRIBO_PARAM_FIELDS_BUT_RANGE(scene_type, name_, type_, vr_, unit_, start_, variability_,  \
+                                     description_)                                             \
+    .name = #name_, .description = description_, .unit = unit_, .vr = vr_,                     \
+    .offset = offsetof(scene_type, name_), .type = TRIBO_TYPE_##type_, .start = start_,         \
+    .variability = TRIBO_PARAM_##variability_
+#define TRIBO_PARAM_RANGE(min_, min_end, max_, max_end)                                          \
+    .min = min_, .max = max_, .min_inclusive = TRIBO_##min_end, .max_inclusive = TRIBO_##max_end
 #define TRIBO_PARAM_INFO(scene_type, name_, type_, vr_, unit_, min_, min_end, max_, max_end,     \
                          start_, variability_, description_)                                    \
-    {.name = #name_, .description = description_, .unit = unit_, .vr = vr_,                    \
-     .offset = offsetof(scene_type, name_), .type = TRIBO_TYPE_##type_, .min = min_,           \
-     .max = max_, .min_inclusive = TRIBO_##min_end, .max_inclusive = TRIBO_##max_end,          \
-     .start = start_, .variability = TRIBO_PARAM_##variability_}
+    {TRIBO_PARAM_FIELDS_BUT_RANGE(scene_type, name_, type_, vr_, unit_, start_, variability_,    \
+                                  description_),                                                \
+     TRIBO_PARAM_RANGE(min_, min_end, max_, max_end)}
 #define TRIBO_INPUT_INFO(name_, vr_, unit_, min_, max_, description_)                           \
     {.name = name_, .description = description_, .unit = unit_, .vr = vr_,                     \
      .type = TRIBO_TYPE_REAL, .min = min_, .max = max_, .min_inclusive = TRIBO_CLOSED,         \
@@ -31,6 +39,15 @@ typedef struct tribo_param_table_of {
     const tribo_param_info *rows;
     size_t n;
 } tribo_param_table_of;
+
+/* The name of the scene's parameter `field` as its row in quantities.def gives it, and the
+   name of the item `value` of its enumeration ("?" for none): a message that names a
+   parameter or a choice takes the name from the table, and one naming a field the table no
+   longer has does not compile. */
+#define TRIBO_PARAM_NAME(field) (tribo_param_of_field(offsetof(tribo_scene, field))->name)
+#define TRIBO_PARAM_ITEM_NAME(field, value) tribo_param_item_name(offsetof(tribo_scene, field), value)
+const tribo_param_info *tribo_param_of_field(size_t offset);
+const char *tribo_param_item_name(size_t offset, int value);
 
 /* Every row at its start value (the rest of the struct zero). */
 void tribo_table_defaults(tribo_param_table_of t, void *scene, size_t scene_size);

@@ -59,6 +59,41 @@ const tribo_param_info *tribo_table_find(tribo_param_table_of t, const char *nam
 
 const tribo_param_info *tribo_param_find(const char *name) { return tribo_table_find(TABLE, name); }
 
+const tribo_param_info *tribo_param_of_field(size_t offset)
+{
+    for (size_t i = 0; i < N_PARAMS; i++)
+        if (PARAMS[i].offset == offset)
+            return &PARAMS[i];
+    return NULL;
+}
+
+/* The enumeration of each parameter (parallel to PARAMS), NULL for a number, and every item. */
+#define ENUMERATION_OF_REAL NULL
+#define ENUMERATION_OF_INTEGER NULL
+#define ENUMERATION_OF_COUNT NULL
+#define ENUMERATION_OF_ENUM(id) #id
+static const char *const ENUMERATION_OF[N_PARAMS] = {
+#define TRIBO_PARAMETER(name, type, ...) ENUMERATION_OF_##type,
+#include "quantities.def"
+};
+static const struct {
+    const char *enumeration, *name;
+    int value;
+} ITEMS[] = {
+#define TRIBO_ENUM_ITEM(id, name, value, description) {#id, name, value},
+#include "quantities.def"
+};
+
+const char *tribo_param_item_name(size_t offset, int value)
+{
+    const tribo_param_info *p = tribo_param_of_field(offset);
+    const char *enumeration = p ? ENUMERATION_OF[p - PARAMS] : NULL;
+    for (size_t i = 0; enumeration && i < sizeof ITEMS / sizeof ITEMS[0]; i++)
+        if (strcmp(ITEMS[i].enumeration, enumeration) == 0 && ITEMS[i].value == value)
+            return ITEMS[i].name;
+    return "?";
+}
+
 double tribo_param_read(const void *scene, const tribo_param_info *p)
 {
     const char *base = (const char *)scene + p->offset;

@@ -10,11 +10,54 @@
 #include "geometry.h"
 #include "param_table.h"
 
-static const tribo_param_info PARAMS[] = {
-#define TRIBO_PARAMETER(...) TRIBO_PARAM_INFO(tribo_si_scene, __VA_ARGS__),
+/* ---- the table ------------------------------------------------------------------------ */
+
+/* Each SI parameter's row. */
+enum si_row {
+#define TRIBO_PARAMETER(name, ...) ROW_##name,
+#include "si_quantities.def"
+    ROW_COUNT
+};
+
+/* A TRIBO_SAME_PARAMETER row takes its range from the model's row in quantities.def. The
+   preprocessor cannot pick one row of a table by name, so every model parameter's row writes
+   its range into PARAMS: into the row of the SI parameter that is it unchanged, or else into
+   a slot of its own past the table's rows, which nothing reads. */
+enum unread_slot {
+    LAST_ROW = ROW_COUNT - 1,
+#define TRIBO_MAPS(name, model, how) UNREAD_SLOT_##model,
+#define TRIBO_DERIVES(model, description) UNREAD_SLOT_##model,
+#include "si_quantities.def"
+    SLOT_COUNT
+};
+#define RANGE_SLOT_SAME(si_name, model) ROW_##si_name
+#define RANGE_SLOT_LENGTH(si_name, model) UNREAD_SLOT_##model
+#define RANGE_SLOT_TIME(si_name, model) UNREAD_SLOT_##model
+#define RANGE_SLOT_SPEED(si_name, model) UNREAD_SLOT_##model
+#define RANGE_SLOT_RATE(si_name, model) UNREAD_SLOT_##model
+#define RANGE_SLOT_DENSITY(si_name, model) UNREAD_SLOT_##model
+#define RANGE_SLOT_FORCE(si_name, model) UNREAD_SLOT_##model
+#define RANGE_SLOT_LIMIT(si_name, model) UNREAD_SLOT_##model
+enum range_slot {
+#define TRIBO_MAPS(name, model, how) RANGE_SLOT_OF_##model = RANGE_SLOT_##how(name, model),
+#define TRIBO_DERIVES(model, description) RANGE_SLOT_OF_##model = UNREAD_SLOT_##model,
 #include "si_quantities.def"
 };
-static const tribo_param_table_of TABLE = {PARAMS, sizeof PARAMS / sizeof PARAMS[0]};
+
+static const tribo_param_info PARAMS[SLOT_COUNT] = {
+#define TRIBO_PARAMETER(name, ...) [ROW_##name] = TRIBO_PARAM_INFO(tribo_si_scene, name, __VA_ARGS__),
+#define TRIBO_SAME_PARAMETER(name, type, vr, unit, start, variability, description)               \
+    [ROW_##name] = {TRIBO_PARAM_FIELDS_BUT_RANGE(tribo_si_scene, name, type, vr, unit, start,       \
+                                                 variability, description)},
+#include "si_quantities.def"
+#define TRIBO_PARAMETER(name, type, vr, unit, min_, min_end, max_, max_end, start, variability,   \
+                        description)                                                            \
+    [RANGE_SLOT_OF_##name].min = min_, [RANGE_SLOT_OF_##name].max = max_,                       \
+    [RANGE_SLOT_OF_##name].min_inclusive = TRIBO_##min_end,                                     \
+    [RANGE_SLOT_OF_##name].max_inclusive = TRIBO_##max_end,
+#include "quantities.def"
+};
+static const tribo_param_table_of TABLE = {PARAMS, ROW_COUNT};
 
 static const tribo_param_info INPUTS[TRIBO_SI_INPUT_COUNT] = {
 #define TRIBO_INPUT(id_, ...) [TRIBO_SI_INPUT_##id_] = TRIBO_INPUT_INFO(__VA_ARGS__),

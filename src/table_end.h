@@ -1,5 +1,6 @@
 /* table_end.h: the end of a table (see table_rows.h): every row macro is undefined again. */
 #undef TRIBO_PARAMETER
+#undef TRIBO_SAME_PARAMETER
 #undef TRIBO_MAPS
 #undef TRIBO_DERIVES
 #undef TRIBO_TIME

@@ -6,6 +6,15 @@
 #ifndef TRIBO_PARAMETER
 #define TRIBO_PARAMETER(name, type, vr, unit, min, min_end, max, max_end, start, variability, description)
 #endif
+/* A reader of TRIBO_PARAMETER rows that does not read ranges (a struct's fields, the FMUs'
+   variables) reads a TRIBO_SAME_PARAMETER row as one; the reader that does (si.c) defines it
+   itself. TRIBO_MODEL_RANGE is defined nowhere, so that any other reader of the range fails
+   to compile rather than read a made-up one. */
+#ifndef TRIBO_SAME_PARAMETER
+#define TRIBO_SAME_PARAMETER(name, type, vr, unit, start, variability, description)               \
+    TRIBO_PARAMETER(name, type, vr, unit, TRIBO_MODEL_RANGE, MODEL_RANGE_END, TRIBO_MODEL_RANGE,   \
+                    MODEL_RANGE_END, start, variability, description)
+#endif
 #ifndef TRIBO_MAPS
 #define TRIBO_MAPS(name, model, how)
 #endif

@@ -1,4 +1,7 @@
-/* support.h: helpers the C tests share. */
+/* support.h: helpers the C tests share, so that each test states what it checks and not how
+   an instance is made, run or saved. A helper fails the test (cr_assert) with the core's own
+   message where the core refuses, so that a failure says why rather than crashing later on
+   a NULL or a half-run instance. */
 #ifndef TRIBO_TEST_SUPPORT_H
 #define TRIBO_TEST_SUPPORT_H
 
@@ -8,8 +11,10 @@
 
 #include "tribo.h"
 
-/* The defaults (the paper's drop) with settings "name=value ..." applied; the test fails
-   if one is refused. */
+/* ---- making scenes and instances ------------------------------------------------------
+   Tests start from the table's defaults (the paper's drop) and name only what they change. */
+
+/* The defaults with settings "name=value ..." applied; the test fails if one is refused. */
 static inline tribo_scene scene_of(const char *settings)
 {
     tribo_scene s;
@@ -28,21 +33,42 @@ static inline tribo_model *make(const tribo_scene *s)
     return m;
 }
 
-/* Advance two instances to t; the test fails with the reason if either fails. */
+/* The scene run by the fixed step and by CVODE at tight tolerances (rtol 1e-10, atol
+   1e-12): the tight tolerances make CVODE the reference the fixed step is compared with. */
+static inline void make_fixed_and_cvode(tribo_scene s, tribo_model **fixed, tribo_model **cvode)
+{
+    s.integrator = TRIBO_INTEGRATOR_FIXED_STEP;
+    *fixed = make(&s);
+    s.integrator = TRIBO_INTEGRATOR_CVODE;
+    s.rtol = 1e-10;
+    s.atol = 1e-12;
+    *cvode = make(&s);
+}
+
+/* ---- running and comparing two instances ----------------------------------------------
+   Most comparisons run two instances to the same time and measure how far apart they are. */
+
+/* Advance both to t; the test fails with the reason if either fails. */
 static inline void advance_both(tribo_model *a, tribo_model *b, double t)
 {
     cr_assert_eq(tribo_advance_fully(a, t), TRIBO_OK, "%s", tribo_last_error(a));
     cr_assert_eq(tribo_advance_fully(b, t), TRIBO_OK, "%s", tribo_last_error(b));
 }
 
-/* Where a state keeps whether (and why) its run has ended (state_io.c's layout): after the
-   header, the parameters, F_T, F_N, the output time and the six work counters. */
-static inline size_t state_ended_offset(void)
+/* The largest difference of their motion: X, Y, phi, U, V, Omega (the state the charges
+   follow from, so the one a comparison of integrators needs). */
+static inline double state_distance(tribo_model *a, tribo_model *b)
 {
-    size_t n_params;
-    tribo_param_table(&n_params);
-    return 8 + 2 * 8 + n_params * 8 + 3 * 8 + 6 * 8;
+    const tribo_quantity q[] = {TRIBO_Q_X, TRIBO_Q_Y, TRIBO_Q_PHI, TRIBO_Q_U, TRIBO_Q_V, TRIBO_Q_OMEGA};
+    double d = 0.0;
+    for (int i = 0; i < 6; i++)
+        d = fmax(d, fabs(tribo_get(a, q[i]) - tribo_get(b, q[i])));
+    return d;
 }
+
+/* ---- saved states ----------------------------------------------------------------------
+   The state tests save, corrupt and reload instances, so they need the bytes and where a
+   field lies in them. */
 
 /* The instance's whole state, saved into a new buffer of *size bytes (free it). */
 static inline unsigned char *saved_state(const tribo_model *m, size_t *size)
@@ -54,26 +80,13 @@ static inline unsigned char *saved_state(const tribo_model *m, size_t *size)
     return bytes;
 }
 
-/* The scene run by the fixed step and by CVODE at tight tolerances (rtol 1e-10, atol
-   1e-12), for comparisons of the two. */
-static inline void make_fixed_and_cvode(tribo_scene s, tribo_model **fixed, tribo_model **cvode)
+/* Where a state keeps whether (and why) its run has ended (state_io.c's layout): after the
+   header, the parameters, F_T, F_N, the output time and the six work counters. */
+static inline size_t state_ended_offset(void)
 {
-    s.integrator = TRIBO_INTEGRATOR_FIXED_STEP;
-    *fixed = make(&s);
-    s.integrator = TRIBO_INTEGRATOR_CVODE;
-    s.rtol = 1e-10;
-    s.atol = 1e-12;
-    *cvode = make(&s);
-}
-
-/* The largest difference of two instances' motion: X, Y, phi, U, V, Omega. */
-static inline double state_distance(tribo_model *a, tribo_model *b)
-{
-    const tribo_quantity q[] = {TRIBO_Q_X, TRIBO_Q_Y, TRIBO_Q_PHI, TRIBO_Q_U, TRIBO_Q_V, TRIBO_Q_OMEGA};
-    double d = 0.0;
-    for (int i = 0; i < 6; i++)
-        d = fmax(d, fabs(tribo_get(a, q[i]) - tribo_get(b, q[i])));
-    return d;
+    size_t n_params;
+    tribo_param_table(&n_params);
+    return 8 + 2 * 8 + n_params * 8 + 3 * 8 + 6 * 8;
 }
 
 #endif

@@ -25,7 +25,6 @@ static tribo_scene cvode_scene(double rtol)
 Test(cvode, contact_onset_at_the_analytic_drop_time)
 {
     const double rtols[] = {1e-6, 1e-8, 1e-10};
-    double previous = INFINITY;
     for (int i = 0; i < 3; i++) {
         tribo_scene s = cvode_scene(rtols[i]);
         s.epsilon = 1.0;
@@ -38,14 +37,10 @@ Test(cvode, contact_onset_at_the_analytic_drop_time)
         cr_assert_eq(tribo_get(m, TRIBO_Q_IN_CONTACT), 1.0);
         const double measured = t_star + 1.0 - tribo_get(m, TRIBO_Q_CONTACT_TIME);
         const double err = fabs(measured - t_star);
-        cr_expect(err <= 10 * rtols[i] * t_star, "rtol %g: onset at %.15g, analytic %.15g", rtols[i],
-                  measured, t_star);
-        /* the fall is a parabola, which Adams integrates exactly: below the rounding of the
-           times read back (measured 3.1e-14 and 3.2e-14 at rtol 1e-8 and 1e-10) the error
-           need not shrink */
-        cr_expect(err <= previous || err <= 1e-13, "error grows as rtol shrinks: %g after %g", err,
-                  previous);
-        previous = err;
+        /* the fall is a parabola, which Adams integrates exactly at any rtol: what is left is
+           the rounding of the times read back, measured 2.2e-16 at each rtol; bound 3x */
+        cr_expect(err <= 6.7e-16, "rtol %g: onset at %.17g, analytic %.17g", rtols[i], measured,
+                  t_star);
         tribo_free(m);
     }
 }
@@ -73,10 +68,12 @@ static double balance(double rtol)
 
 Test(cvode, energy_balance_tightens_with_rtol, .timeout = 60)
 {
+    /* measured 4.6e-6, 1.5e-8 and 5.9e-11: the bounds on r4 and r10 are 3x those; the
+       ratios (measured 300 and 250) say the residual follows rtol */
     const double r4 = balance(1e-4), r6 = balance(1e-6), r10 = balance(1e-10);
-    cr_expect(r4 < 1e-4 && r6 < r4 / 100 && r10 < r6 / 10,
+    cr_expect(r4 < 1.4e-5 && r6 < r4 / 100 && r10 < r6 / 10,
               "residuals %.3g (1e-4), %.3g (1e-6), %.3g (1e-10)", r4, r6, r10);
-    cr_expect(r10 < 1e-9, "residual %.3g at rtol 1e-10", r10);
+    cr_expect(r10 < 1.8e-10, "residual %.3g at rtol 1e-10", r10);
 }
 
 /* The fixed step converges to CVODE on a regular (non-tumbling) case as its step shrinks.
@@ -106,6 +103,7 @@ Test(cvode, fixed_step_converges_to_cvode, .timeout = 60)
         tribo_free(m);
     }
     cr_expect(d[0] > 10 * d[2] && d[1] > 10 * d[2], "distances %.3g, %.3g, %.3g", d[0], d[1], d[2]);
+    /* measured 1.7e-6, 1.3e-7 and 4.4e-10; the bound on the finest is 2.3x its distance */
     cr_expect(d[2] < 1e-9, "dt = 2.5e-4: %.3g from CVODE", d[2]);
     tribo_free(ref);
 }
@@ -186,8 +184,10 @@ Test(cvode, adams_and_bdf_agree)
     s.integrator = TRIBO_INTEGRATOR_CVODE_BDF;
     tribo_model *bdf = make(&s);
     advance_both(adams, bdf, 30.0);
-    cr_expect(state_distance(adams, bdf) < 1e-6, "distance %.3g", state_distance(adams, bdf));
-    cr_expect(fabs(tribo_get(adams, TRIBO_Q_STATIC) - tribo_get(bdf, TRIBO_Q_STATIC)) < 1e-5);
+    /* measured 3.2e-10 apart in the motion and 4.4e-11 in Q_static; bounds 3x those */
+    cr_expect(state_distance(adams, bdf) < 9.5e-10, "distance %.3g", state_distance(adams, bdf));
+    cr_expect(fabs(tribo_get(adams, TRIBO_Q_STATIC) - tribo_get(bdf, TRIBO_Q_STATIC)) < 1.3e-10,
+              "Q_static %.17g and %.17g", tribo_get(adams, TRIBO_Q_STATIC), tribo_get(bdf, TRIBO_Q_STATIC));
     tribo_free(adams);
     tribo_free(bdf);
 }
@@ -213,12 +213,12 @@ Test(cvode, modes_are_visited_and_counted)
             stick += c && !slipping;
             if (!c)
                 cr_assert(tribo_get(m, TRIBO_Q_PSI_N) == 0.0 && tribo_get(m, TRIBO_Q_DELTA_X) == 0.0);
+            /* slipping, the friction force is mu Psi_N as computed (measured equal to the bit);
+               sticking, the spring's stretch never measured above mu Psi_N */
             if (slipping)
-                cr_assert_float_eq(fabs(tribo_get(m, TRIBO_Q_PSI_T)),
-                                   s.mu * tribo_get(m, TRIBO_Q_PSI_N), 1e-15);
+                cr_assert_eq(fabs(tribo_get(m, TRIBO_Q_PSI_T)), s.mu * tribo_get(m, TRIBO_Q_PSI_N));
             else if (c)
-                cr_assert(fabs(tribo_get(m, TRIBO_Q_DELTA_X)) <=
-                          s.mu * tribo_get(m, TRIBO_Q_PSI_N) * (1 + 1e-9));
+                cr_assert(fabs(tribo_get(m, TRIBO_Q_DELTA_X)) <= s.mu * tribo_get(m, TRIBO_Q_PSI_N));
         }
         tribo_stats st;
         tribo_get_stats(m, &st);

@@ -117,7 +117,7 @@ Test(dashpot, the_centre_dashpot_can_gain_energy, .timeout = 180)
    lock holds the indentation delta_y (not the centre's height) while the particle turns
    (by 0.37 rad), the centre rising and falling with it (by 0.16), and Psi_N* stays inside
    the band of §3. With the centre dashpot the same lock holds Y instead, and delta_y moves
-   (measured: by 0.14, half of eps: the indentation the issue is about). */
+   (measured: by 0.14, half of eps: the indentation the contact-point dashpot is there to hold). */
 Test(dashpot, lock_holds_the_indentation_while_the_particle_turns, .timeout = 60)
 {
     for (int centre = 0; centre < 2; centre++) {

@@ -49,12 +49,12 @@ Test(liftoff, the_first_liftoff_ends_the_run_where_the_contact_is_lost)
         cr_expect_eq(tribo_get(m, TRIBO_Q_IN_CONTACT), 0.0);
         cr_expect_eq(tribo_get(m, TRIBO_Q_IMPACTS), 1.0);
         /* against the exact contact, measured (fixed step dt 1e-3 / CVODE Adams / BDF at rtol
-           1e-9): the lift-off time 4.5e-9 / 1.8e-8 / 6.6e-9, the speed 2.4e-10 / 2.8e-9 /
+           1e-9): the lift-off time 4.5e-9 / 1.8e-8 / 3.8e-9, the speed 2.4e-10 / 2.8e-9 /
            2.7e-9, the contact time 1.5e-4 (the fixed step books contact by whole steps) /
-           1.8e-8 / 3.1e-9; bounds about 4x those. (CVODE's errors follow rtol: at 1e-7 and
-           1e-11 the speed's are 8.4e-8 and 1.9e-11 for Adams.) */
-        const double tol_t[] = {2e-8, 8e-8, 2.5e-8}, tol_v[] = {1e-9, 1.2e-8, 1.2e-8},
-                     tol_contact[] = {1e-3, 8e-8, 1.2e-8};
+           1.8e-8 / 3.8e-9; bounds 3x those. (CVODE's errors follow rtol: at 1e-7 and 1e-11
+           the speed's are 8.4e-8 and 1.9e-11 for Adams.) */
+        const double tol_t[] = {1.3e-8, 5.5e-8, 1.1e-8}, tol_v[] = {7e-10, 8.5e-9, 8e-9},
+                     tol_contact[] = {4.4e-4, 5.5e-8, 1.1e-8};
         const double t = tribo_get(m, TRIBO_Q_TIME);
         cr_expect(fabs(t - t_lift) <= tol_t[k], "integrator %d: lift-off at %.12g, exact %.12g",
                   s.integrator, t, t_lift);
@@ -65,9 +65,9 @@ Test(liftoff, the_first_liftoff_ends_the_run_where_the_contact_is_lost)
                   s.integrator, tribo_get(m, TRIBO_Q_V), v);
         /* at the lowest point's clearance 0: the run ends where the integrated clearance G
            reaches 0 from below; the height Y is integrated beside it, and Y - h differs from G
-           by their roundings (measured -3.3e-16 for the fixed step) */
+           by their roundings (measured -3.3e-16 for the fixed step, 0 for CVODE; bound 3x) */
         const double clearance = tribo_get(m, TRIBO_Q_Y) - 1.0;
-        cr_expect(fabs(clearance) <= 1e-12, "integrator %d: clearance %.3g", s.integrator, clearance);
+        cr_expect(fabs(clearance) <= 1e-15, "integrator %d: clearance %.3g", s.integrator, clearance);
 
         /* every output frozen there, nothing can be changed, a reset runs it again */
         double before[TRIBO_Q_COUNT];
@@ -105,7 +105,9 @@ Test(liftoff, the_run_up_to_the_liftoff_is_the_unbounded_one)
                                            TRIBO_Q_CONTACT_TIME, TRIBO_Q_IMPACTS};
         for (size_t i = 0; i < sizeof compared / sizeof compared[0]; i++) {
             const double a = tribo_get(m, compared[i]), b = tribo_get(on, compared[i]);
-            cr_expect(fabs(a - b) <= 1e-14 * fmax(1.0, fabs(b)), "integrator %d, %s: %.17g, %.17g",
+            /* the same point reached another way: measured at most 2.9e-15 apart (Y, BDF),
+               bound 3x that */
+            cr_expect(fabs(a - b) <= 8.7e-15 * fmax(1.0, fabs(b)), "integrator %d, %s: %.17g, %.17g",
                       s.integrator, tribo_quantity_name(compared[i]), a, b);
         }
         cr_assert_eq(tribo_advance_fully(on, t + 1e-6), TRIBO_OK);
@@ -141,7 +143,7 @@ Test(liftoff, a_tilted_elongated_drop_ends_at_its_first_liftoff_too)
 {
     /* the paper's plate (45 degrees, friction and dissipation) and an ellipse thrown at it:
        the run ends in flight after one contact, the fixed step and CVODE at the same time
-       (measured 9.5e-7 apart relative, the fixed step's error at dt = 1e-4; bound 1e-5) */
+       (measured 9.6e-7 apart relative, the fixed step's error at dt = 1e-4; bound 3x that) */
     tribo_scene s = scene_of("epsilon=0.4 mu=0.5 nu=0.3 drop_speed=0.3 phi0=0.7 n_segments=200 dt=1e-4");
     s.run_end = TRIBO_RUN_END_FIRST_LIFTOFF;
     tribo_model *fixed, *cvode;
@@ -149,7 +151,7 @@ Test(liftoff, a_tilted_elongated_drop_ends_at_its_first_liftoff_too)
     run_to_the_liftoff(fixed, 200.0);
     run_to_the_liftoff(cvode, 200.0);
     const double a = tribo_get(fixed, TRIBO_Q_TIME), b = tribo_get(cvode, TRIBO_Q_TIME);
-    cr_expect(fabs(a - b) <= 1e-5 * b, "lift-off at %.10g (fixed step), %.10g (CVODE)", a, b);
+    cr_expect(fabs(a - b) <= 2.9e-6 * b, "lift-off at %.10g (fixed step), %.10g (CVODE)", a, b);
     cr_expect_eq(tribo_get(cvode, TRIBO_Q_IMPACTS), 1.0);
     cr_expect_eq(tribo_get(cvode, TRIBO_Q_IN_CONTACT), 0.0);
     cr_expect(tribo_get(cvode, TRIBO_Q_STATIC) > 0.0);

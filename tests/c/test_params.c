@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "param_table.h"
 #include "support.h"
 #include "tribo.h"
 
@@ -188,4 +189,18 @@ Test(params, tuning_Sigma0_moves_the_target_not_the_charge)
                            1e-14 * tribo_get(m, TRIBO_Q_SIGMA_MEAN), "a reset starts from the new Sigma0");
         tribo_free(m);
     }
+}
+
+Test(params, a_message_finds_a_parameters_name_and_its_choices_in_the_table)
+{
+    size_t n;
+    const tribo_param_info *rows = tribo_param_table(&n);
+    for (size_t i = 0; i < n; i++)
+        cr_expect_eq(tribo_param_of_field(rows[i].offset), &rows[i], "%s", rows[i].name);
+    cr_expect_str_eq(TRIBO_PARAM_NAME(work_limit), "work_limit");
+    cr_expect_str_eq(TRIBO_PARAM_ITEM_NAME(run_end, TRIBO_RUN_END_FIRST_LIFTOFF), "first_liftoff");
+    cr_expect_str_eq(TRIBO_PARAM_ITEM_NAME(integrator, TRIBO_INTEGRATOR_CVODE_BDF), "cvode_bdf");
+    /* a number has no items; an enumeration has no item past its last */
+    cr_expect_str_eq(TRIBO_PARAM_ITEM_NAME(mu, 0), "?");
+    cr_expect_str_eq(TRIBO_PARAM_ITEM_NAME(run_end, 2), "?");
 }

@@ -86,6 +86,24 @@ Test(si, every_model_parameter_is_reached_by_exactly_one_si_row)
                   "%s is not an SI parameter", MAPS[k].si);
 }
 
+/* The SI parameters whose range is the model's (TRIBO_SAME_PARAMETER rows). */
+static const char *const SAME_ROWS[] = {
+#define TRIBO_SAME_PARAMETER(name, ...) #name,
+#include "si_quantities.def"
+};
+
+Test(si, a_parameter_that_takes_the_models_range_says_which_model_parameter_it_is)
+{
+    /* without its TRIBO_MAPS row the range it takes would be no model parameter's */
+    for (size_t i = 0; i < sizeof SAME_ROWS / sizeof SAME_ROWS[0]; i++) {
+        int same = 0;
+        for (size_t k = 0; k < N_MAPS; k++)
+            same += MAPS[k].si && strcmp(MAPS[k].si, SAME_ROWS[i]) == 0 && strcmp(MAPS[k].how, "SAME") == 0;
+        cr_expect_eq(same, 1, "%s takes the model's range but has %d TRIBO_MAPS rows with SAME",
+                     SAME_ROWS[i], same);
+    }
+}
+
 Test(si, a_parameter_mapped_as_it_is_has_the_models_type_range_unit_and_variability)
 {
     for (size_t k = 0; k < N_MAPS; k++) {

@@ -30,19 +30,23 @@ def episode(image, speed, angle_deg, phi0_deg, epsilon, limit=200.0):
 def test_a_head_on_impact_of_a_disc_rebounds_straight_up_once(si_image):
     row = episode(si_image, 2.0, 90.0, 0.0, 1.0)
     assert row["lifted_off"] == 1
-    # straight back up, slower (the dashpot, nu = 0.3), no spin, one contact of ~pi t*
-    assert row["rebound_angle_deg"] == pytest.approx(90.0, abs=1e-9)
+    # straight back up, slower (the dashpot, nu = 0.3), no spin, one contact of ~pi t*: a
+    # head-on disc meets no tangential force, so the angle and the spin were measured exact
+    # (90 and 0), and the run ends at the end of its one contact, also to the bit; the
+    # speed's and the contact's ranges are what the physics allows (measured 0.73 of the
+    # speed in, and 3.26 t*)
+    assert row["rebound_angle_deg"] == 90.0
     assert 0.2 * 2.0 < row["rebound_speed"] < 2.0
-    assert abs(row["rebound_omega"]) < 1e-6
+    assert row["rebound_omega"] == 0.0
     assert 2.0 * row["t_star"] < row["contact_time"] < 5.0 * row["t_star"]
-    assert row["time_end"] == pytest.approx(row["contact_time"], rel=1e-6)
+    assert row["time_end"] == row["contact_time"]
     assert row["charge_static"] < 0.0  # PE on steel charges negatively
 
 
 def test_an_episode_that_outlasts_its_limit_counts_as_sustained_contact(si_image):
     row = episode(si_image, 2.0, 90.0, 0.0, 1.0, limit=0.5)  # half a t*: still pressing in
     assert row["lifted_off"] == 0
-    assert row["time_end"] == pytest.approx(0.5 * row["t_star"], rel=1e-12)
+    assert row["time_end"] == 0.5 * row["t_star"]  # the limit, measured to the bit
 
 
 @pytest.fixture(scope="module")
@@ -92,10 +96,10 @@ def test_the_lookup_is_the_episode_at_grid_points(small_map, si_image):
 def test_the_lookup_between_grid_points(small_map, si_image):
     out, _ = small_map
     m = ImpactMap.load(out)
-    # linear between the neighbours, exactly (to rounding)
+    # linear between the neighbours: midway, their mean (measured to the bit)
     a = m("charge_static", 1.0, 60.0, 0.0, 0.5)
     b = m("charge_static", 3.0, 60.0, 0.0, 0.5)
-    assert m("charge_static", 2.0, 60.0, 0.0, 0.5) == pytest.approx(0.5 * (a + b), rel=1e-12)
+    assert m("charge_static", 2.0, 60.0, 0.0, 0.5) == 0.5 * (a + b)
     # and close to the episode run there: the static charge per impact of a disc grows
     # smoothly with the speed (measured: the linear lookup is 2.32% below the episode at
     # 2 m/s, head-on; bound: that error with a margin of 1.5)

@@ -16,6 +16,7 @@ import pytest
 from fmpy import read_model_description
 from fmpy.validation import validate_fmu
 
+from tribo.fmu.charge_models import charge_models
 from tribo_fmu import BUILD_DIR, ERROR, OK, ROOT, VERSIONS, Slave, core_run, status_of
 
 # the dimensionless FMUs (tribo_fmi<v>) and the SI ones (tribo_si_fmi<v>)
@@ -139,7 +140,9 @@ def test_fmi3_arrays_are_sized_by_the_structural_parameter(fmu_dir):
     md = read_model_description(fmu_dir(3), validate=True)
     by_vr = {v.valueReference: v for v in md.modelVariables}
     arrays = [v for v in md.modelVariables if v.dimensions]
-    assert [v.name for v in arrays] == ["segment_charge_static", "segment_charge_sliding"]
+    # one per registered charge model (src/charge_registry.def), none other
+    assert [v.name for v in arrays] == [f"segment_charge_{m}" for m in charge_models(md)]
+    assert charge_models(md)
     for v in arrays:
         size = by_vr[v.dimensions[0].valueReference]
         # FMI 3.0: a dimension refers to a UInt64 structural parameter (or a constant)

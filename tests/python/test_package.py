@@ -15,12 +15,12 @@ import tomllib
 import numpy as np
 import pandas as pd
 import pytest
-from fmpy import simulate_fmu
+from fmpy import read_model_description, simulate_fmu
 
 import tribo
 from study_support import command
 from tribo.fmu import model_description
-from tribo.fmu.locate import build_dir
+from tribo.fmu.locate import VARIANTS, build_dir
 from tribo.fmu.parameters import ParameterError
 from tribo_fmu import ROOT
 
@@ -173,6 +173,14 @@ def test_sweep_and_load_results(fmu_file, tmp_path):
     pd.testing.assert_frame_equal(tribo.load_results(str(tmp_path / "sweep" / "results.csv")), df)
     one = tribo.run(epsilon=1.0, mu=0.1, n_segments=64, t_end=20.0, fmu=fmu_file(3))
     assert loaded["Q_static_end"].iloc[1] == one["Q_static"].iloc[-1]
+
+
+@pytest.mark.parametrize("variant", VARIANTS)
+@pytest.mark.parametrize("version", (2, 3))
+def test_find_fmu_finds_the_built_fmu_of_the_version_and_variant(version, variant):
+    md = read_model_description(tribo.find_fmu(version, variant=variant))
+    assert md.fmiVersion.split(".")[0] == str(version)
+    assert md.coSimulation.modelIdentifier == f"{VARIANTS[variant]}_fmi{version}"
 
 
 def test_find_fmu(tmp_path, monkeypatch):

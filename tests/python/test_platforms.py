@@ -165,7 +165,7 @@ def test_documentation_lists_every_variable(unpacked, version, prefix):
 @pytest.mark.parametrize("version", VERSIONS)
 def test_windows_binary_under_wine_matches_linux(unpacked, version, prefix):
     """Measured: at most 9.9e-11 relative (pointwise) to tau = 100 in the paper's
-    low-friction case; the issue's bound is 1e-9. Flags, classes and counts are equal."""
+    low-friction case; the bound is 1e-9. Flags, classes and counts are equal."""
     outputs, token = scalar_outputs(unpacked(version, prefix))
     linux, windows = PLATFORMS[version]
     base = os.path.join(unpacked(version, prefix), "binaries")

@@ -1,4 +1,4 @@
-/* matrix.h: the stability matrix of issue 5 — the paper's set-up with one parameter at
+/* matrix.h: the stability matrix — the paper's set-up with one parameter at
    the edge of its range at a time, and a few edges combined — and the checks each run
    must pass. Shared by the Criterion test and the report program. */
 #ifndef TRIBO_STABILITY_MATRIX_H

@@ -1,5 +1,5 @@
 /* physical_scale.h: the stability checks of matrix.h on physical set-ups (the SI front end,
-   docs/model.md §8): issue 12's reference case, a micro-scale one, and a grid of Young's
+   docs/model.md §8): the SI reference case, a micro-scale one, and a grid of Young's
    moduli and sizes, each run with CVODE from the drop to the chute's exit. */
 #ifndef TRIBO_STABILITY_PHYSICAL_SCALE_H
 #define TRIBO_STABILITY_PHYSICAL_SCALE_H

@@ -1,5 +1,5 @@
 /* The stability checks of the matrix (matrix.h) on physical set-ups through the SI front end
-   (docs/model.md §8, §9): issue 12's reference case (a 1 mm polyethylene grain dropped 10 mm
+   (docs/model.md §8, §9): the SI reference case (a 1 mm polyethylene grain dropped 10 mm
    onto a 0.3 m steel chute at 30 degrees) and a micro-scale one (a = 50 um) with every
    integrator, and a grid of Young's moduli (1 MPa .. 400 GPa) and sizes (10 um .. 10 mm)
    with CVODE: each runs from the drop to the chute's exit with finite outputs (SI ones too),

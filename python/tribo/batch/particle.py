@@ -16,6 +16,7 @@ import pandas as pd
 from fmpy.fmi1 import FMICallException
 
 from ..fmu import ERROR, FmuImage, Instance, record, unpacked
+from ..fmu.charge_models import segment_arrays
 from ..fmu.names import fmu_outputs, from_fmu_column, in_package_terms, to_fmu
 from .specs import RunSpec
 from .summary import MOTION_CLASSES, summarize
@@ -25,8 +26,6 @@ RECORDED = ["X", "Y", "phi_deg", "U", "V", "Omega", "delta_y", "in_contact", "Q_
             "contact_fraction", "turns", "motion_class"] \
            + [f"fraction_{m}" for m in MOTION_CLASSES] \
            + ["assumption_warnings"]
-# charge model -> the FMI 3.0 array of its per-segment charges
-SEGMENT_ARRAYS = {"static": "segment_charge_static", "sliding": "segment_charge_sliding"}
 # more recorded points than this is a mistake in the horizon or the interval, not a run
 MAX_POINTS = 10_000_000
 
@@ -82,8 +81,8 @@ def simulate(image: FmuImage, params: dict, t_end: float, record_interval: float
             instance.init(0.0, t_end)
             stage = "the run"
             reached, data = record(instance, times, fmu_names)
-            arrays = {model: instance.get(name) for model, name in SEGMENT_ARRAYS.items()
-                      if segments and name in instance.variables}
+            arrays = {model: instance.get(name) for model, name in segment_arrays(md).items()
+                      if segments}
             instance.terminate()
         except FMICallException as e:
             errors = [m for status, _, m in instance.messages if status >= ERROR]

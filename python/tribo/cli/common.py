@@ -58,20 +58,6 @@ def fail(prog: str, message: str, status: int = 2) -> int:
     return status
 
 
-def check_writable_file(path: str) -> None:
-    """OSError, naming the path, unless the file can be written (made, with its folders,
-    if it does not exist). Writes nothing that stays."""
-    check_writable_dir(os.path.dirname(os.path.abspath(path)))
-    if os.path.isdir(path):
-        raise OSError(f"cannot write {path}: it is a directory")
-    if os.path.exists(path):
-        try:
-            with open(path, "a"):
-                pass
-        except OSError as e:
-            raise OSError(f"cannot write {path}: {e.strerror}") from None
-
-
 def check_writable_dir(path: str) -> None:
     """OSError, naming the path, unless files can be made in the folder (made if missing)."""
     if os.path.exists(path) and not os.path.isdir(path):

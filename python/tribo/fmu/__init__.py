@@ -7,6 +7,7 @@
     names       the package's names and units of the FMUs' variables: angles in degrees
                 (<name>_deg), the SI FMUs' size as the long diameter `size`
     parameters  parameter names and values checked by the FMU before any run
+    charge_models  the registered charge models and the enumerations an FMU declares
 
 The driver's names are importable from here (`from tribo.fmu import Instance, FmuImage`).
 """
