@@ -1,8 +1,8 @@
 /* force_phases.h: the force law of model.md §3 cut into smooth pieces (phases) and the
    switches between them, for an event-driven integrator: which functions of the state
    cross zero at a switch, which way, and the phase (with the resets of model.md §3) after it. */
-#ifndef TRIBO_FORCE_MODES_H
-#define TRIBO_FORCE_MODES_H
+#ifndef TRIBO_FORCE_PHASES_H
+#define TRIBO_FORCE_PHASES_H
 
 #include "dynamics.h"
 
