@@ -24,6 +24,14 @@ static double load(fmu_c_type t, const void *values, size_t i)
     return NAN;
 }
 
+/* The value of v at values[i]: an FMI 2.0 Boolean is an int, any but 0 true (C's truth,
+   which importers pass: fmi2True is 1, but nothing else is false). */
+static double load_value(const fmu_variable *v, fmu_c_type t, const void *values, size_t i)
+{
+    const double value = load(t, values, i);
+    return v->type == FMU_TYPE_BOOLEAN ? (double)(value != 0.0) : value;
+}
+
 /* Values stored into integer arrays are integers: validated parameters, flags, classes
    and counts. A count beyond the array's type saturates (a count of 2^31 steps outside
    the model's assumptions says as much as a larger one). */
@@ -234,7 +242,7 @@ static int model_accepts(const fmu_instance *inst, const fmu_variable *v, double
 static int check_value(fmu_instance *inst, const char *fn, const fmu_variable *v, fmu_c_type c_type,
                        void *values, size_t k)
 {
-    const double value = load(c_type, values, k);
+    const double value = load_value(v, c_type, values, k);
     const tribo_param_info *p = fmu_variable_param(v);
     if (!p) {
         fmu_error(inst, "%s: %s (value reference %u) is %s, computed by the FMU: it cannot be set "
@@ -271,7 +279,7 @@ static int check_value(fmu_instance *inst, const char *fn, const fmu_variable *v
 static int apply_value(fmu_instance *inst, const char *fn, const fmu_variable *v, fmu_c_type c_type,
                        void *values, size_t k)
 {
-    const double value = load(c_type, values, k);
+    const double value = load_value(v, c_type, values, k);
     if (v->maps_to == FMU_MAPS_TO_INPUT) {
         /* applied by the next step, from its communication point on */
         inst->inputs[v->index] = value;
