@@ -27,7 +27,10 @@ fmu_core *fmu_front_create(const fmu_derived *d, tribo_log_fn log, void *user, c
 
 void fmu_front_free(fmu_core *core) { tribo_free(model_of(core)); }
 
-const char *fmu_front_last_error(const fmu_core *core) { return tribo_last_error(const_model_of(core)); }
+const char *fmu_front_last_error(const fmu_core *core)
+{
+    return tribo_last_error(const_model_of(core));
+}
 
 double fmu_front_core_time(fmu_core *core)
 {
@@ -39,7 +42,10 @@ tribo_status fmu_front_set_inputs(fmu_core *core, const double model_values[])
     return tribo_set_inputs(model_of(core), model_values);
 }
 
-tribo_status fmu_front_advance(fmu_core *core, double t) { return tribo_advance(model_of(core), t); }
+tribo_status fmu_front_advance(fmu_core *core, double t)
+{
+    return tribo_advance(model_of(core), t);
+}
 
 /* The fixed step's grid where t / dt reaches 2^45 (src/integrator_fixed_step.c,
    GRID_MAX_STEPS). */
@@ -122,14 +128,16 @@ tribo_status fmu_front_state_load(fmu_core *core, const fmu_derived *d, const vo
     const tribo_scene *scene = fmu_front_model_scene((fmu_derived *)d);
     size_t n_params;
     const tribo_param_info *params = tribo_param_table(&n_params);
-    for (size_t i = 0; i < n_params; i++)
-        if (tribo_param_read(scene, &params[i]) != tribo_param_read(tribo_get_scene(m), &params[i])) {
+    for (size_t i = 0; i < n_params; i++) {
+        const double mine = tribo_param_read(scene, &params[i]),
+                     core = tribo_param_read(tribo_get_scene(m), &params[i]);
+        if (mine != core) {
             snprintf(why, why_size,
                      "the state is corrupt: its parameters make %s = %.17g, its core state has "
                      "%.17g",
-                     params[i].name, tribo_param_read(scene, &params[i]),
-                     tribo_param_read(tribo_get_scene(m), &params[i]));
+                     params[i].name, mine, core);
             return TRIBO_ERR_STATE;
         }
+    }
     return TRIBO_OK;
 }

@@ -28,7 +28,10 @@ const char fmu_front_exited_state_name[] =
 /* the default set-up's grain falls 0.5 m in about a third of a second */
 const struct fmu_default_experiment fmu_front_default_experiment = {1, 1e-3};
 
-const tribo_param_info *fmu_front_params(size_t *count) { return tribo_separator_param_table(count); }
+const tribo_param_info *fmu_front_params(size_t *count)
+{
+    return tribo_separator_param_table(count);
+}
 
 const tribo_param_info *fmu_front_param_find(const char *name)
 {
@@ -148,10 +151,12 @@ void fmu_front_over_reason(fmu_core *core, char *reason, size_t reason_size)
 {
     const tribo_separator *s = core->separator;
     if (tribo_separator_end_of(s) == TRIBO_SEPARATOR_LANDED)
-        snprintf(reason, reason_size, "the grain landed in bin %d of %d at x = %.17g m", tribo_separator_bin(s),
-                 tribo_separator_get_scene(s)->n_bins, tribo_separator_get(s, TRIBO_SEPARATOR_Q_X_END));
+        snprintf(reason, reason_size, "the grain landed in bin %d of %d at x = %.17g m",
+                 tribo_separator_bin(s), tribo_separator_get_scene(s)->n_bins,
+                 tribo_separator_get(s, TRIBO_SEPARATOR_Q_X_END));
     else
-        snprintf(reason, reason_size, "the grain was caught on the plate at x = %s gap/2, z = %.17g m",
+        snprintf(reason, reason_size,
+                 "the grain was caught on the plate at x = %s gap/2, z = %.17g m",
                  tribo_separator_get(s, TRIBO_SEPARATOR_Q_ELECTRODE) > 0 ? "+" : "-",
                  tribo_separator_get(s, TRIBO_SEPARATOR_Q_Z_END));
 }
@@ -194,7 +199,10 @@ tribo_status fmu_front_set_param(fmu_core *core, fmu_derived *d, const char *mod
     return TRIBO_ERR_INVALID_ARGUMENT;
 }
 
-size_t fmu_front_state_size(const fmu_core *core) { return tribo_separator_state_size(core->separator); }
+size_t fmu_front_state_size(const fmu_core *core)
+{
+    return tribo_separator_state_size(core->separator);
+}
 
 tribo_status fmu_front_state_save(const fmu_core *core, void *bytes, size_t size)
 {

@@ -61,8 +61,8 @@ class Chute:
         return [compliant, {"integrator": 1}, {"integrator": 2},
                 {"integrator": 1, "stick_model": 1, "mu": 1.0, "epsilon": 0.5},
                 {"integrator": 1, "mu": 1.0, "nu": 1.0},
-                {**compliant, "work_limit": 50, "discard": True}, {"lifecycle": "Initialization Mode"},
-                {"lifecycle": "Instantiated"}, {"integrator": 1, "chute_length": 0.01},
+                {**compliant, "work_limit": 50, "discard": True},
+                {"lifecycle": "Initialization Mode"}, {"lifecycle": "Instantiated"}, {"integrator": 1, "chute_length": 0.01},
                 {**compliant, "chute_length": 0.01}]
 
 
@@ -127,7 +127,9 @@ class SI(Chute):
     def convert(u, how, x):
         return {"same": lambda: x, "length": lambda: x / u["a"], "time": lambda: x / u["t_star"],
                 "speed": lambda: x / u["velocity"], "rate": lambda: x * u["t_star"],
-                "density": lambda: abs(x) / u["sigma"], "force": lambda: x / u["force"]}[how]()
+                "density": lambda: abs(x) / u["sigma"], "force": lambda: x / u["force"],
+                # a density where 0 means no limit (breakdown_density: Sigma_bd = INF)
+                "limit": lambda: math.inf if x == 0.0 else x / u["sigma"]}[how]()
 
     def in_range(self, model_name, x):
         lo, hi, bounded = self.ranges[model_name]

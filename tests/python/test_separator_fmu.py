@@ -95,7 +95,8 @@ def test_grain_lands_in_the_bin_of_the_closed_form(fmu_dir, version, q_per_m, di
     assert s.get("flight_time") == pytest.approx(T, rel=CLOSE)
     assert s.t == pytest.approx(t_release + T, rel=CLOSE)
     assert s.get("q_per_m") == q_per_m
-    assert s.get("y") == pytest.approx((0.0 if direction == 1 else horizontal) * T, rel=CLOSE, abs=1e-12)
+    vy0 = 0.0 if direction == 1 else horizontal
+    assert s.get("y") == pytest.approx(vy0 * T, rel=CLOSE, abs=1e-12)
     # the run is over: a further step is refused, saying how it ended
     assert status_of(s.fmu.doStep, s.t, STEP) == ERROR
     assert f"the grain landed in bin {bin_of(x_end)} of {N_BINS}" in s.errors()[-1]
@@ -129,8 +130,8 @@ def test_bad_inputs_and_parameters_are_refused_naming_them(fmu_dir, version):
                               "<= 1000"),
             ("v_entry", math.nan, "v_entry = nan is invalid"),
             ("gap", 0.0, "gap = 0 is invalid: the valid range is 0.0001 <= gap <= 10"),
-            ("n_bins", 0, "n_bins = 0 is invalid: the valid range is an integer with 1 <= n_bins <= "
-                           "100000")]:
+            ("n_bins", 0, "n_bins = 0 is invalid: the valid range is an integer with 1 <= "
+                          "n_bins <= 100000")]:
         assert status_of(s.set, **{name: value}) == ERROR, name
         assert text in s.errors()[-1], (name, s.errors()[-1])
     # a refused value changes nothing
