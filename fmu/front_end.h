@@ -130,9 +130,9 @@ tribo_status fmu_front_set_param(fmu_core *core, fmu_derived *d, const char *mod
 int fmu_front_run_over(fmu_core *core);
 void fmu_front_over_reason(fmu_core *core, char *reason, size_t reason_size);
 
-/* The core's state: plain bytes, no pointers. A load checks the bytes against the core's
-   scene (d's: the parameters the FMU reports must be the core's) and its ranges; a refusal
-   leaves the core as it was, the reason in why. */
+/* The core's state: plain bytes, no pointers. A load into a fresh core checks the bytes
+   against the core's scene (d's: the parameters the FMU reports must be the core's) and its
+   ranges; after a refusal, the reason in why, the core is only to be freed. */
 size_t fmu_front_state_size(const fmu_core *core);
 tribo_status fmu_front_state_save(const fmu_core *core, void *bytes, size_t size);
 tribo_status fmu_front_state_load(fmu_core *core, const fmu_derived *d, const void *bytes,
