@@ -24,6 +24,14 @@ static double load(fmu_c_type t, const void *values, size_t i)
     return NAN;
 }
 
+/* The value of v at values[i]: an FMI 2.0 Boolean is an int, any but 0 true (C's truth,
+   which importers pass: fmi2True is 1, but nothing else is false). */
+static double load_value(const fmu_variable *v, fmu_c_type t, const void *values, size_t i)
+{
+    const double value = load(t, values, i);
+    return v->type == FMU_TYPE_BOOLEAN ? (double)(value != 0.0) : value;
+}
+
 /* Values stored into integer arrays are integers: validated parameters, flags, classes
    and counts. A count beyond the array's type saturates (a count of 2^31 steps outside
    the model's assumptions says as much as a larger one). */
@@ -140,14 +148,14 @@ static int read_variable(fmu_instance *inst, const char *fn, const fmu_variable 
     case FMU_MAPS_TO_QUANTITY: {
         if (!model_readable(inst, fn, v))
             return 0;
-        const double value = fmu_front_get(&inst->derived, inst->model, v->index);
+        const double value = fmu_front_get(&inst->derived, inst->core, v->index);
         /* after a failed step the core may hold what is not a number: never with OK (a
            calculated parameter of a parameter that may be INF may be INF: the chute's
            length with no end) */
         const int no_end = value == INFINITY && v->causality == FMU_CAUSALITY_CALCULATED_PARAMETER;
         if (!isfinite(value) && !no_end) {
             fmu_error(inst, "%s: %s = %g is not a finite number (the core failed: %s)", fn,
-                      v->name, value, tribo_last_error(inst->model));
+                      v->name, value, fmu_front_last_error(inst->core));
             return 0;
         }
         store(c_type, values, k, value);
@@ -159,22 +167,14 @@ static int read_variable(fmu_instance *inst, const char *fn, const fmu_variable 
         /* segment arrays are Float64 only (the type check saw to it) */
         double *out = (double *)values + k;
         const size_t n = value_count(inst, v);
-        const tribo_segment_charge which = (tribo_segment_charge)v->index;
-        /* a charge model the scene leaves out has no charge: zeros, as its mean */
-        if (!tribo_includes_charge_model(inst->model, which)) {
-            for (size_t i = 0; i < n; i++)
-                out[i] = 0.0;
-            return 1;
-        }
-        if (tribo_get_segment_charges(inst->model, which, out, n) != TRIBO_OK) {
-            fmu_error(inst, "%s: %s: %s", fn, v->name, tribo_last_error(inst->model));
+        if (fmu_front_segments(&inst->derived, inst->core, v->index, out, n) != TRIBO_OK) {
+            fmu_error(inst, "%s: %s: %s", fn, v->name, fmu_front_last_error(inst->core));
             return 0;
         }
-        const double factor = fmu_front_segment_factor(&inst->derived, which);
         for (size_t i = 0; i < n; i++)
-            if (!isfinite(out[i] *= factor)) {
+            if (!isfinite(out[i])) {
                 fmu_error(inst, "%s: %s[%zu] = %g is not a finite number (the core failed: %s)",
-                          fn, v->name, i, out[i], tribo_last_error(inst->model));
+                          fn, v->name, i, out[i], fmu_front_last_error(inst->core));
                 return 0;
             }
         return 1;
@@ -227,8 +227,8 @@ static int model_accepts(const fmu_instance *inst, const fmu_variable *v, double
                          size_t msg_size)
 {
     if (v->maps_to == FMU_MAPS_TO_INPUT) {
-        double inputs[TRIBO_INPUT_COUNT], model_inputs[TRIBO_INPUT_COUNT];
-        for (int i = 0; i < TRIBO_INPUT_COUNT; i++)
+        double inputs[FMU_MAX_INPUTS], model_inputs[FMU_MAX_INPUTS];
+        for (int i = 0; i < fmu_front_input_count(); i++)
             inputs[i] = i == v->index ? value : inst->inputs[i];
         return fmu_front_model_inputs(&inst->derived, inputs, model_inputs, msg, msg_size) == TRIBO_OK;
     }
@@ -242,7 +242,7 @@ static int model_accepts(const fmu_instance *inst, const fmu_variable *v, double
 static int check_value(fmu_instance *inst, const char *fn, const fmu_variable *v, fmu_c_type c_type,
                        void *values, size_t k)
 {
-    const double value = load(c_type, values, k);
+    const double value = load_value(v, c_type, values, k);
     const tribo_param_info *p = fmu_variable_param(v);
     if (!p) {
         fmu_error(inst, "%s: %s (value reference %u) is %s, computed by the FMU: it cannot be set "
@@ -279,7 +279,7 @@ static int check_value(fmu_instance *inst, const char *fn, const fmu_variable *v
 static int apply_value(fmu_instance *inst, const char *fn, const fmu_variable *v, fmu_c_type c_type,
                        void *values, size_t k)
 {
-    const double value = load(c_type, values, k);
+    const double value = load_value(v, c_type, values, k);
     if (v->maps_to == FMU_MAPS_TO_INPUT) {
         /* applied by the next step, from its communication point on */
         inst->inputs[v->index] = value;
@@ -293,13 +293,12 @@ static int apply_value(fmu_instance *inst, const char *fn, const fmu_variable *v
             char msg[512];
             if (fmu_front_tunable(&inst->derived, p, value, &model_name, &model_value, msg,
                                   sizeof msg) != TRIBO_OK ||
-                tribo_set_param(inst->model, model_name, model_value) != TRIBO_OK) {
+                fmu_front_set_param(inst->core, &inst->derived, model_name, model_value) !=
+                    TRIBO_OK) {
                 inst->lifecycle = FMU_LIFECYCLE_FAILED;
-                fmu_error(inst, "%s: %s", fn, tribo_last_error(inst->model));
+                fmu_error(inst, "%s: %s", fn, fmu_front_last_error(inst->core));
                 return 0;
             }
-            tribo_param_write(fmu_front_model_scene(&inst->derived), tribo_param_find(model_name),
-                              model_value);
         } else if (tribo_param_read(&inst->scene, p) != value) {
             inst->model_outdated = 1;
         }

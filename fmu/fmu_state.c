@@ -10,14 +10,16 @@
  *   number of parameters, every parameter (in the order of the front end's table: the SI
  *   FMUs save the SI scene),
  *   core instance outdated, tolerances set explicitly (bit 0: rtol, bit 1: atol), size of
- *   the core's state, the core's state (tribo_state_save)
+ *   the core's state, the core's state (the front end's: tribo_state_save,
+ *   tribo_separator_state_save)
  *
  * A core state size of 0 means there is no core instance to keep: none yet (before
  * initialization), or one made for parameters changed since, which would be remade.
  *
- * Restoring checks every field against what an instance can hold, derives the model's scene
+ * Restoring checks every field against what an instance can hold, derives the core's scene
  * from the parameters as the front end does (front_end.h) and loads the core's state into a
  * new core instance of that scene; the instance changes only once all of it is accepted.
+ * The inputs are the front end's (fmu_front_input_count of them).
  */
 #include "instance_private.h"
 
@@ -39,7 +41,7 @@ enum { LAYOUT_VERSION = 4, HEADER_SIZE = 8 + 3 * 8 };
 /* Everything but the core's state: the header, 9 fields, the inputs and the parameters. */
 static size_t fixed_size(size_t n_params)
 {
-    return HEADER_SIZE + 9 * 8 + TRIBO_INPUT_COUNT * 8 + n_params * 8;
+    return HEADER_SIZE + 9 * 8 + (size_t)fmu_front_input_count() * 8 + n_params * 8;
 }
 
 /* ---- save ---------------------------------------------------------------------- */
@@ -55,8 +57,8 @@ fmu_status fmu_state_get(fmu_instance *inst, const char *fn, fmu_state **state)
     size_t n_params;
     const tribo_param_info *params = fmu_front_params(&n_params);
     /* a core instance made for parameters changed since would be remade: not worth keeping */
-    const tribo_model *core = inst->model && !inst->model_outdated ? inst->model : NULL;
-    const size_t core_size = core ? tribo_state_size(core) : 0;
+    const fmu_core *core = inst->core && !inst->model_outdated ? inst->core : NULL;
+    const size_t core_size = core ? fmu_front_state_size(core) : 0;
     const size_t size = fixed_size(n_params) + core_size;
 
     fmu_state *s = *state;
@@ -77,7 +79,7 @@ fmu_status fmu_state_get(fmu_instance *inst, const char *fn, fmu_state **state)
     tribo_write_double(&c, inst->stop_time);
     tribo_write_int(&c, inst->stop_time_defined);
     tribo_write_double(&c, inst->time);
-    for (int i = 0; i < TRIBO_INPUT_COUNT; i++)
+    for (int i = 0; i < fmu_front_input_count(); i++)
         tribo_write_double(&c, inst->inputs[i]);
     tribo_write_int(&c, (int64_t)n_params);
     for (size_t i = 0; i < n_params; i++)
@@ -86,8 +88,8 @@ fmu_status fmu_state_get(fmu_instance *inst, const char *fn, fmu_state **state)
     /* an importer's tolerance, given later, must not override what was set explicitly */
     tribo_write_int(&c, (inst->rtol_set ? 1 : 0) | (inst->atol_set ? 2 : 0));
     tribo_write_int(&c, (int64_t)core_size);
-    if (core_size && tribo_state_save(core, c.p, core_size) != TRIBO_OK)
-        return fmu_error(inst, "%s: %s", fn, tribo_last_error(inst->model));
+    if (core_size && fmu_front_state_save(core, c.p, core_size) != TRIBO_OK)
+        return fmu_error(inst, "%s: %s", fn, fmu_front_last_error(inst->core));
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s() at time %.17g: %zu bytes", fn, inst->time, size);
     return FMU_OK;
 }
@@ -117,7 +119,7 @@ static const char *header_problem(const fmu_instance *inst, const unsigned char 
 typedef struct restored {
     int64_t lifecycle, stop_time_defined, model_outdated, tolerances_set;
     double start_time, stop_time, time;
-    double inputs[TRIBO_INPUT_COUNT];
+    double inputs[FMU_MAX_INPUTS];
     fmu_scene scene;
     fmu_derived derived; /* the front end's of scene, when there is a core state */
     const unsigned char *core;
@@ -155,7 +157,9 @@ static const char *read_restored(const fmu_instance *inst, const fmu_state *s, r
     r->stop_time_defined = tribo_read_int(&c);
     r->time = tribo_read_double(&c);
     const tribo_param_info *inputs = fmu_front_inputs();
-    for (int i = 0; i < TRIBO_INPUT_COUNT; i++) {
+    for (int i = 0; i < FMU_MAX_INPUTS; i++)
+        r->inputs[i] = 0.0;
+    for (int i = 0; i < fmu_front_input_count(); i++) {
         r->inputs[i] = tribo_read_double(&c);
         if (tribo_param_check(&inputs[i], r->inputs[i], msg, msg_size) != TRIBO_OK)
             return msg;
@@ -192,51 +196,33 @@ static const char *read_restored(const fmu_instance *inst, const fmu_state *s, r
 
 /* A core instance in the saved core state, for the restored parameters (r->derived is made
    of them); NULL after logging why not. */
-static tribo_model *load_core(fmu_instance *inst, const char *fn, restored *r)
+static fmu_core *load_core(fmu_instance *inst, const char *fn, restored *r)
 {
     char why[512];
-    double t;
-    if (tribo_state_time(r->core, (size_t)r->core_size, &t) != TRIBO_OK || !isfinite(t)) {
-        fmu_error(inst, "%s: the state is corrupt: its core state is not one", fn);
-        return NULL;
-    }
     if (fmu_front_derive(&r->scene, &r->derived, why, sizeof why) != TRIBO_OK) {
         fmu_error(inst, "%s: the state is corrupt: its parameters make no model: %s", fn, why);
         return NULL;
     }
-    /* the FMU's time is the start time plus the core's, in the front end's unit */
-    const double unit = fmu_front_time_unit(&r->derived);
-    if (!(fabs(r->time - (r->start_time + unit * t)) <= fmu_rounding_tolerance(r->time))) {
-        fmu_error(inst, "%s: the state is corrupt: its time %.17g is not its start time %.17g "
-                  "plus the core's time %.17g (times %.17g)", fn, r->time, r->start_time, t, unit);
-        return NULL;
-    }
-    const tribo_scene *scene = fmu_front_model_scene(&r->derived);
-    tribo_model *m = tribo_create(scene, why, sizeof why);
+    fmu_core *m = fmu_front_create(&r->derived, fmu_core_logger, inst, why, sizeof why);
     if (!m) {
         fmu_error(inst, "%s: the model cannot be created: %s", fn, why);
         return NULL;
     }
-    if (tribo_state_load(m, r->core, (size_t)r->core_size) != TRIBO_OK) {
-        fmu_error(inst, "%s: the core refused the state: %s", fn, tribo_last_error(m));
-        tribo_free(m);
+    if (fmu_front_state_load(m, &r->derived, r->core, (size_t)r->core_size, why, sizeof why) !=
+        TRIBO_OK) {
+        fmu_error(inst, "%s: %s", fn, why);
+        fmu_front_free(m);
         return NULL;
     }
-    /* the parameters the FMU reports are the core's */
-    const tribo_param_info *differs = NULL;
-    size_t n_params;
-    const tribo_param_info *params = tribo_param_table(&n_params);
-    for (size_t i = 0; i < n_params && !differs; i++)
-        if (tribo_param_read(scene, &params[i]) != tribo_param_read(tribo_get_scene(m), &params[i]))
-            differs = &params[i];
-    if (differs) {
-        fmu_error(inst, "%s: the state is corrupt: its parameters make %s = %.17g, its core state "
-                  "has %.17g", fn, differs->name, tribo_param_read(scene, differs),
-                  tribo_param_read(tribo_get_scene(m), differs));
-        tribo_free(m);
+    /* the FMU's time is the start time plus the core's, in the front end's unit */
+    const double unit = fmu_front_time_unit(&r->derived), t = fmu_front_core_time(m);
+    if (!isfinite(t) ||
+        !(fabs(r->time - (r->start_time + unit * t)) <= fmu_rounding_tolerance(r->time))) {
+        fmu_error(inst, "%s: the state is corrupt: its time %.17g is not its start time %.17g "
+                  "plus the core's time %.17g (times %.17g)", fn, r->time, r->start_time, t, unit);
+        fmu_front_free(m);
         return NULL;
     }
-    tribo_set_logger(m, fmu_core_logger, inst);
     return m;
 }
 
@@ -253,30 +239,29 @@ fmu_status fmu_state_set(fmu_instance *inst, const char *fn, const fmu_state *s)
     char msg[512];
     if ((problem = read_restored(inst, s, &r, msg, sizeof msg)))
         return fmu_error(inst, "%s: the state is corrupt: %s", fn, problem);
-    tribo_model *model = NULL;
+    fmu_core *model = NULL;
     if (r.core_size && !(model = load_core(inst, fn, &r)))
         return FMU_ERROR;
-    /* the FMU is in its exited state exactly when the core's run is over (model.md §9: the
-       particle left the chute, or lifted off with run_end = first_liftoff), or has been
-       terminated */
-    const int over = model && (tribo_get(model, TRIBO_Q_EXITED) != 0.0 ||
-                               tribo_get(model, TRIBO_Q_LIFTED_OFF) != 0.0);
+    /* the FMU is in its exited state exactly when the core's run is over (the chute's: the
+       particle left it, or lifted off with run_end = first_liftoff, model.md §9; the
+       separator's: the grain reached the bins or a plate, §10), or has been terminated */
+    const int over = model && fmu_front_run_over(model);
     if (model && r.lifecycle != FMU_LIFECYCLE_TERMINATED && over != (r.lifecycle == FMU_LIFECYCLE_EXITED)) {
-        tribo_free(model);
+        fmu_front_free(model);
         return fmu_error(inst, "%s: the state is corrupt: its run %s over, but its FMI state is %s",
                          fn, over ? "is" : "is not", fmu_lifecycle_name((fmu_lifecycle)r.lifecycle));
     }
 
     /* all accepted: the instance becomes the state */
-    tribo_free(inst->model);
-    inst->model = model;
+    fmu_front_free(inst->core);
+    inst->core = model;
     if (model)
         inst->derived = r.derived;
     inst->model_outdated = r.model_outdated != 0;
     inst->rtol_set = (r.tolerances_set & 1) != 0;
     inst->atol_set = (r.tolerances_set & 2) != 0;
     inst->scene = r.scene;
-    for (int i = 0; i < TRIBO_INPUT_COUNT; i++)
+    for (int i = 0; i < FMU_MAX_INPUTS; i++)
         inst->inputs[i] = r.inputs[i];
     inst->lifecycle = (fmu_lifecycle)r.lifecycle;
     inst->start_time = r.start_time;

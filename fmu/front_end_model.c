@@ -1,6 +1,6 @@
 /* front_end_model.c: the dimensionless FMUs' front end (front_end.h): the core's own table,
    every value passed on as it is. */
-#include "front_end.h"
+#include "front_end_chute.h"
 
 const char fmu_front_prefix[] = "tribo";
 const char fmu_front_table_file[] = "src/quantities.def";
@@ -36,9 +36,8 @@ tribo_status fmu_front_tunable(const fmu_derived *d, const tribo_param_info *p, 
     return tribo_param_check(p, value, msg, msg_size);
 }
 
-tribo_status fmu_front_model_inputs(const fmu_derived *d, const double values[TRIBO_INPUT_COUNT],
-                                    double model_values[TRIBO_INPUT_COUNT], char *msg,
-                                    size_t msg_size)
+tribo_status fmu_front_model_inputs(const fmu_derived *d, const double values[],
+                                    double model_values[], char *msg, size_t msg_size)
 {
     (void)d;
     const tribo_param_info *inputs = tribo_input_table(NULL);
@@ -56,10 +55,10 @@ double fmu_front_time_unit(const fmu_derived *d)
     return 1.0;
 }
 
-double fmu_front_get(const fmu_derived *d, tribo_model *m, int quantity)
+double fmu_front_get(const fmu_derived *d, fmu_core *core, int quantity)
 {
     (void)d;
-    return tribo_get(m, (tribo_quantity)quantity);
+    return tribo_get((tribo_model *)core, (tribo_quantity)quantity);
 }
 
 double fmu_front_segment_factor(const fmu_derived *d, tribo_segment_charge which)

@@ -1,7 +1,7 @@
 /* front_end_si.c: the SI FMUs' front end (front_end.h): a physical set-up in SI units
    (src/si_quantities.def) mapped onto the model by the core's SI front end (src/si.h,
    docs/model.md §8). */
-#include "front_end.h"
+#include "front_end_chute.h"
 
 const char fmu_front_prefix[] = "tribo_si";
 const char fmu_front_table_file[] = "src/si_quantities.def";
@@ -36,18 +36,17 @@ tribo_status fmu_front_tunable(const fmu_derived *d, const tribo_param_info *p, 
     return tribo_si_model_param(&d->si, p, value, model_name, model_value, msg, msg_size);
 }
 
-tribo_status fmu_front_model_inputs(const fmu_derived *d, const double values[TRIBO_INPUT_COUNT],
-                                    double model_values[TRIBO_INPUT_COUNT], char *msg,
-                                    size_t msg_size)
+tribo_status fmu_front_model_inputs(const fmu_derived *d, const double values[],
+                                    double model_values[], char *msg, size_t msg_size)
 {
     return tribo_si_model_inputs(&d->si, values, model_values, msg, msg_size);
 }
 
 double fmu_front_time_unit(const fmu_derived *d) { return d->si.t_star; }
 
-double fmu_front_get(const fmu_derived *d, tribo_model *m, int quantity)
+double fmu_front_get(const fmu_derived *d, fmu_core *core, int quantity)
 {
-    return tribo_si_get(&d->si, m, (tribo_si_quantity)quantity);
+    return tribo_si_get(&d->si, (tribo_model *)core, (tribo_si_quantity)quantity);
 }
 
 double fmu_front_segment_factor(const fmu_derived *d, tribo_segment_charge which)

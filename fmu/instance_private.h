@@ -17,7 +17,8 @@ typedef enum fmu_lifecycle {
        can be read, and terminate, reset or a saved FMU state lead on */
     FMU_LIFECYCLE_STEP_DISCARDED,
     FMU_LIFECYCLE_FAILED, /* the core failed: only reset, a saved FMU state or free help */
-    /* the particle left the chute (model.md §9): the run is over; outputs and FMU states can
+    /* the core's run is over (the chute's: the particle left it, model.md §9; the
+       separator's: the grain reached the bins or a plate, §10); outputs and FMU states can
        be read, and terminate, reset or a saved FMU state lead on (FMI 2.0: fmi2Terminated;
        FMI 3.0: terminateSimulation) */
     FMU_LIFECYCLE_EXITED
@@ -35,11 +36,11 @@ struct fmu_instance {
     /* The parameters as the importer sees them (the front end's table); tunable changes
        while running go to the model too. */
     fmu_scene scene;
-    double inputs[TRIBO_INPUT_COUNT]; /* the importer's, in the front end's units */
+    double inputs[FMU_MAX_INPUTS]; /* the importer's, in the front end's units */
     /* The core instance: made when first needed after initialization starts, remade
        when a parameter changed since (model_outdated), from `derived`: what the front end
-       made of `scene` then (the model's scene and the units of the outputs). */
-    tribo_model *model;
+       made of `scene` then (the core's scene and the units of the outputs). */
+    fmu_core *core;
     int model_outdated;
     fmu_derived derived;
 

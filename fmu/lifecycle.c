@@ -15,8 +15,8 @@ static const char *const LIFECYCLE_NAMES[] = {
     [FMU_LIFECYCLE_STEP_DISCARDED] =
         "Step Discarded (stepFailed: the last step ended early; terminate, reset or restore a state)",
     [FMU_LIFECYCLE_FAILED] = "Error (after a failure of the core: reset the instance or restore a state)",
-    [FMU_LIFECYCLE_EXITED] = "Exited (the run is over: the particle left the chute, or lifted off "
-                             "where run_end = first_liftoff; terminate, reset or restore a state)",
+    /* the front end's: what ends its core's run */
+    [FMU_LIFECYCLE_EXITED] = fmu_front_exited_state_name,
 };
 
 const char *fmu_lifecycle_name(fmu_lifecycle state) { return LIFECYCLE_NAMES[state]; }
@@ -31,13 +31,14 @@ int fmu_lifecycle_allows(fmu_instance *inst, const char *fn, unsigned states)
 
 void fmu_restore_start_values(fmu_instance *inst)
 {
-    tribo_free(inst->model);
-    inst->model = NULL;
+    fmu_front_free(inst->core);
+    inst->core = NULL;
     inst->model_outdated = 0;
     fmu_front_defaults(&inst->scene);
     inst->rtol_set = inst->atol_set = 0;
-    for (int i = 0; i < TRIBO_INPUT_COUNT; i++)
-        inst->inputs[i] = 0.0;
+    const tribo_param_info *inputs = fmu_front_inputs();
+    for (int i = 0; i < FMU_MAX_INPUTS; i++)
+        inst->inputs[i] = i < fmu_front_input_count() ? inputs[i].start : 0.0;
     inst->start_time = 0.0;
     inst->stop_time = 0.0;
     inst->stop_time_defined = 0;
@@ -96,7 +97,7 @@ void fmu_free(fmu_instance *inst)
 {
     if (!inst)
         return;
-    tribo_free(inst->model);
+    fmu_front_free(inst->core);
     free(inst->name);
     free(inst);
 }
@@ -171,13 +172,14 @@ static void use_tolerance(fmu_instance *inst, const char *fn, double tolerance)
         set_parameter(inst, rtol, tolerance);
     if (!inst->atol_set)
         set_parameter(inst, atol, atol->start * (tolerance / rtol->start));
+    /* (the separator has no other integrator than CVODE) */
+    const int fixed_step = fmu_front_param_find("integrator") &&
+                           fmu_scene_value(inst, "integrator") == TRIBO_INTEGRATOR_FIXED_STEP;
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s: tolerance = %g: rtol = %g (%s), atol = %g (%s)%s",
             fn, tolerance, fmu_scene_value(inst, "rtol"),
             inst->rtol_set ? "set explicitly" : "the tolerance", fmu_scene_value(inst, "atol"),
             inst->atol_set ? "set explicitly" : "from the tolerance",
-            fmu_scene_value(inst, "integrator") == TRIBO_INTEGRATOR_FIXED_STEP
-                ? "; the fixed-step integrator uses neither: dt sets its accuracy"
-                : "");
+            fixed_step ? "; the fixed-step integrator uses neither: dt sets its accuracy" : "");
 }
 
 /* Every argument is checked before any applies: a refused experiment changes nothing. */
@@ -236,33 +238,32 @@ fmu_status fmu_enter_initialization(fmu_instance *inst, const char *fn)
 
 /* A core instance of the current parameters, made aside (the instance does not change):
    NULL after logging why not. */
-static tribo_model *make_model(fmu_instance *inst, const char *fn, fmu_derived *derived)
+static fmu_core *make_model(fmu_instance *inst, const char *fn, fmu_derived *derived)
 {
     char why[512];
-    tribo_model *model = NULL;
+    fmu_core *core = NULL;
     if (fmu_front_derive(&inst->scene, derived, why, sizeof why) != TRIBO_OK ||
-        !(model = tribo_create(fmu_front_model_scene(derived), why, sizeof why))) {
+        !(core = fmu_front_create(derived, fmu_core_logger, inst, why, sizeof why))) {
         fmu_error(inst, "%s: the model cannot be created: %s", fn, why);
         return NULL;
     }
-    tribo_set_logger(model, fmu_core_logger, inst);
-    return model;
+    return core;
 }
 
-static void install_model(fmu_instance *inst, tribo_model *model, const fmu_derived *derived)
+static void install_model(fmu_instance *inst, fmu_core *core, const fmu_derived *derived)
 {
-    tribo_free(inst->model);
-    inst->model = model;
+    fmu_front_free(inst->core);
+    inst->core = core;
     inst->derived = *derived;
     inst->model_outdated = 0;
 }
 
 fmu_status fmu_ensure_model(fmu_instance *inst, const char *fn)
 {
-    if (inst->model && !inst->model_outdated)
+    if (inst->core && !inst->model_outdated)
         return FMU_OK;
     fmu_derived derived;
-    tribo_model *model = make_model(inst, fn, &derived);
+    fmu_core *model = make_model(inst, fn, &derived);
     if (!model)
         return FMU_ERROR;
     install_model(inst, model, &derived);
@@ -271,21 +272,21 @@ fmu_status fmu_ensure_model(fmu_instance *inst, const char *fn)
 
 /* The importer's inputs, converted by the front end (what it derived for `model`), to the
    core instance `model`. */
-static fmu_status pass_inputs_to(fmu_instance *inst, const char *fn, tribo_model *model,
+static fmu_status pass_inputs_to(fmu_instance *inst, const char *fn, fmu_core *model,
                                  const fmu_derived *derived)
 {
-    double model_inputs[TRIBO_INPUT_COUNT];
+    double model_inputs[FMU_MAX_INPUTS];
     char why[512];
     if (fmu_front_model_inputs(derived, inst->inputs, model_inputs, why, sizeof why) != TRIBO_OK)
         return fmu_error(inst, "%s: %s", fn, why);
-    if (tribo_set_inputs(model, model_inputs) != TRIBO_OK)
-        return fmu_error(inst, "%s: %s", fn, tribo_last_error(model));
+    if (fmu_front_set_inputs(model, model_inputs) != TRIBO_OK)
+        return fmu_error(inst, "%s: %s", fn, fmu_front_last_error(model));
     return FMU_OK;
 }
 
 fmu_status fmu_pass_inputs(fmu_instance *inst, const char *fn)
 {
-    return pass_inputs_to(inst, fn, inst->model, &inst->derived);
+    return pass_inputs_to(inst, fn, inst->core, &inst->derived);
 }
 
 fmu_status fmu_exit_initialization(fmu_instance *inst, const char *fn)
@@ -295,16 +296,16 @@ fmu_status fmu_exit_initialization(fmu_instance *inst, const char *fn)
     /* a refusal leaves the instance as it was, in Initialization Mode (where parameters can
        still be changed): a core instance it needs is made aside, and kept only once it has
        taken the inputs (the SI front end refuses inputs whose model values are out of range) */
-    if (inst->model && !inst->model_outdated) {
+    if (inst->core && !inst->model_outdated) {
         if (fmu_pass_inputs(inst, fn) != FMU_OK)
             return FMU_ERROR;
     } else {
         fmu_derived derived;
-        tribo_model *model = make_model(inst, fn, &derived);
+        fmu_core *model = make_model(inst, fn, &derived);
         if (!model)
             return FMU_ERROR;
         if (pass_inputs_to(inst, fn, model, &derived) != FMU_OK) {
-            tribo_free(model);
+            fmu_front_free(model);
             return FMU_ERROR;
         }
         install_model(inst, model, &derived);

@@ -13,7 +13,7 @@ double fmu_rounding_tolerance(double time) { return 1e-9 * fmax(1.0, fabs(time))
 static double reached_time(const fmu_instance *inst, double end, int before_end)
 {
     const double unit = fmu_front_time_unit(&inst->derived);
-    double t = inst->start_time + unit * tribo_get(inst->model, TRIBO_Q_TIME);
+    double t = inst->start_time + unit * fmu_front_core_time(inst->core);
     t = fmin(t, before_end ? nextafter(end, -INFINITY) : end);
     return fmax(t, inst->time);
 }
@@ -22,7 +22,7 @@ static double reached_time(const fmu_instance *inst, double end, int before_end)
    stays at the time reached. */
 static fmu_status ended_early(fmu_instance *inst, const char *fn, double end, int *early_return)
 {
-    const char *why = tribo_last_error(inst->model);
+    const char *why = fmu_front_last_error(inst->core);
     if (inst->early_return_allowed) {
         *early_return = 1;
         fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s: early return at %.17g before %.17g: %s", fn,
@@ -39,8 +39,9 @@ static fmu_status ended_early(fmu_instance *inst, const char *fn, double end, in
     return FMU_DISCARD;
 }
 
-/* The run ended during the step (model.md §9): the particle left the chute, or lifted off
-   where run_end = first_liftoff. */
+/* The core's run ended during the step: the chute's particle left it, or lifted off where
+   run_end = first_liftoff (model.md §9); the separator's grain reached the bins or a plate
+   (§10). */
 static fmu_status exited(fmu_instance *inst, const char *fn, double end, int *early_return,
                          int *terminate)
 {
@@ -51,14 +52,14 @@ static fmu_status exited(fmu_instance *inst, const char *fn, double end, int *ea
     *early_return = inst->early_return_allowed;
     fmu_log(inst, inst->fmi_version == 2 ? FMU_DISCARD : FMU_OK, FMU_LOG_CALLS,
             "%s: the step to %.17g ends at %.17g, the last successful time: %s", fn, end,
-            inst->time, tribo_last_error(inst->model));
+            inst->time, fmu_front_last_error(inst->core));
     return inst->fmi_version == 2 ? FMU_DISCARD : FMU_OK;
 }
 
 /* Whether the core can advance to t, checked before the step changes anything (the core
    refuses these times too, but only after the inputs handed to it have restarted its
-   integrator): beyond TRIBO_TIME_MAX, and the fixed step's grid where t / dt reaches 2^45
-   (src/integrator_fixed_step.c, GRID_MAX_STEPS). */
+   integrator): beyond TRIBO_TIME_MAX, and what the front end knows its core cannot resolve
+   (the chute's fixed step: a grid where t / dt reaches 2^45). */
 static fmu_status check_core_time(fmu_instance *inst, const char *fn, double current_time,
                                   double step, double t)
 {
@@ -67,13 +68,10 @@ static fmu_status check_core_time(fmu_instance *inst, const char *fn, double cur
                          "%s: the step from %.17g by %.17g cannot advance the model to t = %.17g: "
                          "beyond t = %g its time is not resolved finely enough to integrate",
                          fn, current_time, step, t, TRIBO_TIME_MAX);
-    const tribo_scene *scene = tribo_get_scene(inst->model);
-    if (scene->integrator == TRIBO_INTEGRATOR_FIXED_STEP && !(t / scene->dt < 0x1p45))
-        return fmu_error(inst,
-                         "%s: the step from %.17g by %.17g cannot advance the fixed step to t = "
-                         "%.17g: steps of dt = %g are not resolved there (t / dt must stay below "
-                         "2^45)",
-                         fn, current_time, step, t, scene->dt);
+    char why[256];
+    if (!fmu_front_time_resolved(inst->core, t, why, sizeof why))
+        return fmu_error(inst, "%s: the step from %.17g by %.17g cannot advance %s", fn,
+                         current_time, step, why);
     return FMU_OK;
 }
 
@@ -85,12 +83,12 @@ fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, 
     if (!inst)
         return FMU_ERROR;
     *reached = inst->time;
-    if (inst->lifecycle == FMU_LIFECYCLE_EXITED)
-        return fmu_error(inst, "%s: the run is over at t = %.17g (the particle %s): terminate, "
-                         "reset or restore a state", fn, inst->time,
-                         tribo_get(inst->model, TRIBO_Q_LIFTED_OFF) != 0.0
-                             ? "lifted off the plate, run_end = first_liftoff"
-                             : "left the chute");
+    if (inst->lifecycle == FMU_LIFECYCLE_EXITED) {
+        char reason[400];
+        fmu_front_over_reason(inst->core, reason, sizeof reason);
+        return fmu_error(inst, "%s: the run is over at t = %.17g (%s): terminate, reset or "
+                         "restore a state", fn, inst->time, reason);
+    }
     if (!fmu_lifecycle_allows(inst, fn, FMU_LIFECYCLE_BIT(FMU_LIFECYCLE_STEP)))
         return FMU_ERROR;
     const double tolerance = fmu_rounding_tolerance(inst->time);
@@ -120,12 +118,12 @@ fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, 
                          "%s: a step from %.17g by %.17g ends at %.17g, after the stop time %.17g "
                          "set at initialization",
                          fn, current_time, step, end, inst->stop_time);
-    tribo_model *m = inst->model;
+    fmu_core *m = inst->core;
     /* the FMU's time is the start time plus the core's, in the front end's unit: the step
        ends where the core's time is end's, which must lie after the core's time now, else
        the FMU's time would move and the model's not */
     const double unit = fmu_front_time_unit(&inst->derived);
-    const double core_now = tribo_get(m, TRIBO_Q_TIME), core_end = (end - inst->start_time) / unit;
+    const double core_now = fmu_front_core_time(m), core_end = (end - inst->start_time) / unit;
     if (!(core_end > core_now))
         return fmu_error(inst,
                          "%s: communicationStepSize = %.17g is lost in the rounding of the time: "
@@ -138,7 +136,7 @@ fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, 
        set: a refusal here changes nothing) */
     if (fmu_pass_inputs(inst, fn) != FMU_OK)
         return FMU_ERROR;
-    tribo_status st = tribo_advance(m, core_end);
+    tribo_status st = fmu_front_advance(m, core_end);
     if (st == TRIBO_INCOMPLETE || st == TRIBO_ENDED) {
         inst->time = reached_time(inst, end, st == TRIBO_INCOMPLETE);
         *reached = inst->time;
@@ -151,7 +149,7 @@ fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, 
         if (st != TRIBO_ERR_TIME)
             inst->lifecycle = FMU_LIFECYCLE_FAILED;
         return fmu_error(inst, "%s: the step from %.17g to %.17g failed: %s", fn, current_time, end,
-                         tribo_last_error(m));
+                         fmu_front_last_error(m));
     }
     /* the core is at core_end, the model's time of end */
     inst->time = end;

@@ -1,9 +1,11 @@
 /* variables_impl.h: the table of the FMU's variables (see variables.h), made from the table
    of its front end (front_end.h). Not a header to include: the body of the one compile
-   unit of each FMU pair, variables_model.c (src/quantities.def) and variables_si.c (with
-   TRIBO_FMU_SI: src/si_quantities.def), so that every C file of an FMU's sources/ is one to
-   compile and none needs a preprocessor definition. The enumerations and the units "1" and
-   "rad" are always quantities.def's. */
+   unit of each FMU pair, variables_model.c (src/quantities.def), variables_si.c (with
+   TRIBO_FMU_SI: src/si_quantities.def) and variables_separator.c (with TRIBO_FMU_SEPARATOR:
+   src/separator_quantities.def), so that every C file of an FMU's sources/ is one to
+   compile and none needs a preprocessor definition. The units and enumerations are
+   quantities.def's (the units "1" and "rad") and the front end's table's own; the
+   description declares those its variables use. */
 #include "variables.h"
 
 #include <math.h>
@@ -13,8 +15,14 @@
 
 #ifdef TRIBO_FMU_SI
 #define FMU_TABLE "si_quantities.def"
+#define FMU_OWN_TABLE "si_quantities.def"
 #define QUANTITY(id) TRIBO_SI_Q_##id
 #define INPUT(id) TRIBO_SI_INPUT_##id
+#elif defined TRIBO_FMU_SEPARATOR
+#define FMU_TABLE "separator_quantities.def"
+#define FMU_OWN_TABLE "separator_quantities.def"
+#define QUANTITY(id) TRIBO_SEPARATOR_Q_##id
+#define INPUT(id) TRIBO_SEPARATOR_INPUT_##id
 #else
 #define FMU_TABLE "quantities.def"
 #define QUANTITY(id) TRIBO_Q_##id
@@ -57,6 +65,10 @@ enum {
 enum {
 #define TRIBO_ENUMERATION(id, ...) ENUMERATION_##id,
 #include "quantities.def"
+#ifdef FMU_OWN_TABLE
+#define TRIBO_ENUMERATION(id, ...) ENUMERATION_##id,
+#include FMU_OWN_TABLE
+#endif
     N_ENUMERATIONS
 };
 
@@ -72,6 +84,10 @@ static const fmu_variable VARIABLES[] = {
 #define TRIBO_INPUT(id, name, vr, unit, min, max, description)                                   \
     {vr, name, FMU_TYPE_REAL, FMU_CAUSALITY_INPUT, FMU_VARIABILITY_CONTINUOUS, FMU_MAPS_TO_INPUT, \
      INPUT(id), FMU_IN_BOTH, description, unit, -1},
+/* a switch: FMI's Boolean, which changes only at events */
+#define TRIBO_BOOLEAN_INPUT(id, name, vr, description)                                           \
+    {vr, name, FMU_TYPE_BOOLEAN, FMU_CAUSALITY_INPUT, FMU_VARIABILITY_DISCRETE, FMU_MAPS_TO_INPUT, \
+     INPUT(id), FMU_IN_BOTH, description, "1", -1},
 #define TRIBO_OUTPUT(id, name, type, vr, unit, description, value)                               \
     {vr, name, TYPE_##type, FMU_CAUSALITY_OUTPUT, OUTPUT_VARIABILITY_OF_##type,                 \
      FMU_MAPS_TO_QUANTITY, QUANTITY(id), FMU_IN_BOTH, description, unit, ENUMERATION_OF_##type},
@@ -90,9 +106,9 @@ static const fmu_variable VARIABLES[] = {
 static const fmu_unit UNITS[] = {
 #define TRIBO_UNIT UNIT_ROW
 #include "quantities.def"
-#ifdef TRIBO_FMU_SI
+#ifdef FMU_OWN_TABLE
 #define TRIBO_UNIT UNIT_ROW
-#include "si_quantities.def"
+#include FMU_OWN_TABLE
 #endif
 };
 
@@ -104,26 +120,38 @@ static const fmu_display_unit DISPLAY_UNITS[] = {
 #define TRIBO_UNIT DISPLAY_OF_UNIT
 #define TRIBO_DISPLAY_UNIT DISPLAY_ROW
 #include "quantities.def"
-#ifdef TRIBO_FMU_SI
+#ifdef FMU_OWN_TABLE
 #define TRIBO_UNIT DISPLAY_OF_UNIT
 #define TRIBO_DISPLAY_UNIT DISPLAY_ROW
-#include "si_quantities.def"
+#include FMU_OWN_TABLE
 #endif
 };
 
 static const fmu_enumeration ENUMERATIONS[] = {
 #define TRIBO_ENUMERATION(id, type_name, description) [ENUMERATION_##id] = {type_name, description},
 #include "quantities.def"
+#ifdef FMU_OWN_TABLE
+#define TRIBO_ENUMERATION(id, type_name, description) [ENUMERATION_##id] = {type_name, description},
+#include FMU_OWN_TABLE
+#endif
 };
 
 /* The items of every enumeration, each enumeration's together and in the table's order. */
 static const int ITEM_ENUMERATION[] = {
 #define TRIBO_ENUM_ITEM(id, name, value, description) ENUMERATION_##id,
 #include "quantities.def"
+#ifdef FMU_OWN_TABLE
+#define TRIBO_ENUM_ITEM(id, name, value, description) ENUMERATION_##id,
+#include FMU_OWN_TABLE
+#endif
 };
 static const fmu_enum_item ITEMS[] = {
 #define TRIBO_ENUM_ITEM(id, name, value, description) {name, value, description},
 #include "quantities.def"
+#ifdef FMU_OWN_TABLE
+#define TRIBO_ENUM_ITEM(id, name, value, description) {name, value, description},
+#include FMU_OWN_TABLE
+#endif
 };
 
 #define N_ITEMS (sizeof ITEMS / sizeof ITEMS[0])

@@ -2,6 +2,7 @@
 # The FMUs for every platform this project ships, one .fmu per front end and FMI version:
 #   build-fmus/tribo_fmi2.fmu, build-fmus/tribo_fmi3.fmu         (dimensionless)
 #   build-fmus/tribo_si_fmi2.fmu, build-fmus/tribo_si_fmi3.fmu   (SI units)
+#   build-fmus/tribo_separator_fmi2.fmu, ..._fmi3.fmu            (the free-fall separator)
 # each with the Linux x86-64 binary (the native build, build/), the Windows x86-64 binary
 # (cross-compiled with Debian's MinGW-w64, CVODE built from Debian's source package of
 # SUNDIALS, the same version as the native build links), sources/ (the core, the FMI
@@ -84,7 +85,7 @@ make_sources() { # make_sources <prefix> <fmi version> <folder>
     --sundials-library "$SUNDIALS_WIN/lib/libsundials_nvecserial.a"
 }
 
-for prefix in tribo tribo_si; do
+for prefix in tribo tribo_si tribo_separator; do
   for v in 2 3; do
     if [ "$v" = 2 ]; then linux=linux64 windows=win64; else linux=x86_64-linux windows=x86_64-windows; fi
     id=${prefix}_fmi$v name=$(description_name "$prefix" "$v")

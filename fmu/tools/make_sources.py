@@ -3,7 +3,7 @@ sources/ (and the importer's own FMI headers) on the include path: what FMPy's b
 helper (`fmpy compile`) and most importers give the compiler, whatever buildDescription.xml
 says.
 
-    python make_sources.py --prefix <tribo|tribo_si> --version <2|3> --out <folder>
+    python make_sources.py --prefix <tribo|tribo_si|tribo_separator> --version <2|3> --out <folder>
         --token <instantiation_token.h> --sundials <SUNDIALS' source tree>
         --sundials-config <folder with the configured sundials_config.h, sundials_export.h>
         --sundials-library <static library> [--sundials-library ...]
@@ -36,8 +36,9 @@ from build_description import build_description
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 # tribo_fmu_layer in fmu/CMakeLists.txt, and each front end's object library
 FMU_LAYER = ["logging.c", "lifecycle.c", "step.c", "access.c", "fmu_state.c"]
-FRONT_END = {"tribo": ["variables_model.c", "front_end_model.c"],
-             "tribo_si": ["variables_si.c", "front_end_si.c"]}
+FRONT_END = {"tribo": ["variables_model.c", "front_end_model.c", "front_end_chute.c"],
+             "tribo_si": ["variables_si.c", "front_end_si.c", "front_end_chute.c"],
+             "tribo_separator": ["variables_separator.c", "front_end_separator.c"]}
 # configured by SUNDIALS' CMake for the Windows build (static: SUNDIALS_EXPORT is empty);
 # of what they hold only the deprecation attributes are compiler-specific (a __declspec, a
 # GCC attribute): made empty, so that any C compiler takes them

@@ -1,7 +1,8 @@
 /*
  * model_description: writes the modelDescription.xml of the FMI 2.0 or 3.0 FMU from the
- * FMU's variable table (variables_impl.h, made from its front end's table: src/quantities.def
- * or src/si_quantities.def), at build time. Built once per front end, like the FMUs.
+ * FMU's variable table (variables_impl.h, made from its front end's table: src/quantities.def,
+ * src/si_quantities.def or src/separator_quantities.def), at build time. Built once per
+ * front end, like the FMUs.
  *
  *   tribo_model_description <2|3> <version> <source date epoch> > modelDescription.xml
  *
@@ -179,7 +180,9 @@ static void attr_value(const fmu_variable *v, int fmi_version)
     }
     if (v->type == FMU_TYPE_ENUMERATION)
         attr("declaredType", fmu_enumerations(NULL)[v->enumeration].type_name);
-    if (p) { /* a parameter or an input */
+    if (p && v->type == FMU_TYPE_BOOLEAN) { /* a switch: FMI's Boolean has no range */
+        attr("start", p->start != 0.0 ? "true" : "false");
+    } else if (p) { /* a parameter or an input */
         attr_range(p);
         attr_number("start", p->start);
     }

@@ -448,3 +448,26 @@ Test(separator, every_parameter_at_the_ends_of_its_range_gives_finite_outputs)
         }
     }
 }
+
+Test(separator, an_advance_too_short_for_cvode_moves_the_grain_by_a_taylor_step)
+{
+    /* an importer's steps of 1e-300 s, or of one rounding of the time: CVODE refuses both */
+    tribo_separator_scene sc = scene_of("");
+    tribo_separator *s = make(&sc), *plain = make(&sc);
+    release(s, 0.3, 0.1, 2e-6);
+    release(plain, 0.3, 0.1, 2e-6);
+    cr_assert_eq(advance(s, 1e-300), TRIBO_OK, "%s", tribo_separator_last_error(s));
+    cr_assert_eq(advance(s, 0.1), TRIBO_OK);
+    cr_assert_eq(advance(s, nextafter(0.1, 1.0)), TRIBO_OK, "%s", tribo_separator_last_error(s));
+    cr_assert_eq(advance(s, nextafter(nextafter(0.1, 1.0), 1.0) + 1e-17), TRIBO_OK);
+    cr_assert_eq(advance(plain, 0.1), TRIBO_OK);
+    cr_assert_eq(advance(s, 100), TRIBO_ENDED);
+    cr_assert_eq(advance(plain, 100), TRIBO_ENDED);
+    /* the same run, to the integration's tolerance: one restart more */
+    const double tf = get(plain, TRIBO_SEPARATOR_Q_FLIGHT_TIME);
+    cr_expect(err_of("flight time", get(s, TRIBO_SEPARATOR_Q_FLIGHT_TIME), tf, tf) < 1e-7);
+    cr_expect(err_of("x", get(s, TRIBO_SEPARATOR_Q_X_END), get(plain, TRIBO_SEPARATOR_Q_X_END), 0.1) <
+              1e-7);
+    tribo_separator_free(s);
+    tribo_separator_free(plain);
+}

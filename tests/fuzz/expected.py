@@ -28,13 +28,12 @@ STEP = "Step Mode"
 DISCARDED = "Step Discarded"  # FMI 2.0's stepFailed
 TERMINATED = "Terminated"
 FAILED = "failed"
-EXITED = "Exited"  # the particle left the chute: the run is over
+EXITED = "Exited"  # the core's run is over (the chute's exit, the separator's bins or plate)
 
 EITHER = "either"  # expect_step: the model cannot tell whether the step is refused
 
 READABLE = {INITIALIZATION, STEP, DISCARDED, TERMINATED, FAILED, EXITED}  # outputs from here on
 TIME_MAX = 1e12  # beyond it the core refuses (src/tribo.h)
-GRID_MAX_STEPS = 2.0**45  # the fixed step's grid (src/integrator_fixed_step.c)
 
 
 def rounding_tolerance(t):
@@ -62,7 +61,8 @@ class Variable:
         self.is_integer = v.type not in ("Real", "Float64", "Float32")
         self.min = float(attributes.get("min", -math.inf))
         self.max = float(attributes.get("max", math.inf))
-        self.start = float(attributes.get("start", 0.0))
+        start = attributes.get("start", "0")
+        self.start = float({"false": "0", "true": "1"}.get(start, start))  # a Boolean's
         self.dimension = v.dimensions[0].valueReference if v.dimensions else None
         # a real parameter without a max takes the infinity too (chute_length: no end)
         self.takes_infinity = not self.is_integer and "max" not in attributes and \
@@ -88,7 +88,8 @@ class Model:
         self.variables = [Variable(v, version, attributes[v.valueReference])
                           for v in md.modelVariables]
         self.by_vr = {v.vr: v for v in self.variables}
-        # the dimensionless model's variables, or the SI front end's (front_ends.py)
+        # the dimensionless model's variables, the SI front end's or the separator's
+        # (front_ends.py)
         self.front = front_end_of(md.coSimulation.modelIdentifier)
         self.reset()
 
@@ -178,7 +179,8 @@ class Model:
 
     def apply(self, assignments):
         for v, value in assignments:
-            self.values[v.name] = float(value)
+            # a Boolean is true for any non-zero value (FMI 2.0's is an int)
+            self.values[v.name] = float(value != 0) if v.type == "Boolean" else float(value)
             if v.name in ("rtol", "atol"):
                 self.explicit.add(v.name)
 
@@ -228,7 +230,7 @@ class Model:
         core_end = (end - self.start) / unit
         if core_end > TIME_MAX:
             return ERROR
-        if self.values["integrator"] == 0 and not core_end / self.values["dt"] < GRID_MAX_STEPS:
+        if not self.front.resolves(core_end, self.values):
             return ERROR
         # the step must move the model's time
         if self.core_time_exact:

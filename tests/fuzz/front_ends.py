@@ -1,6 +1,7 @@
 """What the fuzz model needs to know of an FMU's front end (fmu/front_end.h): whether its
-parameters make a model, whether the running model takes an input or a tunable value, and
-the unit of the FMU's time in the model's.
+parameters make a model, whether the running model takes an input or a tunable value, the
+unit of the FMU's time in the model's, whether the core resolves a time, and the set-ups
+worth running and mutating.
 
 The dimensionless FMUs pass everything on as it is. The SI FMUs map a physical set-up onto
 the model by docs/model.md section 8: which model parameter each SI parameter sets, and how,
@@ -8,7 +9,10 @@ is read from the SI table's TRIBO_MAPS rows (src/si_quantities.def, the rows si.
 is generated from); the units of each conversion are written here again from section 8 (not
 from src/si.c), and the model's ranges are read from the dimensionless FMU's reviewed
 description (modelDescription/fmi3.xml), so that the fuzz suite checks the SI FMU's refusals
-against an independent statement of the arithmetic."""
+against an independent statement of the arithmetic.
+
+The separator's FMUs pass everything on to their own core (docs/model.md section 10), whose
+combinations are written here again from docs/separator.md."""
 
 import math
 import os
@@ -27,12 +31,42 @@ def si_mapping():
     return {si: (model, how.lower()) for si, model, how in rows}
 
 
+GRID_MAX_STEPS = 2.0**45  # the fixed step's grid (src/integrator_fixed_step.c)
+
+
 def rigid_stick_valid(values):
     return values["stick_model"] == 0 or (values["integrator"] != 0 and
                                            values["damping_point"] == 0)
 
 
-class Dimensionless:
+class Chute:
+    """What the chute's FMUs share: the fixed step's grid, the chute's end."""
+
+    def resolves(self, core_end, values):
+        """Whether the core can advance to its time core_end (the fixed step: a grid of dt
+        resolved below 2^45 steps)."""
+        return values["integrator"] != 0 or core_end / values["dt"] < GRID_MAX_STEPS
+
+    def chute_length(self, values):
+        return values["chute_length"]
+
+    # runs that end where the particle leaves the chute, now and then (set with probability)
+    ending = (0.2, "chute_length", [0.05, 2.0])
+
+    @staticmethod
+    def base_scenes():
+        """Set-ups worth mutating the states of: each integrator, the rigid stick, a
+        discarded step, the lifecycle states before Step Mode, a run past the chute's end."""
+        compliant = {"integrator": 0, "stick_model": 0}  # the fixed step has no rigid stick
+        return [compliant, {"integrator": 1}, {"integrator": 2},
+                {"integrator": 1, "stick_model": 1, "mu": 1.0, "epsilon": 0.5},
+                {"integrator": 1, "mu": 1.0, "nu": 1.0},
+                {**compliant, "work_limit": 50, "discard": True},
+                {"lifecycle": "Initialization Mode"}, {"lifecycle": "Instantiated"}, {"integrator": 1, "chute_length": 0.01},
+                {**compliant, "chute_length": 0.01}]
+
+
+class Dimensionless(Chute):
     """The model's own variables."""
 
     def scene_valid(self, values):
@@ -63,7 +97,7 @@ def model_ranges():
     return out
 
 
-class SI:
+class SI(Chute):
     """docs/model.md section 8."""
 
     def __init__(self):
@@ -131,5 +165,45 @@ class SI:
         return self.in_range(model, self.convert(u, how, value))
 
 
+class Separator:
+    """docs/model.md section 10: the grain fits the gap and enters between the plates."""
+
+    def scene_valid(self, values):
+        x_limit = values["gap"] / 2 - values["semi_major_axis"]
+        return x_limit > 0 and abs(values["x_entry"]) < x_limit
+
+    def inputs_valid(self, values):
+        return True
+
+    def time_unit(self, values):
+        return 1.0
+
+    def accepts_while_running(self, name, value, values):
+        return True
+
+    def resolves(self, core_end, values):
+        return True
+
+    def chute_length(self, values):
+        return math.inf
+
+    # runs that end at the bins or on a plate: the grain released at the first step
+    ending = (0.5, "released", [1])
+
+    @staticmethod
+    def base_scenes():
+        """Set-ups worth mutating the states of: held at the entry, in flight (with drag, in
+        vacuum), landed, caught, a discarded step, the lifecycle states before Step Mode."""
+        flying = {"released": 1, "u_entry": 0.4, "v_entry": -0.1, "charge_to_mass": 2e-6}
+        return [{}, flying, {**flying, "air_density": 0.0, "air_viscosity": 0.0},
+                {**flying, "height": 1e-3}, {**flying, "charge_to_mass": 1.0},
+                {**flying, "work_limit": 1, "discard": True},
+                {"lifecycle": "Initialization Mode"}, {"lifecycle": "Instantiated"}]
+
+
 def front_end_of(model_identifier):
-    return SI() if model_identifier.startswith("tribo_si_") else Dimensionless()
+    if model_identifier.startswith("tribo_si_"):
+        return SI()
+    if model_identifier.startswith("tribo_separator_"):
+        return Separator()
+    return Dimensionless()

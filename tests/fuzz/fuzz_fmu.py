@@ -144,7 +144,8 @@ class Fuzzer:
         if status != OK:
             reason = inst.errors()[-1] if inst.errors() else ""
             known = [test for message, test in KNOWN_CORE_DEFECTS.items() if message in reason]
-            if not (known and model is not None and model.values["chute_length"] <= TINY_CHUTE):
+            if not (known and model is not None and
+                    model.front.chute_length(model.values) <= TINY_CHUTE):
                 raise Finding(f"{what}: the instance refused its own state: {reason}")
             self.known_core_defects.append({"call": what, "reason": reason, "test": known[0],
                                             "values": dict(model.values)})
@@ -364,11 +365,12 @@ class Fuzzer:
                 what = f"set{v.ftype} work_limit = {value}"
                 self.expect(what, self.call(what, inst.set, v.ftype, [v.vr], [value]), {OK})
                 model.apply([(v, value)])
-            if self.rng.random() < 0.2:
-                # a chute the drop reaches: runs that end where the particle leaves it
-                v = next(x for x in model.variables if x.name == "chute_length")
-                value = self.rng.choice([0.05, 2.0])
-                what = f"set{v.ftype} chute_length = {value}"
+            probability, name, ending_values = model.front.ending
+            if self.rng.random() < probability:
+                # runs that end (a chute the drop reaches; a grain released)
+                v = next(x for x in model.variables if x.name == name)
+                value = self.rng.choice(ending_values)
+                what = f"set{v.ftype} {name} = {value}"
                 self.expect(what, self.call(what, inst.set, v.ftype, [v.vr], [value]), {OK})
                 model.apply([(v, value)])
             for _ in range(length):
@@ -389,20 +391,18 @@ class Fuzzer:
     # ---- mutated states ----------------------------------------------------------------
 
     def base_states(self, count):
-        """Instances in states worth mutating: each integrator, off the step grid, in
-        Step Mode, Initialization Mode, Instantiated, and (FMI 2.0) a discarded step."""
-        compliant = {"integrator": 0, "stick_model": 0}  # the fixed step has no rigid stick
-        scenes = [compliant, {"integrator": 1}, {"integrator": 2},
-                  {"integrator": 1, "stick_model": 1, "mu": 1.0, "epsilon": 0.5},
-                  {"integrator": 1, "mu": 1.0, "nu": 1.0},
-                  {**compliant, "work_limit": 50, "discard": True}, {"lifecycle": INITIALIZATION},
-                  {"lifecycle": INSTANTIATED}, {"integrator": 1, "chute_length": 0.01},
-                  {**compliant, "chute_length": 0.01}]
+        """Instances in states worth mutating (the front end's set-ups: front_ends.py), off
+        the step grid, in Step Mode, Initialization Mode, Instantiated, and (FMI 2.0) a
+        discarded step."""
+        probe = Instance(self.fmu_dir, self.version)
+        scenes = Model(probe.md, self.fmu_dir, self.version, False).front.base_scenes()
+        probe.free()
         for scene in scenes[:count]:
             inst = Instance(self.fmu_dir, self.version)
             model = Model(inst.md, self.fmu_dir, self.version, False)
             params = {k: v for k, v in scene.items() if k in model.values}
-            params["n_segments"] = 32
+            if "n_segments" in model.values:
+                params["n_segments"] = 32
             for name, value in params.items():
                 v = next(x for x in model.variables if x.name == name)
                 assert inst.set(v.ftype, [v.vr], [value]) == OK

@@ -12,7 +12,10 @@ UINT_LIMITS = {"UInt8": 8, "UInt16": 16, "UInt32": 32, "UInt64": 64}
 # any value of their range
 CHEAP = {"n_segments": [16, 64, 500, 2000], "dt": [1e-3, 8e-5, 0.1], "work_limit": [1, 50, 1000, 100000, 1000000],
          # mostly no end; else one the drop may reach (or start beyond: refused at initialization)
-         "chute_length": [math.inf, math.inf, 1e6, 2.0, 0.05, 5e-324]}
+         "chute_length": [math.inf, math.inf, 1e6, 2.0, 0.05, 5e-324],
+         # the separator's: mostly a grain that fits the gap and enters between the plates (else
+         # refused at initialization)
+         "gap": [0.1, 0.1, 0.02, 10.0, 1e-4], "x_entry": [0.0, 0.0, 0.01, -0.03, 3.0]}
 # the expensive ends of those ranges, now and then; and of CVODE's tolerances, where one
 # step's charging sweep runs for seconds to minutes past the work limit (the core checks it
 # only between steps: its accounting of the work, not the FMU's contract)
@@ -28,6 +31,8 @@ def valid_value(rng, v):
         return rng.choice(COSTLY[v.name])
     if v.name in CHEAP:
         return rng.choice(CHEAP[v.name])
+    if v.type == "Boolean":  # (no range: any value; mostly true, which ends runs)
+        return rng.choice([0, 1, 1])
     lo, hi = CHEAP_RANGE.get(v.name, (v.min, v.max))
     if v.is_integer:
         return rng.randint(int(lo), int(min(hi, lo + 1000)))

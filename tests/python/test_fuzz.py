@@ -1,5 +1,5 @@
 """The fuzz suite (tests/fuzz/fuzz_fmu.py) over the FMUs (the dimensionless pair, and fewer
-sequences on the SI pair): random call sequences checked
+sequences on the SI pair and the separator's, whose runs are cheap): random call sequences checked
 against a model of the expected statuses, and mutated FMU states, with fixed seeds and a
 timeout per call. Once on the Release build and once on the sanitizer build (build-sanitize:
 AddressSanitizer and UndefinedBehaviorSanitizer with float-cast-overflow; the FMU's library
@@ -30,6 +30,10 @@ RUNS = [
     (BUILD_DIR, "tribo_si_fmi3", 16, 60, 3, 2, 20),
     (SANITIZE_DIR, "tribo_si_fmi2", 17, 15, 2, 1, 120),
     (SANITIZE_DIR, "tribo_si_fmi3", 18, 15, 2, 1, 120),
+    (BUILD_DIR, "tribo_separator_fmi2", 19, 150, 8, 3, 20),
+    (BUILD_DIR, "tribo_separator_fmi3", 20, 150, 8, 3, 20),
+    (SANITIZE_DIR, "tribo_separator_fmi2", 21, 40, 4, 2, 120),
+    (SANITIZE_DIR, "tribo_separator_fmi3", 22, 40, 4, 2, 120),
 ]
 
 

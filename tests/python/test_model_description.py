@@ -1,5 +1,6 @@
 """The modelDescription files are generated from the core's table (src/quantities.def; the
-SI FMUs' from src/si_quantities.def) at build time. Here: the generated ones are the
+SI FMUs' from src/si_quantities.def, the separator's from src/separator_quantities.def) at
+build time. Here: the generated ones are the
 reviewed ones committed in modelDescription/,
 their instantiation token is a hash of the description itself, fmpy finds nothing wrong
 with either FMU, and what they declare is what the binaries do (every declared range is
@@ -19,10 +20,11 @@ from fmpy.validation import validate_fmu
 from tribo.fmu.charge_models import charge_models
 from tribo_fmu import BUILD_DIR, ERROR, OK, ROOT, VERSIONS, Slave, core_run, status_of
 
-# the dimensionless FMUs (tribo_fmi<v>) and the SI ones (tribo_si_fmi<v>)
-PREFIXES = ("tribo", "tribo_si")
+# the dimensionless FMUs (tribo_fmi<v>), the SI ones (tribo_si_fmi<v>) and the separator's
+# (tribo_separator_fmi<v>)
+PREFIXES = ("tribo", "tribo_si", "tribo_separator")
 GOLDEN_NAMES = {("tribo", v): f"fmi{v}.xml" for v in VERSIONS} | \
-    {("tribo_si", v): f"tribo_si_fmi{v}.xml" for v in VERSIONS}
+    {(prefix, v): f"{prefix}_fmi{v}.xml" for prefix in PREFIXES[1:] for v in VERSIONS}
 GOLDEN = {key: os.path.join(ROOT, "modelDescription", name) for key, name in GOLDEN_NAMES.items()}
 GOLDEN.update({v: GOLDEN[("tribo", v)] for v in VERSIONS})
 PLACEHOLDER = "@INSTANTIATION_TOKEN@"

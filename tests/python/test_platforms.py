@@ -31,10 +31,12 @@ KIND = {"Real": "r", "Float64": "r", "Integer": "i", "Int32": "i", "Enumeration"
         "Boolean": "b"}
 # (stop time, step) of the runs compared: the dimensionless FMUs' defaults (the paper's
 # low-friction case) to tau = 100, every unit of time; the SI FMUs' (the reference case)
-# through the drop to its impact, 50 ms, every millisecond
-RUNS = {"tribo": (100, 1), "tribo_si": (0.05, 1e-3)}
+# through the drop to its impact, 50 ms, every millisecond; the separator's for 1 s, every
+# millisecond (its grain held at the entry: no input releases it)
+RUNS = {"tribo": (100, 1), "tribo_si": (0.05, 1e-3), "tribo_separator": (1, 1e-3)}
 PREFIXES = tuple(RUNS)
-DESCRIPTION = {"tribo": "fmi{v}.xml", "tribo_si": "tribo_si_fmi{v}.xml"}
+DESCRIPTION = {"tribo": "fmi{v}.xml", "tribo_si": "tribo_si_fmi{v}.xml",
+               "tribo_separator": "tribo_separator_fmi{v}.xml"}
 every_fmu = pytest.mark.parametrize("prefix", PREFIXES)
 
 
@@ -94,7 +96,8 @@ def test_release_layout(unpacked, version, prefix):
         names = set(z.namelist())
     linux, windows = PLATFORMS[version]
     front_ends = {"tribo": ("front_end_model.c", "variables_model.c"),
-                  "tribo_si": ("front_end_si.c", "variables_si.c")}
+                  "tribo_si": ("front_end_si.c", "variables_si.c"),
+                  "tribo_separator": ("front_end_separator.c", "variables_separator.c")}
     assert {f"sources/tribo/{f}" for f in front_ends[prefix]} <= names
     assert all(f"sources/tribo/{f}" not in names for p, fs in front_ends.items() if p != prefix
                for f in fs)
