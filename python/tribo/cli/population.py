@@ -19,8 +19,8 @@ Writes into the folder --out: particles.csv (one row per particle: the materials
 every parameter of its run (the feed variables, the chute, the materials' constants), then
 exited, exit_time, u, v, exit_speed, omega, charge_static, charge_sliding (C, on the
 cylinder of depth cylinder_length), charge_to_mass_static, charge_to_mass_sliding (C/kg),
-contact_fraction, impacts (contacts made after a flight, the drop's first contact
-included), fraction_flight ... fraction_bouncing, cpu_s, wall_s), summary.csv (q/m in C/kg:
+contact_fraction, impacts (contacts made while approaching the plate: bounces, the drop's
+first landing included), fraction_flight ... fraction_bouncing, cpu_s, wall_s), summary.csv (q/m in C/kg:
 n, mean, std, percentiles 5 25 50 75 95, overall and per shape and size class),
 population.png and population.json. Read the mean for what a stream carries (README.md,
 docs/populations.md). An interrupted population (Ctrl-C) resumes when the same command
