@@ -177,7 +177,8 @@ def start_value(md, name: str) -> float | None:
 
 
 _INVALID = re.compile(r"^(?P<name>\w+) = (?P<value>\S+) is invalid: the valid range is "
-                      r"(?P<lo>\S+) (?P<op1><=?) (?P=name) (?P<op2><=?) (?P<hi>\S+)(?P<rest>.*)$")
+                      r"(?P<kind>an? \w+ with )?(?P<lo>\S+) (?P<op1><=?) (?P=name) "
+                      r"(?P<op2><=?) (?P<hi>\S+)(?P<rest>.*)$")
 
 
 def refusal_message(md, name: str, value, message: str) -> str:
@@ -199,7 +200,7 @@ def refusal_message(md, name: str, value, message: str) -> str:
             return f"{r.from_fmu(float(limit)):.6g}" if limit is not None else text
 
         lo, hi = bound(lo, v.min), bound(hi, v.max)
-    return (f"{name} = {format_number(value)} is invalid: the valid range is "
+    return (f"{name} = {format_number(value)} is invalid: the valid range is {m['kind'] or ''}"
             f"{lo} {m['op1']} {name} {m['op2']} {hi}{m['rest']}")
 
 
