@@ -69,8 +69,8 @@ int main(int argc, char **argv)
             const double rate = (double)st.steps / cpu;
             if (rate > best[c])
                 best[c] = rate;
-            q_check[c][0] = tribo_get(m, TRIBO_Q_STATIC);
-            q_check[c][1] = tribo_get(m, TRIBO_Q_SLIDING);
+            q_check[c][0] = tribo_get(m, TRIBO_QUANTITY_STATIC);
+            q_check[c][1] = tribo_get(m, TRIBO_QUANTITY_SLIDING);
             tribo_free(m);
         }
     }

@@ -74,7 +74,7 @@ static double fixed_rate(const tribo_si_scene *si, double seconds, double *tau_d
     cpu = cpu_seconds() - t0;
     tribo_stats stats;
     tribo_get_stats(m, &stats);
-    *tau_done = tribo_get(m, TRIBO_Q_TIME);
+    *tau_done = tribo_get(m, TRIBO_QUANTITY_TIME);
     tribo_free(m);
     return (double)stats.steps / cpu;
 }
@@ -106,7 +106,7 @@ int main(int argc, char **argv)
     /* 1. CVODE to the exit */
     tribo_si_derived d;
     double best = INFINITY;
-    double q[TRIBO_SI_Q_COUNT];
+    double q[TRIBO_SI_QUANTITY_COUNT];
     tribo_stats stats;
     for (int r = 0; r < rounds; r++) {
         tribo_model *m = create(&si, &d);
@@ -115,23 +115,23 @@ int main(int argc, char **argv)
         const double cpu = cpu_seconds() - t0;
         if (cpu < best)
             best = cpu;
-        for (int k = 0; k < TRIBO_SI_Q_COUNT; k++)
+        for (int k = 0; k < TRIBO_SI_QUANTITY_COUNT; k++)
             q[k] = tribo_si_get(&d, m, (tribo_si_quantity)k);
         tribo_get_stats(m, &stats);
         tribo_free(m);
     }
-    const double tau_exit = q[TRIBO_SI_Q_EXIT_TIME] / d.t_star;
+    const double tau_exit = q[TRIBO_SI_QUANTITY_EXIT_TIME] / d.t_star;
 
     /* the first impact, by CVODE: its time and velocity */
     tribo_model *m = create(&si, &d);
     double t_impact = NAN, u_impact = 0.0, v_impact = 0.0;
     for (double tau = 0.0;; tau += 1.0) {
         check(m, tribo_advance_fully(m, tau), TRIBO_OK);
-        if (tribo_get(m, TRIBO_Q_IN_CONTACT) != 0.0)
+        if (tribo_get(m, TRIBO_QUANTITY_IN_CONTACT) != 0.0)
             break;
         t_impact = tau;
-        u_impact = tribo_get(m, TRIBO_Q_U);
-        v_impact = tribo_get(m, TRIBO_Q_V);
+        u_impact = tribo_get(m, TRIBO_QUANTITY_U);
+        v_impact = tribo_get(m, TRIBO_QUANTITY_V);
     }
     tribo_free(m);
 
@@ -146,13 +146,13 @@ int main(int argc, char **argv)
            "m' = %.4g kg/m\n",
            d.t_star, d.scene.Gamma, d.scene.tau0, d.scene.Sigma0, d.k_prime, d.mass_per_length);
     printf("\nCVODE (rtol %g, atol %g), to the exit:\n", si.rtol, si.atol);
-    printf("  exit time             %.6g s (tau = %.6g)\n", q[TRIBO_SI_Q_EXIT_TIME], tau_exit);
+    printf("  exit time             %.6g s (tau = %.6g)\n", q[TRIBO_SI_QUANTITY_EXIT_TIME], tau_exit);
     printf("  exit velocity         u = %.6g m/s, v = %.6g m/s, omega = %.6g rad/s\n",
-           q[TRIBO_SI_Q_U], q[TRIBO_SI_Q_V], q[TRIBO_SI_Q_OMEGA]);
+           q[TRIBO_SI_QUANTITY_U], q[TRIBO_SI_QUANTITY_V], q[TRIBO_SI_QUANTITY_OMEGA]);
     printf("  q/m at exit           static %.6g uC/kg, sliding %.6g uC/kg\n",
-           1e6 * q[TRIBO_SI_Q_Q_PER_M_STATIC], 1e6 * q[TRIBO_SI_Q_Q_PER_M_SLIDING]);
-    printf("  impacts               %.0f\n", q[TRIBO_SI_Q_IMPACTS]);
-    printf("  contact fraction      %.6g\n", q[TRIBO_SI_Q_CONTACT_FRACTION]);
+           1e6 * q[TRIBO_SI_QUANTITY_Q_PER_M_STATIC], 1e6 * q[TRIBO_SI_QUANTITY_Q_PER_M_SLIDING]);
+    printf("  impacts               %.0f\n", q[TRIBO_SI_QUANTITY_IMPACTS]);
+    printf("  contact fraction      %.6g\n", q[TRIBO_SI_QUANTITY_CONTACT_FRACTION]);
     printf("  first impact          %.6g s\n", t_impact * d.t_star);
     printf("  CPU time              %.3g s (fastest of %d)\n", best, rounds);
     printf("  work                  %lld steps, %lld rhs evaluations, %lld events, %lld restarts\n",
@@ -173,10 +173,11 @@ int main(int argc, char **argv)
         check(om, tribo_advance_fully(om, TRIBO_TIME_MAX), TRIBO_ENDED);
         const double cpu = cpu_seconds() - t0;
         printf("  %-9.0e %-12.0e %10.4g %10.4g %14.4g %14.4g %8.0f %10.3g\n", other.rtol, other.atol,
-               tribo_si_get(&od, om, TRIBO_SI_Q_EXIT_TIME), tribo_si_get(&od, om, TRIBO_SI_Q_U),
-               1e6 * tribo_si_get(&od, om, TRIBO_SI_Q_Q_PER_M_STATIC),
-               1e6 * tribo_si_get(&od, om, TRIBO_SI_Q_Q_PER_M_SLIDING),
-               tribo_si_get(&od, om, TRIBO_SI_Q_IMPACTS), cpu);
+               tribo_si_get(&od, om, TRIBO_SI_QUANTITY_EXIT_TIME),
+               tribo_si_get(&od, om, TRIBO_SI_QUANTITY_U),
+               1e6 * tribo_si_get(&od, om, TRIBO_SI_QUANTITY_Q_PER_M_STATIC),
+               1e6 * tribo_si_get(&od, om, TRIBO_SI_QUANTITY_Q_PER_M_SLIDING),
+               tribo_si_get(&od, om, TRIBO_SI_QUANTITY_IMPACTS), cpu);
         tribo_free(om);
     }
 

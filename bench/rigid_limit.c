@@ -54,9 +54,9 @@ static outcome run(const char *settings, double gamma, int stick_model)
     tribo_stats st;
     tribo_get_stats(m, &st);
     o.events = st.events;
-    o.exit_time = tribo_get(m, TRIBO_Q_EXIT_TIME);
-    o.q_static = tribo_get(m, TRIBO_Q_STATIC);
-    o.q_sliding = tribo_get(m, TRIBO_Q_SLIDING);
+    o.exit_time = tribo_get(m, TRIBO_QUANTITY_EXIT_TIME);
+    o.q_static = tribo_get(m, TRIBO_QUANTITY_STATIC);
+    o.q_sliding = tribo_get(m, TRIBO_QUANTITY_SLIDING);
     tribo_free(m);
     return o;
 }

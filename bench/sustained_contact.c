@@ -83,10 +83,10 @@ static outcome run(const char *settings, const char *law, int rounds)
         tribo_get_stats(m, &s);
         o.steps = s.steps;
         o.events = s.events;
-        o.impacts = tribo_get(m, TRIBO_Q_IMPACTS);
-        o.exit_time = tribo_si_get(&d, m, TRIBO_SI_Q_EXIT_TIME);
-        o.qm_static = tribo_si_get(&d, m, TRIBO_SI_Q_Q_PER_M_STATIC);
-        o.qm_sliding = tribo_si_get(&d, m, TRIBO_SI_Q_Q_PER_M_SLIDING);
+        o.impacts = tribo_get(m, TRIBO_QUANTITY_IMPACTS);
+        o.exit_time = tribo_si_get(&d, m, TRIBO_SI_QUANTITY_EXIT_TIME);
+        o.qm_static = tribo_si_get(&d, m, TRIBO_SI_QUANTITY_Q_PER_M_STATIC);
+        o.qm_sliding = tribo_si_get(&d, m, TRIBO_SI_QUANTITY_Q_PER_M_SLIDING);
         tribo_free(m);
     }
     o.ok = 1;

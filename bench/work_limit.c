@@ -50,7 +50,7 @@ static void unit_cost(const char *what, const char *settings, double h)
     double spent = 0.0;
     int stopped = 0;
     for (int k = 0; k < 400 && stopped < 3; k++) {
-        const double t = tribo_get(m, TRIBO_Q_TIME);
+        const double t = tribo_get(m, TRIBO_QUANTITY_TIME);
         const double c0 = cpu();
         const tribo_status st = tribo_advance(m, t + h);
         const double c = cpu() - c0;
@@ -154,7 +154,7 @@ int main(int argc, char **argv)
             continue;
         const double steps[] = {0.1, 0.1, 0.1, 100.0};
         for (size_t k = 0; k < sizeof steps / sizeof steps[0]; k++) {
-            const double t = tribo_get(m, TRIBO_Q_TIME);
+            const double t = tribo_get(m, TRIBO_QUANTITY_TIME);
             const double c0 = cpu();
             const tribo_status st = tribo_advance(m, t + steps[k]);
             const double c = cpu() - c0;

@@ -68,10 +68,10 @@ int main(int argc, char **argv)
             tribo_free(m);
             return 1;
         }
-        printf("%10.2f %12.6f %12.6f %12.5f %12.6f %10.4f %8.3f\n", tribo_get(m, TRIBO_Q_TIME),
-               tribo_get(m, TRIBO_Q_STATIC), tribo_get(m, TRIBO_Q_SLIDING), tribo_get(m, TRIBO_Q_X),
-               tribo_get(m, TRIBO_Q_Y), tribo_get(m, TRIBO_Q_CONTACT_FRACTION),
-               tribo_get(m, TRIBO_Q_TURNS));
+        printf("%10.2f %12.6f %12.6f %12.5f %12.6f %10.4f %8.3f\n", tribo_get(m, TRIBO_QUANTITY_TIME),
+               tribo_get(m, TRIBO_QUANTITY_STATIC), tribo_get(m, TRIBO_QUANTITY_SLIDING),
+               tribo_get(m, TRIBO_QUANTITY_X), tribo_get(m, TRIBO_QUANTITY_Y), tribo_get(m, TRIBO_QUANTITY_CONTACT_FRACTION),
+               tribo_get(m, TRIBO_QUANTITY_TURNS));
         if (st == TRIBO_ENDED) { /* the particle left the chute (chute_length) */
             printf("%s\n", tribo_last_error(m));
             break;
@@ -81,8 +81,8 @@ int main(int argc, char **argv)
     }
     const double cpu = (double)(clock() - start) / CLOCKS_PER_SEC;
 
-    printf("\nfinal state at tau = %g:\n", tribo_get(m, TRIBO_Q_TIME));
-    for (int q = TRIBO_Q_X; q < TRIBO_Q_COUNT; q++)
+    printf("\nfinal state at tau = %g:\n", tribo_get(m, TRIBO_QUANTITY_TIME));
+    for (int q = TRIBO_QUANTITY_X; q < TRIBO_QUANTITY_COUNT; q++)
         printf("  %-18s % .10e\n", tribo_quantity_name((tribo_quantity)q),
                tribo_get(m, (tribo_quantity)q));
     tribo_stats stats;

@@ -61,9 +61,9 @@ static int run(const tribo_scene *s, double t_end, run_result *r)
         fprintf(stderr, "%s\n", err);
         return -1;
     }
-    const tribo_quantity state_q[6] = {TRIBO_Q_X, TRIBO_Q_Y, TRIBO_Q_PHI,
-                                       TRIBO_Q_U, TRIBO_Q_V, TRIBO_Q_OMEGA};
-    const double E0 = tribo_get(m, TRIBO_Q_ENERGY);
+    const tribo_quantity state_q[6] = {TRIBO_QUANTITY_X, TRIBO_QUANTITY_Y, TRIBO_QUANTITY_PHI,
+                                       TRIBO_QUANTITY_U, TRIBO_QUANTITY_V, TRIBO_QUANTITY_OMEGA};
+    const double E0 = tribo_get(m, TRIBO_QUANTITY_ENERGY);
     int h = 0;
     r->residual = 0.0;
     const double start = cpu_seconds();
@@ -73,8 +73,8 @@ static int run(const tribo_scene *s, double t_end, run_result *r)
             tribo_free(m);
             return -1;
         }
-        const double res = tribo_get(m, TRIBO_Q_ENERGY) + tribo_get(m, TRIBO_Q_WORK_DISSIPATED) -
-                           tribo_get(m, TRIBO_Q_WORK_EXTERNAL) - E0;
+        const double res = tribo_get(m, TRIBO_QUANTITY_ENERGY) + tribo_get(m, TRIBO_QUANTITY_WORK_DISSIPATED) -
+                           tribo_get(m, TRIBO_QUANTITY_WORK_EXTERNAL) - E0;
         r->residual = fmax(r->residual, fabs(res));
         while (h < N_HORIZONS && fabs(t - HORIZONS[h]) < 1e-9) {
             for (int i = 0; i < 6; i++)
@@ -83,10 +83,10 @@ static int run(const tribo_scene *s, double t_end, run_result *r)
         }
     }
     r->cpu = cpu_seconds() - start;
-    r->q_static = tribo_get(m, TRIBO_Q_STATIC);
-    r->q_sliding = tribo_get(m, TRIBO_Q_SLIDING);
-    r->contact_fraction = tribo_get(m, TRIBO_Q_CONTACT_FRACTION);
-    r->turns = tribo_get(m, TRIBO_Q_TURNS);
+    r->q_static = tribo_get(m, TRIBO_QUANTITY_STATIC);
+    r->q_sliding = tribo_get(m, TRIBO_QUANTITY_SLIDING);
+    r->contact_fraction = tribo_get(m, TRIBO_QUANTITY_CONTACT_FRACTION);
+    r->turns = tribo_get(m, TRIBO_QUANTITY_TURNS);
     tribo_get_stats(m, &r->stats);
     for (; h < N_HORIZONS; h++)
         for (int i = 0; i < 6; i++)

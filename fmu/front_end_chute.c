@@ -34,7 +34,7 @@ const char *fmu_front_last_error(const fmu_core *core)
 
 double fmu_front_core_time(fmu_core *core)
 {
-    return tribo_get(model_of(core), TRIBO_Q_TIME);
+    return tribo_get(model_of(core), TRIBO_QUANTITY_TIME);
 }
 
 tribo_status fmu_front_set_inputs(fmu_core *core, const double model_values[])
@@ -73,14 +73,14 @@ tribo_status fmu_front_set_param(fmu_core *core, fmu_derived *d, const char *mod
 
 int fmu_front_run_over(fmu_core *core)
 {
-    return tribo_get(model_of(core), TRIBO_Q_EXITED) != 0.0 ||
-           tribo_get(model_of(core), TRIBO_Q_LIFTED_OFF) != 0.0;
+    return tribo_get(model_of(core), TRIBO_QUANTITY_EXITED) != 0.0 ||
+           tribo_get(model_of(core), TRIBO_QUANTITY_LIFTED_OFF) != 0.0;
 }
 
 void fmu_front_over_reason(fmu_core *core, char *reason, size_t reason_size)
 {
     snprintf(reason, reason_size, "the particle %s",
-             tribo_get(model_of(core), TRIBO_Q_LIFTED_OFF) != 0.0
+             tribo_get(model_of(core), TRIBO_QUANTITY_LIFTED_OFF) != 0.0
                  ? "lifted off the plate, run_end = first_liftoff"
                  : "left the chute");
 }

@@ -16,7 +16,7 @@
 #ifdef TRIBO_FMU_SI
 #define FMU_TABLE "si_quantities.def"
 #define FMU_OWN_TABLE "si_quantities.def"
-#define QUANTITY(id) TRIBO_SI_Q_##id
+#define QUANTITY(id) TRIBO_SI_QUANTITY_##id
 #define INPUT(id) TRIBO_SI_INPUT_##id
 #elif defined TRIBO_FMU_SEPARATOR
 #define FMU_TABLE "separator_quantities.def"
@@ -25,7 +25,7 @@
 #define INPUT(id) TRIBO_SEPARATOR_INPUT_##id
 #else
 #define FMU_TABLE "quantities.def"
-#define QUANTITY(id) TRIBO_Q_##id
+#define QUANTITY(id) TRIBO_QUANTITY_##id
 #define INPUT(id) TRIBO_INPUT_##id
 #endif
 

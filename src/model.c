@@ -116,7 +116,7 @@ static tribo_status ended(tribo_model *m)
     return tribo_fail(m, TRIBO_ENDED,
                       "the particle left the chute at t = %.17g (its centre passed %s = %s = "
                       "%.17g): the run is over there; reset to run again",
-                      m->out.t, tribo_quantity_name(TRIBO_Q_X), TRIBO_PARAM_NAME(chute_length),
+                      m->out.t, tribo_quantity_name(TRIBO_QUANTITY_X), TRIBO_PARAM_NAME(chute_length),
                       m->scene.chute_length);
 }
 
@@ -183,9 +183,9 @@ void tribo_book_interval(tribo_model *m, const tribo_point *from, tribo_point *t
                      "t = %.9g: the contact is outside the model's assumptions: %s = %.4g "
                      "exceeds %.2g x min(%s = %g, rho_c = %.4g); the linear contact law and "
                      "the contact width are not meaningful there (counted in %s%s)",
-                     to->t, tribo_quantity_name(TRIBO_Q_DELTA_Y), to->contact.delta_y,
+                     to->t, tribo_quantity_name(TRIBO_QUANTITY_DELTA_Y), to->contact.delta_y,
                      TRIBO_INDENTATION_LIMIT, TRIBO_PARAM_NAME(epsilon), m->dyn.eps, rho_c,
-                     tribo_quantity_name(TRIBO_Q_ASSUMPTION_WARNINGS),
+                     tribo_quantity_name(TRIBO_QUANTITY_ASSUMPTION_WARNINGS),
                      n == LOGGED_VIOLATIONS ? "; further ones are counted, not logged" : "");
             m->log(m->log_user, 1, msg);
         }
@@ -500,7 +500,7 @@ tribo_status tribo_check_outputs(tribo_model *m)
 {
     if (!pending_sums(m))
         return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
-    for (int q = 0; q < TRIBO_Q_COUNT; q++) {
+    for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++) {
         const double v = tribo_get(m, (tribo_quantity)q);
         if (!isfinite(v))
             return tribo_fail(m, TRIBO_ERR_INTEGRATOR, "%s = %g at t = %.17g is not a finite number",
@@ -605,23 +605,23 @@ double tribo_get(tribo_model *m, tribo_quantity which)
     const tribo_point *p = &m->out;
     switch (which) {
 #define TRIBO_TIME(id, name, vr, unit, description, value) \
-    case TRIBO_Q_##id: return (value);
+    case TRIBO_QUANTITY_##id: return (value);
 #define TRIBO_OUTPUT(id, name, type, vr, unit, description, value) \
-    case TRIBO_Q_##id: return (value);
+    case TRIBO_QUANTITY_##id: return (value);
 #include "quantities.def"
-    case TRIBO_Q_COUNT: break;
+    case TRIBO_QUANTITY_COUNT: break;
     }
     return NAN;
 }
 
 const char *tribo_quantity_name(tribo_quantity q)
 {
-    static const char *const names[TRIBO_Q_COUNT] = {
-#define TRIBO_TIME(id, name, ...) [TRIBO_Q_##id] = name,
-#define TRIBO_OUTPUT(id, name, ...) [TRIBO_Q_##id] = name,
+    static const char *const names[TRIBO_QUANTITY_COUNT] = {
+#define TRIBO_TIME(id, name, ...) [TRIBO_QUANTITY_##id] = name,
+#define TRIBO_OUTPUT(id, name, ...) [TRIBO_QUANTITY_##id] = name,
 #include "quantities.def"
     };
-    return (unsigned)q < TRIBO_Q_COUNT ? names[q] : NULL;
+    return (unsigned)q < TRIBO_QUANTITY_COUNT ? names[q] : NULL;
 }
 
 int tribo_includes_charge_model(const tribo_model *m, tribo_segment_charge which)

@@ -297,16 +297,16 @@ tribo_status tribo_si_model_inputs(const tribo_si_derived *d,
 
 double tribo_si_get(const tribo_si_derived *d, tribo_model *m, tribo_si_quantity q)
 {
-#define Q(id) tribo_get(m, TRIBO_Q_##id)
+#define Q(id) tribo_get(m, TRIBO_QUANTITY_##id)
     switch (q) {
 #define TRIBO_TIME(id, name, vr, unit, description, value) \
-    case TRIBO_SI_Q_##id: return (value);
+    case TRIBO_SI_QUANTITY_##id: return (value);
 #define TRIBO_OUTPUT(id, name, type, vr, unit, description, value) \
-    case TRIBO_SI_Q_##id: return (value);
+    case TRIBO_SI_QUANTITY_##id: return (value);
 #define TRIBO_CALCULATED(id, name, vr, unit, variability, description, value) \
-    case TRIBO_SI_Q_##id: return (value);
+    case TRIBO_SI_QUANTITY_##id: return (value);
 #include "si_quantities.def"
-    case TRIBO_SI_Q_COUNT: break;
+    case TRIBO_SI_QUANTITY_COUNT: break;
     }
 #undef Q
     return NAN;
@@ -314,13 +314,13 @@ double tribo_si_get(const tribo_si_derived *d, tribo_model *m, tribo_si_quantity
 
 const char *tribo_si_quantity_name(tribo_si_quantity q)
 {
-    static const char *const names[TRIBO_SI_Q_COUNT] = {
-#define TRIBO_TIME(id, name, ...) [TRIBO_SI_Q_##id] = name,
-#define TRIBO_OUTPUT(id, name, ...) [TRIBO_SI_Q_##id] = name,
-#define TRIBO_CALCULATED(id, name, ...) [TRIBO_SI_Q_##id] = name,
+    static const char *const names[TRIBO_SI_QUANTITY_COUNT] = {
+#define TRIBO_TIME(id, name, ...) [TRIBO_SI_QUANTITY_##id] = name,
+#define TRIBO_OUTPUT(id, name, ...) [TRIBO_SI_QUANTITY_##id] = name,
+#define TRIBO_CALCULATED(id, name, ...) [TRIBO_SI_QUANTITY_##id] = name,
 #include "si_quantities.def"
     };
-    return (unsigned)q < TRIBO_SI_Q_COUNT ? names[q] : NULL;
+    return (unsigned)q < TRIBO_SI_QUANTITY_COUNT ? names[q] : NULL;
 }
 
 double tribo_si_segment_factor(const tribo_si_derived *d, tribo_segment_charge which)

@@ -12,7 +12,7 @@
  *   if (tribo_si_derive(&si, &d, err, sizeof err) != TRIBO_OK) { puts(err); ... }
  *   tribo_model *m = tribo_create(&d.scene, err, sizeof err);
  *   tribo_advance_fully(m, 1e9);              // to the exit: TRIBO_ENDED
- *   double q_per_m = tribo_si_get(&d, m, TRIBO_SI_Q_Q_PER_M_STATIC);
+ *   double q_per_m = tribo_si_get(&d, m, TRIBO_SI_QUANTITY_Q_PER_M_STATIC);
  *
  * The model is two-dimensional: the particle is a cylinder of elliptical section; totals
  * are per unit length times the cylinder's depth (cylinder_length).
@@ -89,11 +89,11 @@ tribo_status tribo_si_model_inputs(const tribo_si_derived *d,
 
 /* What can be read: the time, the outputs and the calculated parameters. */
 typedef enum tribo_si_quantity {
-#define TRIBO_TIME(id, ...) TRIBO_SI_Q_##id,
-#define TRIBO_OUTPUT(id, ...) TRIBO_SI_Q_##id,
-#define TRIBO_CALCULATED(id, ...) TRIBO_SI_Q_##id,
+#define TRIBO_TIME(id, ...) TRIBO_SI_QUANTITY_##id,
+#define TRIBO_OUTPUT(id, ...) TRIBO_SI_QUANTITY_##id,
+#define TRIBO_CALCULATED(id, ...) TRIBO_SI_QUANTITY_##id,
 #include "si_quantities.def"
-    TRIBO_SI_Q_COUNT
+    TRIBO_SI_QUANTITY_COUNT
 } tribo_si_quantity;
 
 /* A quantity of an instance of the derived scene (m may be NULL for the calculated

@@ -14,7 +14,7 @@
  *   tribo_model *m = tribo_create(&scene, err, sizeof err);
  *   if (!m) { puts(err); ... }
  *   tribo_advance(m, 1000.0);
- *   double q = tribo_get(m, TRIBO_Q_STATIC);
+ *   double q = tribo_get(m, TRIBO_QUANTITY_STATIC);
  *   tribo_free(m);
  *
  * Everything is dimensionless (docs/model.md preamble). An instance owns all its memory;
@@ -41,11 +41,11 @@ typedef enum tribo_status {
     TRIBO_ERR_STATE,            /* state bytes that do not belong to this scene       */
     TRIBO_ERR_MEMORY,
     TRIBO_INCOMPLETE,           /* not an error: an advance spent its work limit and
-                                   stopped early, at tribo_get(model, TRIBO_Q_TIME); the
+                                   stopped early, at tribo_get(model, TRIBO_QUANTITY_TIME); the
                                    instance is consistent there and advances on from it */
     TRIBO_ENDED                 /* not an error: the run is over where the scene ends it
                                    (run_end, model.md §9): the particle left the chute (at
-                                   tribo_get(model, TRIBO_Q_EXIT_TIME)) or, with run_end =
+                                   tribo_get(model, TRIBO_QUANTITY_EXIT_TIME)) or, with run_end =
                                    first_liftoff, its first contact was lost again (output
                                    lifted_off); every output stays there, and any later
                                    advance past it returns this again and changes nothing
@@ -190,7 +190,7 @@ tribo_status tribo_reset(tribo_model *model);
    results to one call to tn (with constant inputs and parameters).
    One call does at most the scene's work_limit of work (in units of about half a
    microsecond of CPU: integrator.h); when that is spent it stops after a whole step and returns TRIBO_INCOMPLETE, at an
-   earlier time (tribo_get TRIBO_Q_TIME) from which the next call goes on, with the same
+   earlier time (tribo_get TRIBO_QUANTITY_TIME) from which the next call goes on, with the same
    results as if it had not stopped. A time the integrator cannot resolve (beyond
    TRIBO_TIME_MAX, or a fixed step's grid finer than the rounding of t) is refused
    (TRIBO_ERR_TIME) and nothing changes. An advance that would give a non-finite output
@@ -230,10 +230,10 @@ const char *tribo_last_error(const tribo_model *model);
 /* ---- what can be read ------------------------------------------------------------ */
 
 typedef enum tribo_quantity {
-#define TRIBO_TIME(id, ...) TRIBO_Q_##id,
-#define TRIBO_OUTPUT(id, ...) TRIBO_Q_##id,
+#define TRIBO_TIME(id, ...) TRIBO_QUANTITY_##id,
+#define TRIBO_OUTPUT(id, ...) TRIBO_QUANTITY_##id,
 #include "quantities.def"
-    TRIBO_Q_COUNT
+    TRIBO_QUANTITY_COUNT
 } tribo_quantity;
 
 /* The value of a quantity at the current time. Charge quantities of a model the

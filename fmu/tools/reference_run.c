@@ -103,7 +103,7 @@ int main(void)
             st = tribo_set_external_force(m, a, b);
         } else if (strcmp(cmd, "print") == 0) {
             putchar('{');
-            for (int q = 0; q < TRIBO_Q_COUNT; q++) {
+            for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++) {
                 printf("%s\"%s\": ", q ? ", " : "", tribo_quantity_name((tribo_quantity)q));
                 print_number(tribo_get(m, (tribo_quantity)q));
             }

@@ -59,7 +59,7 @@ static inline void advance_both(tribo_model *a, tribo_model *b, double t)
    follow from, so the one a comparison of integrators needs). */
 static inline double state_distance(tribo_model *a, tribo_model *b)
 {
-    const tribo_quantity q[] = {TRIBO_Q_X, TRIBO_Q_Y, TRIBO_Q_PHI, TRIBO_Q_U, TRIBO_Q_V, TRIBO_Q_OMEGA};
+    const tribo_quantity q[] = {TRIBO_QUANTITY_X, TRIBO_QUANTITY_Y, TRIBO_QUANTITY_PHI, TRIBO_QUANTITY_U, TRIBO_QUANTITY_V, TRIBO_QUANTITY_OMEGA};
     double d = 0.0;
     for (int i = 0; i < 6; i++)
         d = fmax(d, fabs(tribo_get(a, q[i]) - tribo_get(b, q[i])));

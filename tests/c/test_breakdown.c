@@ -31,18 +31,18 @@ Test(breakdown, a_sliding_run_stays_at_the_limit_and_books_the_lost_charge)
         for (int i = 0; i < 400; i++)
             top = fmax(top, v[i]);
         cr_expect(top == 0.005 / 0.01, "integrator %d: top %.17g", integrator, top);
-        const double fraction = tribo_get(m, TRIBO_Q_CAPPED_SLIDING);
-        const double lost = tribo_get(m, TRIBO_Q_LOST_SLIDING);
+        const double fraction = tribo_get(m, TRIBO_QUANTITY_CAPPED_SLIDING);
+        const double lost = tribo_get(m, TRIBO_QUANTITY_LOST_SLIDING);
         cr_expect(fraction > 0.0 && fraction < 1.0, "integrator %d: fraction %g", integrator, fraction);
         cr_expect(lost > 0.0, "integrator %d: lost %g", integrator, lost);
-        cr_expect(tribo_get(m, TRIBO_Q_SIGMA_S) > 0.005, "the saturation is above the limit");
-        cr_expect_eq(tribo_get(m, TRIBO_Q_CAPPED_STATIC), 0.0); /* left out */
-        cr_expect_eq(tribo_get(m, TRIBO_Q_LOST_STATIC), 0.0);
+        cr_expect(tribo_get(m, TRIBO_QUANTITY_SIGMA_S) > 0.005, "the saturation is above the limit");
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_CAPPED_STATIC), 0.0); /* left out */
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_LOST_STATIC), 0.0);
         /* loaded, the run goes on to the same charges and the same loss, bit for bit */
         cr_assert_eq(tribo_state_load(m, saved, size), TRIBO_OK, "%s", tribo_last_error(m));
         cr_assert_eq(tribo_advance_fully(m, 100.0), TRIBO_OK, "%s", tribo_last_error(m));
-        cr_expect_eq(tribo_get(m, TRIBO_Q_LOST_SLIDING), lost);
-        cr_expect_eq(tribo_get(m, TRIBO_Q_CAPPED_SLIDING), fraction);
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_LOST_SLIDING), lost);
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_CAPPED_SLIDING), fraction);
         free(saved);
         tribo_free(m);
     }
@@ -61,13 +61,13 @@ Test(breakdown, the_default_is_the_papers_model_bit_for_bit)
     cr_assert(a && b, "%s", err);
     cr_assert_eq(tribo_advance_fully(a, 100.0), TRIBO_OK);
     cr_assert_eq(tribo_advance_fully(b, 100.0), TRIBO_OK);
-    for (int q = 0; q < TRIBO_Q_COUNT; q++) {
+    for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++) {
         const double x = tribo_get(a, (tribo_quantity)q), y = tribo_get(b, (tribo_quantity)q);
         cr_expect(memcmp(&x, &y, sizeof x) == 0, "%s: %a against %a",
                   tribo_quantity_name((tribo_quantity)q), x, y);
     }
-    cr_expect_eq(tribo_get(a, TRIBO_Q_LOST_SLIDING), 0.0);
-    cr_expect_eq(tribo_get(a, TRIBO_Q_CAPPED_STATIC), 0.0);
+    cr_expect_eq(tribo_get(a, TRIBO_QUANTITY_LOST_SLIDING), 0.0);
+    cr_expect_eq(tribo_get(a, TRIBO_QUANTITY_CAPPED_STATIC), 0.0);
     tribo_free(a);
     tribo_free(b);
 }
@@ -97,9 +97,9 @@ Test(breakdown, the_si_default_caps_a_physical_run)
     free(v);
     /* the bound, through Sigma_bd and back: to rounding */
     cr_expect(top <= 2.7e-5 * (1 + 1e-14) && top >= 2.7e-5 * (1 - 1e-14), "top %.17g", top);
-    cr_expect(tribo_si_get(&d, m, TRIBO_SI_Q_CAPPED_SLIDING) > 0.0);
-    cr_expect(tribo_si_get(&d, m, TRIBO_SI_Q_LOST_SLIDING) != 0.0);
+    cr_expect(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_CAPPED_SLIDING) > 0.0);
+    cr_expect(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_LOST_SLIDING) != 0.0);
     /* the static model's sigma0 = -1e-5 C/m2 stays below the limit */
-    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_CAPPED_STATIC), 0.0);
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_CAPPED_STATIC), 0.0);
     tribo_free(m);
 }

@@ -34,33 +34,33 @@ Test(chute, the_exit_is_located_at_the_end_and_the_run_ends_there)
         tribo_scene s = chute(INTEGRATORS[k]);
         tribo_model *m = make(&s);
         run_to_the_exit(m, 1000.0);
-        const double t_exit = tribo_get(m, TRIBO_Q_EXIT_TIME);
-        cr_expect_eq(tribo_get(m, TRIBO_Q_EXITED), 1.0);
-        cr_expect(t_exit > 10.0 && t_exit == tribo_get(m, TRIBO_Q_TIME), "exit at %g", t_exit);
+        const double t_exit = tribo_get(m, TRIBO_QUANTITY_EXIT_TIME);
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_EXITED), 1.0);
+        cr_expect(t_exit > 10.0 && t_exit == tribo_get(m, TRIBO_QUANTITY_TIME), "exit at %g", t_exit);
         /* at the crossing: CVODE's root and the fixed step's cut are at or just past X = L
            (measured: 5.4e-14 past with CVODE Adams, 0 with the fixed step and BDF) */
-        const double X = tribo_get(m, TRIBO_Q_X);
+        const double X = tribo_get(m, TRIBO_QUANTITY_X);
         cr_expect(X >= 3.0 && X - 3.0 <= 1e-12, "integrator %d: X = %.17g at the exit", s.integrator, X);
         cr_expect(strstr(tribo_last_error(m), "left the chute") != NULL, "%s", tribo_last_error(m));
 
         /* every output is frozen there: a later advance ends at once and changes nothing */
-        double before[TRIBO_Q_COUNT];
-        for (int q = 0; q < TRIBO_Q_COUNT; q++)
+        double before[TRIBO_QUANTITY_COUNT];
+        for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++)
             before[q] = tribo_get(m, (tribo_quantity)q);
         cr_expect_eq(tribo_advance(m, t_exit + 10.0), TRIBO_ENDED);
         cr_expect_eq(tribo_advance(m, t_exit), TRIBO_OK); /* the time it is at */
-        for (int q = 0; q < TRIBO_Q_COUNT; q++)
+        for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++)
             cr_expect(tribo_get(m, (tribo_quantity)q) == before[q], "%s moved",
                       tribo_quantity_name((tribo_quantity)q));
         /* and nothing can be changed any more; a reset starts again */
         cr_expect_eq(tribo_set_param(m, "mu", 0.5), TRIBO_ENDED);
         cr_expect_eq(tribo_set_external_force(m, 0.01, 0.0), TRIBO_ENDED);
-        cr_expect_eq(tribo_get(m, TRIBO_Q_EXITED), 1.0);
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_EXITED), 1.0);
         cr_assert_eq(tribo_reset(m), TRIBO_OK);
-        cr_expect_eq(tribo_get(m, TRIBO_Q_EXITED), 0.0);
-        cr_expect_eq(tribo_get(m, TRIBO_Q_EXIT_TIME), 0.0);
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_EXITED), 0.0);
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_EXIT_TIME), 0.0);
         run_to_the_exit(m, 1000.0);
-        cr_expect_eq(tribo_get(m, TRIBO_Q_EXIT_TIME), t_exit);
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_EXIT_TIME), t_exit);
         tribo_free(m);
     }
 }
@@ -74,10 +74,10 @@ Test(chute, both_integrators_find_the_same_exit)
     make_fixed_and_cvode(chute(0), &fixed, &cvode);
     run_to_the_exit(fixed, 1000.0);
     run_to_the_exit(cvode, 1000.0);
-    const double a = tribo_get(fixed, TRIBO_Q_EXIT_TIME), b = tribo_get(cvode, TRIBO_Q_EXIT_TIME);
+    const double a = tribo_get(fixed, TRIBO_QUANTITY_EXIT_TIME), b = tribo_get(cvode, TRIBO_QUANTITY_EXIT_TIME);
     cr_expect(fabs(a - b) <= 1e-7 * b, "exit at %.10g (fixed step), %.10g (CVODE)", a, b);
-    cr_expect(fabs(tribo_get(fixed, TRIBO_Q_U) - tribo_get(cvode, TRIBO_Q_U)) <= 2e-8,
-              "U %.10g, %.10g", tribo_get(fixed, TRIBO_Q_U), tribo_get(cvode, TRIBO_Q_U));
+    cr_expect(fabs(tribo_get(fixed, TRIBO_QUANTITY_U) - tribo_get(cvode, TRIBO_QUANTITY_U)) <= 2e-8,
+              "U %.10g, %.10g", tribo_get(fixed, TRIBO_QUANTITY_U), tribo_get(cvode, TRIBO_QUANTITY_U));
     tribo_free(fixed);
     tribo_free(cvode);
 }
@@ -103,7 +103,7 @@ Test(chute, the_exit_does_not_depend_on_the_times_asked_for)
         run_to_the_exit(one, 1000.0);
         run_in_steps(small, 0.37, 1000.0);
         run_in_steps(large, 7.0, 1000.0);
-        for (int q = 0; q < TRIBO_Q_COUNT; q++) {
+        for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++) {
             const double v = tribo_get(one, (tribo_quantity)q);
             cr_expect(tribo_get(small, (tribo_quantity)q) == v && tribo_get(large, (tribo_quantity)q) == v,
                       "integrator %d, %s: %.17g, %.17g, %.17g", s.integrator,
@@ -128,7 +128,7 @@ Test(chute, a_chute_beyond_reach_changes_nothing)
         tribo_model *long_chute = make(&s);
         for (double t = 5.0; t <= 50.0; t += 5.0) {
             advance_both(plate, long_chute, t);
-            for (int q = 0; q < TRIBO_Q_COUNT; q++)
+            for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++)
                 cr_expect(tribo_get(plate, (tribo_quantity)q) == tribo_get(long_chute, (tribo_quantity)q),
                           "integrator %d, %s at t = %g", s.integrator,
                           tribo_quantity_name((tribo_quantity)q), t);
@@ -146,13 +146,13 @@ Test(chute, the_drop_angle_turns_the_initial_velocity)
     s.drop_angle = 30 * (M_PI / 180.0);
     tribo_model *m = make(&s);
     const double a = 75 * (M_PI / 180.0);
-    cr_expect(fabs(tribo_get(m, TRIBO_Q_U) - 0.5 * sin(a)) < 1e-15);
-    cr_expect(fabs(tribo_get(m, TRIBO_Q_V) + 0.5 * cos(a)) < 1e-15);
+    cr_expect(fabs(tribo_get(m, TRIBO_QUANTITY_U) - 0.5 * sin(a)) < 1e-15);
+    cr_expect(fabs(tribo_get(m, TRIBO_QUANTITY_V) + 0.5 * cos(a)) < 1e-15);
     tribo_free(m);
     /* and an angle up-slope: -45 degrees on the 45 degree plate is straight into it */
     s.drop_angle = -M_PI / 4;
     m = make(&s);
-    cr_expect(fabs(tribo_get(m, TRIBO_Q_U)) < 1e-16 && tribo_get(m, TRIBO_Q_V) == -0.5);
+    cr_expect(fabs(tribo_get(m, TRIBO_QUANTITY_U)) < 1e-16 && tribo_get(m, TRIBO_QUANTITY_V) == -0.5);
     tribo_free(m);
 }
 
@@ -183,7 +183,7 @@ Test(chute, a_drop_beyond_the_end_is_refused)
 
 static void expect_same_outputs(tribo_model *a, tribo_model *b, const char *what)
 {
-    for (int q = 0; q < TRIBO_Q_COUNT; q++)
+    for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++)
         cr_expect(tribo_get(a, (tribo_quantity)q) == tribo_get(b, (tribo_quantity)q), "%s: %s", what,
                   tribo_quantity_name((tribo_quantity)q));
 }
@@ -221,7 +221,7 @@ Test(chute, states_save_and_load_before_and_after_the_exit)
         memcpy(bytes + state_ended_offset(), &flag, sizeof flag);
         cr_expect_eq(tribo_state_load(fresh, bytes, size), TRIBO_ERR_STATE);
         cr_expect(strstr(tribo_last_error(fresh), "end of the run"), "%s", tribo_last_error(fresh));
-        cr_expect_eq(tribo_get(fresh, TRIBO_Q_TIME), 0.0);
+        cr_expect_eq(tribo_get(fresh, TRIBO_QUANTITY_TIME), 0.0);
         free(bytes);
         /* and so is one that has not ended with its committed point past the end */
         bytes = saved_state(fresh, &size);
@@ -234,7 +234,7 @@ Test(chute, states_save_and_load_before_and_after_the_exit)
         const tribo_param_info *L = tribo_param_find("chute_length");
         size_t n_params;
         const tribo_param_info *table = tribo_param_table(&n_params);
-        const double shorter = tribo_get(far, TRIBO_Q_X) * 0.5;
+        const double shorter = tribo_get(far, TRIBO_QUANTITY_X) * 0.5;
         memcpy(bytes + 24 + (size_t)(L - table) * 8, &shorter, sizeof shorter);
         cr_expect_eq(tribo_state_load(fresh, bytes, size), TRIBO_ERR_STATE);
         free(bytes);
@@ -258,13 +258,13 @@ Test(chute, impacts_count_the_contacts_made)
         int was = 0;
         for (int i = 1; i <= 600; i++) {
             cr_assert_eq(tribo_advance_fully(m, 0.1 * i), TRIBO_OK);
-            const int now = tribo_get(m, TRIBO_Q_IN_CONTACT) != 0.0;
+            const int now = tribo_get(m, TRIBO_QUANTITY_IN_CONTACT) != 0.0;
             seen += now && !was;
             was = now;
         }
         cr_expect(seen >= 5, "%lld contacts", seen);
-        cr_expect_eq(tribo_get(m, TRIBO_Q_IMPACTS), (double)seen, "integrator %d: %g impacts, %lld seen",
-                     s.integrator, tribo_get(m, TRIBO_Q_IMPACTS), seen);
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_IMPACTS), (double)seen, "integrator %d: %g impacts, %lld seen",
+                     s.integrator, tribo_get(m, TRIBO_QUANTITY_IMPACTS), seen);
         tribo_free(m);
     }
 }
@@ -283,8 +283,8 @@ Test(chute, a_chute_below_the_root_findings_resolution_still_ends_the_run)
         tribo_model *m = make(&s);
         const tribo_status st = tribo_advance_fully(m, 0.1);
         cr_assert_eq(st, TRIBO_ENDED, "integrator %d: %s", s.integrator, tribo_last_error(m));
-        cr_expect_eq(tribo_get(m, TRIBO_Q_EXITED), 1.0);
-        cr_expect(tribo_get(m, TRIBO_Q_X) >= 5e-324);
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_EXITED), 1.0);
+        cr_expect(tribo_get(m, TRIBO_QUANTITY_X) >= 5e-324);
         size_t size;
         unsigned char *bytes = saved_state(m, &size);
         tribo_model *other = make(&s);
@@ -315,8 +315,8 @@ Test(chute, the_exit_after_a_long_roll_is_at_the_end_and_its_state_loads, .timeo
         cr_assert_eq(tribo_si_derive(&si, &d, err, sizeof err), TRIBO_OK, "%s", err);
         tribo_model *m = make(&d.scene);
         cr_assert_eq(tribo_advance_fully(m, TRIBO_TIME_MAX), TRIBO_ENDED, "%s", tribo_last_error(m));
-        cr_expect(tribo_get(m, TRIBO_Q_X) >= d.scene.chute_length, "%s: X - L = %.3g", grains[i],
-                  tribo_get(m, TRIBO_Q_X) - d.scene.chute_length);
+        cr_expect(tribo_get(m, TRIBO_QUANTITY_X) >= d.scene.chute_length, "%s: X - L = %.3g", grains[i],
+                  tribo_get(m, TRIBO_QUANTITY_X) - d.scene.chute_length);
         size_t size;
         unsigned char *bytes = saved_state(m, &size);
         tribo_model *loaded = make(&d.scene);

@@ -24,7 +24,7 @@ Test(contact_edge_cases, fixed_step_stable_in_a_stiff_normal_lock, .timeout = 60
     tribo_get_stats(fixed, &st);
     cr_expect(st.substeps > 0, "the stiff lock was sub-stepped");
     cr_expect(state_distance(fixed, cvode) < 1e-3, "distance %.3g", state_distance(fixed, cvode));
-    cr_expect(isfinite(tribo_get(fixed, TRIBO_Q_ENERGY)));
+    cr_expect(isfinite(tribo_get(fixed, TRIBO_QUANTITY_ENERGY)));
     tribo_free(fixed);
     tribo_free(cvode);
 }
@@ -40,18 +40,18 @@ Test(contact_edge_cases, particle_set_down_at_rest)
     make_fixed_and_cvode(s, &fixed, &cvode);
     for (int k = 1; k <= 40; k++) {
         cr_assert_eq(tribo_advance(cvode, 0.5 * k), TRIBO_OK);
-        cr_assert_eq(tribo_get(cvode, TRIBO_Q_IN_CONTACT), 1.0, "t = %g: left the plate", 0.5 * k);
-        cr_assert(tribo_get(cvode, TRIBO_Q_DELTA_Y) < 0.01, "t = %g: sank in by %g", 0.5 * k,
-                  tribo_get(cvode, TRIBO_Q_DELTA_Y));
-        cr_assert(fabs(tribo_get(cvode, TRIBO_Q_DELTA_X)) <=
-                  s.mu * tribo_get(cvode, TRIBO_Q_PSI_N) * (1 + 1e-9));
+        cr_assert_eq(tribo_get(cvode, TRIBO_QUANTITY_IN_CONTACT), 1.0, "t = %g: left the plate", 0.5 * k);
+        cr_assert(tribo_get(cvode, TRIBO_QUANTITY_DELTA_Y) < 0.01, "t = %g: sank in by %g", 0.5 * k,
+                  tribo_get(cvode, TRIBO_QUANTITY_DELTA_Y));
+        cr_assert(fabs(tribo_get(cvode, TRIBO_QUANTITY_DELTA_X)) <=
+                  s.mu * tribo_get(cvode, TRIBO_QUANTITY_PSI_N) * (1 + 1e-9));
     }
     cr_assert_eq(tribo_advance(fixed, 20.0), TRIBO_OK);
     /* the fixed step's regularised lock creeps at |V| < 2 v_reg (measured 2.5e-6 here);
        the broken start was 30% off in X */
     cr_expect(state_distance(fixed, cvode) < 2.0 * s.v_reg * 20.0, "distance %.3g", state_distance(fixed, cvode));
-    cr_expect(fabs(tribo_get(fixed, TRIBO_Q_STATIC) - tribo_get(cvode, TRIBO_Q_STATIC)) < 1e-4,
-              "Q_static %g vs %g", tribo_get(fixed, TRIBO_Q_STATIC), tribo_get(cvode, TRIBO_Q_STATIC));
+    cr_expect(fabs(tribo_get(fixed, TRIBO_QUANTITY_STATIC) - tribo_get(cvode, TRIBO_QUANTITY_STATIC)) < 1e-4,
+              "Q_static %g vs %g", tribo_get(fixed, TRIBO_QUANTITY_STATIC), tribo_get(cvode, TRIBO_QUANTITY_STATIC));
     tribo_free(fixed);
     tribo_free(cvode);
 }
@@ -68,7 +68,7 @@ Test(contact_edge_cases, grazing_stick_to_slip_is_seen)
     double closest = 0.0;
     for (int k = 1; k <= 5000; k++) {
         cr_assert_eq(tribo_advance(m, 0.01 * k), TRIBO_OK);
-        const double dx = fabs(tribo_get(m, TRIBO_Q_DELTA_X)), L = s.mu * tribo_get(m, TRIBO_Q_PSI_N);
+        const double dx = fabs(tribo_get(m, TRIBO_QUANTITY_DELTA_X)), L = s.mu * tribo_get(m, TRIBO_QUANTITY_PSI_N);
         cr_assert(dx <= L * (1 + 1e-9), "t = %g: |delta_x| = %.9g > mu Psi_N = %.9g", 0.01 * k, dx, L);
         if (L > 0)
             closest = fmax(closest, dx / L);
@@ -101,7 +101,7 @@ Test(contact_edge_cases, deep_indentation_is_reported)
     warnings = 0;
     tribo_set_logger(m, logger, NULL);
     cr_assert_eq(tribo_advance(m, 100.0), TRIBO_OK);
-    const double counted = tribo_get(m, TRIBO_Q_ASSUMPTION_WARNINGS);
+    const double counted = tribo_get(m, TRIBO_QUANTITY_ASSUMPTION_WARNINGS);
     cr_expect(counted >= 1, "counted %g", counted);
     cr_expect_eq(warnings, (int)fmin(counted, 10), "logged %d of %g", warnings, counted);
     cr_expect(strstr(last_warning, "delta_y") && strstr(last_warning, "rho_c"), "%s", last_warning);
@@ -112,7 +112,7 @@ Test(contact_edge_cases, deep_indentation_is_reported)
     low.charge_model = TRIBO_CHARGE_NONE;
     tribo_model *ok = make(&low);
     cr_assert_eq(tribo_advance(ok, 100.0), TRIBO_OK);
-    cr_expect_eq(tribo_get(ok, TRIBO_Q_ASSUMPTION_WARNINGS), 0.0);
+    cr_expect_eq(tribo_get(ok, TRIBO_QUANTITY_ASSUMPTION_WARNINGS), 0.0);
     tribo_free(m);
     tribo_free(ok);
 }

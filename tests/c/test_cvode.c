@@ -34,8 +34,8 @@ Test(cvode, contact_onset_at_the_analytic_drop_time)
         const double t_star = (-vn + sqrt(vn * vn + 2 * gn * s.gap0)) / gn;
         tribo_model *m = make(&s);
         cr_assert_eq(tribo_advance(m, t_star + 1.0), TRIBO_OK);
-        cr_assert_eq(tribo_get(m, TRIBO_Q_IN_CONTACT), 1.0);
-        const double measured = t_star + 1.0 - tribo_get(m, TRIBO_Q_CONTACT_TIME);
+        cr_assert_eq(tribo_get(m, TRIBO_QUANTITY_IN_CONTACT), 1.0);
+        const double measured = t_star + 1.0 - tribo_get(m, TRIBO_QUANTITY_CONTACT_TIME);
         const double err = fabs(measured - t_star);
         /* the fall is a parabola, which Adams integrates exactly at any rtol: what is left is
            the rounding of the times read back, measured 2.2e-16 at each rtol; bound 3x */
@@ -54,14 +54,14 @@ static double balance(double rtol)
     s.nu = 0.0;
     s.charge_model = TRIBO_CHARGE_NONE;
     tribo_model *m = make(&s);
-    const double E0 = tribo_get(m, TRIBO_Q_ENERGY);
+    const double E0 = tribo_get(m, TRIBO_QUANTITY_ENERGY);
     double worst = 0.0;
     for (int k = 1; k <= 1000; k++) {
         cr_assert_eq(tribo_advance(m, k), TRIBO_OK, "%s", tribo_last_error(m));
-        worst = fmax(worst, fabs(tribo_get(m, TRIBO_Q_ENERGY) +
-                                 tribo_get(m, TRIBO_Q_WORK_DISSIPATED) - E0));
+        worst = fmax(worst, fabs(tribo_get(m, TRIBO_QUANTITY_ENERGY) +
+                                 tribo_get(m, TRIBO_QUANTITY_WORK_DISSIPATED) - E0));
     }
-    cr_expect(tribo_get(m, TRIBO_Q_WORK_DISSIPATED) > 0.01);
+    cr_expect(tribo_get(m, TRIBO_QUANTITY_WORK_DISSIPATED) > 0.01);
     tribo_free(m);
     return worst;
 }
@@ -112,8 +112,8 @@ Test(cvode, fixed_step_converges_to_cvode, .timeout = 60)
 static double contact_point_velocity(tribo_model *m, double eps)
 {
     tribo_pose g;
-    tribo_pose_at(eps * eps, tribo_get(m, TRIBO_Q_PHI), &g);
-    return tribo_get(m, TRIBO_Q_V) + g.cx * tribo_get(m, TRIBO_Q_OMEGA);
+    tribo_pose_at(eps * eps, tribo_get(m, TRIBO_QUANTITY_PHI), &g);
+    return tribo_get(m, TRIBO_QUANTITY_V) + g.cx * tribo_get(m, TRIBO_QUANTITY_OMEGA);
 }
 
 /* High friction, rocking: the particle comes to a normal lock that holds its contact point
@@ -144,9 +144,9 @@ Test(cvode, regularised_lock_converges_to_the_set_valued_one, .timeout = 120)
         tribo_free(m);
     }
     cr_expect(contact_point_velocity(ref, ref_scene.epsilon) == 0.0 &&
-                  tribo_get(ref, TRIBO_Q_V) != 0.0 && tribo_get(ref, TRIBO_Q_OMEGA) != 0.0,
+                  tribo_get(ref, TRIBO_QUANTITY_V) != 0.0 && tribo_get(ref, TRIBO_QUANTITY_OMEGA) != 0.0,
               "CVODE's lock holds vn = 0 exactly while the particle turns: V = %g, Omega = %g",
-              tribo_get(ref, TRIBO_Q_V), tribo_get(ref, TRIBO_Q_OMEGA));
+              tribo_get(ref, TRIBO_QUANTITY_V), tribo_get(ref, TRIBO_QUANTITY_OMEGA));
     tribo_free(ref);
 }
 
@@ -160,8 +160,8 @@ Test(cvode, charging_does_not_steer_the_motion)
     s.charge_model = TRIBO_CHARGE_NONE;
     tribo_model *without = make(&s);
     advance_both(with, without, 50.0);
-    const tribo_quantity q[] = {TRIBO_Q_X, TRIBO_Q_Y, TRIBO_Q_PHI, TRIBO_Q_U, TRIBO_Q_V,
-                                TRIBO_Q_OMEGA, TRIBO_Q_DELTA_X, TRIBO_Q_ENERGY};
+    const tribo_quantity q[] = {TRIBO_QUANTITY_X, TRIBO_QUANTITY_Y, TRIBO_QUANTITY_PHI, TRIBO_QUANTITY_U, TRIBO_QUANTITY_V,
+                                TRIBO_QUANTITY_OMEGA, TRIBO_QUANTITY_DELTA_X, TRIBO_QUANTITY_ENERGY};
     for (int i = 0; i < 8; i++)
         cr_expect_eq(tribo_get(with, q[i]), tribo_get(without, q[i]), "%s",
                      tribo_quantity_name(q[i]));
@@ -169,7 +169,7 @@ Test(cvode, charging_does_not_steer_the_motion)
     tribo_get_stats(with, &a);
     tribo_get_stats(without, &b);
     cr_expect_eq(a.steps, b.steps);
-    cr_expect(tribo_get(with, TRIBO_Q_STATIC) > 0.1);
+    cr_expect(tribo_get(with, TRIBO_QUANTITY_STATIC) > 0.1);
     tribo_free(with);
     tribo_free(without);
 }
@@ -186,8 +186,8 @@ Test(cvode, adams_and_bdf_agree)
     advance_both(adams, bdf, 30.0);
     /* measured 3.2e-10 apart in the motion and 4.4e-11 in Q_static; bounds 3x those */
     cr_expect(state_distance(adams, bdf) < 9.5e-10, "distance %.3g", state_distance(adams, bdf));
-    cr_expect(fabs(tribo_get(adams, TRIBO_Q_STATIC) - tribo_get(bdf, TRIBO_Q_STATIC)) < 1.3e-10,
-              "Q_static %.17g and %.17g", tribo_get(adams, TRIBO_Q_STATIC), tribo_get(bdf, TRIBO_Q_STATIC));
+    cr_expect(fabs(tribo_get(adams, TRIBO_QUANTITY_STATIC) - tribo_get(bdf, TRIBO_QUANTITY_STATIC)) < 1.3e-10,
+              "Q_static %.17g and %.17g", tribo_get(adams, TRIBO_QUANTITY_STATIC), tribo_get(bdf, TRIBO_QUANTITY_STATIC));
     tribo_free(adams);
     tribo_free(bdf);
 }
@@ -205,20 +205,20 @@ Test(cvode, modes_are_visited_and_counted)
         tribo_model *m = make(&s);
         for (int k = 1; k <= 2000; k++) {
             cr_assert_eq(tribo_advance(m, 0.05 * k), TRIBO_OK);
-            const int c = tribo_get(m, TRIBO_Q_IN_CONTACT) != 0.0;
-            const int slipping = tribo_get(m, TRIBO_Q_SLIPPING) != 0.0;
+            const int c = tribo_get(m, TRIBO_QUANTITY_IN_CONTACT) != 0.0;
+            const int slipping = tribo_get(m, TRIBO_QUANTITY_SLIPPING) != 0.0;
             flight += !c;
             lock += c && contact_point_velocity(m, s.epsilon) == 0.0;
             slip += c && slipping;
             stick += c && !slipping;
             if (!c)
-                cr_assert(tribo_get(m, TRIBO_Q_PSI_N) == 0.0 && tribo_get(m, TRIBO_Q_DELTA_X) == 0.0);
+                cr_assert(tribo_get(m, TRIBO_QUANTITY_PSI_N) == 0.0 && tribo_get(m, TRIBO_QUANTITY_DELTA_X) == 0.0);
             /* slipping, the friction force is mu Psi_N as computed (measured equal to the bit);
                sticking, the spring's stretch never measured above mu Psi_N */
             if (slipping)
-                cr_assert_eq(fabs(tribo_get(m, TRIBO_Q_PSI_T)), s.mu * tribo_get(m, TRIBO_Q_PSI_N));
+                cr_assert_eq(fabs(tribo_get(m, TRIBO_QUANTITY_PSI_T)), s.mu * tribo_get(m, TRIBO_QUANTITY_PSI_N));
             else if (c)
-                cr_assert(fabs(tribo_get(m, TRIBO_Q_DELTA_X)) <= s.mu * tribo_get(m, TRIBO_Q_PSI_N));
+                cr_assert(fabs(tribo_get(m, TRIBO_QUANTITY_DELTA_X)) <= s.mu * tribo_get(m, TRIBO_QUANTITY_PSI_N));
         }
         tribo_stats st;
         tribo_get_stats(m, &st);
@@ -251,6 +251,6 @@ Test(cvode, too_much_work_stops_with_the_time_and_state, .timeout = 30)
                   strstr(msg, "phase: flight"),
               "%s", msg);
     cr_expect_eq(tribo_reset(m), TRIBO_OK);
-    cr_expect_eq(tribo_get(m, TRIBO_Q_TIME), 0.0);
+    cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_TIME), 0.0);
     tribo_free(m);
 }

@@ -14,14 +14,14 @@ static double contact_point_velocity(tribo_model *m)
 {
     const double eps = tribo_get_scene(m)->epsilon;
     tribo_pose g;
-    tribo_pose_at(eps * eps, tribo_get(m, TRIBO_Q_PHI), &g);
-    return tribo_get(m, TRIBO_Q_V) + g.cx * tribo_get(m, TRIBO_Q_OMEGA);
+    tribo_pose_at(eps * eps, tribo_get(m, TRIBO_QUANTITY_PHI), &g);
+    return tribo_get(m, TRIBO_QUANTITY_V) + g.cx * tribo_get(m, TRIBO_QUANTITY_OMEGA);
 }
 
 /* In a contact-point normal lock at the output: in contact, vn held at 0 exactly. */
 static int locked(tribo_model *m)
 {
-    return tribo_get(m, TRIBO_Q_IN_CONTACT) != 0.0 && contact_point_velocity(m) == 0.0;
+    return tribo_get(m, TRIBO_QUANTITY_IN_CONTACT) != 0.0 && contact_point_velocity(m) == 0.0;
 }
 
 /* A spinning drop (model.md §7 with spin Omega0 = 0.5) at eps and mu = nu. */
@@ -47,16 +47,16 @@ static energy_record energy_of_run(const tribo_scene *s, double t_end)
 {
     tribo_model *m = make(s);
     energy_record r = {0.0, 0.0, 0.0};
-    double lowest = tribo_get(m, TRIBO_Q_ENERGY);
+    double lowest = tribo_get(m, TRIBO_QUANTITY_ENERGY);
     const int n = (int)lround(t_end / 0.05);
     for (int k = 1; k <= n; k++) {
         cr_assert_eq(tribo_advance(m, 0.05 * k), TRIBO_OK, "%s", tribo_last_error(m));
-        const double E = tribo_get(m, TRIBO_Q_ENERGY);
+        const double E = tribo_get(m, TRIBO_QUANTITY_ENERGY);
         r.rise = fmax(r.rise, E - lowest);
         lowest = fmin(lowest, E);
-        r.turns = fmax(r.turns, tribo_get(m, TRIBO_Q_TURNS));
+        r.turns = fmax(r.turns, tribo_get(m, TRIBO_QUANTITY_TURNS));
     }
-    r.contact = tribo_get(m, TRIBO_Q_CONTACT_FRACTION);
+    r.contact = tribo_get(m, TRIBO_QUANTITY_CONTACT_FRACTION);
     tribo_free(m);
     return r;
 }
@@ -130,13 +130,13 @@ Test(dashpot, lock_holds_the_indentation_while_the_particle_turns, .timeout = 60
                phi_hi = -INFINITY;
         for (int k = 1; k <= 4000; k++) {
             cr_assert_eq(tribo_advance(m, 0.01 * k), TRIBO_OK, "%s", tribo_last_error(m));
-            const int in_lock = centre ? tribo_get(m, TRIBO_Q_IN_CONTACT) != 0.0 &&
-                                             tribo_get(m, TRIBO_Q_V) == 0.0
+            const int in_lock = centre ? tribo_get(m, TRIBO_QUANTITY_IN_CONTACT) != 0.0 &&
+                                             tribo_get(m, TRIBO_QUANTITY_V) == 0.0
                                        : locked(m);
             if (!in_lock)
                 continue;
-            const double dy = tribo_get(m, TRIBO_Q_DELTA_Y), Y = tribo_get(m, TRIBO_Q_Y);
-            const double psi = tribo_get(m, TRIBO_Q_PSI_N), phi = tribo_get(m, TRIBO_Q_PHI);
+            const double dy = tribo_get(m, TRIBO_QUANTITY_DELTA_Y), Y = tribo_get(m, TRIBO_QUANTITY_Y);
+            const double psi = tribo_get(m, TRIBO_QUANTITY_PSI_N), phi = tribo_get(m, TRIBO_QUANTITY_PHI);
             if (n_locked++ == 0) {
                 dy0 = dy;
                 Y0 = Y;
@@ -172,25 +172,25 @@ Test(dashpot, lock_holds_the_indentation_over_a_long_run, .timeout = 60)
     tribo_scene s = scene_of("epsilon=0.2 mu=1 nu=1");
     s.charge_model = TRIBO_CHARGE_NONE;
     tribo_model *m = make(&s);
-    const double E0 = tribo_get(m, TRIBO_Q_ENERGY);
+    const double E0 = tribo_get(m, TRIBO_QUANTITY_ENERGY);
     cr_assert_eq(tribo_advance(m, 2.0), TRIBO_OK);
     cr_assert(locked(m));
-    const double dy0 = tribo_get(m, TRIBO_Q_DELTA_Y), X0 = tribo_get(m, TRIBO_Q_X);
+    const double dy0 = tribo_get(m, TRIBO_QUANTITY_DELTA_Y), X0 = tribo_get(m, TRIBO_QUANTITY_X);
     double dy_moved = 0.0, residual = 0.0, phi_lo = INFINITY, phi_hi = -INFINITY;
     for (int k = 3; k <= 5000; k++) {
         cr_assert_eq(tribo_advance(m, k), TRIBO_OK, "%s", tribo_last_error(m));
         cr_assert(locked(m), "tau = %d: left the lock", k);
-        dy_moved = fmax(dy_moved, fabs(tribo_get(m, TRIBO_Q_DELTA_Y) - dy0));
-        residual = fmax(residual, fabs(tribo_get(m, TRIBO_Q_ENERGY) +
-                                       tribo_get(m, TRIBO_Q_WORK_DISSIPATED) - E0));
-        phi_lo = fmin(phi_lo, tribo_get(m, TRIBO_Q_PHI));
-        phi_hi = fmax(phi_hi, tribo_get(m, TRIBO_Q_PHI));
+        dy_moved = fmax(dy_moved, fabs(tribo_get(m, TRIBO_QUANTITY_DELTA_Y) - dy0));
+        residual = fmax(residual, fabs(tribo_get(m, TRIBO_QUANTITY_ENERGY) +
+                                       tribo_get(m, TRIBO_QUANTITY_WORK_DISSIPATED) - E0));
+        phi_lo = fmin(phi_lo, tribo_get(m, TRIBO_QUANTITY_PHI));
+        phi_hi = fmax(phi_hi, tribo_get(m, TRIBO_QUANTITY_PHI));
     }
     cr_expect(dy_moved <= 1e-15 * dy0, "delta_y moved by %g of %g", dy_moved, dy0);
     cr_expect(residual < 1e-10, "energy balance residual %.3g", residual);
-    cr_expect(phi_hi - phi_lo > 1e-2 && tribo_get(m, TRIBO_Q_X) - X0 > 1.0,
+    cr_expect(phi_hi - phi_lo > 1e-2 && tribo_get(m, TRIBO_QUANTITY_X) - X0 > 1.0,
               "it rocked (phi in [%g, %g]) and slid (to X = %g)", phi_lo, phi_hi,
-              tribo_get(m, TRIBO_Q_X));
+              tribo_get(m, TRIBO_QUANTITY_X));
     tribo_free(m);
 }
 
@@ -211,15 +211,15 @@ static void check_lock_force(const char *settings, int want_slip, double *worst,
         cr_assert_eq(tribo_advance(m, t - h), TRIBO_OK);
         tribo_get_stats(m, &before);
         const int lock_a = locked(m);
-        const double V_a = tribo_get(m, TRIBO_Q_V);
+        const double V_a = tribo_get(m, TRIBO_QUANTITY_V);
         cr_assert_eq(tribo_advance(m, t), TRIBO_OK);
-        const int lock_t = locked(m), slip = tribo_get(m, TRIBO_Q_SLIPPING) != 0.0;
-        const double psi = tribo_get(m, TRIBO_Q_PSI_N);
+        const int lock_t = locked(m), slip = tribo_get(m, TRIBO_QUANTITY_SLIPPING) != 0.0;
+        const double psi = tribo_get(m, TRIBO_QUANTITY_PSI_N);
         cr_assert_eq(tribo_advance(m, t + h), TRIBO_OK);
         tribo_get_stats(m, &after);
         if (!(lock_a && lock_t && locked(m)) || after.events != before.events || slip != want_slip)
             continue;
-        const double needed = (tribo_get(m, TRIBO_Q_V) - V_a) / (2.0 * h) + g_n;
+        const double needed = (tribo_get(m, TRIBO_QUANTITY_V) - V_a) / (2.0 * h) + g_n;
         *worst = fmax(*worst, fabs(needed - psi));
         ++*samples;
     }
@@ -253,13 +253,13 @@ Test(dashpot, flat_plate_comes_to_rest_in_the_band)
         s.charge_model = TRIBO_CHARGE_NONE;
         tribo_model *m = make(&s);
         cr_assert_eq(tribo_advance(m, 200.0), TRIBO_OK);
-        const double dy = tribo_get(m, TRIBO_Q_DELTA_Y), G = s.Gamma;
-        cr_expect(locked(m) && tribo_get(m, TRIBO_Q_V) == 0.0, "nu = %g: not at rest", nus[i]);
+        const double dy = tribo_get(m, TRIBO_QUANTITY_DELTA_Y), G = s.Gamma;
+        cr_expect(locked(m) && tribo_get(m, TRIBO_QUANTITY_V) == 0.0, "nu = %g: not at rest", nus[i]);
         cr_expect(dy >= G / (1 + nus[i]) && dy <= G / (1 - nus[i]),
                   "nu = %g: delta_y = %g outside [%g, %g]", nus[i], dy, G / (1 + nus[i]),
                   G / (1 - nus[i]));
-        cr_expect_float_eq(tribo_get(m, TRIBO_Q_PSI_N), G, 1e-15, "nu = %g: Psi_N = %.17g", nus[i],
-                           tribo_get(m, TRIBO_Q_PSI_N));
+        cr_expect_float_eq(tribo_get(m, TRIBO_QUANTITY_PSI_N), G, 1e-15, "nu = %g: Psi_N = %.17g", nus[i],
+                           tribo_get(m, TRIBO_QUANTITY_PSI_N));
         tribo_free(m);
     }
 }
@@ -350,20 +350,20 @@ Test(dashpot, runs_visit_A_non_positive_without_a_lock_there, .timeout = 60)
             tribo_model *m = make(&s);
             for (int k = 1; k <= 6000; k++) {
                 cr_assert_eq(tribo_advance(m, 0.05 * k), TRIBO_OK, "%s", tribo_last_error(m));
-                if (tribo_get(m, TRIBO_Q_SLIPPING) == 0.0)
+                if (tribo_get(m, TRIBO_QUANTITY_SLIPPING) == 0.0)
                     continue;
-                const double dx = tribo_get(m, TRIBO_Q_DELTA_X);
+                const double dx = tribo_get(m, TRIBO_QUANTITY_DELTA_X);
                 const tribo_force_law slip = {TRIBO_CONTACT_ON, TRIBO_NORMAL_LOCK, 0.0,
                                               TRIBO_TANGENT_SLIP, dx > 0.0 ? 1.0 : -1.0, 0};
                 double y[TRIBO_NSTATE_MAX] = {0}, A, g[TRIBO_N_SWITCHES];
-                y[TRIBO_IPHI] = tribo_get(m, TRIBO_Q_PHI);
+                y[TRIBO_IPHI] = tribo_get(m, TRIBO_QUANTITY_PHI);
                 tribo_pose pose;
                 tribo_pose_at(p.eps2, y[TRIBO_IPHI], &pose);
-                y[TRIBO_IY] = tribo_get(m, TRIBO_Q_Y);
+                y[TRIBO_IY] = tribo_get(m, TRIBO_QUANTITY_Y);
                 y[TRIBO_IGAP] = y[TRIBO_IY] - pose.h;
-                y[TRIBO_IOMEGA] = tribo_get(m, TRIBO_Q_OMEGA);
-                y[TRIBO_IV] = tribo_get(m, TRIBO_Q_V);
-                y[TRIBO_IU] = tribo_get(m, TRIBO_Q_U);
+                y[TRIBO_IOMEGA] = tribo_get(m, TRIBO_QUANTITY_OMEGA);
+                y[TRIBO_IV] = tribo_get(m, TRIBO_QUANTITY_V);
+                y[TRIBO_IU] = tribo_get(m, TRIBO_QUANTITY_U);
                 y[TRIBO_IDX] = dx;
                 tribo_lock_force(&p, &slip, &pose, y, &A);
                 if (locked(m)) {
@@ -397,16 +397,16 @@ Test(dashpot, lock_survives_save_load_and_a_tunable_change)
     tribo_model *c = make(&s);
     cr_assert_eq(tribo_state_load(c, bytes, size), TRIBO_OK, "%s", tribo_last_error(c));
     cr_assert_eq(tribo_advance(c, 60.0), TRIBO_OK);
-    for (int q = 0; q < TRIBO_Q_COUNT; q++)
+    for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++)
         cr_expect_eq(tribo_get(a, (tribo_quantity)q), tribo_get(c, (tribo_quantity)q), "%s",
                      tribo_quantity_name((tribo_quantity)q));
     cr_assert(locked(b));
-    const double dy = tribo_get(b, TRIBO_Q_DELTA_Y);
+    const double dy = tribo_get(b, TRIBO_QUANTITY_DELTA_Y);
     cr_assert_eq(tribo_set_param(b, "mu", 0.9), TRIBO_OK);
     cr_assert_eq(tribo_advance(b, 61.0), TRIBO_OK);
-    cr_expect(locked(b) && fabs(tribo_get(b, TRIBO_Q_DELTA_Y) - dy) <= 1e-15 * dy,
+    cr_expect(locked(b) && fabs(tribo_get(b, TRIBO_QUANTITY_DELTA_Y) - dy) <= 1e-15 * dy,
               "delta_y %.17g, was %.17g",
-              tribo_get(b, TRIBO_Q_DELTA_Y), dy);
+              tribo_get(b, TRIBO_QUANTITY_DELTA_Y), dy);
     free(bytes);
     tribo_free(a);
     tribo_free(b);

@@ -149,13 +149,13 @@ Test(forces, integrator_holds_the_coulomb_limit_and_resets_the_stretch)
     int slip_steps = 0, flight_steps = 0, contacts_regained = 0, was_in_contact = 0;
     for (int k = 1; k <= 60000; k++) {
         cr_assert_eq(tribo_advance(m, k * s.dt), TRIBO_OK);
-        const double psi_n = tribo_get(m, TRIBO_Q_PSI_N), psi_t = tribo_get(m, TRIBO_Q_PSI_T);
-        const double dx = tribo_get(m, TRIBO_Q_DELTA_X);
-        const int in_contact = tribo_get(m, TRIBO_Q_IN_CONTACT) != 0.0;
+        const double psi_n = tribo_get(m, TRIBO_QUANTITY_PSI_N), psi_t = tribo_get(m, TRIBO_QUANTITY_PSI_T);
+        const double dx = tribo_get(m, TRIBO_QUANTITY_DELTA_X);
+        const int in_contact = tribo_get(m, TRIBO_QUANTITY_IN_CONTACT) != 0.0;
         cr_assert(fabs(dx) <= s.mu * psi_n * (1 + 1e-12) + 1e-300, "k = %d: |dx| = %g > %g", k,
                   fabs(dx), s.mu * psi_n);
         cr_assert_eq(psi_t, -dx);
-        if (tribo_get(m, TRIBO_Q_SLIPPING) != 0.0) {
+        if (tribo_get(m, TRIBO_QUANTITY_SLIPPING) != 0.0) {
             slip_steps++;
             cr_assert(fabs(fabs(psi_t) - s.mu * psi_n) <= 1e-15,
                       "slipping but |Psi_T| = %g, mu Psi_N = %g", fabs(psi_t), s.mu * psi_n);
@@ -166,7 +166,7 @@ Test(forces, integrator_holds_the_coulomb_limit_and_resets_the_stretch)
         } else if (!was_in_contact) {
             /* first step of a new contact: the stretch built from 0 over at most one step */
             contacts_regained++;
-            const double vs_bound = fabs(tribo_get(m, TRIBO_Q_U)) + 1.2 * fabs(tribo_get(m, TRIBO_Q_OMEGA));
+            const double vs_bound = fabs(tribo_get(m, TRIBO_QUANTITY_U)) + 1.2 * fabs(tribo_get(m, TRIBO_QUANTITY_OMEGA));
             cr_assert(fabs(dx) <= vs_bound * s.dt * 1.01, "new contact starts at dx = %g", dx);
         }
         was_in_contact = in_contact;

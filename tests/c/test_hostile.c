@@ -23,7 +23,7 @@ static tribo_scene scene_with(int integrator)
 /* Every quantity bit for bit. */
 static int same_outputs(tribo_model *a, tribo_model *b)
 {
-    for (int q = 0; q < TRIBO_Q_COUNT; q++) {
+    for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++) {
         const double x = tribo_get(a, q), y = tribo_get(b, q);
         if (memcmp(&x, &y, sizeof x) != 0)
             return 0;
@@ -33,7 +33,7 @@ static int same_outputs(tribo_model *a, tribo_model *b)
 
 static int outputs_finite(tribo_model *m)
 {
-    for (int q = 0; q < TRIBO_Q_COUNT; q++)
+    for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++)
         if (!isfinite(tribo_get(m, q)))
             return 0;
     return 1;
@@ -100,8 +100,8 @@ Test(hostile, a_loaded_state_runs_on_with_its_own_tolerances, .timeout = 60)
     advance_both(saver, other, 25.0);
     cr_assert_eq(tribo_advance(alone, 25.0), TRIBO_OK);
     /* the continuation is the saved run's, bit for bit (before: X 0.424780 against 0.424808) */
-    cr_expect(same_outputs(saver, other), "X %.17g against %.17g", tribo_get(saver, TRIBO_Q_X),
-              tribo_get(other, TRIBO_Q_X));
+    cr_expect(same_outputs(saver, other), "X %.17g against %.17g", tribo_get(saver, TRIBO_QUANTITY_X),
+              tribo_get(other, TRIBO_QUANTITY_X));
     cr_expect(same_outputs(alone, other));
     tribo_free(saver);
     tribo_free(other);
@@ -249,7 +249,7 @@ Test(hostile, huge_times_are_refused_or_bounded, .timeout = 60)
         const clock_t start = clock();
         cr_expect_eq(tribo_advance(m, 1e9), TRIBO_INCOMPLETE);
         cr_expect((double)(clock() - start) / CLOCKS_PER_SEC < 5.0);
-        const double t = tribo_get(m, TRIBO_Q_TIME);
+        const double t = tribo_get(m, TRIBO_QUANTITY_TIME);
         cr_expect(t > 1.0 && t < 1e9, "t = %g", t);
         cr_expect(outputs_finite(m));
         tribo_free(m);
@@ -310,8 +310,8 @@ Test(hostile, scalar_outputs_do_not_copy_the_segments)
         cr_assert_eq(tribo_advance_fully(m, 3.0), TRIBO_OK);
         cr_assert_eq(tribo_advance(m, 3.00007), TRIBO_OK); /* a partial step: updates pending */
         cr_assert(m->n_pending > 0);
-        double q[TRIBO_Q_COUNT];
-        for (int i = 0; i < TRIBO_Q_COUNT; i++)
+        double q[TRIBO_QUANTITY_COUNT];
+        for (int i = 0; i < TRIBO_QUANTITY_COUNT; i++)
             q[i] = tribo_get(m, i);
         for (int i = 0; i < m->charging.n_models; i++)
             cr_expect_null(m->charging.slot[i].segments_out);
@@ -322,8 +322,8 @@ Test(hostile, scalar_outputs_do_not_copy_the_segments)
         double sum = 0.0;
         for (int i = 0; i < 100000; i++)
             sum += values[i];
-        cr_expect(q[TRIBO_Q_STATIC] > 0.0 && fabs(q[TRIBO_Q_STATIC] - sum / 100000) <= 1e-13 * q[TRIBO_Q_STATIC],
-                  "Q_static %.17g, mean %.17g", q[TRIBO_Q_STATIC], sum / 100000);
+        cr_expect(q[TRIBO_QUANTITY_STATIC] > 0.0 && fabs(q[TRIBO_QUANTITY_STATIC] - sum / 100000) <= 1e-13 * q[TRIBO_QUANTITY_STATIC],
+                  "Q_static %.17g, mean %.17g", q[TRIBO_QUANTITY_STATIC], sum / 100000);
         free(values);
         tribo_free(m);
     }

@@ -26,13 +26,13 @@ Test(invariants, energy_conserved_without_friction, .timeout = 60)
 {
     tribo_scene s = paper(0.0, 0.0, 1e-3);
     tribo_model *m = make(&s);
-    const double E0 = tribo_get(m, TRIBO_Q_ENERGY);
+    const double E0 = tribo_get(m, TRIBO_QUANTITY_ENERGY);
     double drift = 0.0;
     int contacts = 0;
     for (int k = 1; k <= 1000; k++) {
         cr_assert_eq(tribo_advance(m, k), TRIBO_OK);
-        drift = fmax(drift, fabs(tribo_get(m, TRIBO_Q_ENERGY) - E0));
-        contacts += tribo_get(m, TRIBO_Q_IN_CONTACT) != 0.0;
+        drift = fmax(drift, fabs(tribo_get(m, TRIBO_QUANTITY_ENERGY) - E0));
+        contacts += tribo_get(m, TRIBO_QUANTITY_IN_CONTACT) != 0.0;
     }
     cr_expect(contacts > 0, "the particle touched the plate");
     cr_expect(drift / E0 < 1e-7, "relative energy drift %.3g", drift / E0);
@@ -45,14 +45,14 @@ static double balance_residual(double mu, double dt, double *work)
 {
     tribo_scene s = paper(mu, 0.0, dt);
     tribo_model *m = make(&s);
-    const double E0 = tribo_get(m, TRIBO_Q_ENERGY);
+    const double E0 = tribo_get(m, TRIBO_QUANTITY_ENERGY);
     double worst = 0.0;
     for (int k = 1; k <= 1000; k++) {
         cr_assert_eq(tribo_advance(m, k), TRIBO_OK);
-        const double r = tribo_get(m, TRIBO_Q_ENERGY) + tribo_get(m, TRIBO_Q_WORK_DISSIPATED) - E0;
+        const double r = tribo_get(m, TRIBO_QUANTITY_ENERGY) + tribo_get(m, TRIBO_QUANTITY_WORK_DISSIPATED) - E0;
         worst = fmax(worst, fabs(r));
     }
-    *work = tribo_get(m, TRIBO_Q_WORK_DISSIPATED);
+    *work = tribo_get(m, TRIBO_QUANTITY_WORK_DISSIPATED);
     tribo_free(m);
     return worst;
 }
@@ -82,14 +82,14 @@ Test(invariants, friction_work_is_mu_psi_n_slip_speed, .timeout = 60)
     const int n = 200000; /* tau = 20 */
     for (int k = 1; k <= n; k++) {
         cr_assert_eq(tribo_advance(m, k * s.dt), TRIBO_OK);
-        if (tribo_get(m, TRIBO_Q_SLIPPING) != 0.0) {
+        if (tribo_get(m, TRIBO_QUANTITY_SLIPPING) != 0.0) {
             tribo_pose g;
-            tribo_pose_at(s.epsilon * s.epsilon, tribo_get(m, TRIBO_Q_PHI), &g);
-            const double vs = tribo_get(m, TRIBO_Q_U) + g.h * tribo_get(m, TRIBO_Q_OMEGA);
-            sum += s.mu * tribo_get(m, TRIBO_Q_PSI_N) * fabs(vs) * s.dt;
+            tribo_pose_at(s.epsilon * s.epsilon, tribo_get(m, TRIBO_QUANTITY_PHI), &g);
+            const double vs = tribo_get(m, TRIBO_QUANTITY_U) + g.h * tribo_get(m, TRIBO_QUANTITY_OMEGA);
+            sum += s.mu * tribo_get(m, TRIBO_QUANTITY_PSI_N) * fabs(vs) * s.dt;
         }
     }
-    const double W = tribo_get(m, TRIBO_Q_WORK_DISSIPATED);
+    const double W = tribo_get(m, TRIBO_QUANTITY_WORK_DISSIPATED);
     cr_expect(W > 1e-5, "W = %g", W);
     cr_expect(fabs(sum - W) < 0.02 * W, "sum mu Psi_N |vs| dt = %.6g, W = %.6g", sum, W);
     tribo_free(m);
@@ -108,22 +108,22 @@ Test(invariants, flat_plate_elastic_oscillates_about_gamma, .timeout = 60)
 {
     tribo_scene s = flat(0.0);
     tribo_model *m = make(&s);
-    const double E0 = tribo_get(m, TRIBO_Q_ENERGY);
+    const double E0 = tribo_get(m, TRIBO_QUANTITY_ENERGY);
     double sum = 0.0, lo = INFINITY, hi = 0.0, drift = 0.0;
     const int n = 200000; /* tau = 200, ~32 periods of 2 pi */
     for (int k = 1; k <= n; k++) {
         cr_assert_eq(tribo_advance(m, k * s.dt), TRIBO_OK);
-        const double dy = tribo_get(m, TRIBO_Q_DELTA_Y);
+        const double dy = tribo_get(m, TRIBO_QUANTITY_DELTA_Y);
         sum += dy;
         lo = fmin(lo, dy);
         hi = fmax(hi, dy);
-        drift = fmax(drift, fabs(tribo_get(m, TRIBO_Q_ENERGY) - E0));
+        drift = fmax(drift, fabs(tribo_get(m, TRIBO_QUANTITY_ENERGY) - E0));
     }
     const double G = s.Gamma;
     cr_expect(fabs(sum / n - G) < 0.01 * G, "mean delta_y %.6g, Gamma %g", sum / n, G);
     cr_expect(lo < 1e-3 * G && fabs(hi - 2 * G) < 1e-3 * G, "delta_y in [%g, %g]", lo, hi);
     cr_expect(drift < 1e-9 * fabs(E0) + 1e-15, "energy drift %g of %g", drift, E0);
-    cr_expect_eq(tribo_get(m, TRIBO_Q_PHI), 0.0, "no rocking");
+    cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_PHI), 0.0, "no rocking");
     tribo_free(m);
 }
 
@@ -134,7 +134,7 @@ Test(invariants, flat_plate_damped_comes_to_normal_lock, .timeout = 60)
         tribo_scene s = flat(nus[i]);
         tribo_model *m = make(&s);
         cr_assert_eq(tribo_advance(m, 200.0), TRIBO_OK);
-        const double dy = tribo_get(m, TRIBO_Q_DELTA_Y), V = tribo_get(m, TRIBO_Q_V);
+        const double dy = tribo_get(m, TRIBO_QUANTITY_DELTA_Y), V = tribo_get(m, TRIBO_QUANTITY_V);
         const double G = s.Gamma;
         /* V = 0 up to the regularisation's velocity scale (model.md §3) */
         cr_expect(fabs(V) < s.v_reg, "nu = %g: V = %g", nus[i], V);
@@ -142,8 +142,8 @@ Test(invariants, flat_plate_damped_comes_to_normal_lock, .timeout = 60)
                   "nu = %g: delta_y = %g outside [%g, %g]", nus[i], dy, G / (1 + nus[i]),
                   G / (1 - nus[i]));
         /* Psi_N balances gravity up to the creep's deceleration (measured: 1.5e-6 Gamma) */
-        cr_expect_float_eq(tribo_get(m, TRIBO_Q_PSI_N), G, 1e-5 * G, "nu = %g: Psi_N = %.12g",
-                           nus[i], tribo_get(m, TRIBO_Q_PSI_N));
+        cr_expect_float_eq(tribo_get(m, TRIBO_QUANTITY_PSI_N), G, 1e-5 * G, "nu = %g: Psi_N = %.12g",
+                           nus[i], tribo_get(m, TRIBO_QUANTITY_PSI_N));
         tribo_free(m);
     }
 }
@@ -166,7 +166,7 @@ Test(invariants, static_charge_bounded_and_non_decreasing, .timeout = 60)
             double q[500];
             for (int k = 1; k <= 400; k++) {
                 cr_assert_eq(tribo_advance(m, 0.25 * k), TRIBO_OK);
-                const double Q = tribo_get(m, TRIBO_Q_STATIC);
+                const double Q = tribo_get(m, TRIBO_QUANTITY_STATIC);
                 cr_assert(Q >= prev && Q <= 1.0, "integrator %d mu = %g tau = %g: Q = %.17g after %.17g",
                           integ, mus[i], 0.25 * k, Q, prev);
                 prev = Q;
@@ -191,19 +191,19 @@ Test(invariants, disc_rolls_without_slip, .timeout = 60)
     s.epsilon = 1.0;
     tribo_model *m = make(&s);
     cr_assert_eq(tribo_advance(m, 100.0), TRIBO_OK);
-    const double U1 = tribo_get(m, TRIBO_Q_U);
+    const double U1 = tribo_get(m, TRIBO_QUANTITY_U);
     for (int k = 1; k <= 200; k++) {
         cr_assert_eq(tribo_advance(m, 100.0 + k), TRIBO_OK);
-        const double U = tribo_get(m, TRIBO_Q_U), Om = tribo_get(m, TRIBO_Q_OMEGA);
-        const double bound = sqrt(3.0) * s.mu * tribo_get(m, TRIBO_Q_PSI_N);
+        const double U = tribo_get(m, TRIBO_QUANTITY_U), Om = tribo_get(m, TRIBO_QUANTITY_OMEGA);
+        const double bound = sqrt(3.0) * s.mu * tribo_get(m, TRIBO_QUANTITY_PSI_N);
         cr_assert(fabs(U + Om) <= bound, "tau = %d: U + Omega = %g, bound %g (U = %g)", 100 + k,
                   U + Om, bound, U);
-        const double dy = tribo_get(m, TRIBO_Q_DELTA_Y), gn = s.Gamma * sqrt(0.5);
+        const double dy = tribo_get(m, TRIBO_QUANTITY_DELTA_Y), gn = s.Gamma * sqrt(0.5);
         cr_assert(dy >= gn / (1 + s.nu) && dy <= gn / (1 - s.nu),
                   "rolling in steady contact (normal lock): delta_y = %g", dy);
-        cr_assert_eq(tribo_get(m, TRIBO_Q_SLIPPING), 0.0);
+        cr_assert_eq(tribo_get(m, TRIBO_QUANTITY_SLIPPING), 0.0);
     }
-    const double accel = (tribo_get(m, TRIBO_Q_U) - U1) / 200.0;
+    const double accel = (tribo_get(m, TRIBO_QUANTITY_U) - U1) / 200.0;
     const double expected = s.Gamma * sin(M_PI / 4) / 1.5;
     cr_expect(fabs(accel - expected) < 1e-3 * expected, "acceleration %.6g, expected %.6g",
               accel, expected);
@@ -232,10 +232,10 @@ Test(invariants, saturation_density_follows_the_work_through_lift_offs, .timeout
             int lift_offs = 0, was_in_contact = 0;
             for (int k = 1; k <= 2000; k++) {
                 cr_assert_eq(tribo_advance(m, 0.1 * k), TRIBO_OK);
-                const double w = tribo_get(m, TRIBO_Q_OMEGA_WORK);
+                const double w = tribo_get(m, TRIBO_QUANTITY_OMEGA_WORK);
                 const double expected = sqrt(s.Sigma0 * s.Sigma0 + 2.0 * s.eta * w);
-                worst = fmax(worst, fabs(tribo_get(m, TRIBO_Q_SIGMA_S) - expected) / expected);
-                const int in_contact = tribo_get(m, TRIBO_Q_IN_CONTACT) != 0.0;
+                worst = fmax(worst, fabs(tribo_get(m, TRIBO_QUANTITY_SIGMA_S) - expected) / expected);
+                const int in_contact = tribo_get(m, TRIBO_QUANTITY_IN_CONTACT) != 0.0;
                 lift_offs += was_in_contact && !in_contact;
                 was_in_contact = in_contact;
             }

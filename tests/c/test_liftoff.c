@@ -43,11 +43,11 @@ Test(liftoff, the_first_liftoff_ends_the_run_where_the_contact_is_lost)
         tribo_model *m = make(&s);
         run_to_the_liftoff(m, 100.0);
         cr_expect(strstr(tribo_last_error(m), "lifted off") != NULL, "%s", tribo_last_error(m));
-        cr_expect_eq(tribo_get(m, TRIBO_Q_LIFTED_OFF), 1.0);
-        cr_expect_eq(tribo_get(m, TRIBO_Q_EXITED), 0.0);
-        cr_expect_eq(tribo_get(m, TRIBO_Q_EXIT_TIME), 0.0);
-        cr_expect_eq(tribo_get(m, TRIBO_Q_IN_CONTACT), 0.0);
-        cr_expect_eq(tribo_get(m, TRIBO_Q_IMPACTS), 1.0);
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_LIFTED_OFF), 1.0);
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_EXITED), 0.0);
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_EXIT_TIME), 0.0);
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_IN_CONTACT), 0.0);
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_IMPACTS), 1.0);
         /* against the exact contact, measured (fixed step dt 1e-3 / CVODE Adams / BDF at rtol
            1e-9): the lift-off time 4.5e-9 / 1.8e-8 / 3.8e-9, the speed 2.4e-10 / 2.8e-9 /
            2.7e-9, the contact time 1.5e-4 (the fixed step books contact by whole steps) /
@@ -55,33 +55,33 @@ Test(liftoff, the_first_liftoff_ends_the_run_where_the_contact_is_lost)
            the speed's are 8.4e-8 and 1.9e-11 for Adams.) */
         const double tol_t[] = {1.3e-8, 5.5e-8, 1.1e-8}, tol_v[] = {7e-10, 8.5e-9, 8e-9},
                      tol_contact[] = {4.4e-4, 5.5e-8, 1.1e-8};
-        const double t = tribo_get(m, TRIBO_Q_TIME);
+        const double t = tribo_get(m, TRIBO_QUANTITY_TIME);
         cr_expect(fabs(t - t_lift) <= tol_t[k], "integrator %d: lift-off at %.12g, exact %.12g",
                   s.integrator, t, t_lift);
-        cr_expect(fabs(tribo_get(m, TRIBO_Q_CONTACT_TIME) - contact_duration()) <= tol_contact[k],
+        cr_expect(fabs(tribo_get(m, TRIBO_QUANTITY_CONTACT_TIME) - contact_duration()) <= tol_contact[k],
                   "integrator %d: contact %.12g, exact %.12g", s.integrator,
-                  tribo_get(m, TRIBO_Q_CONTACT_TIME), contact_duration());
-        cr_expect(fabs(tribo_get(m, TRIBO_Q_V) - v) <= tol_v[k], "integrator %d: V = %.12g, exact %.12g",
-                  s.integrator, tribo_get(m, TRIBO_Q_V), v);
+                  tribo_get(m, TRIBO_QUANTITY_CONTACT_TIME), contact_duration());
+        cr_expect(fabs(tribo_get(m, TRIBO_QUANTITY_V) - v) <= tol_v[k], "integrator %d: V = %.12g, exact %.12g",
+                  s.integrator, tribo_get(m, TRIBO_QUANTITY_V), v);
         /* at the lowest point's clearance 0: the run ends where the integrated clearance G
            reaches 0 from below; the height Y is integrated beside it, and Y - h differs from G
            by their roundings (measured -3.3e-16 for the fixed step, 0 for CVODE; bound 3x) */
-        const double clearance = tribo_get(m, TRIBO_Q_Y) - 1.0;
+        const double clearance = tribo_get(m, TRIBO_QUANTITY_Y) - 1.0;
         cr_expect(fabs(clearance) <= 1e-15, "integrator %d: clearance %.3g", s.integrator, clearance);
 
         /* every output frozen there, nothing can be changed, a reset runs it again */
-        double before[TRIBO_Q_COUNT];
-        for (int q = 0; q < TRIBO_Q_COUNT; q++)
+        double before[TRIBO_QUANTITY_COUNT];
+        for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++)
             before[q] = tribo_get(m, (tribo_quantity)q);
         cr_expect_eq(tribo_advance(m, t + 10.0), TRIBO_ENDED);
-        for (int q = 0; q < TRIBO_Q_COUNT; q++)
+        for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++)
             cr_expect(tribo_get(m, (tribo_quantity)q) == before[q], "%s moved",
                       tribo_quantity_name((tribo_quantity)q));
         cr_expect_eq(tribo_set_param(m, "mu", 0.5), TRIBO_ENDED);
         cr_assert_eq(tribo_reset(m), TRIBO_OK);
-        cr_expect_eq(tribo_get(m, TRIBO_Q_LIFTED_OFF), 0.0);
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_LIFTED_OFF), 0.0);
         run_to_the_liftoff(m, 100.0);
-        cr_expect_eq(tribo_get(m, TRIBO_Q_TIME), t);
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_TIME), t);
         tribo_free(m);
     }
 }
@@ -96,13 +96,13 @@ Test(liftoff, the_run_up_to_the_liftoff_is_the_unbounded_one)
         const tribo_scene free_run = bounce(INTEGRATORS[k], TRIBO_RUN_END_CHUTE_EXIT);
         tribo_model *m = make(&s), *before = make(&free_run), *on = make(&free_run);
         run_to_the_liftoff(m, 100.0);
-        const double t = tribo_get(m, TRIBO_Q_TIME);
+        const double t = tribo_get(m, TRIBO_QUANTITY_TIME);
         cr_assert_eq(tribo_advance_fully(before, t - 1e-6), TRIBO_OK);
-        cr_expect_eq(tribo_get(before, TRIBO_Q_IN_CONTACT), 1.0, "integrator %d", s.integrator);
+        cr_expect_eq(tribo_get(before, TRIBO_QUANTITY_IN_CONTACT), 1.0, "integrator %d", s.integrator);
         cr_assert_eq(tribo_advance_fully(on, t), TRIBO_OK);
-        const tribo_quantity compared[] = {TRIBO_Q_X, TRIBO_Q_Y, TRIBO_Q_PHI, TRIBO_Q_U, TRIBO_Q_V,
-                                           TRIBO_Q_OMEGA, TRIBO_Q_STATIC, TRIBO_Q_SLIDING,
-                                           TRIBO_Q_CONTACT_TIME, TRIBO_Q_IMPACTS};
+        const tribo_quantity compared[] = {TRIBO_QUANTITY_X, TRIBO_QUANTITY_Y, TRIBO_QUANTITY_PHI, TRIBO_QUANTITY_U, TRIBO_QUANTITY_V,
+                                           TRIBO_QUANTITY_OMEGA, TRIBO_QUANTITY_STATIC, TRIBO_QUANTITY_SLIDING,
+                                           TRIBO_QUANTITY_CONTACT_TIME, TRIBO_QUANTITY_IMPACTS};
         for (size_t i = 0; i < sizeof compared / sizeof compared[0]; i++) {
             const double a = tribo_get(m, compared[i]), b = tribo_get(on, compared[i]);
             /* the same point reached another way: measured at most 2.9e-15 apart (Y, BDF),
@@ -111,7 +111,7 @@ Test(liftoff, the_run_up_to_the_liftoff_is_the_unbounded_one)
                       s.integrator, tribo_quantity_name(compared[i]), a, b);
         }
         cr_assert_eq(tribo_advance_fully(on, t + 1e-6), TRIBO_OK);
-        cr_expect_eq(tribo_get(on, TRIBO_Q_IN_CONTACT), 0.0, "integrator %d", s.integrator);
+        cr_expect_eq(tribo_get(on, TRIBO_QUANTITY_IN_CONTACT), 0.0, "integrator %d", s.integrator);
         tribo_free(m);
         tribo_free(before);
         tribo_free(on);
@@ -129,7 +129,7 @@ Test(liftoff, the_liftoff_does_not_depend_on_the_times_asked_for)
         for (double t = 0.37; st == TRIBO_OK && t < 100.0; t += 0.37)
             st = tribo_advance_fully(steps, t);
         cr_assert_eq(st, TRIBO_ENDED, "%s", tribo_last_error(steps));
-        for (int q = 0; q < TRIBO_Q_COUNT; q++)
+        for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++)
             cr_expect(tribo_get(steps, (tribo_quantity)q) == tribo_get(one, (tribo_quantity)q),
                       "integrator %d, %s: %.17g, %.17g", s.integrator,
                       tribo_quantity_name((tribo_quantity)q), tribo_get(steps, (tribo_quantity)q),
@@ -150,11 +150,11 @@ Test(liftoff, a_tilted_elongated_drop_ends_at_its_first_liftoff_too)
     make_fixed_and_cvode(s, &fixed, &cvode);
     run_to_the_liftoff(fixed, 200.0);
     run_to_the_liftoff(cvode, 200.0);
-    const double a = tribo_get(fixed, TRIBO_Q_TIME), b = tribo_get(cvode, TRIBO_Q_TIME);
+    const double a = tribo_get(fixed, TRIBO_QUANTITY_TIME), b = tribo_get(cvode, TRIBO_QUANTITY_TIME);
     cr_expect(fabs(a - b) <= 2.9e-6 * b, "lift-off at %.10g (fixed step), %.10g (CVODE)", a, b);
-    cr_expect_eq(tribo_get(cvode, TRIBO_Q_IMPACTS), 1.0);
-    cr_expect_eq(tribo_get(cvode, TRIBO_Q_IN_CONTACT), 0.0);
-    cr_expect(tribo_get(cvode, TRIBO_Q_STATIC) > 0.0);
+    cr_expect_eq(tribo_get(cvode, TRIBO_QUANTITY_IMPACTS), 1.0);
+    cr_expect_eq(tribo_get(cvode, TRIBO_QUANTITY_IN_CONTACT), 0.0);
+    cr_expect(tribo_get(cvode, TRIBO_QUANTITY_STATIC) > 0.0);
     tribo_free(fixed);
     tribo_free(cvode);
 }
@@ -171,8 +171,8 @@ Test(liftoff, states_save_and_load_at_the_liftoff)
         memcpy(&flag, bytes + state_ended_offset(), sizeof flag);
         cr_assert_eq(flag, TRIBO_END_LIFTOFF, "the layout moved: fix ended_offset");
         cr_assert_eq(tribo_state_load(m, bytes, size), TRIBO_OK, "%s", tribo_last_error(m));
-        cr_expect_eq(tribo_get(m, TRIBO_Q_LIFTED_OFF), 1.0);
-        cr_expect_eq(tribo_get(m, TRIBO_Q_TIME), tribo_get(ref, TRIBO_Q_TIME));
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_LIFTED_OFF), 1.0);
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_TIME), tribo_get(ref, TRIBO_QUANTITY_TIME));
         cr_expect_eq(tribo_advance(m, 200.0), TRIBO_ENDED);
         /* a lift-off in a scene that does not end there is refused */
         const tribo_param_info *p = tribo_param_find("run_end");

@@ -132,7 +132,7 @@ Test(params, only_tunables_change_mid_run)
     cr_expect_eq(tribo_advance(m, NAN), TRIBO_ERR_TIME);
     cr_expect_eq(tribo_set_external_force(m, INFINITY, 0.0), TRIBO_ERR_INVALID_ARGUMENT);
     cr_expect_eq(tribo_advance(m, 2.0), TRIBO_OK, "still usable");
-    cr_expect(isfinite(tribo_get(m, TRIBO_Q_X)));
+    cr_expect(isfinite(tribo_get(m, TRIBO_QUANTITY_X)));
     tribo_free(m);
 }
 
@@ -148,7 +148,7 @@ Test(params, segment_charges_of_a_missing_model_are_refused)
     cr_expect_eq(tribo_get_segment_charges(m, TRIBO_SEGMENTS_STATIC, out, 31),
                  TRIBO_ERR_INVALID_ARGUMENT);
     cr_expect_eq(tribo_get_segment_charges(m, TRIBO_SEGMENTS_STATIC, out, 32), TRIBO_OK);
-    cr_expect_eq(tribo_get(m, TRIBO_Q_SLIDING), 0.0);
+    cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_SLIDING), 0.0);
     tribo_free(m);
 }
 
@@ -165,28 +165,28 @@ Test(params, tuning_Sigma0_moves_the_target_not_the_charge)
         s.integrator = integrator ? TRIBO_INTEGRATOR_CVODE : TRIBO_INTEGRATOR_FIXED_STEP;
         tribo_model *m = make(&s);
         cr_assert_eq(tribo_advance(m, 50.0), TRIBO_OK);
-        const double Q = tribo_get(m, TRIBO_Q_SLIDING), mean = tribo_get(m, TRIBO_Q_SIGMA_MEAN);
+        const double Q = tribo_get(m, TRIBO_QUANTITY_SLIDING), mean = tribo_get(m, TRIBO_QUANTITY_SIGMA_MEAN);
         cr_assert(Q > 0.1, "charged to %g", Q);
         cr_expect_float_eq(mean, Q * s.Sigma0, 1e-15 * mean, "Sigma_mean = Q_sliding Sigma0");
         cr_assert_eq(tribo_set_param(m, "Sigma0", 2.0 * s.Sigma0), TRIBO_OK);
-        cr_expect_eq(tribo_get(m, TRIBO_Q_SLIDING), Q, "Q_sliding jumped at the change");
-        cr_expect_eq(tribo_get(m, TRIBO_Q_SIGMA_MEAN), mean);
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_SLIDING), Q, "Q_sliding jumped at the change");
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_SIGMA_MEAN), mean);
         /* continuous after it: a short advance changes Q_sliding little */
         cr_assert_eq(tribo_advance(m, 50.01), TRIBO_OK);
-        cr_expect(fabs(tribo_get(m, TRIBO_Q_SLIDING) - Q) < 0.01 * Q, "Q_sliding %g after %g",
-                  tribo_get(m, TRIBO_Q_SLIDING), Q);
+        cr_expect(fabs(tribo_get(m, TRIBO_QUANTITY_SLIDING) - Q) < 0.01 * Q, "Q_sliding %g after %g",
+                  tribo_get(m, TRIBO_QUANTITY_SLIDING), Q);
         /* the new target: Sigma_s relaxes towards 2 Sigma0 in contact, and the charge with it */
         cr_assert_eq(tribo_advance(m, 100.0), TRIBO_OK);
-        cr_expect(tribo_get(m, TRIBO_Q_SIGMA_S) > 1.5 * s.Sigma0, "Sigma_s = %g",
-                  tribo_get(m, TRIBO_Q_SIGMA_S));
-        cr_expect(tribo_get(m, TRIBO_Q_SLIDING) > 1.2 * Q, "Q_sliding %g after %g",
-                  tribo_get(m, TRIBO_Q_SLIDING), Q);
-        cr_expect_float_eq(tribo_get(m, TRIBO_Q_SIGMA_MEAN), tribo_get(m, TRIBO_Q_SLIDING) * s.Sigma0,
-                           1e-14 * tribo_get(m, TRIBO_Q_SIGMA_MEAN), "still normalised by the start's");
+        cr_expect(tribo_get(m, TRIBO_QUANTITY_SIGMA_S) > 1.5 * s.Sigma0, "Sigma_s = %g",
+                  tribo_get(m, TRIBO_QUANTITY_SIGMA_S));
+        cr_expect(tribo_get(m, TRIBO_QUANTITY_SLIDING) > 1.2 * Q, "Q_sliding %g after %g",
+                  tribo_get(m, TRIBO_QUANTITY_SLIDING), Q);
+        cr_expect_float_eq(tribo_get(m, TRIBO_QUANTITY_SIGMA_MEAN), tribo_get(m, TRIBO_QUANTITY_SLIDING) * s.Sigma0,
+                           1e-14 * tribo_get(m, TRIBO_QUANTITY_SIGMA_MEAN), "still normalised by the start's");
         cr_assert_eq(tribo_reset(m), TRIBO_OK);
         cr_assert_eq(tribo_advance(m, 50.0), TRIBO_OK);
-        cr_expect_float_eq(tribo_get(m, TRIBO_Q_SIGMA_MEAN), tribo_get(m, TRIBO_Q_SLIDING) * 2.0 * s.Sigma0,
-                           1e-14 * tribo_get(m, TRIBO_Q_SIGMA_MEAN), "a reset starts from the new Sigma0");
+        cr_expect_float_eq(tribo_get(m, TRIBO_QUANTITY_SIGMA_MEAN), tribo_get(m, TRIBO_QUANTITY_SLIDING) * 2.0 * s.Sigma0,
+                           1e-14 * tribo_get(m, TRIBO_QUANTITY_SIGMA_MEAN), "a reset starts from the new Sigma0");
         tribo_free(m);
     }
 }

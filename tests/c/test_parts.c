@@ -124,7 +124,7 @@ Test(parts, test_charge_model_runs_through_both_integrators)
         cr_assert_eq(tribo_advance_fully(m, 200.0), TRIBO_OK, "%s", tribo_last_error(m));
         double sum, contact, slip;
         free(constant_state(m, &sum, &contact, &slip));
-        const double contact_time = tribo_get(m, TRIBO_Q_CONTACT_TIME);
+        const double contact_time = tribo_get(m, TRIBO_QUANTITY_CONTACT_TIME);
         cr_assert(contact_time > 10.0, "contact time %g", contact_time);
         /* its global follows the contact exactly as the instance books it */
         cr_expect(fabs(contact - contact_time) <= 1e-9 * contact_time,
@@ -134,7 +134,7 @@ Test(parts, test_charge_model_runs_through_both_integrators)
         cr_expect(sum >= contact_time * (1.0 - 1e-9), "integrator %d: sum %g < contact time %g",
                   integrator, sum, contact_time);
         /* the registry's models ran beside it, untouched */
-        cr_expect(tribo_get(m, TRIBO_Q_STATIC) > 0.0 && tribo_get(m, TRIBO_Q_SLIDING) > 0.0);
+        cr_expect(tribo_get(m, TRIBO_QUANTITY_STATIC) > 0.0 && tribo_get(m, TRIBO_QUANTITY_SLIDING) > 0.0);
         cr_expect(slip > 0.0);
         slips[k] = slip;
         tribo_free(m);

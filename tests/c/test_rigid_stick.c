@@ -24,7 +24,7 @@ static exit_run run_to_the_exit(const tribo_scene *s)
     cr_assert_eq(tribo_advance_fully(m, TRIBO_TIME_MAX), TRIBO_ENDED, "%s", tribo_last_error(m));
     tribo_stats st;
     tribo_get_stats(m, &st);
-    const exit_run r = {tribo_get(m, TRIBO_Q_EXIT_TIME), tribo_get(m, TRIBO_Q_IMPACTS), st.events};
+    const exit_run r = {tribo_get(m, TRIBO_QUANTITY_EXIT_TIME), tribo_get(m, TRIBO_QUANTITY_IMPACTS), st.events};
     tribo_free(m);
     return r;
 }
@@ -119,9 +119,9 @@ Test(rigid_stick, rigid_and_compliant_converge_as_gamma_falls, .timeout = 60)
     const struct {
         const char *settings;
         tribo_quantity q;
-    } cases[] = {{"epsilon=1 mu=0.5", TRIBO_Q_EXIT_TIME},
-                 {"epsilon=0.5 mu=0.3", TRIBO_Q_EXIT_TIME},
-                 {"epsilon=1 mu=0.5", TRIBO_Q_SLIDING}};
+    } cases[] = {{"epsilon=1 mu=0.5", TRIBO_QUANTITY_EXIT_TIME},
+                 {"epsilon=0.5 mu=0.3", TRIBO_QUANTITY_EXIT_TIME},
+                 {"epsilon=1 mu=0.5", TRIBO_QUANTITY_SLIDING}};
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         double previous = INFINITY;
         for (double gamma = 1e-3; gamma > 0.99e-5; gamma /= 10.0) {
@@ -164,8 +164,8 @@ Test(rigid_stick, energy_and_dissipated_work_never_increase_along_rolling_ellips
         for (int k = 1; st == TRIBO_OK; k++) {
             st = tribo_advance_fully(m, k * 1e-4 / d.t_star);
             cr_assert(st == TRIBO_OK || st == TRIBO_ENDED, "%s", tribo_last_error(m));
-            const double E = tribo_get(m, TRIBO_Q_ENERGY);
-            const double budget = E + tribo_get(m, TRIBO_Q_WORK_DISSIPATED);
+            const double E = tribo_get(m, TRIBO_QUANTITY_ENERGY);
+            const double budget = E + tribo_get(m, TRIBO_QUANTITY_WORK_DISSIPATED);
             scale = fmax(scale, fabs(E));
             rise = fmax(rise, budget - lowest);
             lowest = fmin(lowest, budget);
@@ -192,7 +192,7 @@ Test(rigid_stick, its_phases_save_and_load_bit_for_bit, .timeout = 60)
         cr_assert_eq(tribo_si_derive(&si, &d, err, sizeof err), TRIBO_OK, "%s", err);
         tribo_model *whole = make(&d.scene);
         cr_assert_eq(tribo_advance_fully(whole, TRIBO_TIME_MAX), TRIBO_ENDED);
-        const double t_exit = tribo_get(whole, TRIBO_Q_TIME);
+        const double t_exit = tribo_get(whole, TRIBO_QUANTITY_TIME);
         for (int k = 1; k <= 7; k++) {
             tribo_model *m = make(&d.scene), *loaded = make(&d.scene);
             cr_assert_eq(tribo_advance_fully(m, t_exit * k / 8.0), TRIBO_OK);
@@ -201,7 +201,7 @@ Test(rigid_stick, its_phases_save_and_load_bit_for_bit, .timeout = 60)
             cr_assert_eq(tribo_state_load(loaded, bytes, size), TRIBO_OK, "%s", tribo_last_error(loaded));
             free(bytes);
             cr_assert_eq(tribo_advance_fully(loaded, TRIBO_TIME_MAX), TRIBO_ENDED);
-            for (int q = 0; q < TRIBO_Q_COUNT; q++)
+            for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++)
                 cr_expect(tribo_get(loaded, q) == tribo_get(whole, q), "%s, saved at %d/8: %s %.17g, %.17g",
                           grains[i], k, tribo_quantity_name(q), tribo_get(loaded, q), tribo_get(whole, q));
             tribo_free(m);
@@ -238,7 +238,7 @@ Test(rigid_stick, a_state_saved_after_a_long_rigid_stretch_loads_again, .timeout
         unsigned char *bytes = saved_state(m, &size);
         tribo_model *loaded = make(&d.scene);
         cr_expect_eq(tribo_state_load(loaded, bytes, size), TRIBO_OK, "at t = %.17g: %s",
-                     tribo_get(m, TRIBO_Q_TIME), tribo_last_error(loaded));
+                     tribo_get(m, TRIBO_QUANTITY_TIME), tribo_last_error(loaded));
         free(bytes);
         tribo_free(loaded);
     }

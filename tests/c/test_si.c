@@ -128,8 +128,8 @@ Test(si, a_neutral_pair_runs_and_charges_nothing)
     tribo_model *m = tribo_create(&d.scene, err, sizeof err);
     cr_assert(m, "%s", err);
     cr_assert_eq(tribo_advance_fully(m, 2000.0), TRIBO_OK, "%s", tribo_last_error(m));
-    cr_expect(tribo_get(m, TRIBO_Q_STATIC) != 0.0, "the model charged in its own units");
-    for (int q = TRIBO_SI_Q_CHARGE_STATIC; q <= TRIBO_SI_Q_SIGMA_S; q++)
+    cr_expect(tribo_get(m, TRIBO_QUANTITY_STATIC) != 0.0, "the model charged in its own units");
+    for (int q = TRIBO_SI_QUANTITY_CHARGE_STATIC; q <= TRIBO_SI_QUANTITY_SIGMA_S; q++)
         cr_expect_eq(tribo_si_get(&d, m, (tribo_si_quantity)q), 0.0, "%s",
                      tribo_si_quantity_name((tribo_si_quantity)q));
     tribo_free(m);
@@ -227,35 +227,35 @@ Test(si, the_outputs_are_the_models_in_si_units)
     const tribo_si_derived d = derived_of(&s);
     tribo_model *m = make(&d.scene);
     cr_assert_eq(tribo_advance_fully(m, 2e4), TRIBO_OK, "%s", tribo_last_error(m));
-    cr_assert(tribo_get(m, TRIBO_Q_STATIC) > 0.0 && tribo_get(m, TRIBO_Q_SIGMA_MEAN) > 0.0);
+    cr_assert(tribo_get(m, TRIBO_QUANTITY_STATIC) > 0.0 && tribo_get(m, TRIBO_QUANTITY_SIGMA_MEAN) > 0.0);
     const double a = 5e-4, t = d.t_star;
-    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_TIME), t * tribo_get(m, TRIBO_Q_TIME));
-    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_X), a * tribo_get(m, TRIBO_Q_X));
-    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_U), (a / t) * tribo_get(m, TRIBO_Q_U));
-    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_OMEGA), tribo_get(m, TRIBO_Q_OMEGA) / t);
-    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_ENERGY),
-                 d.k_prime * a * a * 1e-3 * tribo_get(m, TRIBO_Q_ENERGY));
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_TIME), t * tribo_get(m, TRIBO_QUANTITY_TIME));
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_X), a * tribo_get(m, TRIBO_QUANTITY_X));
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_U), (a / t) * tribo_get(m, TRIBO_QUANTITY_U));
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_OMEGA), tribo_get(m, TRIBO_QUANTITY_OMEGA) / t);
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_ENERGY),
+                 d.k_prime * a * a * 1e-3 * tribo_get(m, TRIBO_QUANTITY_ENERGY));
     /* the charges: sigma0 Q_static, and the sliding density with sigma0's sign */
-    const double static_density = -1e-5 * tribo_get(m, TRIBO_Q_STATIC);
-    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_SIGMA_MEAN_STATIC), static_density);
-    cr_expect(tribo_si_get(&d, m, TRIBO_SI_Q_SIGMA_MEAN_SLIDING) < 0.0);
-    cr_expect(close_to(tribo_si_get(&d, m, TRIBO_SI_Q_SIGMA_MEAN_SLIDING),
-                       -1e-5 * tribo_get(m, TRIBO_Q_SLIDING), 1e-14));
+    const double static_density = -1e-5 * tribo_get(m, TRIBO_QUANTITY_STATIC);
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_SIGMA_MEAN_STATIC), static_density);
+    cr_expect(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_SIGMA_MEAN_SLIDING) < 0.0);
+    cr_expect(close_to(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_SIGMA_MEAN_SLIDING),
+                       -1e-5 * tribo_get(m, TRIBO_QUANTITY_SLIDING), 1e-14));
     const double per_length = d.perimeter * static_density;
-    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_CHARGE_PER_LENGTH_STATIC), per_length);
-    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_CHARGE_STATIC), 1e-3 * per_length);
-    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_Q_PER_M_STATIC), per_length / d.mass_per_length);
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_CHARGE_PER_LENGTH_STATIC), per_length);
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_CHARGE_STATIC), 1e-3 * per_length);
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_Q_PER_M_STATIC), per_length / d.mass_per_length);
     cr_expect_eq(tribo_si_segment_factor(&d, TRIBO_SEGMENTS_STATIC), -1e-5);
     /* the calculated parameters need no instance */
-    cr_expect_eq(tribo_si_get(&d, NULL, TRIBO_SI_Q_T_STAR), t);
-    cr_expect_eq(tribo_si_get(&d, NULL, TRIBO_SI_Q_GAMMA), d.scene.Gamma);
-    cr_expect_eq(tribo_si_get(&d, NULL, TRIBO_SI_Q_MASS), d.mass_per_length * 1e-3);
+    cr_expect_eq(tribo_si_get(&d, NULL, TRIBO_SI_QUANTITY_T_STAR), t);
+    cr_expect_eq(tribo_si_get(&d, NULL, TRIBO_SI_QUANTITY_GAMMA), d.scene.Gamma);
+    cr_expect_eq(tribo_si_get(&d, NULL, TRIBO_SI_QUANTITY_MASS), d.mass_per_length * 1e-3);
 
     /* the charge-to-mass ratio does not depend on the cylinder's depth; the charge does */
     s.cylinder_length = 0.25;
     const tribo_si_derived deep = derived_of(&s);
-    cr_expect_eq(tribo_si_get(&deep, m, TRIBO_SI_Q_Q_PER_M_STATIC), tribo_si_get(&d, m, TRIBO_SI_Q_Q_PER_M_STATIC));
-    cr_expect_eq(tribo_si_get(&deep, m, TRIBO_SI_Q_CHARGE_STATIC), 0.25 * per_length);
+    cr_expect_eq(tribo_si_get(&deep, m, TRIBO_SI_QUANTITY_Q_PER_M_STATIC), tribo_si_get(&d, m, TRIBO_SI_QUANTITY_Q_PER_M_STATIC));
+    cr_expect_eq(tribo_si_get(&deep, m, TRIBO_SI_QUANTITY_CHARGE_STATIC), 0.25 * per_length);
     tribo_free(m);
 }
 
@@ -270,18 +270,18 @@ Test(si, an_impact_episode_ends_at_its_liftoff_and_the_motion_fractions_pass_thr
     cr_expect_eq(d.scene.run_end, TRIBO_RUN_END_FIRST_LIFTOFF);
     tribo_model *m = make(&d.scene);
     const tribo_status st = tribo_advance_fully(m, 1e4);
-    cr_assert_eq(st, TRIBO_ENDED, "status %d: %s, t = %g", st, tribo_last_error(m), tribo_get(m, TRIBO_Q_TIME));
-    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_LIFTED_OFF), 1.0);
-    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_EXITED), 0.0);
-    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_IMPACTS), 1.0);
-    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_Q_IN_CONTACT), 0.0);
-    cr_expect(tribo_si_get(&d, m, TRIBO_SI_Q_V) > 0.0, "rebound v = %g", tribo_si_get(&d, m, TRIBO_SI_Q_V));
-    const tribo_si_quantity si_fractions[] = {TRIBO_SI_Q_FRACTION_FLIGHT, TRIBO_SI_Q_FRACTION_ROCKING,
-                                              TRIBO_SI_Q_FRACTION_ROLLING, TRIBO_SI_Q_FRACTION_TUMBLING,
-                                              TRIBO_SI_Q_FRACTION_BOUNCING};
-    const tribo_quantity fractions[] = {TRIBO_Q_FRACTION_FLIGHT, TRIBO_Q_FRACTION_ROCKING,
-                                        TRIBO_Q_FRACTION_ROLLING, TRIBO_Q_FRACTION_TUMBLING,
-                                        TRIBO_Q_FRACTION_BOUNCING};
+    cr_assert_eq(st, TRIBO_ENDED, "status %d: %s, t = %g", st, tribo_last_error(m), tribo_get(m, TRIBO_QUANTITY_TIME));
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_LIFTED_OFF), 1.0);
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_EXITED), 0.0);
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_IMPACTS), 1.0);
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_IN_CONTACT), 0.0);
+    cr_expect(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_V) > 0.0, "rebound v = %g", tribo_si_get(&d, m, TRIBO_SI_QUANTITY_V));
+    const tribo_si_quantity si_fractions[] = {TRIBO_SI_QUANTITY_FRACTION_FLIGHT, TRIBO_SI_QUANTITY_FRACTION_ROCKING,
+                                              TRIBO_SI_QUANTITY_FRACTION_ROLLING, TRIBO_SI_QUANTITY_FRACTION_TUMBLING,
+                                              TRIBO_SI_QUANTITY_FRACTION_BOUNCING};
+    const tribo_quantity fractions[] = {TRIBO_QUANTITY_FRACTION_FLIGHT, TRIBO_QUANTITY_FRACTION_ROCKING,
+                                        TRIBO_QUANTITY_FRACTION_ROLLING, TRIBO_QUANTITY_FRACTION_TUMBLING,
+                                        TRIBO_QUANTITY_FRACTION_BOUNCING};
     double sum = 0.0;
     for (int i = 0; i < 5; i++) {
         cr_expect_eq(tribo_si_get(&d, m, si_fractions[i]), tribo_get(m, fractions[i]));

@@ -24,7 +24,7 @@ static tribo_scene scene_with(int integrator)
 /* Every quantity and both segment arrays, bit for bit. */
 static void expect_same(tribo_model *a, tribo_model *b, const char *what)
 {
-    for (int q = 0; q < TRIBO_Q_COUNT; q++) {
+    for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++) {
         const double x = tribo_get(a, q), y = tribo_get(b, q);
         cr_expect(memcmp(&x, &y, sizeof x) == 0, "%s: %s differs: %.17g vs %.17g", what,
                   tribo_quantity_name(q), x, y);
@@ -59,7 +59,7 @@ Test(state, copy_out_and_in_continues_bit_identically)
 
         tribo_model *b = make(&s); /* a fresh instance */
         cr_assert_eq(tribo_state_load(b, saved, n), TRIBO_OK, "%s", tribo_last_error(b));
-        cr_expect_eq(tribo_get(b, TRIBO_Q_TIME), 3.00013);
+        cr_expect_eq(tribo_get(b, TRIBO_QUANTITY_TIME), 3.00013);
         cr_assert_eq(tribo_advance(b, 10.0), TRIBO_OK);
         expect_same(a, b, "restored instance");
 
@@ -95,7 +95,7 @@ Test(state, tunables_and_inputs_travel_with_the_state)
         cr_expect_eq(tribo_get_scene(b)->mu, 0.3);
         advance_both(a, b, 6.0);
         expect_same(a, b, "with tunables and inputs");
-        cr_expect(tribo_get(a, TRIBO_Q_WORK_EXTERNAL) != 0.0);
+        cr_expect(tribo_get(a, TRIBO_QUANTITY_WORK_EXTERNAL) != 0.0);
         free(saved);
         tribo_free(a);
         tribo_free(b);
@@ -136,7 +136,7 @@ Test(state, many_advances_equal_one)
         const double h = 0.0123;
         for (int k = 1; k <= 250; k++) {
             cr_assert_eq(tribo_advance(a, k * h), TRIBO_OK);
-            (void)tribo_get(a, TRIBO_Q_STATIC); /* reading must not disturb either */
+            (void)tribo_get(a, TRIBO_QUANTITY_STATIC); /* reading must not disturb either */
         }
         cr_assert_eq(tribo_advance(b, 250 * h), TRIBO_OK);
         expect_same(a, b, "stepwise vs at once");
@@ -173,8 +173,8 @@ Test(state, reset_reruns_identically)
         tribo_model *a = make(&s), *b = make(&s);
         cr_assert_eq(tribo_advance(a, 4.0), TRIBO_OK);
         cr_assert_eq(tribo_reset(a), TRIBO_OK);
-        cr_expect_eq(tribo_get(a, TRIBO_Q_TIME), 0.0);
-        cr_expect_eq(tribo_get(a, TRIBO_Q_STATIC), 0.0);
+        cr_expect_eq(tribo_get(a, TRIBO_QUANTITY_TIME), 0.0);
+        cr_expect_eq(tribo_get(a, TRIBO_QUANTITY_STATIC), 0.0);
         advance_both(a, b, 4.0);
         expect_same(a, b, "after reset");
         tribo_free(a);

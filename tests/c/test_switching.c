@@ -135,13 +135,13 @@ Test(switching, a_grain_set_down_makes_no_impact)
         s.drop_speed = 0.0;
         tribo_model *m = make(&s);
         cr_assert_eq(tribo_advance_fully(m, 200.0), TRIBO_OK, "%s", tribo_last_error(m));
-        cr_expect_eq(tribo_get(m, TRIBO_Q_IN_CONTACT), 1.0);
-        cr_expect_eq(tribo_get(m, TRIBO_Q_IMPACTS), 0.0, "stick_model %d", sm);
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_IN_CONTACT), 1.0);
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_IMPACTS), 0.0, "stick_model %d", sm);
         tribo_free(m);
         s.drop_speed = 0.025;
         m = make(&s);
         cr_assert_eq(tribo_advance_fully(m, 1.0), TRIBO_OK, "%s", tribo_last_error(m));
-        cr_expect_eq(tribo_get(m, TRIBO_Q_IMPACTS), 1.0, "stick_model %d", sm);
+        cr_expect_eq(tribo_get(m, TRIBO_QUANTITY_IMPACTS), 1.0, "stick_model %d", sm);
         tribo_free(m);
     }
 }
@@ -184,12 +184,12 @@ Test(switching, a_flight_never_takes_the_lowest_point_through_the_plate, .timeou
             int flights = 0;
             for (int k = 1; k <= 20000; k++) {
                 cr_assert_eq(tribo_advance(m, 0.01 * k), TRIBO_OK, "%s", tribo_last_error(m));
-                if (tribo_get(m, TRIBO_Q_IN_CONTACT) != 0.0)
+                if (tribo_get(m, TRIBO_QUANTITY_IN_CONTACT) != 0.0)
                     continue;
                 flights++;
                 tribo_pose g;
-                tribo_pose_at(eps[e] * eps[e], tribo_get(m, TRIBO_Q_PHI), &g);
-                const double clearance = tribo_get(m, TRIBO_Q_Y) - g.h;
+                tribo_pose_at(eps[e] * eps[e], tribo_get(m, TRIBO_QUANTITY_PHI), &g);
+                const double clearance = tribo_get(m, TRIBO_QUANTITY_Y) - g.h;
                 cr_assert(clearance >= -1e-14, "eps %g, Omega0 %g, t = %g: clearance %.3g in flight", eps[e],
                           spins[w], 0.01 * k, clearance);
             }

@@ -48,7 +48,7 @@ static void each_advance_is_bounded(const char *settings, int advances)
         const double spent = cpu() - c0;
         cr_assert(st == TRIBO_OK || st == TRIBO_INCOMPLETE, "%s", tribo_last_error(m));
         cr_expect(spent < ADVANCE_CPU_BOUND, "%s: advance %d took %.2f s of CPU", settings, k, spent);
-        const double reached = tribo_get(m, TRIBO_Q_TIME);
+        const double reached = tribo_get(m, TRIBO_QUANTITY_TIME);
         cr_expect(reached > t, "advance %d made no progress from t = %.17g", k, t);
         t = reached;
     }
@@ -74,7 +74,7 @@ Test(work_limit, an_advance_is_bounded_at_the_tightest_tolerances, .timeout = 60
 /* Every quantity bit for bit. */
 static int same_outputs(tribo_model *a, tribo_model *b)
 {
-    for (int q = 0; q < TRIBO_Q_COUNT; q++) {
+    for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++) {
         const double x = tribo_get(a, q), y = tribo_get(b, q);
         if (memcmp(&x, &y, sizeof x) != 0)
             return 0;

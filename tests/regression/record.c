@@ -38,9 +38,9 @@ static uint64_t fnv1a(const void *data, size_t n, uint64_t h)
 
 static void print_outputs(const char *run, tribo_model *m, int last)
 {
-    const double t = tribo_get(m, TRIBO_Q_TIME);
+    const double t = tribo_get(m, TRIBO_QUANTITY_TIME);
     uint64_t h = 14695981039346656037ull;
-    for (int q = 0; q < TRIBO_Q_COUNT; q++) {
+    for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++) {
         const double v = tribo_get(m, (tribo_quantity)q);
         h = fnv1a(&v, sizeof v, h);
         if (last)

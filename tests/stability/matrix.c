@@ -84,7 +84,7 @@ void stability_run_scene(const tribo_scene *s, const tribo_si_derived *si, doubl
     if (!m)
         return;
     const double start = cpu_now();
-    const double E0 = tribo_get(m, TRIBO_Q_ENERGY);
+    const double E0 = tribo_get(m, TRIBO_QUANTITY_ENERGY);
     r->all_finite = r->charge_ok = r->coulomb_ok = r->contact_ok = 1;
     r->energy_scale = fabs(E0);
     double q_prev = 0.0;
@@ -97,37 +97,37 @@ void stability_run_scene(const tribo_scene *s, const tribo_si_derived *si, doubl
             snprintf(r->error, sizeof r->error, "%s", tribo_last_error(m));
             break;
         }
-        for (int q = 0; q < TRIBO_Q_COUNT; q++)
+        for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++)
             if (!isfinite(tribo_get(m, (tribo_quantity)q)))
                 r->all_finite = 0;
-        for (int q = 0; si && q < TRIBO_SI_Q_COUNT; q++)
+        for (int q = 0; si && q < TRIBO_SI_QUANTITY_COUNT; q++)
             if (!isfinite(tribo_si_get(si, m, (tribo_si_quantity)q)))
                 r->all_finite = 0;
-        const double Q = tribo_get(m, TRIBO_Q_STATIC);
+        const double Q = tribo_get(m, TRIBO_QUANTITY_STATIC);
         if (!(Q >= q_prev && Q <= 1.0))
             r->charge_ok = 0;
         q_prev = Q;
-        const double dx = tribo_get(m, TRIBO_Q_DELTA_X), psi_n = tribo_get(m, TRIBO_Q_PSI_N);
+        const double dx = tribo_get(m, TRIBO_QUANTITY_DELTA_X), psi_n = tribo_get(m, TRIBO_QUANTITY_PSI_N);
         if (fabs(dx) > s->mu * psi_n * (1.0 + 1e-9) + 1e-300)
             r->coulomb_ok = 0;
         /* a located contact switch is exact to rounding of the contact root */
-        if (tribo_get(m, TRIBO_Q_IN_CONTACT) == 0.0 && tribo_get(m, TRIBO_Q_DELTA_Y) > 1e-12)
+        if (tribo_get(m, TRIBO_QUANTITY_IN_CONTACT) == 0.0 && tribo_get(m, TRIBO_QUANTITY_DELTA_Y) > 1e-12)
             r->contact_ok = 0;
-        const double E = tribo_get(m, TRIBO_Q_ENERGY), W = tribo_get(m, TRIBO_Q_WORK_DISSIPATED),
-                     We = tribo_get(m, TRIBO_Q_WORK_EXTERNAL);
-        const double U = tribo_get(m, TRIBO_Q_U), V = tribo_get(m, TRIBO_Q_V);
+        const double E = tribo_get(m, TRIBO_QUANTITY_ENERGY), W = tribo_get(m, TRIBO_QUANTITY_WORK_DISSIPATED),
+                     We = tribo_get(m, TRIBO_QUANTITY_WORK_EXTERNAL);
+        const double U = tribo_get(m, TRIBO_QUANTITY_U), V = tribo_get(m, TRIBO_QUANTITY_V);
         r->max_residual = fmax(r->max_residual, fabs(E + W - We - E0));
         r->energy_scale = fmax(r->energy_scale, fmax(fabs(E), fmax(fabs(W), 0.5 * (U * U + V * V))));
-        r->max_delta_y = fmax(r->max_delta_y, tribo_get(m, TRIBO_Q_DELTA_Y));
+        r->max_delta_y = fmax(r->max_delta_y, tribo_get(m, TRIBO_QUANTITY_DELTA_Y));
         if (r->exited)
             break;
     }
     r->finished = r->exited || k * every > t_end + 1e-9;
     r->cpu_seconds = cpu_now() - start;
     tribo_get_stats(m, &r->stats);
-    r->t_reached = tribo_get(m, TRIBO_Q_TIME);
-    r->q_static = tribo_get(m, TRIBO_Q_STATIC);
-    r->q_sliding = tribo_get(m, TRIBO_Q_SLIDING);
+    r->t_reached = tribo_get(m, TRIBO_QUANTITY_TIME);
+    r->q_static = tribo_get(m, TRIBO_QUANTITY_STATIC);
+    r->q_sliding = tribo_get(m, TRIBO_QUANTITY_SLIDING);
     tribo_free(m);
 }
 
