@@ -18,14 +18,17 @@ The API (each function documented where it is defined, in tribo/api.py):
     pop.summary                                                   # q/m by shape, size class
     m = tribo.impact_map(speed=[1, 5], angle_deg=[30, 90], phi0_deg=[0, 45], epsilon=[0.5, 1])
     m("charge_static", speed=3, angle_deg=60, phi0_deg=20, epsilon=0.7)  # C per impact
+    g = tribo.line_grain("nylon", "steel", voltage=30e3)         # chute, then separator
+    mix = tribo.line_sweep(200, seed=1, out="out/line-sweep")     # PE + nylon against U
+    mix.table                                                     # grade, recovery per U
 
 Names and units (tribo/fmu/names.py): angles in degrees, named <name>_deg; the SI size as
 size, the long diameter 2a in m; the rest the FMU's names and SI units. Results go into an
 output folder (out=) that holds one function's results of one set-up (tribo/batch/folder.py).
 
 The commands: tribo-study (the paper's study), tribo-sweep (parameter sweeps),
-tribo-population (particle populations) and tribo-impact-map (charge-per-impact maps), each
-with --help. The FMUs are those of the build directory (build/, or $TRIBO_BUILD_DIR) or
+tribo-population (particle populations), tribo-impact-map (charge-per-impact maps) and
+tribo-line (grains through the chute and the separator), each with --help. The FMUs are those of the build directory (build/, or $TRIBO_BUILD_DIR) or
 the one given by path (fmu=...).
 
 Its subpackages, by concern (each module's docstring says what it does):
@@ -48,17 +51,22 @@ Its subpackages, by concern (each module's docstring says what it does):
                  its seeded draw, one particle's run), runner, summary (q/m by class), plot
     impact/      charge-per-impact maps (SI FMU): episode (one impact, a map's grid), map
                  (the runs, the table, the lookup ImpactMap), plot
+    line/        the separation line (SI chute, then the separator FMU): grain (one grain,
+                 the chute once and the separator per voltage), mixture (a population or a
+                 binary mixture, grade and recovery), plot
     cli/         the commands
 
 Each imports only its own modules and the layers below it: materials, plotting and fmu at
-the bottom, then batch, then study, populations and impact (not each other), then api and
-cli (CONTRIBUTING.md; tests/python/test_package_layout.py checks it).
+the bottom, then batch, then study, populations and impact (not each other), then line (on
+populations), then api and cli (CONTRIBUTING.md; tests/python/test_package_layout.py checks it).
 """
 
 from . import fmu, materials
-from .api import impact_map, load_results, population, run, run_si, sweep
+from .api import (impact_map, line_grain, line_mixture, line_population, line_sweep, load_results,
+                  population, run, run_si, sweep)
 from .fmu.locate import find_fmu
 from .impact.map import ImpactMap
 
 __all__ = ["run", "run_si", "sweep", "load_results", "find_fmu", "materials", "population",
-           "impact_map", "ImpactMap"]
+           "impact_map", "ImpactMap", "line_grain", "line_population", "line_mixture",
+           "line_sweep"]

@@ -24,6 +24,8 @@ from .fmu.names import ParameterError, output_names
 from .fmu.parameters import check_names, check_values, integer_names
 from .impact.episode import DEFAULT_LIMIT, Grid
 from .impact.map import EPISODES, ImpactMap, map_setup, prepare_map, run_impact_map
+from .line.grain import check_separator, load_images, run_line_grain
+from .line.mixture import DEFAULT_PAIR, Line, check_line, line_setup, line_specs, run_line
 from .materials import pair_values
 from .populations.feed import DEFAULT_CHUTE, Feed, check_measured, read_measured
 from .populations.runner import PARTICLES, population_setup, prepare_population, run_population
@@ -218,3 +220,102 @@ def impact_map(*, speed, angle_deg, phi0_deg, epsilon, particle: str = "PE",
         spec, error = report.failed[0]
         raise RuntimeError(f"{len(report.failed)} episode(s) failed, e.g.: {error}")
     return ImpactMap.load(out)
+
+
+# ---- the separation line: the chute, then the free-fall separator (docs/line.md) ----------
+
+DEFAULT_VOLTAGES = tuple(float(v) for v in range(5000, 40001, 5000))  # 5 to 40 kV, 8 values
+
+
+def line_grain(particle: str = "PE", wall: str = "steel", *, voltage: float = 30e3,
+               size: float = 1e-3, epsilon: float = 0.6, phi0_deg: float = 0.0,
+               x_entry: float = 0.0, chute: dict | None = None, settings: dict | None = None,
+               separator: dict | None = None, charge_model: str = "static", t_end: float = 5.0,
+               fmu: str | int | None = None, separator_fmu: str | int | None = None) -> dict:
+    """One grain through the line (tribo.line.grain): down the SI chute (the pair's
+    materials, `size` the long diameter 2a in m, dropped at rest from 10 mm; chute:
+    chute_length, tilt_deg; settings: any other SI chute parameter) to its exit, then through
+    the separator (separator: its settings, gap, height, n_bins, ...; the voltage U in V;
+    x_entry the entry across the gap, m) from the chute's exit state. The chute with one
+    charge model ("static" or "sliding"). Returns the chute's results (exited, exit_time,
+    u, v, ...), charge_to_mass (C/kg), mass (kg), the landing (landed, electrode, bin,
+    x_end, z_end, flight_time, time_land) and the CPU times (chute_cpu_s, cpu_s)."""
+    line = Line((particle,), wall, distributions={"epsilon": epsilon, "size": size,
+                                                  "phi0_deg": phi0_deg},
+                chute=dict(DEFAULT_CHUTE, **(chute or {})), settings=dict(settings or {}),
+                separator=dict(separator or {}), feed_width=0.0, charge_model=charge_model)
+    specs = line_specs(line, 1, 0, t_end)
+    specs[0].params["x_entry"] = float(x_entry)
+    images = load_images(fmu, separator_fmu, line.separator, [voltage])
+    check_line(line, specs, images)
+    check_separator(images.separator, dict(images.settings, x_entry=x_entry), [voltage], [size])
+    result = run_line_grain(images, specs[0])
+    return {"particle": line.particles[0], "wall": wall, "voltage": float(voltage),
+            **result.row}
+
+
+def _run_line(kind, line, n, seed, t_end, voltages, out, fmu, separator_fmu, scheduler,
+              workers, serial, processes, fresh, progress, figure=True):
+    voltages = [float(v) for v in ([voltages] if isinstance(voltages, (int, float)) else voltages)]
+    line.check()
+    specs = line_specs(line, n, seed, t_end)
+    images = load_images(fmu, separator_fmu, line.separator, voltages)
+    check_line(line, specs, images)
+    executor = _executor(serial, scheduler, workers, processes)
+    with claim(out, "line", {"kind": kind, **line_setup(line, n, seed, t_end, voltages)},
+               images.sha256, fresh) as folder:
+        report = run_line(line, n, seed, t_end, images, out, executor, specs=specs,
+                          progress=progress, figure=figure)
+    report.backup = folder.backup
+    if report.failed:
+        spec, error = report.failed[0]
+        raise RuntimeError(f"{len(report.failed)} grain(s) failed, e.g.: {error}")
+    return report
+
+
+def line_population(n: int, *, seed: int = 0, particle: str = "PE", wall: str = "steel",
+                    voltage: float = 30e3, distributions: dict | None = None,
+                    chute: dict | None = None, settings: dict | None = None,
+                    separator: dict | None = None, feed_width: float = 0.01,
+                    charge_model: str = "static", t_end: float = 5.0,
+                    out: str = "out/line-population", fmu: str | int | None = None,
+                    separator_fmu: str | int | None = None, scheduler: str | None = None,
+                    workers: int | None = None, serial: bool = False, processes: bool = False,
+                    fresh: bool = False, progress: bool = False):
+    """n grains of one material drawn from a feed (as tribo.population's) through the line
+    at one voltage (V), each entering the separator at a point drawn across `feed_width`
+    (m). Into `out` (particles.csv with the landing columns, landings.csv, line.csv: the
+    mass per region; resumable). Returns tribo.line.mixture.LineReport."""
+    line = Line((particle,), wall, distributions=dict(distributions or {}),
+                chute=dict(DEFAULT_CHUTE, **(chute or {})), settings=dict(settings or {}),
+                separator=dict(separator or {}), feed_width=feed_width, charge_model=charge_model)
+    return _run_line("population", line, n, seed, t_end, voltage, out, fmu, separator_fmu,
+                     scheduler, workers, serial, processes, fresh, progress)
+
+
+def line_mixture(n: int, *, seed: int = 0, particles=DEFAULT_PAIR, fraction: float = 0.5,
+                 wall: str = "steel", voltage=30e3, distributions: dict | None = None,
+                 chute: dict | None = None, settings: dict | None = None,
+                 separator: dict | None = None, feed_width: float = 0.01,
+                 splitter: float = 0.0, charge_model: str = "static", t_end: float = 5.0,
+                 out: str = "out/line-mixture", fmu: str | int | None = None,
+                 separator_fmu: str | int | None = None, scheduler: str | None = None,
+                 workers: int | None = None, serial: bool = False, processes: bool = False,
+                 fresh: bool = False, progress: bool = False, figure: bool = True):
+    """A binary mixture of two particle materials of opposite polarity on one wall (default
+    PE and nylon on steel, 50:50 by mass: `fraction` of the first) through the line at one
+    voltage or several (`voltage`: a number or a list, V; the chute once per grain, the
+    separator per voltage). The products split at x = `splitter` (m; 0 the centre line).
+    Into `out`: particles.csv, landings.csv, line.csv (per voltage: masses per material and
+    region, grade and recovery of each product), bins.csv, line.png (several voltages).
+    Returns tribo.line.mixture.LineReport (.table is line.csv)."""
+    line = Line(tuple(particles), wall, fraction, dict(distributions or {}),
+                dict(DEFAULT_CHUTE, **(chute or {})), dict(settings or {}), dict(separator or {}),
+                feed_width, charge_model, splitter)
+    return _run_line("mixture", line, n, seed, t_end, voltage, out, fmu, separator_fmu,
+                     scheduler, workers, serial, processes, fresh, progress, figure)
+
+
+def line_sweep(n: int, *, voltages=DEFAULT_VOLTAGES, out: str = "out/line-sweep", **options):
+    """tribo.line_mixture over `voltages` (default 5 to 40 kV, 8 values), with its figure."""
+    return line_mixture(n, voltage=list(voltages), out=out, **options)

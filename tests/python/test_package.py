@@ -53,11 +53,11 @@ def test_nothing_in_the_repository_changes_sys_path():
 # The commands users type and the modules they run: a rename here breaks scripts and docs.
 COMMANDS = {"tribo-study": "tribo.cli.study:main", "tribo-sweep": "tribo.cli.sweep:main",
             "tribo-population": "tribo.cli.population:main",
-            "tribo-impact-map": "tribo.cli.impact_map:main"}
+            "tribo-impact-map": "tribo.cli.impact_map:main", "tribo-line": "tribo.cli.line:main"}
 # The names `import tribo` gives (README.md, docs/): changing them is a decision about the
 # API, never a side effect of moving modules.
 PUBLIC = ["run", "run_si", "sweep", "load_results", "find_fmu", "materials", "population",
-          "impact_map", "ImpactMap"]
+          "impact_map", "ImpactMap", "line_grain", "line_population", "line_mixture", "line_sweep"]
 
 
 def test_pyproject_declares_the_console_commands():

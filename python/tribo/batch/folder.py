@@ -41,9 +41,11 @@ OWN_FILES = {
                    "population.json"],
     "impact map": ["episodes.csv", "episodes.backup-*.csv", "impact_map.csv", "impact_map.json",
                    "impact_map.png"],
+    "line": ["particles.csv", "particles.backup-*.csv", "landings", "landings.csv", "line.csv",
+             "bins.csv", "line.png", "line.json"],
 }
 COMMANDS = {"study": "tribo-study", "sweep": "tribo-sweep", "population": "tribo-population",
-            "impact map": "tribo-impact-map"}
+            "impact map": "tribo-impact-map", "line": "tribo-line"}
 
 
 class FolderError(ValueError):
@@ -63,7 +65,7 @@ class Claim:
 @contextlib.contextmanager
 def claim(out: str, kind: str, setup: dict, fmu_sha256: str, fresh: bool = False):
     """Claim the folder `out` for a command of `kind` ("study", "sweep", "population",
-    "impact map") and its `setup` (plain JSON values), run with the FMU of that SHA-256
+    "impact map", "line") and its `setup` (plain JSON values), run with the FMU of that SHA-256
     (see the module's text); yields a Claim, and holds the lock until the block ends."""
     if kind not in OWN_FILES:
         raise ValueError(f"kind {kind!r}: one of {', '.join(OWN_FILES)}")

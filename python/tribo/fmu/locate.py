@@ -6,8 +6,8 @@ import os
 PACKAGE_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # tribo/, above fmu/
 CHECKOUT = os.path.dirname(os.path.dirname(PACKAGE_DIR))
 # the FMUs' modelIdentifiers by variant: the dimensionless model, or the SI front end
-# (physical units, docs/model.md section 8)
-VARIANTS = {"dimensionless": "tribo", "si": "tribo_si"}
+# (physical units, docs/model.md section 8), or the free-fall separator (docs/separator.md)
+VARIANTS = {"dimensionless": "tribo", "si": "tribo_si", "separator": "tribo_separator"}
 
 
 def build_dir() -> str:
@@ -16,8 +16,8 @@ def build_dir() -> str:
 
 def find_fmu(fmu: str | int | None = None, variant: str = "dimensionless", si: bool = False) -> str:
     """The path of an FMU: `fmu` itself if it is a path, else the FMI 2.0 (2) or 3.0 (3,
-    the default) FMU of the build directory, of the variant "dimensionless" (tribo_fmi<v>)
-    or "si" (tribo_si_fmi<v>; si=True says the same). FileNotFoundError, saying what to do,
+    the default) FMU of the build directory, of the variant "dimensionless" (tribo_fmi<v>),
+    "si" (tribo_si_fmi<v>; si=True says the same) or "separator" (tribo_separator_fmi<v>). FileNotFoundError, saying what to do,
     if it is not there."""
     variant = "si" if si else variant
     if isinstance(fmu, str):

@@ -1,0 +1,209 @@
+"""One grain through the separation line: down the SI chute (tribo_si_fmi<v>) to its exit,
+then through the free-fall separator (tribo_separator_fmi<v>) from the chute's exit state,
+at one or several electrode voltages (docs/line.md, docs/separator.md "Coupling").
+
+The chute runs as a population's particle does (populations.feed.run_particle: the same
+parameters, the same communication grid, so its row is a population's row); its run ends
+at the exit exactly (the FMU ends the step there), at the time `time_end`. The separator is
+then initialised with the grain and the chute's tilt bound to the chute's values, stepped
+(holding the grain) to that exit time, given the chute's outputs there as its inputs
+(exited -> released, u -> u_entry, v -> v_entry, charge_to_mass -> charge_to_mass) and
+stepped in one step to the separator's horizon: the FMU ends that step where the grain
+reaches the bins or a plate, located exactly. The chute's part does not depend on the
+separator's settings: a voltage sweep runs it once per grain and the separator once per
+voltage.
+
+The chute runs with ONE charge model (`charge_model`, "static" by default): its output
+`charge_to_mass` is the sum over the included models, and the static and sliding models are
+alternative laws of the same grain's charge (docs/model.md section 5), so their sum would
+count the charge twice. The static model is the default because it is the one the
+populations' results are read with (docs/populations.md); "sliding" may be chosen.
+"""
+
+import hashlib
+import json
+import math
+import time
+from dataclasses import dataclass, field
+
+import pandas as pd
+
+from ..batch.particle import RunResult
+from ..batch.specs import RunSpec
+from ..fmu import FmuImage, Instance, unpacked
+from ..fmu.locate import find_fmu
+from ..fmu.names import ParameterError, format_number, to_fmu
+from ..fmu.parameters import check_values
+from ..populations.feed import RESULT_COLUMNS as CHUTE_COLUMNS
+from ..populations.feed import run_particle
+
+CHARGE_MODELS = ("static", "sliding")
+DEFAULT_CHARGE_MODEL = "static"
+# the separator's parameters the chute's grain and scene bind, by the package's names
+SHARED = ("size", "epsilon", "density", "tilt_deg", "gravity")
+# the separator's settings a line may give, by the package's names (docs/separator.md)
+SEPARATOR_SETTINGS = ("gap", "height", "n_bins", "x_entry", "chute_direction", "air_density",
+                      "air_viscosity", "rtol", "atol", "work_limit")
+# the separator's horizon after the release, s: a grain still falling then is "airborne"
+SEPARATOR_HORIZON = 10.0
+# per grain and voltage (docs/separator.md, "Outputs"); `landed` 1 at the bins, `electrode`
+# -1 / +1 on a plate, both 0: not ended within the horizon (airborne) or not released
+# (the grain did not leave the chute)
+LANDING_COLUMNS = ["landed", "electrode", "bin", "x_end", "z_end", "flight_time", "time_land"]
+# per grain, whatever the voltage
+GRAIN_COLUMNS = ["charge_to_mass", "q_per_m", "mass", "equivalent_diameter"]
+OUTPUTS = ["landed", "electrode", "bin", "x_end", "z_end", "flight_time", "q_per_m", "mass",
+           "equivalent_diameter"]
+
+
+class LineError(ValueError):
+    """A line that cannot be run as given (the message, one line, names the value)."""
+
+
+def charge_model_settings(charge_model: str) -> dict:
+    """The chute's switches that leave one charge model on."""
+    if charge_model not in CHARGE_MODELS:
+        raise LineError(f"charge_model = {charge_model!r}: one of {', '.join(CHARGE_MODELS)}")
+    return {f"charge_model_{m}": int(m == charge_model) for m in CHARGE_MODELS}
+
+
+@dataclass(frozen=True)
+class LineImages:
+    """What every grain's task needs besides its chute parameters: both FMUs' bytes, the
+    separator's settings and the voltages. `sha256` identifies them all (a grain's key is
+    its chute run's and this), so a results folder's rows are of this line."""
+
+    chute: FmuImage
+    separator: FmuImage
+    settings: dict = field(hash=False)  # the separator's, by the package's names
+    voltages: tuple = ()
+    horizon: float = SEPARATOR_HORIZON
+
+    @property
+    def name(self) -> str:
+        return f"{self.chute.name} + {self.separator.name}"
+
+    @property
+    def sha256(self) -> str:
+        text = json.dumps({"chute": self.chute.sha256, "separator": self.separator.sha256,
+                           "settings": self.settings, "voltages": list(self.voltages),
+                           "horizon": self.horizon}, sort_keys=True)
+        return hashlib.sha256(text.encode()).hexdigest()
+
+
+def check_separator(separator: FmuImage, settings: dict, voltages, sizes=()) -> None:
+    """LineError / ParameterError, one line, for a setting or voltage the separator refuses,
+    or a grain that does not fit the gap (checked here, before any run)."""
+    unknown = [n for n in settings if n not in SEPARATOR_SETTINGS]
+    if unknown:
+        raise LineError(f"not a separator setting: {unknown[0]} (they are: "
+                        f"{', '.join(SEPARATOR_SETTINGS)})")
+    if not len(voltages):
+        raise LineError("no voltage given")
+    values = {name: [value] for name, value in settings.items()}
+    values["voltage"] = list(voltages)
+    check_values(separator, values)
+    md = separator.model_description()
+    gap = settings.get("gap", _start(md, "gap"))
+    x_entry = abs(settings.get("x_entry", 0.0))
+    largest = max(sizes, default=0.0)
+    if largest and largest / 2 + x_entry >= gap / 2:
+        raise LineError(f"size = {format_number(float(largest))} m does not fit the gap = "
+                        f"{format_number(float(gap))} m at x_entry = "
+                        f"{format_number(float(settings.get('x_entry', 0.0)))} m: the grain must "
+                        f"satisfy size/2 + |x_entry| < gap/2")
+
+
+def _start(md, name):
+    return next(float(v.start) for v in md.modelVariables if v.name == name)
+
+
+def separator_parameters(chute_params: dict, settings: dict, voltage: float) -> dict:
+    """The separator's parameters (the package's names): the grain and tilt bound to the
+    chute's values, the settings, the voltage."""
+    bound = {name: chute_params[name] for name in SHARED if name in chute_params}
+    return {**bound, **settings, "voltage": float(voltage)}
+
+
+def fly(fmu_dir: str, md, params: dict, t_exit: float, inputs: dict | None,
+        horizon: float = SEPARATOR_HORIZON) -> dict:
+    """One separator run: initialised with `params`, the grain held until t_exit, then
+    released with `inputs` (u_entry, v_entry, charge_to_mass; None: never released) and
+    stepped in one step to t_exit + horizon (the FMU ends the step where the run ends).
+    Returns OUTPUTS and time_land (the time the run ended, NaN if it did not)."""
+    s = Instance(fmu_dir, name="separator")
+    try:
+        s.init(0.0, None, **to_fmu(md, params))
+        if t_exit > 0:
+            s.step_to(t_exit)
+        if inputs is not None:
+            s.set(released=True, **inputs)
+            s.step_to(t_exit + horizon)
+        out = s.get_many(OUTPUTS)
+        out["time_land"] = s.t if s.get("ended") else math.nan
+        s.terminate()
+    finally:
+        s.free()
+    out["landed"] = int(out["landed"])
+    out["electrode"] = int(out["electrode"])
+    out["bin"] = int(out["bin"])
+    return out
+
+
+# a grain's parameters that are not the chute FMU's: its material's name, its entry point
+# across the separator's gap (m)
+LINE_PARAMETERS = ("particle", "x_entry")
+
+
+def chute_params_of(params: dict) -> dict:
+    """A spec's parameters less what is not the chute FMU's (LINE_PARAMETERS)."""
+    return {k: v for k, v in params.items() if k not in LINE_PARAMETERS}
+
+
+def run_line_grain(images: LineImages, spec: RunSpec) -> RunResult:
+    """One grain: the chute once (its row: populations.feed.RESULT_COLUMNS), then the
+    separator at each voltage of `images`. The row gains GRAIN_COLUMNS and, for the first
+    voltage, LANDING_COLUMNS; `series` holds one row per voltage (LANDING_COLUMNS)."""
+    wall0, cpu0 = time.perf_counter(), time.thread_time()
+    chute_spec = RunSpec(chute_params_of(spec.params), spec.t_end, spec.record_interval)
+    chute = run_particle(images.chute, chute_spec)
+    row = dict(chute.row)
+    end = chute.series.iloc[-1]
+    model = next(m for m in CHARGE_MODELS if spec.params.get(f"charge_model_{m}", 1))
+    q = float(end[f"charge_to_mass_{model}"])  # the other model is off: the sum is this one
+    exited = bool(row["exited"])
+    t_exit = float(row["time_end"])
+    inputs = {"u_entry": float(end["u"]), "v_entry": float(end["v"]),
+              "charge_to_mass": q} if exited else None
+    md = images.separator.model_description()
+    chute_s = time.thread_time() - cpu0
+    landings = []
+    with unpacked(images.separator) as fmu_dir:
+        for voltage in images.voltages:
+            params = separator_parameters(chute_spec.params, images.settings, voltage)
+            if "x_entry" in spec.params:
+                params["x_entry"] = float(spec.params["x_entry"])
+            flight = fly(fmu_dir, md, params, t_exit, inputs, images.horizon)
+            landings.append({"voltage": float(voltage), **{c: flight[c] for c in LANDING_COLUMNS}})
+    first = landings[0]
+    row.update(charge_to_mass=q, q_per_m=flight["q_per_m"], mass=flight["mass"],
+               equivalent_diameter=flight["equivalent_diameter"])
+    row.update({c: first[c] for c in LANDING_COLUMNS})
+    row.update(chute_cpu_s=chute_s, cpu_s=time.thread_time() - cpu0,
+               wall_s=time.perf_counter() - wall0)
+    return RunResult(row, pd.DataFrame(landings))
+
+
+RESULT_COLUMNS = CHUTE_COLUMNS + GRAIN_COLUMNS + LANDING_COLUMNS + ["chute_cpu_s"]
+
+
+def load_images(chute_fmu, separator_fmu, settings: dict, voltages, horizon=SEPARATOR_HORIZON):
+    """The FMUs (paths, or 2 / 3 for the build's; default 3) and the line's set-up."""
+    return LineImages(FmuImage.load(find_fmu(chute_fmu, "si")),
+                      FmuImage.load(find_fmu(separator_fmu, "separator")),
+                      dict(settings), tuple(float(v) for v in voltages), float(horizon))
+
+
+def check_horizon(horizon: float) -> None:
+    if not (isinstance(horizon, (int, float)) and math.isfinite(horizon) and horizon > 0):
+        raise ParameterError(f"the separator's horizon = {horizon!r}: a positive number of seconds")

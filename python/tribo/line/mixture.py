@@ -1,0 +1,292 @@
+"""Grains through the line: a population of one particle material, or a binary mixture of
+two on one chute wall, at one voltage or a sweep of voltages, into an output folder.
+
+The feed (populations.feed.Feed: distributions of shape, size, orientation, drop) is drawn
+once with the seed; a mixture's grains are the first n_a of the draw made of material A, the
+rest of B, n_a from the mass fraction of A (`fraction`) and the densities (the draw's
+grains are alike but for the material, so a grain's mean mass is in proportion to its
+density): n_a = round(n f/rho_a / (f/rho_a + (1 - f)/rho_b)). The fed masses actually
+drawn are reported (a draw of n grains has the fraction f up to its sampling spread). Each
+grain also draws its entry point across the gap, x_entry uniform over the feed's width
+`feed_width` centred on the gap's centre (a feed slot; 0 puts every grain on the centre
+line, where any charge, however small, carries it to its side).
+
+Each grain is one task (grain.run_line_grain): the chute once, the separator at every
+voltage. Rows go into particles.csv as they finish (batch.sweep.run_sweep: resumable, a
+progress bar), each grain's landings at every voltage into landings/<key>.csv first; when
+all have run, the folder gets
+
+    particles.csv  a row per grain: its material, wall, seed, every parameter of its chute
+                   run, the chute's results (populations.feed), charge_to_mass (the ratio
+                   the separator got), mass (the separator's 3D equivalent, kg), the landing
+                   at the first voltage (grain.LANDING_COLUMNS)
+    landings.csv   a row per grain and voltage: key, particle, mass, voltage, the landing
+    line.csv       a row per voltage: the mass fed, in each product, on each plate, airborne,
+                   not out of the chute, per material; a mixture's grade and recovery of each
+                   product
+    bins.csv       the mass per voltage, bin and material
+    line.png       a sweep's figure (grade and recovery against the voltage)
+    line.json      the set-up
+
+The products: a splitter at x = `splitter` (default 0, the centre line between the bins of
+the negative and the positive plate's side) divides the bins; a grain landed at x_end <
+splitter, or caught on the plate at -gap/2, is collected on the negative-x side, the rest on
+the positive-x side (a plate's grains are scraped into the product below it). For U > 0 a
+positive grain drifts to -x (docs/separator.md): the material whose sigma0 against the wall
+is positive is the target of the -x product, the other of the +x one (mirrored for U < 0).
+grade = target's mass in its product / the product's mass; recovery = target's mass in its
+product / the target's fed mass (grains that do not leave the chute, or are still falling
+at the separator's horizon, count as fed and not collected).
+"""
+
+import json
+import math
+import os
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from ..batch.results import KEY
+from ..batch.specs import RunSpec
+from ..batch.sweep import read_series, run_sweep
+from ..fmu.names import format_number
+from ..fmu.parameters import check_values
+from ..materials import material, pair_sigma0
+from ..populations.feed import DEFAULT_CHUTE, Feed, FeedError, draw, particle_parameters
+from .grain import (LANDING_COLUMNS, RESULT_COLUMNS, LineError, LineImages, charge_model_settings,
+                    check_separator, chute_params_of, run_line_grain)
+
+PARTICLES, LANDINGS, TABLE, BINS, FIGURE, METADATA = ("particles.csv", "landings.csv", "line.csv",
+                                                      "bins.csv", "line.png", "line.json")
+LANDINGS_DIR = "landings"
+DEFAULT_PAIR = ("PE", "nylon")  # on steel: sigma0 -1e-5 and +1e-5 C/m2 (materials.toml)
+DEFAULT_WALL = "steel"
+DEFAULT_FEED_WIDTH = 0.01  # m, the feed slot across the gap
+STEPS_PER_RUN = 100  # the chute's communication steps (as a population's)
+WORK_LIMIT = 2**31 - 1
+
+
+@dataclass
+class Line:
+    """What grains are fed and how the line is set up (see the module's text)."""
+
+    particles: tuple = DEFAULT_PAIR  # one material (a population) or two (a mixture)
+    wall: str = DEFAULT_WALL
+    fraction: float = 0.5  # mass fraction of the first material in a mixture
+    distributions: dict = field(default_factory=dict)
+    chute: dict = field(default_factory=lambda: dict(DEFAULT_CHUTE))
+    settings: dict = field(default_factory=dict)  # any other SI chute parameter
+    separator: dict = field(default_factory=dict)  # the separator's settings (grain.SEPARATOR_SETTINGS)
+    feed_width: float = DEFAULT_FEED_WIDTH
+    charge_model: str = "static"
+    splitter: float = 0.0
+
+    def check(self) -> None:
+        if isinstance(self.particles, str):
+            self.particles = (self.particles,)
+        self.particles = tuple(self.particles)
+        if len(self.particles) not in (1, 2):
+            raise LineError(f"particles = {self.particles!r}: one material or two")
+        keys = [material(p, "particle").key for p in self.particles]
+        material(self.wall, "wall")
+        if len(keys) == 2 and keys[0] == keys[1]:
+            raise LineError(f"particles = {self.particles!r}: a mixture of two different materials")
+        if not (0 < self.fraction < 1):
+            raise LineError(f"fraction = {self.fraction!r}: the mass fraction of "
+                            f"{self.particles[0]}, between 0 and 1 (exclusive)")
+        if not (math.isfinite(self.feed_width) and self.feed_width >= 0):
+            raise LineError(f"feed_width = {self.feed_width!r}: a width in m, at least 0")
+        if not math.isfinite(self.splitter):
+            raise LineError(f"splitter = {self.splitter!r}: a position across the gap, m")
+        if "x_entry" in self.separator:
+            raise LineError("x_entry is drawn for each grain across feed_width: give feed_width")
+        charge_model_settings(self.charge_model)
+        if len(keys) == 2:
+            signs = [math.copysign(1, pair_sigma0(k, self.wall)) for k in keys]
+            if signs[0] == signs[1]:
+                raise LineError(f"{keys[0]} and {keys[1]} charge with the same sign on "
+                                f"{self.wall} (sigma0 {pair_sigma0(keys[0], self.wall):g} and "
+                                f"{pair_sigma0(keys[1], self.wall):g} C/m2): a mixture needs "
+                                f"opposite polarities")
+
+    def describe(self) -> dict:
+        self.check()
+        return {"particles": [material(p, "particle").key for p in self.particles],
+                "wall": material(self.wall, "wall").key, "fraction": self.fraction,
+                "distributions": dict(Feed(self.particles[0], self.wall, self.distributions)
+                                      .describe()["distributions"]),
+                "chute": dict(DEFAULT_CHUTE, **self.chute), "settings": dict(self.settings),
+                "separator": dict(self.separator), "feed_width": self.feed_width,
+                "charge_model": self.charge_model, "splitter": self.splitter}
+
+
+def counts(line: Line, n: int) -> list[int]:
+    """How many of the n grains are of each material."""
+    if len(line.particles) == 1:
+        return [n]
+    rho = [material(p, "particle").density for p in line.particles]
+    f = line.fraction
+    n_a = int(round(n * (f / rho[0]) / (f / rho[0] + (1 - f) / rho[1])))
+    return [n_a, n - n_a]
+
+
+def line_specs(line: Line, n: int, seed: int, t_end: float) -> list[RunSpec]:
+    """Each grain's run: its material, entry point and chute parameters."""
+    line.check()
+    if not (isinstance(t_end, (int, float)) and math.isfinite(t_end) and t_end > 0):
+        raise FeedError(f"the horizon t_end must be a positive number of seconds, got {t_end!r}")
+    settings = dict(line.settings, **charge_model_settings(line.charge_model))
+    base = Feed(line.particles[0], line.wall, dict(line.distributions), dict(line.chute), settings)
+    drawn = draw(base, n, seed)
+    rng = np.random.default_rng([seed, 1])  # the entry points: a stream of their own
+    x_entry = (rng.random(n) - 0.5) * line.feed_width
+    specs, start = [], 0
+    for name, count in zip(line.particles, counts(line, n)):
+        feed = Feed(name, line.wall, dict(line.distributions), dict(line.chute), settings)
+        rows = drawn.iloc[start:start + count].reset_index(drop=True)
+        for i, params in enumerate(particle_parameters(feed, rows)):
+            params["work_limit"] = WORK_LIMIT
+            p = {"particle": material(name, "particle").key,
+                 "x_entry": round(float(x_entry[start + i]), 12), **params}
+            specs.append(RunSpec(p, float(t_end), float(t_end) / STEPS_PER_RUN))
+        start += count
+    return specs
+
+
+def check_line(line: Line, specs: list[RunSpec], images: LineImages) -> None:
+    """Every value checked by the FMUs before anything runs."""
+    values = {}
+    for s in specs:
+        for name, value in chute_params_of(s.params).items():
+            if name != "x_entry":
+                values.setdefault(name, {})[value] = None
+    check_values(images.chute, {k: list(v) for k, v in values.items()})
+    sizes = [s.params["size"] for s in specs]
+    check_separator(images.separator, dict(images.settings, x_entry=line.feed_width / 2),
+                    images.voltages, sizes)
+
+
+def line_setup(line: Line, n: int, seed: int, t_end: float, voltages) -> dict:
+    """What makes a line's folder this one (batch/folder.py's record)."""
+    return {"n": n, "seed": seed, "t_end_s": t_end, "voltages": [float(v) for v in voltages],
+            "line": line.describe()}
+
+
+@dataclass
+class LineReport:
+    results: pd.DataFrame  # a row per finished grain (particles.csv)
+    landings: pd.DataFrame | None  # a row per grain and voltage, once all have run
+    table: pd.DataFrame | None  # a row per voltage (line.csv)
+    bins: pd.DataFrame | None
+    total: int
+    executed: int
+    skipped: int
+    failed: list
+    files: list
+    backup: str | None = None
+
+    @property
+    def complete(self) -> bool:
+        return len(self.results) == self.total
+
+
+def run_line(line: Line, n: int, seed: int, t_end: float, images: LineImages, out: str, executor,
+             *, specs=None, progress: bool = True, figure: bool = True,
+             max_runs: int | None = None) -> LineReport:
+    specs = specs if specs is not None else line_specs(line, n, seed, t_end)
+    os.makedirs(out, exist_ok=True)
+    described = line.describe()
+    with open(os.path.join(out, METADATA), "w") as f:
+        json.dump({**line_setup(line, n, seed, t_end, images.voltages), "chute_fmu": images.chute.name,
+                   "separator_fmu": images.separator.name, "sha256": images.sha256}, f, indent=2)
+    with executor:
+        report = run_sweep(specs, images, os.path.join(out, PARTICLES), executor,
+                           series_dir=os.path.join(out, LANDINGS_DIR), max_runs=max_runs,
+                           progress=progress, desc="grains", run=run_line_grain,
+                           result_columns=RESULT_COLUMNS,
+                           constants={"wall": described["wall"], "seed": seed})
+    files = [os.path.join(out, PARTICLES), os.path.join(out, METADATA)]
+    landings = table = bins = None
+    if report.complete:
+        landings = collect_landings(report.results, os.path.join(out, LANDINGS_DIR))
+        landings.to_csv(os.path.join(out, LANDINGS), index=False, float_format="%.10g")
+        table, bins = tally(landings, line, int(images.settings.get("n_bins", n_bins_of(images))))
+        table.to_csv(os.path.join(out, TABLE), index=False, float_format="%.10g")
+        bins.to_csv(os.path.join(out, BINS), index=False, float_format="%.10g")
+        files += [os.path.join(out, f) for f in (LANDINGS, TABLE, BINS)]
+        if figure and len(line.particles) == 2 and len(images.voltages) > 1:
+            # matplotlib only when a figure is drawn: `import tribo` stays without it
+            from .plot import write_line_figure
+            files.append(write_line_figure(table, line, n, seed, os.path.join(out, FIGURE)))
+    return LineReport(report.results, landings, table, bins, len(report.keys), report.executed,
+                      report.skipped, report.failed, files, report.backup)
+
+
+def n_bins_of(images: LineImages) -> int:
+    md = images.separator.model_description()
+    return int(next(v.start for v in md.modelVariables if v.name == "n_bins"))
+
+
+def collect_landings(results: pd.DataFrame, landings_dir: str) -> pd.DataFrame:
+    frames = []
+    for _, row in results.iterrows():
+        df = read_series(landings_dir, row[KEY])
+        df.insert(0, KEY, row[KEY])
+        df.insert(1, "particle", row["particle"])
+        df.insert(2, "mass", row["mass"])
+        df.insert(3, "exited", int(row["exited"]))
+        frames.append(df)
+    return pd.concat(frames, ignore_index=True)
+
+
+def region_of(landings: pd.DataFrame, splitter: float) -> pd.Series:
+    """Each landing's region: "not_exited", "airborne", "plate_neg" (the plate at -gap/2),
+    "plate_pos", "left" (landed at x_end < splitter) or "right"."""
+    region = np.where(landings["exited"] == 0, "not_exited",
+                      np.where(landings["electrode"] == -1, "plate_neg",
+                               np.where(landings["electrode"] == 1, "plate_pos",
+                                        np.where(landings["landed"] == 0, "airborne",
+                                                 np.where(landings["x_end"] < splitter, "left",
+                                                          "right")))))
+    return pd.Series(region, index=landings.index)
+
+
+def tally(landings: pd.DataFrame, line: Line, n_bins: int) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """(line.csv's table, bins.csv's): masses per voltage, region and material, and a
+    mixture's grade and recovery of each product."""
+    landings = landings.assign(region=region_of(landings, line.splitter))
+    materials = [material(p, "particle").key for p in line.particles]
+    rows, bin_rows = [], []
+    for voltage, at in landings.groupby("voltage", sort=True):
+        row = {"voltage": voltage}
+        mass = {m: at[at["particle"] == m] for m in materials}
+        for m in materials:
+            g = mass[m]
+            fed = g["mass"].sum()
+            by_region = g.groupby("region")["mass"].sum()
+            row[f"fed_{m}"] = fed
+            for region in ("left", "right", "plate_neg", "plate_pos", "airborne", "not_exited"):
+                row[f"{region}_{m}"] = float(by_region.get(region, 0.0))
+            row[f"neg_side_{m}"] = row[f"left_{m}"] + row[f"plate_neg_{m}"]
+            row[f"pos_side_{m}"] = row[f"right_{m}"] + row[f"plate_pos_{m}"]
+            for b in range(1, n_bins + 1):
+                bin_rows.append({"voltage": voltage, "bin": b, "particle": m,
+                                 "mass": float(g.loc[(g["landed"] == 1) & (g["bin"] == b),
+                                                     "mass"].sum())})
+        if len(materials) == 2:
+            positive = [m for m in materials if pair_sigma0(m, line.wall) > 0][0]
+            for m in materials:
+                # U > 0: a positive grain drifts to -x, into the negative-x side's product
+                side = "neg_side" if (m == positive) == (voltage > 0) else "pos_side"
+                product = sum(row[f"{side}_{k}"] for k in materials)
+                row[f"product_{m}_side"] = -1 if side == "neg_side" else 1
+                row[f"product_{m}_mass"] = product
+                row[f"grade_{m}"] = row[f"{side}_{m}"] / product if product > 0 else math.nan
+                row[f"recovery_{m}"] = row[f"{side}_{m}"] / row[f"fed_{m}"]
+        rows.append(row)
+    return pd.DataFrame(rows), pd.DataFrame(bin_rows)
+
+
+def fmt(value) -> str:
+    return format_number(float(value))

@@ -1,0 +1,214 @@
+"""The separation line (tribo.line, docs/line.md): one grain down the SI chute and through
+the separator lands on its charge's side and exactly where a direct fmpy two-step puts it;
+a mixture's masses add up to the fed mass, its grade and recovery are those of the masses;
+a voltage sweep runs the chute once per grain; the command runs, and refuses a bad value in
+one line naming it; its --help examples run (at a small size)."""
+
+import math
+import os
+import shlex
+import subprocess
+import sys
+
+import pandas as pd
+import pytest
+
+import tribo
+import tribo.line.grain as grain_module
+from tribo.batch.executors import SerialExecutor
+from tribo.line.grain import load_images
+from tribo.line.mixture import Line, check_line, line_specs, run_line
+from tribo_fmu import Slave
+
+PYTHON = sys.executable
+ENV = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p))
+# a 5 cm chute: fast, and (sliding model) charged to microcoulombs per kilogram
+SHORT = {"chute_length": 0.05}
+
+
+def direct_two_step(fmu_dir, particle, wall, voltage, size=1e-3, epsilon=0.6, t_end=5.0):
+    """The line written out with the package's fmpy driver: the SI chute on the population's
+    grid (t_end / 100) to its exit, then the separator held to the exit time, released with
+    the chute's outputs there, one step to its end."""
+    from tribo.materials import pair_values
+    chute = Slave(fmu_dir(3, "tribo_si"), 3, name="chute")
+    chute.init(0.0, t_end, **pair_values(particle, wall), semi_major_axis=size / 2,
+               epsilon=epsilon, chute_length=SHORT["chute_length"], tilt=math.radians(30),
+               drop_height=0.01, drop_speed=0.0, drop_angle=0.0, phi0=0.0, omega0=0.0,
+               work_limit=2**31 - 1, charge_model_static=0, charge_model_sliding=1)
+    times = [i * t_end / 100 for i in range(1, 100)] + [t_end]
+    assert not all(chute.step_to(t) for t in times), "the grain does not leave the chute"
+    t_exit = chute.t
+    sep = Slave(fmu_dir(3, "tribo_separator"), 3, name="separator")
+    sep.init(0.0, None, tilt=chute.get("tilt"), semi_major_axis=size / 2, epsilon=epsilon,
+             density=chute.get("density"), gravity=chute.get("gravity"), voltage=voltage)
+    sep.step_to(t_exit)
+    sep.set(released=chute.get("exited"), u_entry=chute.get("u"), v_entry=chute.get("v"),
+            charge_to_mass=chute.get("charge_to_mass"))
+    assert not sep.step_to(t_exit + 10.0)
+    return chute.get("charge_to_mass"), sep.get_many(["bin", "x_end", "electrode", "landed",
+                                                      "flight_time"]), sep.t
+
+
+@pytest.mark.parametrize("particle, sign", [("PE", -1), ("nylon", 1)])
+def test_one_grain_lands_on_its_charges_side_as_the_direct_two_step(fmu_dir, particle, sign):
+    g = tribo.line_grain(particle, "steel", voltage=10e3, chute=SHORT, charge_model="sliding")
+    assert g["exited"] == 1 and g["landed"] == 1 and g["electrode"] == 0
+    assert math.copysign(1, g["charge_to_mass"]) == sign and abs(g["charge_to_mass"]) > 1e-7
+    # U > 0: a positive grain drifts to -x, into the bins from the negative plate's side
+    assert math.copysign(1, g["x_end"]) == -sign
+    assert (g["bin"] <= 5) == (sign > 0)
+    q, landing, t_land = direct_two_step(fmu_dir, particle, "steel", 10e3)
+    assert g["charge_to_mass"] == q
+    assert (g["bin"], g["x_end"], g["electrode"], g["flight_time"]) == \
+        (landing["bin"], landing["x_end"], landing["electrode"], landing["flight_time"])
+    assert g["time_land"] == t_land
+
+
+def test_the_static_model_is_the_default_and_one_model_only():
+    g = tribo.line_grain("PE", "steel", voltage=10e3, chute=SHORT)
+    assert g["charge_to_mass_sliding"] == 0.0 and g["charge_to_mass"] == g["charge_to_mass_static"]
+    with pytest.raises(ValueError, match="charge_model = 'both'"):
+        tribo.line_grain("PE", "steel", charge_model="both")
+
+
+N = 20
+
+
+@pytest.fixture(scope="module")
+def sweep(tmp_path_factory, monkeypatch_module):
+    """A 20-grain PE + nylon mixture at three voltages, serial, counting the chute runs."""
+    calls = []
+    original = grain_module.run_particle
+
+    def counted(image, spec):
+        calls.append(spec)
+        return original(image, spec)
+
+    monkeypatch_module.setattr(grain_module, "run_particle", counted)
+    out = str(tmp_path_factory.mktemp("line") / "sweep")
+    report = tribo.line_sweep(N, seed=3, voltages=[5e3, 20e3, 40e3], chute={"chute_length": 0.1},
+                              out=out, serial=True)
+    return report, calls, out
+
+
+@pytest.fixture(scope="module")
+def monkeypatch_module():
+    mp = pytest.MonkeyPatch()
+    yield mp
+    mp.undo()
+
+
+def test_the_sweep_runs_the_chute_once_per_grain(sweep):
+    report, calls, out = sweep
+    assert len(calls) == N  # not N x 3
+    assert len(report.results) == N and len(report.landings) == 3 * N
+    assert sorted(report.table["voltage"]) == [5e3, 20e3, 40e3]
+    assert {"particles.csv", "landings.csv", "line.csv", "bins.csv", "line.png"} <= set(os.listdir(out))
+
+
+def test_the_mixtures_masses_add_up_and_grade_and_recovery_are_theirs(sweep):
+    report, _, _ = sweep
+    rows = report.results
+    fed = rows.groupby("particle")["mass"].sum()
+    regions = ("left", "right", "plate_neg", "plate_pos", "airborne", "not_exited")
+    for _, row in report.table.iterrows():
+        for m in ("PE", "nylon"):
+            assert row[f"fed_{m}"] == pytest.approx(fed[m], rel=1e-12)
+            assert sum(row[f"{r}_{m}"] for r in regions) == pytest.approx(fed[m], rel=1e-12)
+        # U > 0: nylon (positive on steel) is the -x product's target, PE the +x one's
+        nylon_product = row["left_nylon"] + row["plate_neg_nylon"]
+        neg_side = nylon_product + row["left_PE"] + row["plate_neg_PE"]
+        pe_product = row["right_PE"] + row["plate_pos_PE"]
+        pos_side = pe_product + row["right_nylon"] + row["plate_pos_nylon"]
+        assert row["grade_nylon"] == pytest.approx(nylon_product / neg_side, rel=1e-12)
+        assert row["recovery_nylon"] == pytest.approx(nylon_product / fed["nylon"], rel=1e-12)
+        assert row["grade_PE"] == pytest.approx(pe_product / pos_side, rel=1e-12)
+        assert row["recovery_PE"] == pytest.approx(pe_product / fed["PE"], rel=1e-12)
+        for c in ("grade_PE", "grade_nylon", "recovery_PE", "recovery_nylon"):
+            assert 0 <= row[c] <= 1
+    bins = report.bins
+    landed = report.landings[report.landings["landed"] == 1]
+    assert bins["mass"].sum() == pytest.approx(landed["mass"].sum(), rel=1e-12)
+
+
+def test_the_mixtures_fed_fraction_follows_the_mass_fraction():
+    line = Line(("PE", "nylon"), fraction=0.5)
+    specs = line_specs(line, 1000, 0, 5.0)
+    n_pe = sum(s.params["particle"] == "PE" for s in specs)
+    assert n_pe == round(1000 * (0.5 / 950) / (0.5 / 950 + 0.5 / 1140))
+    assert all(abs(s.params["x_entry"]) <= 0.005 for s in specs)
+
+
+def test_a_pair_of_one_polarity_is_refused():
+    with pytest.raises(ValueError, match="same sign on steel"):
+        Line(("PE", "PP")).check()
+
+
+def test_a_resumed_folder_runs_nothing_again(tmp_path):
+    line = Line(("PE", "nylon"), chute={"chute_length": 0.05, "tilt_deg": 30.0})
+    specs = line_specs(line, 4, 0, 5.0)
+    images = load_images(None, None, {}, [10e3])
+    check_line(line, specs, images)
+    first = run_line(line, 4, 0, 5.0, images, str(tmp_path), SerialExecutor(), specs=specs,
+                     progress=False)
+    again = run_line(line, 4, 0, 5.0, images, str(tmp_path), SerialExecutor(), specs=specs,
+                     progress=False)
+    assert (first.executed, again.executed, again.skipped) == (4, 0, 4)
+    pd.testing.assert_frame_equal(first.table, again.table)
+
+
+def cli(*args, cwd):
+    return subprocess.run([PYTHON, "-m", "tribo.cli.line", *args], cwd=cwd, capture_output=True,
+                          text=True, env=ENV, timeout=300)
+
+
+def test_the_command_runs_a_grain_and_a_mixture(tmp_path):
+    done = cli("grain", "--particle", "nylon", "--chute-length", "0.05", "--charge-model",
+               "sliding", "--voltage", "10e3", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert "landed in bin" in done.stdout
+    done = cli("mixture", "-n", "6", "--chute-length", "0.05", "--serial", "--no-progress",
+               "--out", "m", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    table = pd.read_csv(tmp_path / "m" / "line.csv")
+    assert list(table["voltage"]) == [30e3]
+
+
+@pytest.mark.parametrize("args, text", [
+    (["grain", "--voltage", "2e7"], "voltage = 20000000 is invalid"),
+    (["mixture", "--fraction", "1.5"], "fraction = 1.5"),
+    (["sweep", "--voltages", "5e3:x:3"], "--voltages 5e3:x:3"),
+    (["mixture", "--particles", "PE,PP"], "same sign"),
+    (["grain", "--separator", "gap=1e-5"], "gap = 1e-05 is invalid"),
+    (["grain", "--size", "0.2"], "size = 0.2 m does not fit the gap"),
+    (["mixture", "--charge-model", "both"], "--charge-model"),
+])
+def test_a_bad_value_is_refused_in_one_line_naming_it(tmp_path, args, text):
+    done = cli(*args, cwd=tmp_path)
+    assert done.returncode == 2
+    assert len(done.stderr.strip().splitlines()) == 1 and text in done.stderr, done.stderr
+    assert "Traceback" not in done.stderr
+
+
+def help_examples() -> list[str]:
+    text = subprocess.run([PYTHON, "-m", "tribo.cli.line", "--help"], capture_output=True,
+                          text=True, env=ENV, check=True, timeout=60).stdout
+    return [line.strip() for line in text.splitlines() if line.startswith("    tribo-line ")]
+
+
+def test_each_help_example_runs_at_a_small_size(tmp_path):
+    """Each example of --help, shrunk: 4 grains, 2 voltages, a 5 cm chute."""
+    examples = help_examples()
+    assert len(examples) >= 4
+    for line in examples:
+        argv = shlex.split(line)[1:]
+        if "-n" in argv:
+            argv[argv.index("-n") + 1] = "4"
+        if "--voltages" in argv:
+            argv[argv.index("--voltages") + 1] = "5e3:40e3:2"
+        argv = [a for a in argv if a != "--workers" and a != "2"] + ["--chute-length", "0.05"]
+        if argv[0] != "grain":
+            argv += ["--serial", "--no-progress"]
+        done = cli(*argv, cwd=tmp_path)
+        assert done.returncode == 0, f"{line}:\n{done.stderr[-2000:]}"
