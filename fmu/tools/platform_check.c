@@ -5,7 +5,7 @@
  *   tribo_platform_check <binary> <2|3> <token> <stop time> <step> <variable>... [-- name=value...]
  *
  * Loads the binary (LoadLibrary / dlopen), instantiates a co-simulation instance with the
- * modelDescription's token, sets the parameters given after "--" (<kind><vr>=value),
+ * modelDescription's token, sets the parameters and inputs given after "--" (<kind><vr>=value) before initialization,
  * steps from 0 to the stop time and prints, at every communication point, one line: the
  * time and the variables, each named by its kind and value reference (kinds: r: Real /
  * Float64, i: Integer / Int32, e: Enumeration (FMI 3.0: Int64), b: Boolean), with 17
@@ -98,6 +98,7 @@ static int run2(const char *token, double stop, double step, const variable *out
     fmi2GetBooleanTYPE *get_boolean = symbol("fmi2GetBoolean");
     fmi2SetRealTYPE *set_real = symbol("fmi2SetReal");
     fmi2SetIntegerTYPE *set_integer = symbol("fmi2SetInteger");
+    fmi2SetBooleanTYPE *set_boolean = symbol("fmi2SetBoolean");
     fmi2FreeInstanceTYPE *free_instance = symbol("fmi2FreeInstance");
 
     const fmi2CallbackFunctions callbacks = {logger2, calloc, free, NULL, NULL};
@@ -110,7 +111,10 @@ static int run2(const char *token, double stop, double step, const variable *out
     for (int i = 0; i < n_par; i++) {
         if (par[i].kind == 'r')
             CHECK2(set_real(c, &par[i].vr, 1, &par[i].value));
-        else {
+        else if (par[i].kind == 'b') {
+            const fmi2Boolean v = par[i].value != 0.0;
+            CHECK2(set_boolean(c, &par[i].vr, 1, &v));
+        } else {
             const fmi2Integer v = (fmi2Integer)par[i].value;
             CHECK2(set_integer(c, &par[i].vr, 1, &v));
         }
@@ -177,6 +181,7 @@ static int run3(const char *token, double stop, double step, const variable *out
     fmi3SetFloat64TYPE *set_float64 = symbol("fmi3SetFloat64");
     fmi3SetInt32TYPE *set_int32 = symbol("fmi3SetInt32");
     fmi3SetInt64TYPE *set_int64 = symbol("fmi3SetInt64");
+    fmi3SetBooleanTYPE *set_boolean = symbol("fmi3SetBoolean");
     fmi3FreeInstanceTYPE *free_instance = symbol("fmi3FreeInstance");
 
     fmi3Instance c = instantiate("check", token, "", fmi3False, fmi3False, fmi3False, fmi3False,
@@ -191,6 +196,9 @@ static int run3(const char *token, double stop, double step, const variable *out
         else if (par[i].kind == 'i') {
             const fmi3Int32 v = (fmi3Int32)par[i].value;
             CHECK3(set_int32(c, &par[i].vr, 1, &v, 1));
+        } else if (par[i].kind == 'b') {
+            const fmi3Boolean v = par[i].value != 0.0;
+            CHECK3(set_boolean(c, &par[i].vr, 1, &v, 1));
         } else {
             const fmi3Int64 v = (fmi3Int64)par[i].value;
             CHECK3(set_int64(c, &par[i].vr, 1, &v, 1));

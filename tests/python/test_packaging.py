@@ -62,8 +62,9 @@ def test_binary_exports_exactly_the_fmi_functions(fmu_dir, version):
 
 
 # each pair of FMUs links one front end (fmu/front_end.h) and its variable table
-FRONT_ENDS = {"tribo": ("fmu/front_end_model.c", "fmu/variables_model.c"),
-              "tribo_si": ("fmu/front_end_si.c", "fmu/variables_si.c")}
+FRONT_ENDS = {"tribo": ("fmu/front_end_model.c", "fmu/variables_model.c", "fmu/front_end_chute.c"),
+              "tribo_si": ("fmu/front_end_si.c", "fmu/variables_si.c", "fmu/front_end_chute.c"),
+              "tribo_separator": ("fmu/front_end_separator.c", "fmu/variables_separator.c")}
 
 
 @pytest.mark.parametrize("prefix", FRONT_ENDS)
@@ -82,7 +83,7 @@ def test_fmu_is_rebuilt_from_its_sources(version, prefix):
     inputs = sources(f"fmu/{prefix}_fmi{version}.fmu")
     fmu_sources = {os.path.join("fmu", f) for f in os.listdir(os.path.join(ROOT, "fmu"))
                    if f.endswith(".c") and f not in ("fmi2.c", "fmi3.c")}
-    fmu_sources -= {f for p, fs in FRONT_ENDS.items() if p != prefix for f in fs}
+    fmu_sources -= {f for fs in FRONT_ENDS.values() for f in fs} - set(FRONT_ENDS[prefix])
     core_sources = sources("libtribo_core.a")
     assert "src/model.c" in core_sources
     expected = fmu_sources | core_sources | {f"fmu/fmi{version}.c", f"fmu/fmi{version}.map",
