@@ -56,8 +56,8 @@ Its subpackages, by concern (each module's docstring says what it does):
                  binary mixture, grade and recovery), plot
     cli/         the commands
 
-Each imports only its own modules and the layers below it: materials, plotting and fmu at
-the bottom, then batch, then study, populations and impact (not each other), then line (on
+Each imports only its own modules and the layers below it: plotting and fmu at the
+bottom, then materials and batch, then study, populations and impact (not each other), then line (on
 populations), then api and cli (CONTRIBUTING.md; tests/python/test_package_layout.py checks it).
 """
 

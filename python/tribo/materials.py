@@ -21,16 +21,9 @@ from dataclasses import dataclass
 from functools import cache
 from importlib import resources
 
-# The SI FMU's parameters (src/si_quantities.def's TRIBO_PARAMETER rows, in order;
-# tests/python/test_materials.py checks the two agree).
-SI_PARAMETERS = (
-    "semi_major_axis", "epsilon", "density", "contact_stiffness", "youngs_modulus_particle",
-    "poisson_ratio_particle", "youngs_modulus_wall", "poisson_ratio_wall", "gravity", "tilt",
-    "mu", "nu", "eta", "charging_time", "backflow_time", "sigma0", "interface_capacitance",
-    "cylinder_length", "chute_length", "drop_height", "drop_speed", "drop_angle", "x0", "phi0",
-    "omega0", "n_segments", "charge_model", "integrator", "dt", "rtol", "atol", "v_reg",
-    "damping_point", "work_limit", "run_end", "stick_model", "breakdown_density",
-)
+from .fmu.instance import PARAMETER_CAUSALITIES, model_description
+from .fmu.locate import find_fmu
+
 
 
 class MaterialError(ValueError):
@@ -116,16 +109,26 @@ def interface_capacitance() -> float:
     return float(row["epsilon0"]) / float(row["gap"])
 
 
-def start_values(particle: str, wall: str, **overrides) -> dict[str, float]:
+def si_parameters(fmu: str | int | None = None) -> tuple[str, ...]:
+    """The SI FMU's parameter names, in the order of its description (`fmu`: a path, or 2 /
+    3 for the build's SI FMU, default 3)."""
+    md = model_description(find_fmu(fmu, variant="si"))
+    return tuple(v.name for v in md.modelVariables if v.causality in PARAMETER_CAUSALITIES)
+
+
+def start_values(particle: str, wall: str, fmu: str | int | None = None,
+                 **overrides) -> dict[str, float]:
     """The SI FMU's start values of a particle on a wall, for any importer: E, Poisson's
     ratio and density of the particle, E and Poisson's ratio of the wall, the pair's sigma0,
     kappa; then the overrides, which win. The FMU's own names and units (SI, angles in
     radians: `tilt`, `phi0`; the size as `semi_major_axis` a), since these go to the FMU
-    as they are; the package's functions take angles in degrees and the size as `size`."""
-    unknown = [k for k in overrides if k not in SI_PARAMETERS]
+    as they are; the package's functions take angles in degrees and the size as `size`.
+    The overrides' names are checked against the SI FMU they are for (`fmu`: a path, or 2 /
+    3 for the build's, default 3)."""
+    known = si_parameters(fmu)
+    unknown = [k for k in overrides if k not in known]
     if unknown:
-        raise MaterialError(f"unknown SI parameter {unknown[0]!r}; known: "
-                            f"{', '.join(SI_PARAMETERS)}")
+        raise MaterialError(f"unknown SI parameter {unknown[0]!r}; known: {', '.join(known)}")
     values = pair_values(particle, wall, sigma0="sigma0" not in overrides)
     values.update(overrides)
     return values

@@ -191,6 +191,9 @@ def test_the_api_runs_a_population_and_the_command_says_how_it_went(tmp_path, ca
     assert (rows["seed"] == 2).all() and (rows["chute_length"] == 0.02).all()
     assert (rows["tilt_deg"] == 30.0).all() and (rows["cylinder_length"] == 1e-3).all()
     assert {"size", "phi0_deg", "drop_angle_deg"} <= set(rows.columns)
+    # the air-breakdown limit's share of each grain's boundary (model.md section 8b)
+    for model in ("static", "sliding"):
+        assert rows[f"capped_fraction_{model}"].between(0.0, 1.0).all()
     # the command over the same folder: everything already there
     assert cli.main(["-n", "4", "--seed", "2", "--chute-length", "0.02", "--t-end", "1",
                      "--out", str(tmp_path / "api"), "--serial", "--no-progress"]) == 0

@@ -19,6 +19,7 @@ Writes into the folder --out: particles.csv (one row per particle: the materials
 every parameter of its run (the feed variables, the chute, the materials' constants), then
 exited, exit_time, u, v, exit_speed, omega, charge_static, charge_sliding (C, on the
 cylinder of depth cylinder_length), charge_to_mass_static, charge_to_mass_sliding (C/kg),
+capped_fraction_static, capped_fraction_sliding (of the boundary at the breakdown limit),
 contact_fraction, impacts (contacts made while approaching the plate: bounces, the drop's
 first landing included), fraction_flight ... fraction_bouncing, cpu_s, wall_s), summary.csv (q/m in C/kg:
 n, mean, std, percentiles 5 25 50 75 95, overall and per shape and size class),

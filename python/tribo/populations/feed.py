@@ -23,9 +23,10 @@ resumable like a sweep (batch.sweep.run_sweep).
 Per particle (RESULT_COLUMNS), after the materials and every parameter of its run (the
 feed variables, the chute, the materials' constants): whether and when it left the chute; its velocity
 there (u along, v normal to the chute, the speed, the spin); both models' charge and
-charge-to-mass ratio; the contact fraction; impacts, the contacts made after a flight
-(the core's count, model.md section 9: each bounce is one, the drop's first contact
-included); the fraction of the time in each motion class.
+charge-to-mass ratio, and the fraction of the boundary held at the air-breakdown limit
+(capped_fraction_*, model.md section 8b); the contact fraction; impacts, the contacts made
+while approaching the plate (the core's count, model.md section 3b: each bounce is one, the
+drop's first landing included); the fraction of the time in each motion class.
 """
 
 import hashlib
@@ -60,10 +61,12 @@ MODELS = ("static", "sliding")
 OUTPUTS = (["exited", "exit_time", "u", "v", "omega", "contact_fraction", "impacts",
             "assumption_warnings"]
            + [f"charge_{m}" for m in MODELS] + [f"charge_to_mass_{m}" for m in MODELS]
+           + [f"capped_fraction_{m}" for m in MODELS]
            + [f"fraction_{c}" for c in MOTION_CLASSES])
 RESULT_COLUMNS = ["exited", "exit_time", "time_end", "u", "v", "exit_speed", "omega",
                   "charge_static", "charge_sliding", "charge_to_mass_static",
-                  "charge_to_mass_sliding", "contact_fraction", "impacts"] \
+                  "charge_to_mass_sliding", "capped_fraction_static", "capped_fraction_sliding",
+                  "contact_fraction", "impacts"] \
     + [f"fraction_{c}" for c in MOTION_CLASSES] + ["assumption_warnings"]
 # communication steps per run
 STEPS_PER_RUN = 100
