@@ -28,8 +28,10 @@ Why these choices:
 - One .ssv a component, its names unprefixed, bound without `prefix`: libcosim and ecos apply
   a set's names to the component the binding is on and ignore `prefix`.
 - FMI Enumeration parameters (the charge-model switches) are written as ssv:Integer, their
-  value: libcosim (0.11) aborts on ssv:Enumeration and ecos (0.7.2) refuses it ("Unknown XML
-  node in ssv:Parameter"); FMI 2.0 sets an enumeration as an integer.
+  value: an ssv:Enumeration aborts libcosim (libcosimpy 0.0.6: "ssp_parser.cpp:69: Internal
+  error") and ecos (0.7.2) refuses the package ("Unknown XML node in ssv:Parameter
+  encountered!"); FMI 2.0 sets an enumeration as an integer. Neither tool sets FMI 2.0
+  Enumeration variables at all, so neither applies the switches (docs/separator.md).
 - The default experiment carries OSP's fixed-step annotation (libcosim's step when none is
   given).
 """
