@@ -30,6 +30,7 @@ SI_PARAMETERS = (
     "cylinder_length", "chute_length", "drop_height", "drop_speed", "drop_angle", "x0", "phi0",
     "omega0", "n_segments", "charge_model", "integrator", "dt", "rtol", "atol", "v_reg",
     "damping_point", "work_limit", "run_end", "stick_model", "breakdown_density",
+    "charge_to_mass_model",
 )
 
 
