@@ -19,19 +19,22 @@ fmu/tools/pack_ssp.py). Only the standard library: the XML is made with xml.etre
 and units of the connectors are read from the FMUs' own modelDescriptions.
 
 Why these choices:
-- The chute runs one charge model, the static one (charge_model_static = 1,
-  charge_model_sliding = 0): its output charge_to_mass is the sum over the models it runs,
-  and the two models are alternative laws of the same grain's charge (docs/model.md §5), so
-  with both on the separator would take the sum of two answers to one question.
+- The connection carries the static charge model's ratio (charge_to_mass_model = 1, an FMI
+  Integer that every importer sets): the chute's output charge_to_mass is the one model's
+  that parameter names, the models being alternative laws of the same grain's charge
+  (docs/model.md §5). The charge-model switches (FMI Enumerations) are left at their
+  defaults, both on: libcosim and ecos set no FMI 2.0 Enumeration.
+- Both components hold at their run's end (hold_at_end = true): the chute's exit and the
+  separator's landing would otherwise end the step with fmi2Discard and fmi2Terminated,
+  which libcosim takes for a failed step and ends the whole execution on.
 - The parameters the two FMUs share (tilt, semi_major_axis, epsilon, density) are written
   from one value into both files.
 - One .ssv a component, its names unprefixed, bound without `prefix`: libcosim and ecos apply
   a set's names to the component the binding is on and ignore `prefix`.
-- FMI Enumeration parameters (the charge-model switches) are written as ssv:Integer, their
-  value: an ssv:Enumeration aborts libcosim (libcosimpy 0.0.6: "ssp_parser.cpp:69: Internal
-  error") and ecos (0.7.2) refuses the package ("Unknown XML node in ssv:Parameter
-  encountered!"); FMI 2.0 sets an enumeration as an integer. Neither tool sets FMI 2.0
-  Enumeration variables at all, so neither applies the switches (docs/separator.md).
+- An FMI Enumeration parameter, if one is given, is written as ssv:Integer, its value: an
+  ssv:Enumeration aborts libcosim (libcosimpy 0.0.6: "ssp_parser.cpp:69: Internal error")
+  and ecos (0.7.2) refuses the package ("Unknown XML node in ssv:Parameter encountered!");
+  neither tool sets FMI 2.0 Enumeration variables at all (docs/separator.md).
 - The default experiment carries OSP's fixed-step annotation (libcosim's step when none is
   given).
 """
@@ -65,9 +68,10 @@ OBSERVED = {CHUTE: ("exit_time", "charge_to_mass_static", "charge_to_mass_slidin
 # bound to one value in both components (the FMUs' defaults: a 1 mm polyethylene grain,
 # epsilon 0.6, on a chute tilted 30 degrees)
 SHARED = {"tilt": math.radians(30), "semi_major_axis": 5e-4, "epsilon": 0.6, "density": 950.0}
-# a 0.3 m chute, the static charge model alone (above)
-CHUTE_PARAMETERS = {"chute_length": 0.3, "charge_model_static": 1, "charge_model_sliding": 0}
-SEPARATOR_PARAMETERS = {}  # the separator's defaults: 0.1 m gap, 0.5 m high, 30 kV, 10 bins
+# a 0.3 m chute carrying the static model's ratio, held at its exit (above)
+CHUTE_PARAMETERS = {"chute_length": 0.3, "charge_to_mass_model": 1, "hold_at_end": True}
+# the separator's defaults (0.1 m gap, 0.5 m high, 30 kV, 10 bins), held at its landing
+SEPARATOR_PARAMETERS = {"hold_at_end": True}
 PARAMETER_SET = "line"
 # the grain leaves the 0.3 m chute at 0.48 s and lands 0.36 s later (measured,
 # tests/python/test_ssp.py): 1.5 s leaves room for other set-ups

@@ -4,11 +4,11 @@ docs/separator.md, "The SSP package"): the SI chute's FMU feeding the separator'
 - Its structure: the FMUs are the build's, the .ssd and .ssv files are valid SSP 1.0 (the
   schemas fmpy ships), every connection joins an output to an input of one type and unit as
   the FMUs declare them, every bound value is a parameter of its FMU.
-- Run from the .ssp alone: ecos (ecospy) runs it to the grain's end; libcosim (libcosimpy)
-  loads it and runs it to the chute's exit, where it ends the execution (xfail, strict).
-  Neither applies the .ssv's charge-model switches (FMI 2.0 Enumerations; xfail, strict).
-- ecos's landing agrees with a direct two-step fmpy run (the chute to its exit, then the
-  separator released there with the chute's exit values) within the co-simulation's error.
+- Run from the .ssp alone: ecos (ecospy) and libcosim (libcosimpy) run it to the stop time,
+  the grain landed (both components hold at their run's end: hold_at_end), with the static
+  model's ratio on the connection (charge_to_mass_model = 1, an FMI Integer both set).
+- Both land where a direct two-step fmpy run does (the chute to its exit, then the separator
+  released there with the chute's exit values) within the co-simulation's measured error.
 """
 
 import math
@@ -138,9 +138,10 @@ def test_connections_join_outputs_to_inputs_of_one_type_and_unit(package):
 
 
 def test_the_parameter_sets_bind_parameters_of_each_fmu(package):
-    """One set, "line", a file per component; the shared values equal in both; the chute runs
-    the static charge model alone (the models are alternative laws of one charge: the
-    connection must carry one law's ratio)."""
+    """One set, "line", a file per component; the shared values equal in both; the chute's
+    connection carries the static model's ratio (the models are alternative laws of one
+    charge), chosen by an Integer, the Enumeration switches left alone (no importer here sets
+    them); both hold at their run's end."""
     values = bound_values(package)
     for name, fmu in (("chute", "tribo_si_fmi2"), ("separator", "tribo_separator_fmi2")):
         variables, _ = fmu_variables(fmu)
@@ -149,7 +150,9 @@ def test_the_parameter_sets_bind_parameters_of_each_fmu(package):
     for key, value in ssp.SHARED.items():
         assert values["chute"][key] == values["separator"][key] == value, key
     assert values["chute"]["chute_length"] == 0.3
-    assert values["chute"]["charge_model_static"] == 1 and values["chute"]["charge_model_sliding"] == 0
+    assert values["chute"]["charge_to_mass_model"] == 1
+    assert not any(k.startswith("charge_model") for k in values["chute"])
+    assert values["chute"]["hold_at_end"] is True and values["separator"]["hold_at_end"] is True
     names = {ET.fromstring(data).get("name") for path, data in members(package).items()
              if path.endswith(".ssv")}
     assert names == {ssp.PARAMETER_SET}
@@ -169,7 +172,10 @@ def test_the_builder_refuses_what_is_not_a_parameter(tmp_path):
 def direct_run(fmu_dir, chute_values, separator_values):
     """The chute to its exit in one step (its exit does not depend on the communication
     points: the same to the last bit on a 1 ms grid), then the separator released at the exit
-    with the chute's exit values, to its end in one step (no CVODE restart)."""
+    with the chute's exit values, to its end in one step (no CVODE restart). Neither holds at
+    its end (hold_at_end does not change the run before it)."""
+    chute_values = {k: v for k, v in chute_values.items() if k != "hold_at_end"}
+    separator_values = {k: v for k, v in separator_values.items() if k != "hold_at_end"}
     chute = Slave(fmu_dir(2, "tribo_si"), 2, name="chute").init(**chute_values)
     assert not chute.step_to(10.0)
     out = {n: chute.get(n) for n in ("exit_time", "u", "v", "charge_to_mass",
@@ -186,12 +192,13 @@ def direct_run(fmu_dir, chute_values, separator_values):
 
 
 def test_the_packages_set_up_lands_within_its_default_experiment(fmu_dir, package):
-    """The line as the package sets it up (the static model alone), run directly: the grain
+    """The line as the package sets it up (the static model's ratio), run directly: the grain
     leaves the 0.3 m chute at 0.480 s with -5.1e-9 C/kg and lands 0.360 s later in bin 6 of
     10 at x_end = +74 um (30 kV), before the default experiment's stop time, 1.5 s."""
     values = bound_values(package)
     ref = direct_run(fmu_dir, values["chute"], values["separator"])
-    assert ref["charge_to_mass_sliding"] == 0.0 and ref["charge_to_mass"] == ref["charge_to_mass_static"] < 0
+    assert ref["charge_to_mass"] == ref["charge_to_mass_static"] < 0
+    assert ref["charge_to_mass_sliding"] < ref["charge_to_mass"]  # both run; one is carried
     assert ref["landed"] and ref["bin"] == 6 and ref["x_end"] > 0  # U > 0: a negative grain to +x
     assert ref["exit_time"] == pytest.approx(0.4795, abs=1e-4)
     assert ref["end_time"] == pytest.approx(0.8399, abs=1e-4) and ref["end_time"] < ssp.STOP_TIME
@@ -230,71 +237,45 @@ def ecos_run(path, step):
     return out
 
 
-# ecos 0.7.2 registers no FMI 2.0 Enumeration variable; it warns "No variable named
-# 'charge_model_static' of type int registered for instance 'chute'" and runs the chute with
-# its default, both charge models
-ECOS_ENUMERATIONS = ("ecos 0.7.2 does not set FMI 2.0 Enumeration variables: \"No variable "
-                     "named 'charge_model_static' of type int registered for instance 'chute'\" "
-                     "(and charge_model_sliding): the chute runs both charge models")
-
-
-def test_ecos_runs_the_package_from_the_ssp_file(fmu_dir, package):
-    """ecos reads the connections and the parameter sets (the chute ends at 0.3 m, the shared
-    values are both FMUs'), releases the grain at the chute's exit with its values and runs
-    the separator to its end; what it applies of the set (not the charge-model switches, next
-    test) gives the direct run's end."""
-    got = ecos_run(package, ssp.STEP_SIZE)
-    assert got["chute_length"] == 0.3
-    values = bound_values(package)
-    applied = {k: v for k, v in values["chute"].items() if not k.startswith("charge_model")}
-    ref = direct_run(fmu_dir, applied, values["separator"])
-    assert got["exit_time"] == ref["exit_time"] and got["q_per_m"] == got["charge_to_mass"] == ref["charge_to_mass"]
-    assert got["has_released"] and got["ended"]
-    # both models' sum, -8.4e-6 C/kg, takes the grain onto the plate at +w/2 at 30 kV
-    assert not got["landed"] and got["bin"] == 0 and got["x_end"] == ref["x_end"] == 0.05 - 5e-4
-    assert got["flight_time"] == pytest.approx(ref["flight_time"], abs=1e-6)
-
-
-@pytest.mark.xfail(strict=True, reason=ECOS_ENUMERATIONS)
-def test_ecos_applies_the_charge_model_switches(package):
-    got = ecos_run(package, ssp.STEP_SIZE)
-    assert got["charge_to_mass_sliding"] == 0.0
-    assert got["landed"] and got["bin"] == 6
-
-
-# The agreement with the direct run, in ecos on the package built with what ecos applies (the
-# chute's charge models left at their default, both) at 1 kV, where the grain lands (bin 6,
-# x_end = +4.07 mm, flight 0.360 s). Measured, ecos against the direct run:
+# The agreement with the direct run, of the package as built (30 kV, the static model's ratio:
+# bin 6, x_end = +74.0 um, flight 0.3604 s). Measured against the direct run, ecos 0.7.2 and
+# libcosim (libcosimpy 0.0.6) alike, to the last digit:
 #
-#   step    x_end       flight_time   release lag (s)
-#   1e-2    -6.9e-11 m   +9.8e-8 s     4.83e-3
-#   1e-3    +5.2e-10 m   -3.5e-7 s     4.83e-4
-#   1e-4    +3.0e-9 m    -2.2e-6 s     8.3e-5
+#   step    x_end        flight_time   release lag (s)
+#   1e-2    -1.7e-12 m   +1.3e-7 s     1.05e-2 (seen at 0.490)
+#   1e-3    +1.2e-11 m   -4.5e-7 s     1.5e-3  (seen at 0.481)
+#   1e-4    +6.5e-11 m   -2.6e-6 s     1.8e-4  (seen at 0.4797)
 #
 # The chute's exit (time, velocity, charge) is the same to the last bit at every step. The
-# release lags: ecos passes the chute's outputs at the communication points, so the
-# separator is released at the first one after the exit, by up to one step late; but it
-# holds the grain at the entry until then and releases it with the exit's velocity, so the
-# lag delays the whole flight (the end seen at the release plus the flight time) and moves
-# the landing position not at all: not v * dt (0.5 mm at 1 ms). What is left is CVODE's
-# restart at every communication step (docs/separator.md, "Communication steps and accuracy"),
-# which grows with the number of steps. Tolerances: 3x the error measured at 1e-3 s.
-X_END_TOL, FLIGHT_TOL = 1.5e-9, 1e-6
+# release lags: the tools pass the chute's outputs at the communication points, so the
+# separator is released at the first one after the exit, up to one step late; but it holds
+# the grain at the entry until then and releases it with the exit's velocity, so the lag
+# delays the whole flight and moves the landing position not at all. What is left is CVODE's
+# restart at every communication step (docs/separator.md, "Communication steps and
+# accuracy"), which grows with the number of steps. Tolerances: 3x the error measured at the
+# package's step, 1e-3 s.
+X_END_TOL, FLIGHT_TOL = 3.5e-11, 1.3e-6
 
 
-def test_ecos_lands_where_the_direct_run_does(fmu_dir, tmp_path):
-    chute_values = {k: v for k, v in ssp.CHUTE_PARAMETERS.items() if not k.startswith("charge_model")}
-    separator_values = {"voltage": 1e3}
-    path = ssp.build(tmp_path / "line.ssp", built("fmu", "tribo_si_fmi2.fmu"),
-                     built("fmu", "tribo_separator_fmi2.fmu"), chute_parameters=chute_values,
-                     separator_parameters=separator_values)
-    h = ssp.STEP_SIZE
-    got = ecos_run(path, h)
-    ref = direct_run(fmu_dir, ssp.SHARED | chute_values, ssp.SHARED | separator_values)
+def assert_lands_as_the_direct_run(got, ref):
     assert got["landed"] and ref["landed"] and got["bin"] == ref["bin"] == 6
-    assert got["exit_time"] == ref["exit_time"] and got["q_per_m"] == ref["charge_to_mass"]
+    assert got["q_per_m"] == ref["charge_to_mass"] == ref["charge_to_mass_static"]
     assert got["x_end"] == pytest.approx(ref["x_end"], abs=X_END_TOL)
     assert got["flight_time"] == pytest.approx(ref["flight_time"], abs=FLIGHT_TOL)
+
+
+def test_ecos_runs_the_package_and_lands_where_the_direct_run_does(fmu_dir, package):
+    """ecos reads the connections and the parameter sets (the chute ends at 0.3 m, the shared
+    values are both FMUs', charge_to_mass_model and hold_at_end applied), releases the grain
+    at the chute's exit with its values and runs the separator to its landing."""
+    h = ssp.STEP_SIZE
+    got = ecos_run(package, h)
+    assert got["chute_length"] == 0.3 and got["time"] == pytest.approx(ssp.STOP_TIME, abs=1e-9)
+    values = bound_values(package)
+    ref = direct_run(fmu_dir, values["chute"], values["separator"])
+    assert got["exit_time"] == ref["exit_time"] and got["charge_to_mass"] == ref["charge_to_mass"]
+    assert got["has_released"] and got["ended"]
+    assert_lands_as_the_direct_run(got, ref)
     # released at the first communication point after the exit (seen at the end of the step
     # that starts there), ended in the step after release + flight
     release = math.ceil(ref["exit_time"] / h) * h
@@ -326,32 +307,19 @@ def libcosim_run(path, step):
                                                                 [vr[n] for n in SEPARATOR_OUTPUTS])))
     sep |= dict(zip(("has_released", "landed"), observer.last_boolean_values(
         index["separator"], [vr["has_released"], vr["landed"]])))
+    (sep["bin"],) = observer.last_integer_values(index["separator"], [vr["bin"]])
     return done, execution.status().current_time / 1e9, error, sep
 
 
-# libcosim (libcosimpy 0.0.6) ends the execution at the chute's exit: the chute's step
-# there returns fmi2Discard with fmi2Terminated (the run is over), which libcosim takes for a
-# failed step; it also skips FMI 2.0 Enumerations ("FMI 2.0 Enumeration variable type not
-# supported, variable with name charge_model_static will be ignored")
-LIBCOSIM_EXIT = ("libcosim ends the execution at the chute's exit (fmi2Discard with "
-                 "fmi2Terminated): \"Simulation error: chute: Step not complete\"; and it skips "
-                 "the charge-model switches: \"FMI 2.0 Enumeration variable type not supported, "
-                 "variable with name charge_model_static will be ignored\"")
-
-
-def test_libcosim_loads_the_package_and_runs_it_to_the_chutes_exit(fmu_dir, package):
-    done, t, error, sep = libcosim_run(package, ssp.STEP_SIZE)
-    values = bound_values(package)
-    ref = direct_run(fmu_dir, values["chute"], values["separator"])
-    # the parameter set applied (the chute ends at 0.3 m): the last step completed is the
-    # one before the exit's
-    assert not done and "chute: Step not complete" in error
-    assert t == pytest.approx(math.floor(ref["exit_time"] / ssp.STEP_SIZE) * ssp.STEP_SIZE, abs=1e-9)
-    assert not sep["has_released"]
-
-
-@pytest.mark.xfail(strict=True, reason=LIBCOSIM_EXIT)
-def test_libcosim_runs_the_line_to_the_landing(package):
+def test_libcosim_runs_the_package_to_the_landing(fmu_dir, package):
+    """libcosim runs the whole default experiment: the chute's exit and the separator's
+    landing complete their steps (hold_at_end), where without it libcosim took the chute's
+    fmi2Discard with fmi2Terminated for a failed step ("chute: Step not complete") and ended
+    the execution at the exit."""
     done, t, error, sep = libcosim_run(package, ssp.STEP_SIZE)
     assert done, error
-    assert sep["landed"]
+    assert t == pytest.approx(ssp.STOP_TIME, abs=1e-9)
+    values = bound_values(package)
+    ref = direct_run(fmu_dir, values["chute"], values["separator"])
+    assert sep["has_released"]
+    assert_lands_as_the_direct_run(sep, ref)
