@@ -145,6 +145,9 @@ static int read_variable(fmu_instance *inst, const char *fn, const fmu_variable 
     case FMU_MAPS_TO_INPUT:
         store(c_type, values, k, inst->inputs[v->index]);
         return 1;
+    case FMU_MAPS_TO_INSTANCE:
+        store(c_type, values, k, inst->hold_at_end);
+        return 1;
     case FMU_MAPS_TO_QUANTITY: {
         if (!model_readable(inst, fn, v))
             return 0;
@@ -283,6 +286,9 @@ static int apply_value(fmu_instance *inst, const char *fn, const fmu_variable *v
     if (v->maps_to == FMU_MAPS_TO_INPUT) {
         /* applied by the next step, from its communication point on */
         inst->inputs[v->index] = value;
+    } else if (v->maps_to == FMU_MAPS_TO_INSTANCE) {
+        /* fixed: the core does not know it, and none is made of it */
+        inst->hold_at_end = value != 0.0;
     } else {
         const tribo_param_info *p = fmu_variable_param(v);
         if (inst->lifecycle == FMU_LIFECYCLE_STEP) {

@@ -9,8 +9,9 @@
  *   lifecycle state, start time, stop time, stop time defined, time, the inputs,
  *   number of parameters, every parameter (in the order of the front end's table: the SI
  *   FMUs save the SI scene),
- *   core instance outdated, tolerances set explicitly (bit 0: rtol, bit 1: atol), size of
- *   the core's state, the core's state (the front end's: tribo_state_save,
+ *   core instance outdated, tolerances set explicitly (bit 0: rtol, bit 1: atol),
+ *   hold_at_end (the FMU layer's parameter, in no front end's table), size of the core's
+ *   state, the core's state (the front end's: tribo_state_save,
  *   tribo_separator_state_save)
  *
  * A core state size of 0 means there is no core instance to keep: none yet (before
@@ -36,12 +37,12 @@ struct fmu_state {
 };
 
 static const char MAGIC[8] = {'T', 'R', 'I', 'B', 'O', 'F', 'M', 'U'};
-enum { LAYOUT_VERSION = 4, HEADER_SIZE = 8 + 3 * 8 };
+enum { LAYOUT_VERSION = 5, HEADER_SIZE = 8 + 3 * 8 };
 
-/* Everything but the core's state: the header, 9 fields, the inputs and the parameters. */
+/* Everything but the core's state: the header, 10 fields, the inputs and the parameters. */
 static size_t fixed_size(size_t n_params)
 {
-    return HEADER_SIZE + 9 * 8 + (size_t)fmu_front_input_count() * 8 + n_params * 8;
+    return HEADER_SIZE + 10 * 8 + (size_t)fmu_front_input_count() * 8 + n_params * 8;
 }
 
 /* ---- save ---------------------------------------------------------------------- */
@@ -87,6 +88,9 @@ fmu_status fmu_state_get(fmu_instance *inst, const char *fn, fmu_state **state)
     tribo_write_int(&c, core ? 0 : inst->model_outdated);
     /* an importer's tolerance, given later, must not override what was set explicitly */
     tribo_write_int(&c, (inst->rtol_set ? 1 : 0) | (inst->atol_set ? 2 : 0));
+    /* with the core's run over it says whether the instance is held there, in Step Mode at a
+       time past the core's */
+    tribo_write_int(&c, inst->hold_at_end);
     tribo_write_int(&c, (int64_t)core_size);
     if (core_size && fmu_front_state_save(core, c.p, core_size) != TRIBO_OK)
         return fmu_error(inst, "%s: %s", fn, fmu_front_last_error(inst->core));
@@ -117,7 +121,7 @@ static const char *header_problem(const fmu_instance *inst, const unsigned char 
 
 /* An FMU state read from bytes, not yet applied. */
 typedef struct restored {
-    int64_t lifecycle, stop_time_defined, model_outdated, tolerances_set;
+    int64_t lifecycle, stop_time_defined, model_outdated, tolerances_set, hold_at_end;
     double start_time, stop_time, time;
     double inputs[FMU_MAX_INPUTS];
     fmu_scene scene;
@@ -175,6 +179,7 @@ static const char *read_restored(const fmu_instance *inst, const fmu_state *s, r
     }
     r->model_outdated = tribo_read_int(&c);
     r->tolerances_set = tribo_read_int(&c);
+    r->hold_at_end = tribo_read_int(&c);
     r->core_size = (uint64_t)tribo_read_int(&c);
     r->core = c.p;
     const int has_core = r->core_size > 0;
@@ -182,7 +187,8 @@ static const char *read_restored(const fmu_instance *inst, const fmu_state *s, r
         return "the size of the core's state does not match the state's";
     if (!lifecycle_valid(inst, r->lifecycle, has_core) ||
         (r->model_outdated != 0 && r->model_outdated != 1) || (has_core && r->model_outdated) ||
-        r->tolerances_set < 0 || r->tolerances_set > 3)
+        r->tolerances_set < 0 || r->tolerances_set > 3 ||
+        (r->hold_at_end != 0 && r->hold_at_end != 1))
         return "the FMI state is not one this FMU saves";
     if (!isfinite(r->start_time) || !isfinite(r->time) || !isfinite(r->stop_time) ||
         (r->stop_time_defined != 0 && r->stop_time_defined != 1) ||
@@ -214,10 +220,14 @@ static fmu_core *load_core(fmu_instance *inst, const char *fn, restored *r)
         fmu_front_free(m);
         return NULL;
     }
-    /* the FMU's time is the start time plus the core's, in the front end's unit */
+    /* the FMU's time is the start time plus the core's, in the front end's unit; held at the
+       run's end (hold_at_end), that or later */
     const double unit = fmu_front_time_unit(&r->derived), t = fmu_front_core_time(m);
+    const double offset = r->time - (r->start_time + unit * t);
+    const int held = r->hold_at_end && fmu_front_run_over(m);
     if (!isfinite(t) ||
-        !(fabs(r->time - (r->start_time + unit * t)) <= fmu_rounding_tolerance(r->time))) {
+        !(held ? offset >= -fmu_rounding_tolerance(r->time)
+               : fabs(offset) <= fmu_rounding_tolerance(r->time))) {
         fmu_error(inst, "%s: the state is corrupt: its time %.17g is not its start time %.17g "
                   "plus the core's time %.17g (times %.17g)", fn, r->time, r->start_time, t, unit);
         fmu_front_free(m);
@@ -246,10 +256,13 @@ fmu_status fmu_state_set(fmu_instance *inst, const char *fn, const fmu_state *s)
        particle left it, or lifted off with run_end = first_liftoff, model.md §9; the
        separator's: the grain reached the bins or a plate, §10), or has been terminated */
     const int over = model && fmu_front_run_over(model);
-    if (model && r.lifecycle != FMU_LIFECYCLE_TERMINATED && over != (r.lifecycle == FMU_LIFECYCLE_EXITED)) {
+    /* held at the run's end (hold_at_end), the instance stays in Step Mode there */
+    const int exited = over && !r.hold_at_end;
+    if (model && r.lifecycle != FMU_LIFECYCLE_TERMINATED && exited != (r.lifecycle == FMU_LIFECYCLE_EXITED)) {
         fmu_front_free(model);
-        return fmu_error(inst, "%s: the state is corrupt: its run %s over, but its FMI state is %s",
-                         fn, over ? "is" : "is not", fmu_lifecycle_name((fmu_lifecycle)r.lifecycle));
+        return fmu_error(inst, "%s: the state is corrupt: its run %s over (hold_at_end = %d), "
+                         "but its FMI state is %s", fn, over ? "is" : "is not",
+                         (int)r.hold_at_end, fmu_lifecycle_name((fmu_lifecycle)r.lifecycle));
     }
 
     /* all accepted: the instance becomes the state */
@@ -260,6 +273,7 @@ fmu_status fmu_state_set(fmu_instance *inst, const char *fn, const fmu_state *s)
     inst->model_outdated = r.model_outdated != 0;
     inst->rtol_set = (r.tolerances_set & 1) != 0;
     inst->atol_set = (r.tolerances_set & 2) != 0;
+    inst->hold_at_end = r.hold_at_end != 0;
     inst->scene = r.scene;
     for (int i = 0; i < FMU_MAX_INPUTS; i++)
         inst->inputs[i] = r.inputs[i];

@@ -54,6 +54,11 @@ struct fmu_instance {
 
     /* FMI 3.0: the importer allows a step to end early (earlyReturnAllowed) */
     int early_return_allowed;
+
+    /* the parameter hold_at_end: at the core's run's end the instance stays in Step Mode,
+       its time following the steps, the core left where its run ended (step.c); "held" is
+       then hold_at_end and the core's run over, so it needs no flag of its own */
+    int hold_at_end;
 };
 
 /* Communication points that differ by less than this around `time` are the same point

@@ -36,6 +36,7 @@ void fmu_restore_start_values(fmu_instance *inst)
     inst->model_outdated = 0;
     fmu_front_defaults(&inst->scene);
     inst->rtol_set = inst->atol_set = 0;
+    inst->hold_at_end = 0;
     const tribo_param_info *inputs = fmu_front_inputs();
     for (int i = 0; i < FMU_MAX_INPUTS; i++)
         inst->inputs[i] = i < fmu_front_input_count() ? inputs[i].start : 0.0;

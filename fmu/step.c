@@ -45,6 +45,15 @@ static fmu_status ended_early(fmu_instance *inst, const char *fn, double end, in
 static fmu_status exited(fmu_instance *inst, const char *fn, double end, int *early_return,
                          int *terminate)
 {
+    if (inst->hold_at_end) {
+        /* a master that takes any discarded or terminating step for a failure (libcosim)
+           still runs the other FMUs on: the step completes, the outputs stay at the end */
+        fmu_log(inst, FMU_OK, FMU_LOG_CALLS,
+                "%s: the run ended at %.17g; held there to %.17g (hold_at_end): %s", fn,
+                inst->time, end, fmu_front_last_error(inst->core));
+        inst->time = end;
+        return FMU_OK;
+    }
     inst->lifecycle = FMU_LIFECYCLE_EXITED;
     *terminate = 1;
     /* FMI 3.0: an early return where the importer allows it; either way the simulation is to
@@ -119,6 +128,15 @@ fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, 
                          "set at initialization",
                          fn, current_time, step, end, inst->stop_time);
     fmu_core *m = inst->core;
+    if (inst->hold_at_end && fmu_front_run_over(m)) {
+        /* held at the run's end: the core stays there (it cannot advance), its inputs with
+           it; only the FMU's time follows the master */
+        inst->time = end;
+        *reached = end;
+        fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s(currentCommunicationPoint = %.17g, "
+                "communicationStepSize = %.17g): held at the run's end", fn, current_time, step);
+        return FMU_OK;
+    }
     /* the FMU's time is the start time plus the core's, in the front end's unit: the step
        ends where the core's time is end's, which must lie after the core's time now, else
        the FMU's time would move and the model's not */
@@ -139,9 +157,10 @@ fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, 
     tribo_status st = fmu_front_advance(m, core_end);
     if (st == TRIBO_INCOMPLETE || st == TRIBO_ENDED) {
         inst->time = reached_time(inst, end, st == TRIBO_INCOMPLETE);
+        const fmu_status status = st == TRIBO_ENDED ? exited(inst, fn, end, early_return, terminate)
+                                                    : ended_early(inst, fn, end, early_return);
         *reached = inst->time;
-        return st == TRIBO_ENDED ? exited(inst, fn, end, early_return, terminate)
-                                 : ended_early(inst, fn, end, early_return);
+        return status;
     }
     if (st != TRIBO_OK) {
         /* a time the core refuses changes nothing (check_core_time refused those it knows

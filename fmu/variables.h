@@ -49,8 +49,13 @@ typedef enum fmu_mapping {
     FMU_MAPS_TO_PARAMETER,  /* the scene parameter of the same name         */
     FMU_MAPS_TO_INPUT,      /* index: the front end's input (tribo_input order) */
     FMU_MAPS_TO_QUANTITY,   /* index: the front end's quantity (fmu_front_get) */
-    FMU_MAPS_TO_SEGMENTS    /* index: tribo_segment_charge, n_segments values */
+    FMU_MAPS_TO_SEGMENTS,   /* index: tribo_segment_charge, n_segments values */
+    FMU_MAPS_TO_INSTANCE    /* the FMU layer's own parameter, hold_at_end (instance.h) */
 } fmu_mapping;
+
+/* hold_at_end's value reference: free in every front end's table (the tables' parameters
+   are below 100, their registered switches from 60 on) */
+#define FMU_HOLD_AT_END_VR 50u
 
 
 /* Which FMI versions declare a variable (arrays exist in FMI 3.0 only). */

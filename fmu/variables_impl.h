@@ -99,7 +99,24 @@ static const fmu_variable VARIABLES[] = {
     {vr, name, FMU_TYPE_REAL, FMU_CAUSALITY_OUTPUT, FMU_VARIABILITY_CONTINUOUS,                 \
      FMU_MAPS_TO_SEGMENTS, TRIBO_SEGMENTS_##id, FMU_IN_FMI3, description, unit, -1},
 #include FMU_TABLE
+    /* What the FMU does at the run's end is the FMU layer's (step.c), not a core's: so the
+       row is here, once for every FMU, rather than in each core's table, whose scene and
+       C API it would otherwise join. */
+    {FMU_HOLD_AT_END_VR, "hold_at_end", FMU_TYPE_BOOLEAN, FMU_CAUSALITY_PARAMETER,
+     FMU_VARIABILITY_FIXED, FMU_MAPS_TO_INSTANCE, 0, FMU_IN_BOTH,
+     "what a step does at the run's end (the chute's exit or first lift-off, the separator's "
+     "landing): false, it ends the simulation there (FMI 2.0: fmi2Discard and fmi2Terminated; "
+     "FMI 3.0: terminateSimulation); true, it and every later step complete to their "
+     "communication point, every output held at its value at the end, for masters that take "
+     "the end of one FMU's run for a failed step",
+     "1", -1},
 };
+
+/* hold_at_end as a parameter row: a switch (0, 1), fixed, false by default */
+static const tribo_param_info HOLD_AT_END = {
+    .name = "hold_at_end", .description = "", .unit = "1", .vr = FMU_HOLD_AT_END_VR,
+    .type = TRIBO_TYPE_INTEGER, .min = 0.0, .max = 1.0, .min_inclusive = 1, .max_inclusive = 1,
+    .start = 0.0, .variability = TRIBO_PARAM_FIXED};
 
 #define UNIT_ROW(name, quantity, base_unit, display_unit, display_factor, description)           \
     {name, quantity, base_unit, display_unit, display_factor, description},
@@ -226,6 +243,7 @@ const tribo_param_info *fmu_variable_param(const fmu_variable *v)
     switch (v->maps_to) {
     case FMU_MAPS_TO_PARAMETER: return &fmu_front_params(NULL)[v->index];
     case FMU_MAPS_TO_INPUT: return &fmu_front_inputs()[v->index];
+    case FMU_MAPS_TO_INSTANCE: return &HOLD_AT_END;
     default: return NULL;
     }
 }

@@ -201,6 +201,41 @@ static const struct mapping *mapping_of(const char *si_name)
     return NULL;
 }
 
+/* The output charge_to_mass has a formula for the static and the sliding model only (its row in
+   si_quantities.def): a model registered after them needs its own there first. */
+_Static_assert(TRIBO_SI_CHARGE_MODEL_COUNT == 2 && TRIBO_SEGMENTS_STATIC == 0 &&
+                   TRIBO_SEGMENTS_SLIDING == 1,
+               "charge_to_mass (si_quantities.def) knows the static and sliding models only");
+
+/* The model charge_to_mass carries must run, else the coupling's one connection would carry
+   a ratio of 0 that no law of the grain gives, silently. */
+static tribo_status charge_to_mass_model_included(const tribo_si_scene *si, tribo_si_derived *d,
+                                                  char *msg, size_t msg_size)
+{
+    const int slot = si->charge_to_mass_model - 1;
+    d->charge_to_mass_model = si->charge_to_mass_model;
+    if (tribo_charge_selection(&d->scene) & (1u << slot))
+        return TRIBO_OK;
+    if (msg && msg_size) {
+        const char *name = TRIBO_CHARGE_MODELS[slot]->name;
+        char switch_name[64];
+        snprintf(switch_name, sizeof switch_name, "charge_model_%s", name);
+        const double on = tribo_param_read(si, tribo_si_param_find(switch_name));
+        if (on == 0.0)
+            snprintf(msg, msg_size,
+                     "charge_to_mass_model = %d names the %s charge model, which %s = 0 leaves "
+                     "out of the scene: switch it on, or choose an included model",
+                     si->charge_to_mass_model, name, switch_name);
+        else
+            snprintf(msg, msg_size,
+                     "charge_to_mass_model = %d names the %s charge model, which charge_model = %d "
+                     "leaves out of the scene (its bit %d is clear): set it, or choose an "
+                     "included model",
+                     si->charge_to_mass_model, name, si->charge_model, slot);
+    }
+    return TRIBO_ERR_INVALID_ARGUMENT;
+}
+
 tribo_status tribo_si_derive(const tribo_si_scene *si, tribo_si_derived *d, char *msg,
                              size_t msg_size)
 {
@@ -253,7 +288,9 @@ tribo_status tribo_si_derive(const tribo_si_scene *si, tribo_si_derived *d, char
     describe_inputs(made_of, sizeof made_of, si, d, "gravity", SPEED);
     if ((st = check_derived(tribo_param_find("Gamma"), d->scene.Gamma, made_of, msg, msg_size)) != TRIBO_OK)
         return st;
-    return tribo_scene_validate(&d->scene, msg, msg_size);
+    if ((st = tribo_scene_validate(&d->scene, msg, msg_size)) != TRIBO_OK)
+        return st;
+    return charge_to_mass_model_included(si, d, msg, msg_size);
 }
 
 tribo_status tribo_si_model_param(const tribo_si_derived *d, const tribo_param_info *p,

@@ -26,6 +26,15 @@
 extern "C" {
 #endif
 
+/* The registered charge models (charge_registry.def), which charge_to_mass_model counts
+   from 1 in the registry's order. */
+enum {
+    TRIBO_SI_CHARGE_MODEL_COUNT = 0
+#define TRIBO_CHARGE_MODEL(id, name, slot, model, on, values) +1
+#include "charge_registry.def"
+#undef TRIBO_CHARGE_MODEL
+};
+
 /* Every parameter of the SI table, one field per row of si_quantities.def. */
 typedef struct tribo_si_scene {
 #define TRIBO_PARAMETER(name, type, ...) TRIBO_CTYPE_##type name;
@@ -65,6 +74,7 @@ typedef struct tribo_si_derived {
     double perimeter;       /* a P(epsilon), m: the boundary of the section          */
     double depth;           /* the cylinder's depth l, m                             */
     double sigma0;          /* C/m^2, its sign the polarity                          */
+    int charge_to_mass_model; /* the registry's row (from 1) whose ratio charge_to_mass is */
     tribo_scene scene;      /* the model's scene                                     */
 } tribo_si_derived;
 

@@ -224,7 +224,7 @@ static int is_parameter(const fmu_variable *v)
    inputs act over the next step only (setting one changes no output until then), so
    every output declares an empty list, and importers see no algebraic loop through the
    FMU. At initialization an output depends on the parameters (the initial state comes
-   from them), not on the inputs; so does a calculated parameter, which FMI lists among
+   from them, hold_at_end aside), not on the inputs; so does a calculated parameter, which FMI lists among
    the initial unknowns only. */
 static void write_model_structure(int fmi_version)
 {
@@ -244,7 +244,9 @@ static void write_model_structure(int fmi_version)
                    fmi_version == 2 ? "index" : "valueReference", reference(&v[i], fmi_version));
             const char *separator = "";
             for (size_t j = 0; section == 1 && j < n; j++)
-                if (fmu_variable_in_version(&v[j], fmi_version) && is_parameter(&v[j])) {
+                /* hold_at_end acts on the steps after the run's end only */
+                if (fmu_variable_in_version(&v[j], fmi_version) && is_parameter(&v[j]) &&
+                    v[j].maps_to != FMU_MAPS_TO_INSTANCE) {
                     printf("%s%lu", separator, reference(&v[j], fmi_version));
                     separator = " ";
                 }

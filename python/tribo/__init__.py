@@ -37,6 +37,8 @@ Its subpackages, by concern (each module's docstring says what it does):
     materials    the materials table (data/materials.toml): a particle/wall pair as the SI
                  FMU's start values
     plotting     what every figure shares (axis labels, colours, legends; matplotlib)
+    ssp          the separation line as an SSP 1.0 package (the SI chute's FMU feeding the
+                 separator's) for SSP importers: libcosim, ecos (standard library only)
     fmu/         the fmpy driver, shared with the tests: instance, image (an FMU as bytes),
                  locate (where the FMUs are), names (the package's names and units),
                  parameters (values checked by the FMU)

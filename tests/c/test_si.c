@@ -259,6 +259,45 @@ Test(si, the_outputs_are_the_models_in_si_units)
     tribo_free(m);
 }
 
+Test(si, charge_to_mass_carries_the_one_model_charge_to_mass_model_names)
+{
+    /* both models run (the defaults); each choice is that model's ratio, not their sum */
+    tribo_si_scene s = si_of("drop_height=5e-4 n_segments=50");
+    cr_expect_eq(s.charge_to_mass_model, 1);
+    const tribo_si_derived d = derived_of(&s);
+    tribo_model *m = make(&d.scene);
+    cr_assert_eq(tribo_advance_fully(m, 2e4), TRIBO_OK, "%s", tribo_last_error(m));
+    const double q_static = tribo_si_get(&d, m, TRIBO_SI_QUANTITY_Q_PER_M_STATIC),
+                 q_sliding = tribo_si_get(&d, m, TRIBO_SI_QUANTITY_Q_PER_M_SLIDING);
+    cr_assert(q_static != 0.0 && q_sliding != 0.0);
+    cr_expect_eq(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_Q_PER_M), q_static);
+    s.charge_to_mass_model = 2;
+    const tribo_si_derived d2 = derived_of(&s);
+    cr_expect_eq(tribo_si_get(&d2, m, TRIBO_SI_QUANTITY_Q_PER_M), q_sliding);
+    tribo_free(m);
+
+    /* the range is the registry's rows */
+    const tribo_param_info *p = tribo_si_param_find("charge_to_mass_model");
+    cr_expect(p->min == 1.0 && p->max == TRIBO_SEGMENTS_COUNT && p->type == TRIBO_TYPE_INTEGER);
+    char err[512];
+    cr_expect_eq(tribo_si_scene_apply(&s, "charge_to_mass_model=3", err, sizeof err),
+                 TRIBO_ERR_INVALID_ARGUMENT);
+
+    /* a model switched off cannot be the one carried: one line naming both */
+    tribo_si_scene off = si_of("charge_model_sliding=0 charge_to_mass_model=2");
+    tribo_si_derived dd;
+    cr_expect_eq(tribo_si_derive(&off, &dd, err, sizeof err), TRIBO_ERR_INVALID_ARGUMENT);
+    cr_expect(strstr(err, "charge_to_mass_model = 2") && strstr(err, "charge_model_sliding = 0") &&
+                  !strchr(err, '\n'),
+              "%s", err);
+    tribo_si_scene legacy = si_of("charge_model=2");
+    cr_expect_eq(tribo_si_derive(&legacy, &dd, err, sizeof err), TRIBO_ERR_INVALID_ARGUMENT);
+    cr_expect(strstr(err, "charge_to_mass_model = 1") && strstr(err, "charge_model = 2"), "%s", err);
+    tribo_si_scene fine = si_of("charge_model_static=0");
+    fine.charge_to_mass_model = 2;
+    cr_expect_eq(tribo_si_derive(&fine, &dd, err, sizeof err), TRIBO_OK, "%s", err);
+}
+
 Test(si, an_impact_episode_ends_at_its_liftoff_and_the_motion_fractions_pass_through)
 {
     /* the reference grain thrown straight down at 2 m/s onto the chute (tilted 30 degrees), with

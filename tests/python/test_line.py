@@ -35,7 +35,8 @@ def direct_two_step(fmu_dir, particle, wall, voltage, size=1e-3, epsilon=0.6, t_
     chute.init(0.0, t_end, **pair_values(particle, wall), semi_major_axis=size / 2,
                epsilon=epsilon, chute_length=SHORT["chute_length"], tilt=math.radians(30),
                drop_height=0.01, drop_speed=0.0, drop_angle=0.0, phi0=0.0, omega0=0.0,
-               work_limit=2**31 - 1, charge_model_static=0, charge_model_sliding=1)
+               work_limit=2**31 - 1, charge_model_static=0, charge_model_sliding=1,
+               charge_to_mass_model=2)
     times = [i * t_end / 100 for i in range(1, 100)] + [t_end]
     assert not all(chute.step_to(t) for t in times), "the grain does not leave the chute"
     t_exit = chute.t

@@ -13,10 +13,10 @@ reaches the bins or a plate, located exactly. The chute's part does not depend o
 separator's settings: a voltage sweep runs it once per grain and the separator once per
 voltage.
 
-The chute runs with ONE charge model (`charge_model`, "static" by default): its output
-`charge_to_mass` is the sum over the included models, and the static and sliding models are
-alternative laws of the same grain's charge (docs/model.md section 5), so their sum would
-count the charge twice. The static model is the default because it is the one the
+The chute runs with ONE charge model (`charge_model`, "static" by default), the one its output
+`charge_to_mass` carries (`charge_to_mass_model`): the static and sliding models are
+alternative laws of the same grain's charge (docs/model.md section 5), and the other one's
+work would be spent for nothing. The static model is the default because it is the one the
 populations' results are read with (docs/populations.md); "sliding" may be chosen.
 """
 
@@ -61,10 +61,12 @@ class LineError(ValueError):
 
 
 def charge_model_settings(charge_model: str) -> dict:
-    """The chute's switches that leave one charge model on."""
+    """The chute's switches that leave one charge model on, and its charge_to_mass_model
+    (the registry's row from 1: CHARGE_MODELS is in the registry's order)."""
     if charge_model not in CHARGE_MODELS:
         raise LineError(f"charge_model = {charge_model!r}: one of {', '.join(CHARGE_MODELS)}")
-    return {f"charge_model_{m}": int(m == charge_model) for m in CHARGE_MODELS}
+    return {f"charge_model_{m}": int(m == charge_model) for m in CHARGE_MODELS} | \
+        {"charge_to_mass_model": CHARGE_MODELS.index(charge_model) + 1}
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,42 @@
+"""hold_at_end (every FMU, the FMU layer: fmu/step.c): at the run's end (the chute's exit,
+the separator's landing) a step completes and later steps hold every output there, so that a
+master that takes fmi2Discard / terminateSimulation for a failure runs on; false (the
+default) ends the simulation there as before."""
+
+import numpy as np
+import pytest
+from fmpy import simulate_fmu
+
+from conftest import built
+
+# each kind's run to its end well before the stop time
+CASES = {
+    "tribo_si": ({"chute_length": 0.05}, 1.0, 0.01, "exited"),
+    "tribo_separator": ({"released": True, "u_entry": 0.5}, 1.0, 0.01, "ended"),
+    "tribo": ({"chute_length": 20.0}, 1000.0, 10.0, "exited"),
+}
+
+
+@pytest.mark.parametrize("version", [2, 3])
+@pytest.mark.parametrize("prefix", sorted(CASES))
+def test_held_at_the_end_the_run_completes_with_every_output_constant(prefix, version):
+    values, stop, interval, flag = CASES[prefix]
+    fmu = built("fmu", f"{prefix}_fmi{version}.fmu")
+    held = simulate_fmu(fmu, stop_time=stop, output_interval=interval,
+                        start_values=values | {"hold_at_end": True})
+    ended = simulate_fmu(fmu, stop_time=stop, output_interval=interval, start_values=values)
+    # without: the simulation ends at the run's end, as it always did
+    t_end = ended["time"][-1]
+    assert t_end < stop / 2 and ended[flag][-1]
+    # with: to the stop time; the same run up to its end, then every output held
+    assert held["time"][-1] == pytest.approx(stop)
+    n = len(ended) - 1  # the last communication point before the end
+    for name in ended.dtype.names:
+        if name != "time":
+            assert np.array_equal(held[name][:n], ended[name][:n]), name
+    after = held[held["time"] > t_end]
+    assert len(after) > 10 and after[flag].all()
+    for name in held.dtype.names:
+        if name != "time":
+            # (FMI 3.0: the segment arrays too)
+            assert all(np.array_equal(v, ended[name][-1]) for v in after[name]), name
