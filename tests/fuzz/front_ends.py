@@ -22,6 +22,17 @@ import xml.etree.ElementTree as ET
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 MODEL_DESCRIPTION = os.path.join(ROOT, "modelDescription", "fmi3.xml")
 SI_TABLE = os.path.join(ROOT, "src", "si_quantities.def")
+REGISTRY = os.path.join(ROOT, "src", "charge_registry.def")
+
+
+def charge_models():
+    """The registered charge models' names by slot (src/charge_registry.def)."""
+    with open(REGISTRY, encoding="utf-8") as f:
+        rows = re.findall(r"^TRIBO_CHARGE_MODEL\(\w+, (\w+), (\d+),", f.read(), re.MULTILINE)
+    return [name for name, _ in sorted(rows, key=lambda row: int(row[1]))]
+
+
+CHARGE_MODELS = charge_models()
 
 
 def si_mapping():
@@ -108,6 +119,16 @@ class SI(Chute):
         self.INPUTS = {si: model for si, (model, how) in mapping.items() if how == "force"}
 
     @staticmethod
+    def carried_model_included(values):
+        """The charge model `charge_to_mass` carries (charge_to_mass_model, the registry's
+        row order from 1) runs: its switch is on and, for the models the older bitmask
+        `charge_model` names, its bit there is set."""
+        slot = int(values["charge_to_mass_model"]) - 1
+        name = CHARGE_MODELS[slot]
+        in_mask = slot >= 2 or (int(values["charge_model"]) >> slot) & 1
+        return values[f"charge_model_{name}"] != 0 and bool(in_mask)
+
+    @staticmethod
     def units(v):
         """The set-up's units (model.md section 8), each computed as the SI FMU does."""
         a = v["semi_major_axis"]
@@ -139,6 +160,8 @@ class SI(Chute):
 
     def scene_valid(self, values):
         if not (values["x0"] < values["chute_length"] and rigid_stick_valid(values)):
+            return False
+        if not self.carried_model_included(values):
             return False
         u = self.units(values)
         for si, (model, how) in self.MAP.items():

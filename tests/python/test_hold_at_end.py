@@ -8,6 +8,7 @@ import pytest
 from fmpy import simulate_fmu
 
 from conftest import built
+from tribo_fmu import Slave
 
 # each kind's run to its end well before the stop time
 CASES = {
@@ -40,3 +41,30 @@ def test_held_at_the_end_the_run_completes_with_every_output_constant(prefix, ve
         if name != "time":
             # (FMI 3.0: the segment arrays too)
             assert all(np.array_equal(v, ended[name][-1]) for v in after[name]), name
+
+
+@pytest.mark.parametrize("version", [2, 3])
+@pytest.mark.parametrize("prefix", sorted(CASES))
+def test_a_state_saved_while_held_restores_and_holds_on(prefix, version, fmu_dir):
+    """Saved past the run's end, restored in the same instance and deserialized into a
+    fresh one: the same time, the same outputs, and later steps held as before."""
+    values, stop, interval, flag = CASES[prefix]
+    s = Slave(fmu_dir(version, prefix), version).init(**(values | {"hold_at_end": True}))
+    times = [interval * k for k in range(1, round(stop / interval) + 1)]
+    names = [v.name for v in s.md.modelVariables
+             if v.causality == "output" and not v.dimensions]
+    t_save = times[len(times) * 3 // 4]
+    assert all(s.step_to(t) for t in times if t <= t_save) and s.get(flag)
+    state = s.get_state()
+    data = s.serialize(state)
+    saved = s.get_many(names)
+    assert all(s.step_to(t) for t in times if t > t_save) and s.get_many(names) == saved
+    s.set_state(state)
+    assert s.get("time") == pytest.approx(t_save) and s.get_many(names) == saved
+    fresh = Slave(fmu_dir(version, prefix), version)
+    fresh.set_state(fresh.deserialize(data))
+    fresh.t = s.t = t_save
+    for instance in (s, fresh):
+        assert all(instance.step_to(t) for t in times if t > t_save)
+        assert instance.get_many(names) == saved and instance.get(flag)
+    assert s.errors() == fresh.errors() == []
