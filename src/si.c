@@ -207,14 +207,24 @@ _Static_assert(TRIBO_SI_CHARGE_MODEL_COUNT == 2 && TRIBO_SEGMENTS_STATIC == 0 &&
                    TRIBO_SEGMENTS_SLIDING == 1,
                "charge_to_mass (si_quantities.def) knows the static and sliding models only");
 
-/* The model charge_to_mass carries must run, else the coupling's one connection would carry
-   a ratio of 0 that no law of the grain gives, silently. */
+/* The model charge_to_mass carries: the one charge_to_mass_model names, or with 0 the first
+   the scene includes (registry order), so that switching a model off alone never leaves the
+   output to the wrong law. A model named must run where another one does, else the
+   coupling's one connection would carry a ratio of 0 while the grain charges by the other
+   law, silently. A scene with no charge model at all charges nothing: its charge_to_mass is
+   0, and right. */
 static tribo_status charge_to_mass_model_included(const tribo_si_scene *si, tribo_si_derived *d,
                                                   char *msg, size_t msg_size)
 {
-    const int slot = si->charge_to_mass_model - 1;
-    d->charge_to_mass_model = si->charge_to_mass_model;
-    if (tribo_charge_selection(&d->scene) & (1u << slot))
+    const unsigned included = tribo_charge_selection(&d->scene);
+    int slot = si->charge_to_mass_model - 1;
+    if (slot < 0) {
+        slot = 0;
+        while (slot + 1 < TRIBO_SI_CHARGE_MODEL_COUNT && !(included & (1u << slot)))
+            slot++;
+    }
+    d->charge_to_mass_model = slot + 1;
+    if (included == 0u || (included & (1u << slot)))
         return TRIBO_OK;
     if (msg && msg_size) {
         const char *name = TRIBO_CHARGE_MODELS[slot]->name;

@@ -74,7 +74,8 @@ typedef struct tribo_si_derived {
     double perimeter;       /* a P(epsilon), m: the boundary of the section          */
     double depth;           /* the cylinder's depth l, m                             */
     double sigma0;          /* C/m^2, its sign the polarity                          */
-    int charge_to_mass_model; /* the registry's row (from 1) whose ratio charge_to_mass is */
+    int charge_to_mass_model; /* the registry's row (from 1) whose ratio charge_to_mass is:
+                                 the parameter's, or with 0 the first row included */
     tribo_scene scene;      /* the model's scene                                     */
 } tribo_si_derived;
 

@@ -261,10 +261,12 @@ Test(si, the_outputs_are_the_models_in_si_units)
 
 Test(si, charge_to_mass_carries_the_one_model_charge_to_mass_model_names)
 {
-    /* both models run (the defaults); each choice is that model's ratio, not their sum */
+    /* both models run (the defaults); each choice is that model's ratio, not their sum, and
+       the default (0) is the first included: the static model's */
     tribo_si_scene s = si_of("drop_height=5e-4 n_segments=50");
-    cr_expect_eq(s.charge_to_mass_model, 1);
+    cr_expect_eq(s.charge_to_mass_model, 0);
     const tribo_si_derived d = derived_of(&s);
+    cr_expect_eq(d.charge_to_mass_model, 1);
     tribo_model *m = make(&d.scene);
     cr_assert_eq(tribo_advance_fully(m, 2e4), TRIBO_OK, "%s", tribo_last_error(m));
     const double q_static = tribo_si_get(&d, m, TRIBO_SI_QUANTITY_Q_PER_M_STATIC),
@@ -278,7 +280,7 @@ Test(si, charge_to_mass_carries_the_one_model_charge_to_mass_model_names)
 
     /* the range is the registry's rows */
     const tribo_param_info *p = tribo_si_param_find("charge_to_mass_model");
-    cr_expect(p->min == 1.0 && p->max == TRIBO_SEGMENTS_COUNT && p->type == TRIBO_TYPE_INTEGER);
+    cr_expect(p->min == 0.0 && p->max == TRIBO_SEGMENTS_COUNT && p->type == TRIBO_TYPE_INTEGER);
     char err[512];
     cr_expect_eq(tribo_si_scene_apply(&s, "charge_to_mass_model=3", err, sizeof err),
                  TRIBO_ERR_INVALID_ARGUMENT);
@@ -290,12 +292,27 @@ Test(si, charge_to_mass_carries_the_one_model_charge_to_mass_model_names)
     cr_expect(strstr(err, "charge_to_mass_model = 2") && strstr(err, "charge_model_sliding = 0") &&
                   !strchr(err, '\n'),
               "%s", err);
-    tribo_si_scene legacy = si_of("charge_model=2");
+    tribo_si_scene legacy = si_of("charge_model=2 charge_to_mass_model=1");
     cr_expect_eq(tribo_si_derive(&legacy, &dd, err, sizeof err), TRIBO_ERR_INVALID_ARGUMENT);
     cr_expect(strstr(err, "charge_to_mass_model = 1") && strstr(err, "charge_model = 2"), "%s", err);
     tribo_si_scene fine = si_of("charge_model_static=0");
     fine.charge_to_mass_model = 2;
     cr_expect_eq(tribo_si_derive(&fine, &dd, err, sizeof err), TRIBO_OK, "%s", err);
+    /* a model switched off alone, the default carries the other: the first included */
+    tribo_si_scene first = si_of("charge_model_static=0");
+    cr_expect_eq(tribo_si_derive(&first, &dd, err, sizeof err), TRIBO_OK, "%s", err);
+    cr_expect_eq(dd.charge_to_mass_model, 2);
+    tribo_si_scene legacy_first = si_of("charge_model=2");
+    cr_expect_eq(tribo_si_derive(&legacy_first, &dd, err, sizeof err), TRIBO_OK, "%s", err);
+    cr_expect_eq(dd.charge_to_mass_model, 2);
+    /* no model at all: nothing charges, and charge_to_mass is 0 whichever it names */
+    tribo_si_scene none = si_of("charge_model=0");
+    cr_expect_eq(tribo_si_derive(&none, &dd, err, sizeof err), TRIBO_OK, "%s", err);
+    tribo_model *uncharged = tribo_create(&dd.scene, err, sizeof err);
+    cr_assert(uncharged, "%s", err);
+    cr_expect_eq(tribo_advance(uncharged, 1e4), TRIBO_OK, "%s", tribo_last_error(uncharged));
+    cr_expect_eq(tribo_si_get(&dd, uncharged, TRIBO_SI_QUANTITY_Q_PER_M), 0.0);
+    tribo_free(uncharged);
 }
 
 Test(si, an_impact_episode_ends_at_its_liftoff_and_the_motion_fractions_pass_through)

@@ -121,12 +121,15 @@ class SI(Chute):
     @staticmethod
     def carried_model_included(values):
         """The charge model `charge_to_mass` carries (charge_to_mass_model, the registry's
-        row order from 1) runs: its switch is on and, for the models the older bitmask
-        `charge_model` names, its bit there is set."""
-        slot = int(values["charge_to_mass_model"]) - 1
-        name = CHARGE_MODELS[slot]
-        in_mask = slot >= 2 or (int(values["charge_model"]) >> slot) & 1
-        return values[f"charge_model_{name}"] != 0 and bool(in_mask)
+        row order from 1; 0, the first included) runs (its switch is on and, for the models
+        the older bitmask `charge_model` names, its bit there is set), or no model runs."""
+        def included(slot):
+            in_mask = slot >= 2 or (int(values["charge_model"]) >> slot) & 1
+            return values[f"charge_model_{CHARGE_MODELS[slot]}"] != 0 and bool(in_mask)
+
+        named = int(values["charge_to_mass_model"])
+        return named == 0 or not any(included(k) for k in range(len(CHARGE_MODELS))) \
+            or included(named - 1)
 
     @staticmethod
     def units(v):
