@@ -2,6 +2,8 @@
    every value passed on as it is. */
 #include "front_end_chute.h"
 
+#include <string.h>
+
 const char fmu_front_prefix[] = "tribo";
 const char fmu_front_table_file[] = "src/quantities.def";
 const char fmu_front_description[] =
@@ -40,12 +42,10 @@ tribo_status fmu_front_model_inputs(const fmu_derived *d, const double values[],
                                     double model_values[], char *msg, size_t msg_size)
 {
     (void)d;
-    const tribo_param_info *inputs = tribo_input_table(NULL);
-    for (int i = 0; i < TRIBO_INPUT_COUNT; i++) {
-        if (tribo_param_check(&inputs[i], values[i], msg, msg_size) != TRIBO_OK)
-            return TRIBO_ERR_INVALID_ARGUMENT;
-        model_values[i] = values[i];
-    }
+    if (tribo_params_check(tribo_input_table(NULL), TRIBO_INPUT_COUNT, values, msg, msg_size) !=
+        TRIBO_OK)
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    memcpy(model_values, values, TRIBO_INPUT_COUNT * sizeof values[0]);
     return TRIBO_OK;
 }
 

@@ -6,6 +6,7 @@
 
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* The separator, and what its run's end means to the importer: the core's own message is
    about failures, and the end is none. */
@@ -65,12 +66,10 @@ tribo_status fmu_front_model_inputs(const fmu_derived *d, const double values[],
                                     double model_values[], char *msg, size_t msg_size)
 {
     (void)d;
-    const tribo_param_info *inputs = tribo_separator_input_table(NULL);
-    for (int i = 0; i < TRIBO_SEPARATOR_INPUT_COUNT; i++) {
-        if (tribo_param_check(&inputs[i], values[i], msg, msg_size) != TRIBO_OK)
-            return TRIBO_ERR_INVALID_ARGUMENT;
-        model_values[i] = values[i];
-    }
+    if (tribo_params_check(tribo_separator_input_table(NULL), TRIBO_SEPARATOR_INPUT_COUNT, values,
+                           msg, msg_size) != TRIBO_OK)
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    memcpy(model_values, values, TRIBO_SEPARATOR_INPUT_COUNT * sizeof values[0]);
     return TRIBO_OK;
 }
 

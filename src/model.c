@@ -572,10 +572,9 @@ tribo_status tribo_set_param(tribo_model *m, const char *name, double value)
 
 tribo_status tribo_set_inputs(tribo_model *m, const double values[TRIBO_INPUT_COUNT])
 {
-    const tribo_param_info *inputs = tribo_input_table(NULL);
-    for (int i = 0; i < TRIBO_INPUT_COUNT; i++)
-        if (tribo_param_check(&inputs[i], values[i], m->error, sizeof m->error) != TRIBO_OK)
-            return TRIBO_ERR_INVALID_ARGUMENT;
+    if (tribo_params_check(tribo_input_table(NULL), TRIBO_INPUT_COUNT, values, m->error,
+                           sizeof m->error) != TRIBO_OK)
+        return TRIBO_ERR_INVALID_ARGUMENT;
     if (values[TRIBO_INPUT_F_T] == m->dyn.F_T && values[TRIBO_INPUT_F_N] == m->dyn.F_N)
         return TRIBO_OK;
     if (m->ended)

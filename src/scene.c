@@ -161,6 +161,15 @@ tribo_status tribo_param_check(const tribo_param_info *p, double v, char *msg, s
     return TRIBO_ERR_INVALID_ARGUMENT;
 }
 
+tribo_status tribo_params_check(const tribo_param_info *rows, int n, const double *values, char *msg,
+                                size_t msg_size)
+{
+    for (int i = 0; i < n; i++)
+        if (tribo_param_check(&rows[i], values[i], msg, msg_size) != TRIBO_OK)
+            return TRIBO_ERR_INVALID_ARGUMENT;
+    return TRIBO_OK;
+}
+
 tribo_status tribo_table_set(tribo_param_table_of t, void *scene, const char *name, double value,
                              char *msg, size_t msg_size)
 {

@@ -304,9 +304,9 @@ static void release(tribo_separator *s)
 
 tribo_status tribo_separator_set_inputs(tribo_separator *s, const double values[TRIBO_SEPARATOR_INPUT_COUNT])
 {
-    for (int i = 0; i < TRIBO_SEPARATOR_INPUT_COUNT; i++)
-        if (tribo_param_check(&INPUTS[i], values[i], s->error, sizeof s->error) != TRIBO_OK)
-            return TRIBO_ERR_INVALID_ARGUMENT;
+    if (tribo_params_check(INPUTS, TRIBO_SEPARATOR_INPUT_COUNT, values, s->error,
+                           sizeof s->error) != TRIBO_OK)
+        return TRIBO_ERR_INVALID_ARGUMENT;
     memcpy(s->inputs, values, sizeof s->inputs);
     if (!s->released && !s->end && values[TRIBO_SEPARATOR_INPUT_RELEASED] != 0.0)
         release(s);
@@ -528,9 +528,9 @@ tribo_status tribo_separator_state_load(tribo_separator *s, const void *buffer, 
     if (!isfinite(n.t) || n.t < 0.0 || n.t > TRIBO_TIME_MAX)
         return refuse(s, "its time is out of range");
     char msg[256];
-    for (int i = 0; i < TRIBO_SEPARATOR_INPUT_COUNT; i++)
-        if (tribo_param_check(&INPUTS[i], n.inputs[i], msg, sizeof msg) != TRIBO_OK)
-            return refuse(s, msg);
+    if (tribo_params_check(INPUTS, TRIBO_SEPARATOR_INPUT_COUNT, n.inputs, msg, sizeof msg) !=
+        TRIBO_OK)
+        return refuse(s, msg);
     if ((released != 0 && released != 1) || end < TRIBO_SEPARATOR_RUNNING ||
         end > TRIBO_SEPARATOR_CAUGHT || (end && !released))
         return refuse(s, "its release or end is not one the model has");

@@ -146,6 +146,9 @@ void tribo_param_range_text(const tribo_param_info *p, char *buf, size_t n);
 /* TRIBO_OK if `value` is valid for `p`; otherwise TRIBO_ERR_INVALID_ARGUMENT and a
    message naming the parameter, the value and the valid range. */
 tribo_status tribo_param_check(const tribo_param_info *p, double value, char *msg, size_t msg_size);
+/* tribo_param_check of values[i] against rows[i], i < n: TRIBO_OK, or the first refusal. */
+tribo_status tribo_params_check(const tribo_param_info *rows, int n, const double *values, char *msg,
+                                size_t msg_size);
 /* Set the parameter `name` of a scene to `value` after checking it; an unknown name or
    an invalid value is refused with a message as above. */
 tribo_status tribo_scene_set(tribo_scene *scene, const char *name, double value, char *msg,

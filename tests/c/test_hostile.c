@@ -20,17 +20,6 @@ static tribo_scene scene_with(int integrator)
     return s;
 }
 
-/* Every quantity bit for bit. */
-static int same_outputs(tribo_model *a, tribo_model *b)
-{
-    for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++) {
-        const double x = tribo_get(a, q), y = tribo_get(b, q);
-        if (memcmp(&x, &y, sizeof x) != 0)
-            return 0;
-    }
-    return 1;
-}
-
 static int outputs_finite(tribo_model *m)
 {
     for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++)

@@ -71,17 +71,6 @@ Test(work_limit, an_advance_is_bounded_at_the_tightest_tolerances, .timeout = 60
     each_advance_is_bounded("n_segments=64 Omega0=100 phi0=-1e6", 3);
 }
 
-/* Every quantity bit for bit. */
-static int same_outputs(tribo_model *a, tribo_model *b)
-{
-    for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++) {
-        const double x = tribo_get(a, q), y = tribo_get(b, q);
-        if (memcmp(&x, &y, sizeof x) != 0)
-            return 0;
-    }
-    return 1;
-}
-
 /* Where a step's sweep spends its budget the step ends there, whatever the work limit and
    whichever times the output is asked at: the same run. */
 Test(work_limit, a_step_ended_by_its_sweep_is_the_same_at_any_limit_and_output_times,
