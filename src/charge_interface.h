@@ -32,11 +32,30 @@ typedef struct tribo_contact_kinematics {
     double rho_c;   /* radius of curvature of the boundary at the contact  */
 } tribo_contact_kinematics;
 
+/* ---- exponentials for exact updates over an interval --------------------------------- */
+
+/* Exponentials of the last duration and time constant seen, so that a run at a fixed step
+   costs no transcendental call per step. A zeroed cache is empty. */
+typedef struct tribo_decay_cache {
+    double duration, tau, decay, one_minus_decay, phi1;
+    int has_moments;
+    double zf1, zf2; /* z F_k(z), F_k(z) = int_0^1 v^k e^{-z v} dv, z = duration / tau */
+} tribo_decay_cache;
+
+/* e^-z, 1 - e^-z and phi1(z) = (1 - e^-z) / z for z = duration / tau, recomputed only
+   when either changed. */
+const tribo_decay_cache *tribo_decay(tribo_decay_cache *k, double duration, double tau);
+/* The same with the moments zf1, zf2 too. */
+const tribo_decay_cache *tribo_decay_moments(tribo_decay_cache *k, double duration, double tau);
+
 /* What drives the segments in contact over an interval: its duration and each global
    state at its start, middle and end (a quadratic in time through those three). */
 typedef struct tribo_charge_forcing {
     double duration;
     const double *begin, *mid, *end; /* the model's own globals */
+    /* a cache of exponentials that every model of the set shares over one interval: the
+       models that relax over the same time constant take them once */
+    tribo_decay_cache *decay;
 } tribo_charge_forcing;
 
 /* What a model's values are, for the SI front end (model.md §8): sigma_i over sigma0, or
@@ -91,22 +110,6 @@ typedef struct tribo_charge_model {
     /* The unit of its reported values in the SI front end. */
     tribo_charge_si_unit si_unit;
 } tribo_charge_model;
-
-/* ---- exponentials for exact updates over an interval --------------------------------- */
-
-/* Exponentials of the last duration and time constant seen, so that a run at a fixed step
-   costs no transcendental call per step. A zeroed cache is empty. */
-typedef struct tribo_decay_cache {
-    double duration, tau, decay, one_minus_decay, phi1;
-    int has_moments;
-    double zf1, zf2; /* z F_k(z), F_k(z) = int_0^1 v^k e^{-z v} dv, z = duration / tau */
-} tribo_decay_cache;
-
-/* e^-z, 1 - e^-z and phi1(z) = (1 - e^-z) / z for z = duration / tau, recomputed only
-   when either changed. */
-const tribo_decay_cache *tribo_decay(tribo_decay_cache *k, double duration, double tau);
-/* The same with the moments zf1, zf2 too. */
-const tribo_decay_cache *tribo_decay_moments(tribo_decay_cache *k, double duration, double tau);
 
 /* Sum of an array of n values. */
 double tribo_sum(const double *v, long n);

@@ -8,8 +8,9 @@
 static double charge(void *cache, const tribo_scene *s, const tribo_charge_forcing *f, double *q,
                      long count)
 {
+    (void)cache;
     /* linear with constant coefficients: exact over the interval */
-    const double one_minus_d = tribo_decay(cache, f->duration, s->tau0)->one_minus_decay;
+    const double one_minus_d = tribo_decay(f->decay, f->duration, s->tau0)->one_minus_decay;
     double change = 0.0;
     for (long i = 0; i < count; i++) {
         const double old = q[i];
@@ -46,7 +47,6 @@ static double cap(const tribo_scene *s, const double *globals)
 
 const tribo_charge_model tribo_charge_static = {
     .name = "static",
-    .cache_size = sizeof(tribo_decay_cache),
     .charge = charge,
     .segment_values = segment_values,
     .valid = valid,

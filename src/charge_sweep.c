@@ -240,15 +240,13 @@ static void charge_piece(sweep *w, const probe_point *pts, const double *S0, con
     for (int i = 0; i <= n && !w->status; i++) {
         const double t1 = i < n ? cuts[i].t : b->t;
         if (t1 > t0) {
-            /* the segments from the lower edge's to the upper edge's, as the crossings so
-               far have moved them: a contact whose edges sit mid-segment covers exactly those */
             const double u0 = (t0 - a->t) / T, u1 = (t1 - a->t) / T;
             const double um = 0.5 * (u0 + u1);
             tribo_contact_sample s;
             s.duration = t1 - t0;
-            s.in_contact = 1;
-            s.s_centre = 0.5 * (cell[0] + cell[1] + 1.0) * w->seg;
-            s.half_width = 0.5 * (cell[1] - cell[0]) * w->seg;
+            /* the segments from the lower edge's to the upper edge's, as the crossings so
+               far have moved them */
+            tribo_charging_run(w->c, cell[0], cell[1], &s);
             for (int g = 0; g < n_globals; g++) {
                 s.globals_begin[g] = S0[g] + u0 * (c1[g] + u0 * c2[g]);
                 s.globals_mid[g] = S0[g] + um * (c1[g] + um * c2[g]);

@@ -72,6 +72,7 @@ void tribo_charging_reset(tribo_charging *c)
         if (slot->cache)
             memset(slot->cache, 0, slot->model->cache_size);
     }
+    memset(&c->decay, 0, sizeof c->decay);
 }
 
 void tribo_charging_start(const tribo_charging *c, const tribo_scene *s, double *globals)
@@ -97,20 +98,20 @@ void tribo_charging_step(tribo_charging *c, const tribo_scene *s, const tribo_po
                          const double *g0, double *g1, tribo_contact_sample *sample)
 {
     sample->duration = h;
-    sample->in_contact = delta_y > 0.0;
-    if (sample->in_contact) {
+    const int in_contact = delta_y > 0.0;
+    if (in_contact) {
         const double eps = c->arc.eps;
         const double rho_c = tribo_contact_curvature_radius(eps * eps, pose->h);
-        sample->half_width = sqrt(rho_c * delta_y); /* §5 (paper eq. 4) */
-        sample->s_centre = tribo_arclength_at(&c->arc, tribo_contact_parameter(eps, pose));
+        tribo_charging_locate(c, tribo_arclength_at(&c->arc, tribo_contact_parameter(eps, pose)),
+                              sqrt(rho_c * delta_y) /* Sc, §5 (paper eq. 4) */, sample);
     } else {
-        sample->s_centre = sample->half_width = 0.0;
+        sample->first = sample->count = 0;
     }
     memcpy(g1, g0, (size_t)c->n_globals * sizeof *g1);
     for (int i = 0; i < c->n_models; i++) {
         const tribo_charge_slot *slot = &c->slot[i];
         if (slot->selected && slot->model->n_globals)
-            slot->model->step_globals(slot->cache, s, h, sample->in_contact,
+            slot->model->step_globals(slot->cache, s, h, in_contact,
                                       q0 + slot->quadratures_at, q1 + slot->quadratures_at,
                                       g0 + slot->globals_at, g1 + slot->globals_at);
     }
@@ -129,28 +130,43 @@ void tribo_compensated_add(double *sum, double *c, double x)
     *sum = t;
 }
 
-/* The run of segments a sample charges: those whose arc [i L, (i+1) L) overlaps
-   [s_c - Sc, s_c + Sc], periodic (§5). Returns how many (at most n; 0 for none) and sets
-   *first in [0, n). A contact wider than the boundary (or not a number) covers all of it;
-   the arithmetic stays in doubles until the values are known to fit. */
-static long segment_run(const tribo_charging *c, const tribo_contact_sample *sample, long *first)
+void tribo_charging_run(const tribo_charging *c, double lo_segment, double hi_segment,
+                        tribo_contact_sample *sample)
 {
-    if (!sample->in_contact || !(sample->duration > 0.0))
-        return 0;
-    const double lo = (sample->s_centre - sample->half_width) * c->segments_per_length;
-    const double hi = (sample->s_centre + sample->half_width) * c->segments_per_length;
+    /* in doubles until the values are known to fit a long */
     const double n = (double)c->n;
-    if (!(hi - lo < n)) {
-        *first = 0;
-        return c->n;
+    if (!(hi_segment - lo_segment + 1.0 < n)) {
+        sample->first = 0;
+        sample->count = c->n;
+        return;
     }
-    const double base = floor(lo);
-    double wrapped = base - n * floor(base / n);
+    double wrapped = lo_segment - n * floor(lo_segment / n);
     if (!(wrapped >= 0.0 && wrapped < n))
         wrapped = 0.0;
-    *first = (long)wrapped;
-    const double count = floor(hi) - base + 1.0;
-    return count < n ? (long)count : c->n;
+    sample->first = (long)wrapped;
+    sample->count = (long)(hi_segment - lo_segment + 1.0);
+}
+
+void tribo_charging_locate(const tribo_charging *c, double s_centre, double half_width,
+                           tribo_contact_sample *sample)
+{
+    const double lo = (s_centre - half_width) * c->segments_per_length;
+    const double hi = (s_centre + half_width) * c->segments_per_length;
+    if (!(hi - lo < (double)c->n)) { /* wider than the boundary, or not a number */
+        sample->first = 0;
+        sample->count = c->n;
+        return;
+    }
+    tribo_charging_run(c, floor(lo), floor(hi), sample);
+}
+
+/* The run of segments a sample charges: none for an empty interval. */
+static long segment_run(const tribo_contact_sample *sample, long *first)
+{
+    if (!(sample->duration > 0.0))
+        return 0;
+    *first = sample->first;
+    return sample->count;
 }
 
 /* Hold values[0..count) within +-cap (§8b: charging that would raise a segment above the
@@ -181,13 +197,13 @@ static double slot_cap(const tribo_charge_slot *slot, const tribo_scene *s, cons
 /* Charge values[first .. first + count) of one model under a sample, in at most two
    contiguous slices of a ring of n values, held within its breakdown limit; returns the
    change of their sum, and adds the charge the limit took to *lost. */
-static double charge_run(tribo_charge_slot *slot, const tribo_scene *s,
+static double charge_run(tribo_charging *c, tribo_charge_slot *slot, const tribo_scene *s,
                          const tribo_contact_sample *sample, double *values, long n, long first,
                          long count, double *lost)
 {
     const tribo_charge_forcing f = {sample->duration, sample->globals_begin + slot->globals_at,
                                     sample->globals_mid + slot->globals_at,
-                                    sample->globals_end + slot->globals_at};
+                                    sample->globals_end + slot->globals_at, &c->decay};
     const long head = count < n - first ? count : n - first;
     double delta = slot->model->charge(slot->cache, s, &f, values + first, head);
     if (count > head)
@@ -218,7 +234,7 @@ long tribo_charging_apply(tribo_charging *c, const tribo_scene *s, const tribo_c
                           tribo_charge_destination where)
 {
     long first;
-    const long count = segment_run(c, sample, &first);
+    const long count = segment_run(sample, &first);
     long updates = 0;
     for (int k = 0; count > 0 && k < c->n_models; k++) {
         tribo_charge_slot *slot = &c->slot[k];
@@ -226,7 +242,7 @@ long tribo_charging_apply(tribo_charging *c, const tribo_scene *s, const tribo_c
         if (!slot->selected || !values)
             continue;
         double lost = 0.0;
-        const double delta = charge_run(slot, s, sample, values, c->n, first, count, &lost);
+        const double delta = charge_run(c, slot, s, sample, values, c->n, first, count, &lost);
         if (where == TRIBO_CHARGE_COMMIT) {
             tribo_compensated_add(&slot->sum, &slot->sum_c, delta);
             if (lost != 0.0)
@@ -247,7 +263,7 @@ int tribo_charging_pending_sums(tribo_charging *c, const tribo_scene *s,
     long anchor = -1, lo = 0, hi = 0; /* the window [anchor + lo, anchor + hi), unwrapped */
     for (size_t i = 0; i < n_samples; i++) {
         long first;
-        const long count = segment_run(c, &samples[i], &first);
+        const long count = segment_run(&samples[i], &first);
         if (!count)
             continue;
         if (anchor < 0) {
@@ -287,14 +303,14 @@ int tribo_charging_pending_sums(tribo_charging *c, const tribo_scene *s,
         memcpy(slot->window + head, slot->segments, (size_t)(len - head) * sizeof(double));
         for (size_t i = 0; i < n_samples; i++) {
             long first;
-            const long count = segment_run(c, &samples[i], &first);
+            const long count = segment_run(&samples[i], &first);
             if (!count)
                 continue;
             long offset = (first - start) % n;
             if (offset < 0)
                 offset += n;
             /* in a window shorter than the ring a run never wraps: it lies inside */
-            deltas[k] += charge_run(slot, s, &samples[i], slot->window, len, offset, count,
+            deltas[k] += charge_run(c, slot, s, &samples[i], slot->window, len, offset, count,
                                     &lost[k]);
         }
     }

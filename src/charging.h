@@ -7,14 +7,14 @@
 #include "charge_interface.h"
 #include "geometry.h"
 
-/* The contact held over an interval of the motion: which arc of the boundary touches
-   the plate and for how long, and what drives the charge there (the global states of
-   every model at the interval's start, middle and end, at the models' offsets). */
+/* The contact held over an interval of the motion: which segments touch the plate and
+   for how long, and what drives the charge there (the global states of every model at the
+   interval's start, middle and end, at the models' offsets). */
 typedef struct tribo_contact_sample {
     double duration;
-    int in_contact;
-    double s_centre;   /* arc-length coordinate of the contact centre                 */
-    double half_width; /* Sc = sqrt(rho_c delta_y), §5 (paper eq. 4)                   */
+    /* the run of segments in contact: count of them from first, around the ring of n
+       (first in [0, n), count in [0, n]; 0: no contact) */
+    long first, count;
     double globals_begin[TRIBO_CHARGE_MAX_GLOBALS];
     double globals_mid[TRIBO_CHARGE_MAX_GLOBALS];
     double globals_end[TRIBO_CHARGE_MAX_GLOBALS];
@@ -48,6 +48,7 @@ typedef struct tribo_charging {
     int n;
     double segments_per_length; /* n / perimeter */
     tribo_arclength arc;
+    tribo_decay_cache decay; /* the models' shared one (tribo_charge_forcing) */
 } tribo_charging;
 
 /* Where a sample's charge goes: into the committed charges (and their sums), or queued for
@@ -64,6 +65,16 @@ void tribo_charging_free(tribo_charging *c);
 void tribo_charging_reset(tribo_charging *c);
 /* Every model's global states at the start of a run. */
 void tribo_charging_start(const tribo_charging *c, const tribo_scene *s, double *globals);
+
+/* The run of segments a contact covers, into a sample: those whose arc [i L, (i+1) L)
+   overlaps [s_centre - half_width, s_centre + half_width] (§5), periodic; a contact wider
+   than the boundary (or not a number) covers all of it. */
+void tribo_charging_locate(const tribo_charging *c, double s_centre, double half_width,
+                           tribo_contact_sample *sample);
+/* The same from the segments (floor values, unwrapped: any integers) holding the contact's
+   lower and upper edges. */
+void tribo_charging_run(const tribo_charging *c, double lo_segment, double hi_segment,
+                        tribo_contact_sample *sample);
 
 /* The rates of every quadrature in contact (0 for models not selected). */
 void tribo_charging_quadrature_rates(const tribo_charging *c, const tribo_contact_kinematics *k,

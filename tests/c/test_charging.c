@@ -31,7 +31,8 @@ static double *sliding_sigma(tribo_charging *c) { return c->slot[TRIBO_SEGMENTS_
 static tribo_contact_sample sample(const tribo_charging *c, double duration, double s_c,
                                    double half, double S0, double Sm, double S1)
 {
-    tribo_contact_sample s = {duration, 1, s_c, half, {0}, {0}, {0}};
+    tribo_contact_sample s = {duration, 0, 0, {0}, {0}, {0}};
+    tribo_charging_locate(c, s_c, half, &s);
     const int at = c->slot[TRIBO_SEGMENTS_SLIDING].globals_at;
     s.globals_begin[at] = S0;
     s.globals_mid[at] = Sm;
