@@ -40,13 +40,22 @@ static double moment(int k, double z)
 const tribo_decay_cache *tribo_decay(tribo_decay_cache *k, double duration, double tau)
 {
     if (k->duration != duration || k->tau != tau) {
-        const double z = duration / tau;
+        k->z = duration / tau;
         k->duration = duration;
         k->tau = tau;
-        k->one_minus_decay = -expm1(-z);
+        k->one_minus_decay = -expm1(-k->z);
         k->decay = 1.0 - k->one_minus_decay;
-        k->phi1 = z > 1e-8 ? k->one_minus_decay / z : 1.0 - 0.5 * z;
-        k->has_moments = 0;
+        k->has_phi1 = k->has_moments = 0;
+    }
+    return k;
+}
+
+const tribo_decay_cache *tribo_decay_phi1(tribo_decay_cache *k, double duration, double tau)
+{
+    tribo_decay(k, duration, tau);
+    if (!k->has_phi1) {
+        k->phi1 = k->z > 1e-8 ? k->one_minus_decay / k->z : 1.0 - 0.5 * k->z;
+        k->has_phi1 = 1;
     }
     return k;
 }
@@ -55,9 +64,8 @@ const tribo_decay_cache *tribo_decay_moments(tribo_decay_cache *k, double durati
 {
     tribo_decay(k, duration, tau);
     if (!k->has_moments) {
-        const double z = duration / tau;
-        k->zf1 = z * moment(1, z);
-        k->zf2 = z * moment(2, z);
+        k->zf1 = k->z * moment(1, k->z);
+        k->zf2 = k->z * moment(2, k->z);
         k->has_moments = 1;
     }
     return k;

@@ -35,16 +35,20 @@ typedef struct tribo_contact_kinematics {
 /* ---- exponentials for exact updates over an interval --------------------------------- */
 
 /* Exponentials of the last duration and time constant seen, so that a run at a fixed step
-   costs no transcendental call per step. A zeroed cache is empty. */
+   costs no transcendental call per step; what a model does not ask for is not computed. A
+   zeroed cache is empty. */
 typedef struct tribo_decay_cache {
-    double duration, tau, decay, one_minus_decay, phi1;
-    int has_moments;
-    double zf1, zf2; /* z F_k(z), F_k(z) = int_0^1 v^k e^{-z v} dv, z = duration / tau */
+    double duration, tau, z; /* z = duration / tau */
+    double decay, one_minus_decay; /* e^-z, 1 - e^-z */
+    int has_phi1, has_moments;
+    double phi1;     /* (1 - e^-z) / z */
+    double zf1, zf2; /* z F_k(z), F_k(z) = int_0^1 v^k e^{-z v} dv */
 } tribo_decay_cache;
 
-/* e^-z, 1 - e^-z and phi1(z) = (1 - e^-z) / z for z = duration / tau, recomputed only
-   when either changed. */
+/* e^-z and 1 - e^-z for z = duration / tau, recomputed only when either changed. */
 const tribo_decay_cache *tribo_decay(tribo_decay_cache *k, double duration, double tau);
+/* The same with phi1 too. */
+const tribo_decay_cache *tribo_decay_phi1(tribo_decay_cache *k, double duration, double tau);
 /* The same with the moments zf1, zf2 too. */
 const tribo_decay_cache *tribo_decay_moments(tribo_decay_cache *k, double duration, double tau);
 
@@ -103,9 +107,10 @@ typedef struct tribo_charge_model {
     int (*valid)(const tribo_scene *s, const double *globals, const double *segments, int n);
 
     /* The bound on |value| of the model's own per-segment values that the air-breakdown
-       density Sigma_bd sets (docs/model.md §8b); NULL: its values are no densities, the
-       limit does not apply. INF: no limit. */
-    double (*cap)(const tribo_scene *s, const double *globals);
+       density Sigma_bd sets (docs/model.md §8b), a function of the scene's Sigma_bd and
+       Sigma0 alone (it is taken again only when either changes); NULL: its values are no
+       densities, the limit does not apply. INF: no limit. */
+    double (*cap)(const tribo_scene *s);
 
     /* The unit of its reported values in the SI front end. */
     tribo_charge_si_unit si_unit;

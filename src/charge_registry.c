@@ -36,13 +36,12 @@ double tribo_capped_fraction(tribo_model *m, int index)
     const tribo_charge_view v = tribo_charge_view_of(m, index);
     const tribo_charge_model *model = m->charging.slot[index].model;
     /* without a limit nothing stands at it: no copy of the segments is made to say so */
-    if (!v.selected || !model->cap || !isfinite(model->cap(&m->scene, v.globals)))
+    if (!v.selected || !model->cap || !isfinite(model->cap(&m->scene)))
         return 0.0;
     const double *values = tribo_charge_values_of(m, index);
     if (!values)
         return NAN;
-    return (double)tribo_charging_capped(&m->charging.slot[index], &m->scene, m->out.charge_globals,
-                                         values, v.n) /
+    return (double)tribo_charging_capped(&m->charging.slot[index], &m->scene, values, v.n) /
            v.n;
 }
 

@@ -39,7 +39,7 @@ static double saturation_after(cache *k, const tribo_scene *s, double S, double 
 {
     const double g0 = sqrt(s->Sigma0 * s->Sigma0 + 2.0 * s->eta * w0);
     const double g1 = sqrt(s->Sigma0 * s->Sigma0 + 2.0 * s->eta * w1);
-    const tribo_decay_cache *d = tribo_decay(&k->relax, h, s->tau_r);
+    const tribo_decay_cache *d = tribo_decay_phi1(&k->relax, h, s->tau_r);
     return s->Sigma0 + (S - s->Sigma0) * d->decay + (g1 - g0) * d->phi1;
 }
 
@@ -100,12 +100,17 @@ static double charge(void *c, const tribo_scene *s, const tribo_charge_forcing *
                      long count)
 {
     (void)c;
-    const tribo_decay_cache *k = tribo_decay_moments(f->decay, f->duration, s->tau0);
-    const double d = k->decay, one_minus_d = k->one_minus_decay;
     const double A = f->begin[SIGMA_S];
     const double C = 2.0 * (A - 2.0 * f->mid[SIGMA_S] + f->end[SIGMA_S]);
     const double B = f->end[SIGMA_S] - A - C;
-    const double K = (A + B + C) * one_minus_d - (B + 2.0 * C) * k->zf1 + C * k->zf2;
+    /* a Sigma_s that holds still (no work done) needs no moments: the terms they weight
+       are 0 */
+    const int still = B == 0.0 && C == 0.0;
+    const tribo_decay_cache *k = still ? tribo_decay(f->decay, f->duration, s->tau0)
+                                       : tribo_decay_moments(f->decay, f->duration, s->tau0);
+    const double d = k->decay, one_minus_d = k->one_minus_decay;
+    const double K = still ? A * one_minus_d
+                           : (A + B + C) * one_minus_d - (B + 2.0 * C) * k->zf1 + C * k->zf2;
     double change = 0.0;
     for (long i = 0; i < count; i++) {
         const double old = sigma[i];
@@ -132,9 +137,8 @@ static int valid(const tribo_scene *s, const double *globals, const double *sigm
 }
 
 /* Sigma_i is the density itself: |Sigma_i| <= Sigma_bd (§8b). */
-static double cap(const tribo_scene *s, const double *globals)
+static double cap(const tribo_scene *s)
 {
-    (void)globals;
     return s->Sigma_bd;
 }
 

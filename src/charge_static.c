@@ -39,9 +39,8 @@ static int valid(const tribo_scene *s, const double *globals, const double *q, i
 
 /* The density of a segment is Sigma0 q_i (model.md §8: sigma_i = sigma0 q_i), so the
    breakdown limit |Sigma_i| <= Sigma_bd is q_i <= Sigma_bd / Sigma0 (§8b). */
-static double cap(const tribo_scene *s, const double *globals)
+static double cap(const tribo_scene *s)
 {
-    (void)globals;
     return s->Sigma_bd / s->Sigma0;
 }
 

@@ -228,13 +228,26 @@ static void charge_piece(sweep *w, const probe_point *pts, const double *S0, con
     }
     sort_cuts(cuts, n);
 
-    /* each global within the piece: the quadratic through its start, middle and end */
+    /* each global within the piece: the quadratic through its start, middle and end (one
+       that holds still, as Sigma_s without work, exactly still: its coefficients would be
+       rounding) */
     const int n_globals = w->c->n_globals;
     double c1[TRIBO_CHARGE_MAX_GLOBALS], c2[TRIBO_CHARGE_MAX_GLOBALS];
     for (int g = 0; g < n_globals; g++) {
-        c1[g] = -3.0 * S0[g] + 4.0 * S1[g] - S2[g];
-        c2[g] = 2.0 * (S0[g] - 2.0 * S1[g] + S2[g]);
+        const int still = S0[g] == S1[g] && S1[g] == S2[g];
+        c1[g] = still ? 0.0 : -3.0 * S0[g] + 4.0 * S1[g] - S2[g];
+        c2[g] = still ? 0.0 : 2.0 * (S0[g] - 2.0 * S1[g] + S2[g]);
     }
+    /* The segments from the lower edge's to the upper edge's, as the cuts so far have
+       moved them: the run is located once (a division and a floor), then each cut steps it
+       around the ring in integers; a contact as wide as the ring, or one far off the
+       numbering, is located afresh for each sample. */
+    const long ring = w->c->n;
+    tribo_contact_sample s;
+    tribo_charging_run(w->c, cell[0], cell[1], &s);
+    const int stepped = s.count < ring && fabs(cell[0]) < 0x1p52;
+    long first = s.first, span = s.count;
+
     const double T = b->t - a->t;
     double t0 = a->t;
     for (int i = 0; i <= n && !w->status; i++) {
@@ -242,11 +255,16 @@ static void charge_piece(sweep *w, const probe_point *pts, const double *S0, con
         if (t1 > t0) {
             const double u0 = (t0 - a->t) / T, u1 = (t1 - a->t) / T;
             const double um = 0.5 * (u0 + u1);
-            tribo_contact_sample s;
             s.duration = t1 - t0;
-            /* the segments from the lower edge's to the upper edge's, as the crossings so
-               far have moved them */
-            tribo_charging_run(w->c, cell[0], cell[1], &s);
+            if (!stepped) {
+                tribo_charging_run(w->c, cell[0], cell[1], &s);
+            } else if (span < ring) {
+                s.first = first;
+                s.count = span;
+            } else {
+                s.first = 0;
+                s.count = ring;
+            }
             for (int g = 0; g < n_globals; g++) {
                 s.globals_begin[g] = S0[g] + u0 * (c1[g] + u0 * c2[g]);
                 s.globals_mid[g] = S0[g] + um * (c1[g] + um * c2[g]);
@@ -256,8 +274,17 @@ static void charge_piece(sweep *w, const probe_point *pts, const double *S0, con
             w->cost += TRIBO_SWEEP_CELL_COST * fmin(cell[1] - cell[0] + 1.0, w->c->n);
             t0 = t1;
         }
-        if (i < n)
-            cell[cuts[i].hi_edge] += cuts[i].step;
+        if (i < n) {
+            const int step = cuts[i].step;
+            cell[cuts[i].hi_edge] += step;
+            if (cuts[i].hi_edge) {
+                span += step;
+            } else {
+                span -= step;
+                first += step;
+                first += first < 0 ? ring : first >= ring ? -ring : 0;
+            }
+        }
     }
 }
 

@@ -188,10 +188,23 @@ static double hold_at_cap(double *values, long count, double cap)
     return taken;
 }
 
-/* The bound on a slot's values over a sample (INF: none). */
-static double slot_cap(const tribo_charge_slot *slot, const tribo_scene *s, const double *globals)
+/* The bound on a slot's values (INF: none). */
+static double cap_of(const tribo_charge_slot *slot, const tribo_scene *s)
 {
-    return slot->model->cap ? slot->model->cap(s, globals + slot->globals_at) : INFINITY;
+    return slot->model->cap ? slot->model->cap(s) : INFINITY;
+}
+
+/* The same, kept in the slot: a sample takes it without a call (or the division a model's
+   units may cost) while Sigma_bd and Sigma0 stay. */
+static double slot_cap(tribo_charge_slot *slot, const tribo_scene *s)
+{
+    if (!slot->cap_taken || slot->cap_Sigma_bd != s->Sigma_bd || slot->cap_Sigma0 != s->Sigma0) {
+        slot->cap = cap_of(slot, s);
+        slot->cap_Sigma_bd = s->Sigma_bd;
+        slot->cap_Sigma0 = s->Sigma0;
+        slot->cap_taken = 1;
+    }
+    return slot->cap;
 }
 
 /* Charge values[first .. first + count) of one model under a sample, in at most two
@@ -208,7 +221,7 @@ static double charge_run(tribo_charging *c, tribo_charge_slot *slot, const tribo
     double delta = slot->model->charge(slot->cache, s, &f, values + first, head);
     if (count > head)
         delta += slot->model->charge(slot->cache, s, &f, values, count - head);
-    const double cap = slot_cap(slot, s, sample->globals_end);
+    const double cap = slot_cap(slot, s);
     if (isfinite(cap)) { /* (without a limit, nothing more: the paper's model, bit for bit) */
         double taken = hold_at_cap(values + first, head, cap);
         if (count > head)
@@ -219,10 +232,10 @@ static double charge_run(tribo_charging *c, tribo_charge_slot *slot, const tribo
     return delta;
 }
 
-long tribo_charging_capped(const tribo_charge_slot *slot, const tribo_scene *s, const double *globals,
-                           const double *values, long n)
+long tribo_charging_capped(const tribo_charge_slot *slot, const tribo_scene *s, const double *values,
+                           long n)
 {
-    const double cap = slot_cap(slot, s, globals);
+    const double cap = cap_of(slot, s);
     long capped = 0;
     if (isfinite(cap))
         for (long i = 0; i < n; i++)

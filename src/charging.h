@@ -34,6 +34,9 @@ typedef struct tribo_charge_slot {
     /* the charge the air-breakdown limit took from the committed values (§8b), in the
        model's own units, compensated like the sum */
     double lost, lost_c;
+    /* its breakdown limit, for the scene's Sigma_bd and Sigma0 it was taken at */
+    int cap_taken;
+    double cap, cap_Sigma_bd, cap_Sigma0;
     double *window;       /* scratch for the pending updates' effect on the sum */
     size_t window_cap;
     void *cache;
@@ -98,8 +101,8 @@ long tribo_charging_apply(tribo_charging *c, const tribo_scene *s, const tribo_c
 static inline double tribo_charging_sum(const tribo_charge_slot *slot) { return slot->sum + slot->sum_c; }
 static inline double tribo_charging_lost(const tribo_charge_slot *slot) { return slot->lost + slot->lost_c; }
 /* How many of values[0..n) stand at a slot's breakdown limit (0 without one). */
-long tribo_charging_capped(const tribo_charge_slot *slot, const tribo_scene *s, const double *globals,
-                           const double *values, long n);
+long tribo_charging_capped(const tribo_charge_slot *slot, const tribo_scene *s, const double *values,
+                           long n);
 /* Add x to a compensated sum (Neumaier). */
 void tribo_compensated_add(double *sum, double *c, double x);
 

@@ -269,8 +269,7 @@ static const char *charges_problem(const tribo_model *m, const tribo_charge_slot
     if (slot->model->valid && !slot->model->valid(&m->scene, globals + slot->globals_at, values, n))
         return "values the model cannot produce";
     /* the breakdown limit holds every value (docs/model.md §8b) */
-    const double cap = slot->model->cap ? slot->model->cap(&m->scene, globals + slot->globals_at)
-                                        : INFINITY;
+    const double cap = slot->model->cap ? slot->model->cap(&m->scene) : INFINITY;
     for (int i = 0; i < n; i++)
         if (fabs(values[i]) > cap)
             return "values above the breakdown limit";

@@ -279,7 +279,7 @@ Test(charging, a_contact_past_the_limit_stays_at_it_and_books_the_rest_as_lost)
         cr_expect_float_eq(held[k][5] + tribo_charging_lost(slot), uncapped[k], 4e-16 * uncapped[k],
                            "%s", slot->model->name);
         cr_expect_eq(tribo_charging_sum(slot), bound[k]);
-        cr_expect_eq(tribo_charging_capped(slot, &P, s.globals_end, held[k], 100), 1);
+        cr_expect_eq(tribo_charging_capped(slot, &P, held[k], 100), 1);
     }
     /* charging on at the limit only adds to the loss */
     const double lost = tribo_charging_lost(&c.slot[1]);
