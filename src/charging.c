@@ -163,7 +163,7 @@ void tribo_charging_locate(const tribo_charging *c, double s_centre, double half
 /* The run of segments a sample charges: none for an empty interval. */
 static long segment_run(const tribo_contact_sample *sample, long *first)
 {
-    if (!(sample->duration > 0.0))
+    if (!(sample->duration > 0.0) || sample->count <= 0)
         return 0;
     *first = sample->first;
     return sample->count;
