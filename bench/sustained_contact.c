@@ -11,8 +11,8 @@
  * "compliant". Printed per case and law: CPU seconds, CVODE steps, events, impacts, the exit
  * time and q/m of both charge models at the exit.
  *
- * Only API that every revision since the SI front end has is used, so that the same source
- * measures the code before and after a change.
+ * Only API that every revision since the SI front end has is used (quantities are looked up
+ * by name), so that the same source measures the code before and after a change.
  */
 #include "si.h"
 
@@ -26,6 +26,25 @@ static double cpu_seconds(void)
     struct timespec ts;
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Quantities by their names, which every revision keeps (their enumerators were renamed). */
+static tribo_quantity quantity(const char *name)
+{
+    for (int q = 0; tribo_quantity_name((tribo_quantity)q); q++)
+        if (!strcmp(tribo_quantity_name((tribo_quantity)q), name))
+            return (tribo_quantity)q;
+    fprintf(stderr, "no quantity %s\n", name);
+    exit(1);
+}
+
+static tribo_si_quantity si_quantity(const char *name)
+{
+    for (int q = 0; tribo_si_quantity_name((tribo_si_quantity)q); q++)
+        if (!strcmp(tribo_si_quantity_name((tribo_si_quantity)q), name))
+            return (tribo_si_quantity)q;
+    fprintf(stderr, "no SI quantity %s\n", name);
+    exit(1);
 }
 
 static const struct {
@@ -83,10 +102,10 @@ static outcome run(const char *settings, const char *law, int rounds)
         tribo_get_stats(m, &s);
         o.steps = s.steps;
         o.events = s.events;
-        o.impacts = tribo_get(m, TRIBO_QUANTITY_IMPACTS);
-        o.exit_time = tribo_si_get(&d, m, TRIBO_SI_QUANTITY_EXIT_TIME);
-        o.qm_static = tribo_si_get(&d, m, TRIBO_SI_QUANTITY_Q_PER_M_STATIC);
-        o.qm_sliding = tribo_si_get(&d, m, TRIBO_SI_QUANTITY_Q_PER_M_SLIDING);
+        o.impacts = tribo_get(m, quantity("impacts"));
+        o.exit_time = tribo_si_get(&d, m, si_quantity("exit_time"));
+        o.qm_static = tribo_si_get(&d, m, si_quantity("charge_to_mass_static"));
+        o.qm_sliding = tribo_si_get(&d, m, si_quantity("charge_to_mass_sliding"));
         tribo_free(m);
     }
     o.ok = 1;
