@@ -16,8 +16,16 @@ ParameterizedTestParameters(stability, matrix)
     static run runs[256];
     int n = 0;
     for (int c = 0; c < N_STABILITY_CASES; c++)
-        for (int i = 0; i < N_STABILITY_INTEGRATORS; i++)
+        for (int i = 0; i < N_STABILITY_INTEGRATORS; i++) {
+#ifdef TRIBO_SANITIZED
+            /* Adams and BDF call the same code of ours (the right-hand side, the switches,
+               the sweep), differing inside CVODE, which is not instrumented (the system's
+               library): the sanitizer build runs the fixed step and the default, Adams */
+            if (STABILITY_INTEGRATORS[i] == TRIBO_INTEGRATOR_CVODE_BDF)
+                continue;
+#endif
             runs[n++] = (run){c, STABILITY_INTEGRATORS[i]};
+        }
     return cr_make_param_array(run, runs, (size_t)n);
 }
 
