@@ -5,7 +5,7 @@
  * A 1 mm polyethylene particle (a = 0.5 mm, epsilon 0.6, rho 950 kg/m3, E 1 GPa, nu 0.46)
  * dropped from 10 mm straight down onto a steel chute (200 GPa, 0.29) tilted 30 degrees,
  * mu = nu = 0.3, L = 0.3 m, charging time 1 ms, both charge models (the defaults of
- * src/si_quantities.def with chute_length = 0.3 m). Any SI setting may be changed.
+ * src/si/si_quantities.def with chute_length = 0.3 m). Any SI setting may be changed.
  *
  * 1. CVODE to the exit (tribo_advance_fully), `rounds` times, the fastest CPU time kept: the
  *    exit time and velocity, q/m of both charge models, impacts, the contact fraction.

@@ -3,7 +3,7 @@
  *
  *   tribo_sustained_contact [rounds=3]
  *
- * Each case is the SI reference case (src/si_quantities.def's defaults, a chute of 0.3 m)
+ * Each case is the SI reference case (src/si/si_quantities.def's defaults, a chute of 0.3 m)
  * with some settings changed, run with CVODE to the chute's exit, `rounds` times, the
  * fastest CPU time kept; once with the SI default stick_model (rigid) and once with
  * stick_model = 0 (compliant). A library without stick_model (an older revision, built by

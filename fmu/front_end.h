@@ -6,15 +6,15 @@
  * variables_separator.c):
  *
  *   front_end_model.c      the dimensionless FMUs: the chute's core and its table
- *                          (src/quantities.def); the identity
- *   front_end_si.c         the SI FMUs: src/si_quantities.def; the physical set-up becomes
- *                          the chute model's scene by docs/model.md §8 (src/si.h), the
+ *                          (src/chute/quantities.def); the identity
+ *   front_end_si.c         the SI FMUs: src/si/si_quantities.def; the physical set-up becomes
+ *                          the chute model's scene by docs/model.md §8 (src/si/si.h), the
  *                          outputs are the model's in SI units
- *   front_end_chute.c      what those two share: the chute's core (src/tribo.h) behind the
+ *   front_end_chute.c      what those two share: the chute's core (src/chute/tribo.h) behind the
  *                          core functions below
  *   front_end_separator.c  the separator FMUs: the free-fall separator's core
- *                          (src/separator.h, docs/model.md §10) and its table
- *                          (src/separator_quantities.def)
+ *                          (src/separator/separator.h, docs/model.md §10) and its table
+ *                          (src/separator/separator_quantities.def)
  *
  * The front end holds no physics: it calls a core and, for the SI FMUs, the core's mapping
  * (si.h). The instance layer sees a core only through these functions (fmu_core is the

@@ -1,5 +1,5 @@
 /* front_end_chute.c: the core functions of front_end.h for the chute's FMUs, dimensionless
-   and SI alike: their core is the chute model (src/tribo.h) of the scene the front end
+   and SI alike: their core is the chute model (src/chute/tribo.h) of the scene the front end
    derived (fmu_front_model_scene). */
 #include "front_end_chute.h"
 
@@ -47,7 +47,7 @@ tribo_status fmu_front_advance(fmu_core *core, double t)
     return tribo_advance(model_of(core), t);
 }
 
-/* The fixed step's grid where t / dt reaches 2^45 (src/integrator_fixed_step.c,
+/* The fixed step's grid where t / dt reaches 2^45 (src/chute/integrators/integrator_fixed_step.c,
    GRID_MAX_STEPS). */
 int fmu_front_time_resolved(const fmu_core *core, double t, char *why, size_t why_size)
 {

@@ -5,7 +5,7 @@
 #include <string.h>
 
 const char fmu_front_prefix[] = "tribo";
-const char fmu_front_table_file[] = "src/quantities.def";
+const char fmu_front_table_file[] = "src/chute/quantities.def";
 const char fmu_front_description[] =
     "A 2D elliptical particle tribocharging on a tilted plate (after Ireland 2012; the "
     "equations: documentation/index.html)";

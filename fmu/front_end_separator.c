@@ -1,6 +1,6 @@
 /* front_end_separator.c: the separator FMUs' front end (front_end.h): the free-fall
-   separator's core (src/separator.h, docs/model.md §10) and its table
-   (src/separator_quantities.def), in SI units like the core, every value passed on as it
+   separator's core (src/separator/separator.h, docs/model.md §10) and its table
+   (src/separator/separator_quantities.def), in SI units like the core, every value passed on as it
    is. */
 #include "front_end.h"
 
@@ -17,7 +17,7 @@ struct fmu_core {
 };
 
 const char fmu_front_prefix[] = "tribo_separator";
-const char fmu_front_table_file[] = "src/separator_quantities.def";
+const char fmu_front_table_file[] = "src/separator/separator_quantities.def";
 const char fmu_front_description[] =
     "A charged grain leaving a chute falls between two vertical plate electrodes, through "
     "still air, into one of n bins or onto a plate: the free-fall separator, in SI units (the "

@@ -1,10 +1,10 @@
 /* front_end_si.c: the SI FMUs' front end (front_end.h): a physical set-up in SI units
-   (src/si_quantities.def) mapped onto the model by the core's SI front end (src/si.h,
+   (src/si/si_quantities.def) mapped onto the model by the core's SI front end (src/si/si.h,
    docs/model.md §8). */
 #include "front_end_chute.h"
 
 const char fmu_front_prefix[] = "tribo_si";
-const char fmu_front_table_file[] = "src/si_quantities.def";
+const char fmu_front_table_file[] = "src/si/si_quantities.def";
 const char fmu_front_description[] =
     "A 2D elliptical particle tribocharging on a tilted chute, in SI units: a physical "
     "particle and wall mapped onto the dimensionless model (after Ireland 2012; the "

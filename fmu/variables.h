@@ -1,6 +1,6 @@
 /*
  * variables.h: the FMU's variables, one table for FMI 2.0 and FMI 3.0, made from the
- * front end's table (src/quantities.def or src/si_quantities.def: front_end.h), row for row.
+ * front end's table (src/chute/quantities.def or src/si/si_quantities.def: front_end.h), row for row.
  *
  * Each row says what the importer sees (value reference, name, type, causality,
  * variability, description, unit) and what it maps to (a parameter of the front end's

@@ -1,8 +1,8 @@
 /* variables_impl.h: the table of the FMU's variables (see variables.h), made from the table
    of its front end (front_end.h). Not a header to include: the body of the one compile
-   unit of each FMU pair, variables_model.c (src/quantities.def), variables_si.c (with
-   TRIBO_FMU_SI: src/si_quantities.def) and variables_separator.c (with TRIBO_FMU_SEPARATOR:
-   src/separator_quantities.def), so that every C file of an FMU's sources/ is one to
+   unit of each FMU pair, variables_model.c (src/chute/quantities.def), variables_si.c (with
+   TRIBO_FMU_SI: src/si/si_quantities.def) and variables_separator.c (with TRIBO_FMU_SEPARATOR:
+   src/separator/separator_quantities.def), so that every C file of an FMU's sources/ is one to
    compile and none needs a preprocessor definition. The units and enumerations are
    quantities.def's (the units "1" and "rad") and the front end's table's own; the
    description declares those its variables use. */

@@ -1,3 +1,3 @@
 /* variables_model.c: the dimensionless FMUs' variable table, variables_impl.h over
-   src/quantities.def. */
+   src/chute/quantities.def. */
 #include "variables_impl.h"

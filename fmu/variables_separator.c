@@ -1,5 +1,5 @@
 /* variables_separator.c: the separator FMUs' variable table, variables_impl.h over
-   src/separator_quantities.def. Selected here rather than by a compiler flag, as
+   src/separator/separator_quantities.def. Selected here rather than by a compiler flag, as
    variables_si.c is. */
 #define TRIBO_FMU_SEPARATOR
 #include "variables_impl.h"

@@ -10,8 +10,9 @@ says.
 
 The layout (fmu/README.md):
 
-    tribo/        the core (src/) and this FMU's part of the FMI layer (fmu/) in one folder,
-                  where their quoted includes find each other, and the project's licence
+    tribo/        the core (every folder of src/) and this FMU's part of the FMI layer (fmu/)
+                  in one folder, where their quoted includes find each other (they include
+                  each other by file name), and the project's licence
     sundials/     SUNDIALS' <sundials/...> headers with the configured ones; the
                   implementation of every object of the given static libraries (its .c
                   files and the private headers beside them), flattened into this one
@@ -98,11 +99,20 @@ def sundials_files(tree, names):
     return {name: paths[0] for name, paths in found.items()}
 
 
+def core_files():
+    """The core's C files, headers and tables, every folder of src/ (paths from the root)."""
+    files = []
+    for folder, _, names in sorted(os.walk(os.path.join(ROOT, "src"))):
+        relative = os.path.relpath(folder, ROOT).replace(os.sep, "/")
+        files += [f"{relative}/{f}" for f in sorted(names) if f.endswith((".c", ".h", ".def"))]
+    return files
+
+
 def add_tribo(layout, prefix, version, token):
-    compiled = [f"src/{f}" for f in sorted(os.listdir(os.path.join(ROOT, "src"))) if f.endswith(".c")]
+    core = core_files()
+    compiled = [f for f in core if f.endswith(".c")]
     compiled += [f"fmu/{f}" for f in FMU_LAYER + FRONT_END[prefix] + [f"fmi{version}.c"]]
-    other = [f"src/{f}" for f in sorted(os.listdir(os.path.join(ROOT, "src")))
-             if f.endswith((".h", ".def"))]
+    other = [f for f in core if f.endswith((".h", ".def"))]
     other += [f"fmu/{f}" for f in sorted(os.listdir(os.path.join(ROOT, "fmu"))) if f.endswith(".h")]
     for path in compiled + other:
         layout.add(f"tribo/{os.path.basename(path)}", os.path.join(ROOT, path))

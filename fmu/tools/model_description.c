@@ -1,7 +1,7 @@
 /*
  * model_description: writes the modelDescription.xml of the FMI 2.0 or 3.0 FMU from the
- * FMU's variable table (variables_impl.h, made from its front end's table: src/quantities.def,
- * src/si_quantities.def or src/separator_quantities.def), at build time. Built once per
+ * FMU's variable table (variables_impl.h, made from its front end's table: src/chute/quantities.def,
+ * src/si/si_quantities.def or src/separator/separator_quantities.def), at build time. Built once per
  * front end, like the FMUs.
  *
  *   tribo_model_description <2|3> <version> <source date epoch> > modelDescription.xml

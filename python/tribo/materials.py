@@ -8,7 +8,7 @@ and a wall by name, turned into the SI FMU's start values.
     start = tribo.materials.start_values("PE", "steel", semi_major_axis=0.5e-3,
                                          chute_length=0.3)
 
-start_values gives a dict keyed by the SI FMU's parameter names (src/si_quantities.def):
+start_values gives a dict keyed by the SI FMU's parameter names (src/si/si_quantities.def):
 the particle's and the wall's elastic constants, the particle's density, the pair's sigma0
 and the interface capacitance kappa, and every override (any SI parameter by name, e.g. the
 size, shape, chute and drop). Given sigma0 as an override, a pair without an entry is fine.

@@ -1,4 +1,4 @@
-/* The core's seams (src/charge_interface.h, src/integrator.h): a charge model defined here,
+/* The core's seams (src/chute/charge/charge_interface.h, src/chute/integrators/integrator.h): a charge model defined here,
    in the test, runs through both integrators and the state save/load without any change
    to them; every integrator hook's failure reaches the caller; an unknown integrator kind
    is refused. */

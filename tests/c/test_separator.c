@@ -1,4 +1,4 @@
-/* The free-fall separator (docs/model.md §10, src/separator.h) against the checks §10 names:
+/* The free-fall separator (docs/model.md §10, src/separator/separator.h) against the checks §10 names:
    no field and no drag, a parabola; no field with drag, the terminal velocity of the
    Schiller-Naumann balance (solved here by bisection); the field alone, x - x0 = ½ (q/m) E t²
    with the analytic fall time. Then the bins, the electrodes, the hold before the release,

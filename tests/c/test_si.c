@@ -1,4 +1,4 @@
-/* The SI front end (docs/model.md §8, src/si.h): the mapping onto the model's scene, the
+/* The SI front end (docs/model.md §8, src/si/si.h): the mapping onto the model's scene, the
    refusal of every SI value out of range and of every set-up whose derived parameters leave
    the model's ranges (naming what made them), and the outputs as the model's in SI units. */
 #include <criterion/criterion.h>

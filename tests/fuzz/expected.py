@@ -33,7 +33,7 @@ EXITED = "Exited"  # the core's run is over (the chute's exit, the separator's b
 EITHER = "either"  # expect_step: the model cannot tell whether the step is refused
 
 READABLE = {INITIALIZATION, STEP, DISCARDED, TERMINATED, FAILED, EXITED}  # outputs from here on
-TIME_MAX = 1e12  # beyond it the core refuses (src/tribo.h)
+TIME_MAX = 1e12  # beyond it the core refuses (src/chute/tribo.h)
 
 
 def rounding_tolerance(t):

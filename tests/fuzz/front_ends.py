@@ -5,9 +5,9 @@ worth running and mutating.
 
 The dimensionless FMUs pass everything on as it is. The SI FMUs map a physical set-up onto
 the model by docs/model.md section 8: which model parameter each SI parameter sets, and how,
-is read from the SI table's TRIBO_MAPS rows (src/si_quantities.def, the rows si.c's mapping
+is read from the SI table's TRIBO_MAPS rows (src/si/si_quantities.def, the rows si.c's mapping
 is generated from); the units of each conversion are written here again from section 8 (not
-from src/si.c), and the model's ranges are read from the dimensionless FMU's reviewed
+from src/si/si.c), and the model's ranges are read from the dimensionless FMU's reviewed
 description (modelDescription/fmi3.xml), so that the fuzz suite checks the SI FMU's refusals
 against an independent statement of the arithmetic.
 
@@ -21,12 +21,12 @@ import xml.etree.ElementTree as ET
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 MODEL_DESCRIPTION = os.path.join(ROOT, "modelDescription", "fmi3.xml")
-SI_TABLE = os.path.join(ROOT, "src", "si_quantities.def")
-REGISTRY = os.path.join(ROOT, "src", "charge_registry.def")
+SI_TABLE = os.path.join(ROOT, "src", "si", "si_quantities.def")
+REGISTRY = os.path.join(ROOT, "src", "chute", "charge", "charge_registry.def")
 
 
 def charge_models():
-    """The registered charge models' names by slot (src/charge_registry.def)."""
+    """The registered charge models' names by slot (src/chute/charge/charge_registry.def)."""
     with open(REGISTRY, encoding="utf-8") as f:
         rows = re.findall(r"^TRIBO_CHARGE_MODEL\(\w+, (\w+), (\d+),", f.read(), re.MULTILINE)
     return [name for name, _ in sorted(rows, key=lambda row: int(row[1]))]
@@ -42,7 +42,7 @@ def si_mapping():
     return {si: (model, how.lower()) for si, model, how in rows}
 
 
-GRID_MAX_STEPS = 2.0**45  # the fixed step's grid (src/integrator_fixed_step.c)
+GRID_MAX_STEPS = 2.0**45  # the fixed step's grid (src/chute/integrators/integrator_fixed_step.c)
 
 
 def rigid_stick_valid(values):

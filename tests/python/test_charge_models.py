@@ -1,6 +1,6 @@
 """The package's charge models and enumeration values against the FMUs' modelDescriptions:
 the registered models come from the FMU (tribo.fmu.charge_models), so that a registry row
-(src/charge_registry.def) needs no Python edit, and each name or integer the package still
+(src/chute/charge/charge_registry.def) needs no Python edit, and each name or integer the package still
 writes down for a model-specific output or a choice is checked here to be the FMU's."""
 
 import re
@@ -21,8 +21,8 @@ PREFIXES = ("tribo", "tribo_si")
 
 
 def registry_rows():
-    """The names of src/charge_registry.def's rows, in order."""
-    with open(f"{ROOT}/src/charge_registry.def", encoding="utf-8") as f:
+    """The names of src/chute/charge/charge_registry.def's rows, in order."""
+    with open(f"{ROOT}/src/chute/charge/charge_registry.def", encoding="utf-8") as f:
         return tuple(re.findall(r"^TRIBO_CHARGE_MODEL\(\w+, (\w+),", f.read(), re.MULTILINE))
 
 

@@ -78,7 +78,7 @@ def test_state_of_initialization_mode_after_a_change_restores(fmu_dir, version):
 # ---- corrupt states are refused, and the instance stays as it was -----------------------------
 
 def offsets(s):
-    """Where fields lie in a serialized state (fmu/fmu_state.c, src/state_io.c, the CVODE
+    """Where fields lie in a serialized state (fmu/fmu_state.c, src/chute/state_io.c, the CVODE
     integrator's bytes at the end)."""
     n = len([v for v in s.md.modelVariables if v.causality in ("parameter", "structuralParameter")])
     core = 32 + 8 * 8 + 2 * 8 + 8 * n

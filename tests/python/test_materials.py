@@ -1,4 +1,4 @@
-"""tribo.materials: the table against the SI front end's parameters (src/si_quantities.def),
+"""tribo.materials: the table against the SI front end's parameters (src/si/si_quantities.def),
 the physical bounds on its numbers, and its one-line errors."""
 
 import math
@@ -12,7 +12,7 @@ import tribo
 from tribo import materials
 
 EPS0 = 8.8541878128e-12
-# the parameter each registered charge model adds (charge_model_<name>, src/si_quantities.def):
+# the parameter each registered charge model adds (charge_model_<name>, src/si/si_quantities.def):
 # the registry's, not a set-up's, so not among materials' names
 SWITCH = re.compile(r"charge_model_\w+")
 
@@ -20,7 +20,7 @@ SWITCH = re.compile(r"charge_model_\w+")
 @pytest.fixture(scope="module")
 def si_rows(fmu_file):
     """name -> (min, max, default) of every parameter the SI FMU declares
-    (src/si_quantities.def, ranges a parameter that is the model's takes from quantities.def)."""
+    (src/si/si_quantities.def, ranges a parameter that is the model's takes from quantities.def)."""
     described = read_model_description(fmu_file(3, "tribo_si"), validate=False)
 
     def bound(text, otherwise):

@@ -1,5 +1,5 @@
-"""The modelDescription files are generated from the core's table (src/quantities.def; the
-SI FMUs' from src/si_quantities.def, the separator's from src/separator_quantities.def) at
+"""The modelDescription files are generated from the core's table (src/chute/quantities.def; the
+SI FMUs' from src/si/si_quantities.def, the separator's from src/separator/separator_quantities.def) at
 build time. Here: the generated ones are the
 reviewed ones committed in modelDescription/,
 their instantiation token is a hash of the description itself, fmpy finds nothing wrong
@@ -70,7 +70,7 @@ def test_generated_description_is_the_reviewed_one(fmu_dir, version, prefix):
         golden = f.read()
     assert without_date_and_token(packed_text(fmu_dir, version, prefix)) == \
         without_date_and_token(golden), (
-        "the table (src/quantities.def, src/si_quantities.def) or the generator changed the "
+        "the table (src/chute/quantities.def, src/si/si_quantities.def) or the generator changed the "
         "modelDescription: run `cmake --build build --target update_model_descriptions` and "
         "review the diff")
 
@@ -142,7 +142,7 @@ def test_fmi3_arrays_are_sized_by_the_structural_parameter(fmu_dir):
     md = read_model_description(fmu_dir(3), validate=True)
     by_vr = {v.valueReference: v for v in md.modelVariables}
     arrays = [v for v in md.modelVariables if v.dimensions]
-    # one per registered charge model (src/charge_registry.def), none other
+    # one per registered charge model (src/chute/charge/charge_registry.def), none other
     assert [v.name for v in arrays] == [f"segment_charge_{m}" for m in charge_models(md)]
     assert charge_models(md)
     for v in arrays:

@@ -102,7 +102,7 @@ def fmu_type_names() -> set:
 
 
 def test_every_package_name_the_docs_use_exists():
-    # tribo.x.y, not inside a path (src/tribo.h) or another name (tribo_fmi3.fmu)
+    # tribo.x.y, not inside a path (src/chute/tribo.h) or another name (tribo_fmi3.fmu)
     pattern = re.compile(r"(?<![\w/.-])tribo(?:\.[A-Za-z_]\w*)+")
     used = {(m.group(0), where) for where, text in documents().items()
             for m in pattern.finditer(text)}

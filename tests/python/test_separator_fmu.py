@@ -1,5 +1,5 @@
 """The separator FMUs (tribo_separator_fmi2, tribo_separator_fmi3: the free-fall separator of
-docs/model.md §10, src/separator_quantities.def; docs/separator.md).
+docs/model.md §10, src/separator/separator_quantities.def; docs/separator.md).
 
 fmpy finds nothing wrong with them; a grain released at a known state lands where §10's
 closed form puts it in vacuum (the bin, x, the flight time), or is caught on the plate it
@@ -17,7 +17,7 @@ from fmpy.validation import validate_fmu
 from tribo_fmu import ERROR, OK, VERSIONS, Slave, status_of
 
 SEPARATOR = "tribo_separator"
-# the table's defaults (src/separator_quantities.def)
+# the table's defaults (src/separator/separator_quantities.def)
 GAP, HEIGHT, VOLTAGE, N_BINS, A, G, TILT = 0.1, 0.5, 30e3, 10, 5e-4, 9.81, math.radians(30)
 VACUUM = {"air_density": 0.0, "air_viscosity": 0.0}
 STEP = 1e-3

@@ -1,4 +1,4 @@
-"""The SI FMUs (tribo_si_fmi2, tribo_si_fmi3: src/si_quantities.def, docs/model.md §8).
+"""The SI FMUs (tribo_si_fmi2, tribo_si_fmi3: src/si/si_quantities.def, docs/model.md §8).
 
 Their units parse in Pint (from the BaseUnit exponents and factor, and by name) and agree,
 their display units convert as Pint converts, and §8's relations hold between the declared

@@ -1,4 +1,4 @@
-"""The SI FMUs' declared ranges are true (src/si_quantities.def, docs/model.md §8): each SI
+"""The SI FMUs' declared ranges are true (src/si/si_quantities.def, docs/model.md §8): each SI
 parameter alone at its declared min and at its declared max, the others at their start
 values, is accepted at exitInitializationMode and runs one short doStep with finite
 outputs. A range the model cannot take whole is narrowed in the table, with the conditions

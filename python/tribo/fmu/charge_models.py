@@ -1,11 +1,11 @@
 """The charge models an FMU includes and the enumerations it declares, read from its
-modelDescription, so that a charge model added to the registry (src/charge_registry.def)
+modelDescription, so that a charge model added to the registry (src/chute/charge/charge_registry.def)
 reaches the package without an edit here.
 
 Each registered model <name> gives both FMUs its switch parameter charge_model_<name> (of
 the enumeration tribo.Switch) and, in FMI 3.0, its per-segment array: segment_charge_<name>
 in the dimensionless FMU, segment_sigma_<name> in the SI one (the names the tables,
-src/quantities.def and src/si_quantities.def, make of a registry row).
+src/chute/quantities.def and src/si/si_quantities.def, make of a registry row).
 """
 
 SWITCH_PREFIX = "charge_model_"
