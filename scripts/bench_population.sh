@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The population benchmark: 1000 particles of the SI reference case's feed
 # (epsilon 0.3-1, sizes 0.2-2 mm, random orientation; PE on 0.3 m of steel at 30 degrees)
-# through tribo-population on a local Dask cluster of 1 and of 2 workers: wall time and
+# through `tribo population` on a local Dask cluster of 1 and of 2 workers: wall time and
 # CPU time per particle. Usage: scripts/bench_population.sh [N] [WORKERS...]; more options
-# of tribo-population in $TRIBO_POPULATION_OPTIONS (e.g. --processes: worker processes, not
+# of `tribo population` in $TRIBO_POPULATION_OPTIONS (e.g. --processes: worker processes, not
 # the local cluster's threads).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -15,7 +15,7 @@ for w in ${workers[@]}; do
   # a new folder each time: every particle runs (the same folder would resume)
   rm -rf "$out"
   start=$(date +%s.%N)
-  .venv/bin/tribo-population -n "$n" --seed 1 --workers "$w" --out "$out" --no-progress --no-plot ${TRIBO_POPULATION_OPTIONS:-} > "$out.log" 2>&1 \
+  .venv/bin/tribo population -n "$n" --seed 1 --workers "$w" --out "$out" --no-progress --no-plot ${TRIBO_POPULATION_OPTIONS:-} > "$out.log" 2>&1 \
     || { cat "$out.log"; exit 1; }
   end=$(date +%s.%N)
   .venv/bin/python - "$out/particles.csv" "$n" "$w" "$start" "$end" <<'PY'

@@ -26,10 +26,11 @@ Names and units (tribo/fmu/names.py): angles in degrees, named <name>_deg; the S
 size, the long diameter 2a in m; the rest the FMU's names and SI units. Results go into an
 output folder (out=) that holds one function's results of one set-up (tribo/batch/folder.py).
 
-The commands: tribo-study (the paper's study), tribo-sweep (parameter sweeps),
-tribo-population (particle populations), tribo-impact-map (charge-per-impact maps) and
-tribo-line (grains through the chute and the separator), each with --help. The FMUs are those of the build directory (build/, or $TRIBO_BUILD_DIR) or
-the one given by path (fmu=...).
+The command: `tribo`, a subcommand per job, each with --help: tribo population (particle
+populations), tribo line (grains through the chute and the separator), tribo impact-map
+(charge-per-impact maps), tribo sweep (parameter sweeps), tribo study (the paper's study);
+they and the functions above run one flow (batch/job.py). The FMUs are those of the build
+directory (build/, or $TRIBO_BUILD_DIR) or the one given by path (fmu=...).
 
 Its subpackages, by concern (each module's docstring says what it does):
 
@@ -42,11 +43,12 @@ Its subpackages, by concern (each module's docstring says what it does):
     fmu/         the fmpy driver, shared with the tests: instance, image (an FMU as bytes),
                  locate (where the FMUs are), names (the package's names and units),
                  parameters (values checked by the FMU)
-    batch/       many runs of the FMU: specs (a run and its key), grid (a sweep's runs),
-                 particle (one run: series, segment charges, summary row), summary (what a
-                 series is summarised into), results (the results CSV), executors (serial
-                 or Dask), folder (an output folder: its record and lock), sweep (skip
-                 finished runs, run the rest, record them), plot
+    batch/       many runs of the FMU: specs (a run and its key), grid (a sweep's runs, the
+                 sweep as a job), particle (one run: series, segment charges, summary row),
+                 summary (what a series is summarised into), results (the results CSV),
+                 executors (serial or Dask), folder (an output folder: its record and
+                 lock), sweep (skip finished runs, run the rest, record them), job (the one
+                 flow of every job: prepare, claim the folder, run, report), plot
     study/       the paper's study (docs/model.md section 7): paper (its runs), runner,
                  transition (eps_t), figures, tables
     populations/ particle populations down the chute (SI FMU): distributions, feed (a feed,
@@ -56,7 +58,7 @@ Its subpackages, by concern (each module's docstring says what it does):
     line/        the separation line (SI chute, then the separator FMU): grain (one grain,
                  the chute once and the separator per voltage), mixture (a population or a
                  binary mixture, grade and recovery), plot
-    cli/         the commands
+    cli/         the command `tribo` (main) and its subcommands, a module each
 
 Each imports only its own modules and the layers below it: plotting and fmu at the
 bottom, then materials and batch, then study, populations and impact (not each other), then line (on

@@ -5,30 +5,32 @@ Names and units are the package's (tribo/fmu/names.py): angles in degrees as <na
 (beta_deg, tilt_deg, phi0_deg, ...), the SI FMUs' size as `size` (the long diameter 2a,
 m), everything else the FMU's. Each function that writes results takes a folder `out`,
 which holds one function's (or command's) results of one set-up (tribo/batch/folder.py):
-another's is refused in one line, a second process on it is locked out.
+another's is refused in one line, a second process on it is locked out. They run the same
+flow as the `tribo` command's subcommands (tribo/batch/job.py: prepare, claim the folder,
+run, report), and raise on a failed run.
 """
 
 import os
 
 import pandas as pd
 
-from .batch.executors import DaskExecutor, SerialExecutor
-from .batch.folder import claim
-from .batch.grid import PAPER_BASE, build_specs, values_of
+from .batch.executors import executor_for
+from .batch.grid import SweepJob
+from .batch.job import execute, raise_on_failure
 from .batch.particle import simulate
 from .batch.results import read_results
-from .batch.sweep import FIGURE, RESULTS, SERIES, check_out_folder, run_sweep, sweep_setup
+from .batch.sweep import RESULTS
 from .fmu import FmuImage
 from .fmu.locate import find_fmu
 from .fmu.names import ParameterError, output_names
-from .fmu.parameters import check_names, check_values, integer_names
+from .fmu.parameters import check_values
 from .impact.episode import DEFAULT_LIMIT, Grid
-from .impact.map import EPISODES, ImpactMap, map_setup, prepare_map, run_impact_map
+from .impact.map import EPISODES, ImpactMap, MapJob
 from .line.grain import check_separator, load_images, run_line_grain
-from .line.mixture import DEFAULT_PAIR, Line, check_line, line_setup, line_specs, run_line
+from .line.mixture import DEFAULT_PAIR, Line, LineJob, check_line, line_specs
 from .materials import pair_values
 from .populations.feed import DEFAULT_CHUTE, Feed, check_measured, read_measured
-from .populations.runner import PARTICLES, population_setup, prepare_population, run_population
+from .populations.runner import PARTICLES, PopulationJob
 
 
 def scene_of(scene: str | dict | None = None, **parameters) -> dict:
@@ -108,7 +110,7 @@ def sweep(grid: dict, *, t_end: float, out: str = "out/sweep", record_interval: 
     """Run every combination of the values in `grid` (parameter name -> values), one row
     per run appended to <out>/results.csv as it finishes; runs already there are not run
     again; the figure <out>/results.png. Returns the sweep's rows (the columns of
-    tribo-sweep --help).
+    tribo sweep --help).
 
     base: "paper" (docs/model.md section 7, CVODE) or "fmu" (the FMU's start values) for
     the parameters not swept; the tolerances are the FMU's unless swept. tie: nu follows
@@ -116,27 +118,11 @@ def sweep(grid: dict, *, t_end: float, out: str = "out/sweep", record_interval: 
     (threads; processes=True: worker processes), on the one at `scheduler`, or in this
     process (serial=True). fresh: start the folder over, keeping what it held in
     <out>/backup-<n>/. series: also each run's time series, in <out>/series/."""
-    check_out_folder(out)
-    image = FmuImage.load(find_fmu(fmu))
-    md = image.model_description()
-    check_names(md, grid)
-    specs = build_specs([(n, list(v)) for n, v in grid.items()], PAPER_BASE if base == "paper" else {},
-                        integer_names(md), t_end, record_interval, tie)
-    check_values(image, values_of(specs))
-    executor = _executor(serial, scheduler, workers, processes)
-    with claim(out, "sweep", sweep_setup(list(grid), base, tie), image.sha256, fresh):
-        with executor:
-            report = run_sweep(specs, image, os.path.join(out, RESULTS), executor,
-                               series_dir=os.path.join(out, SERIES) if series else None,
-                               progress=progress)
-        if figure and len(report.results):
-            # matplotlib only when a figure is drawn: `import tribo` stays without it
-            from .batch.plot import write_sweep_figure
-            write_sweep_figure(report.results, list(grid), os.path.join(out, FIGURE))
-    if report.failed:
-        spec, error = report.failed[0]
-        raise RuntimeError(f"{len(report.failed)} run(s) failed, e.g. {spec.params}: {error}")
-    return report.results
+    job = SweepJob(list(grid.items()), t_end=t_end, record_interval=record_interval, base=base,
+                   tie=tie, fmu=fmu, series=series, figure=figure)
+    report = execute(job, out, executor_for(serial, scheduler, workers, processes), fresh=fresh,
+                     progress=progress)
+    return raise_on_failure(report, "run").results
 
 
 def load_results(path: str) -> pd.DataFrame:
@@ -150,12 +136,6 @@ def load_results(path: str) -> pd.DataFrame:
         raise FileNotFoundError(f"{path} holds no results file ({RESULTS}, runs/{RESULTS}, "
                                 f"{PARTICLES} or {EPISODES})")
     return read_results(path)
-
-
-def _executor(serial: bool, scheduler: str | None, workers: int | None, processes: bool):
-    if serial:
-        return SerialExecutor()
-    return DaskExecutor(scheduler, workers, processes=processes)
 
 
 def population(n: int, *, seed: int = 0, particle: str = "PE", wall: str = "steel",
@@ -180,18 +160,10 @@ def population(n: int, *, seed: int = 0, particle: str = "PE", wall: str = "stee
         measured = check_measured(measured)
     feed = Feed(particle, wall, dict(distributions or {}), dict(DEFAULT_CHUTE, **(chute or {})),
                 dict(settings or {}), measured)
-    image = FmuImage.load(find_fmu(fmu, "si"))
-    specs = prepare_population(feed, n, seed, t_end, image)
-    executor = _executor(serial, scheduler, workers, processes)
-    with claim(out, "population", population_setup(feed, n, seed, t_end), image.sha256,
-               fresh) as folder:
-        report = run_population(feed, n, seed, t_end, image, out, executor, progress=progress,
-                                shape_edges=shape_edges, size_edges=size_edges, specs=specs)
-    report.backup = folder.backup
-    if report.failed:
-        spec, error = report.failed[0]
-        raise RuntimeError(f"{len(report.failed)} particle(s) failed, e.g.: {error}")
-    return report
+    job = PopulationJob(feed, n, seed, t_end, fmu, shape_edges=shape_edges, size_edges=size_edges)
+    report = execute(job, out, executor_for(serial, scheduler, workers, processes), fresh=fresh,
+                     progress=progress)
+    return raise_on_failure(report, "particle")
 
 
 def impact_map(*, speed, angle_deg, phi0_deg, epsilon, particle: str = "PE",
@@ -207,18 +179,10 @@ def impact_map(*, speed, angle_deg, phi0_deg, epsilon, particle: str = "PE",
     into `out` (impact_map.csv, impact_map.json, impact_map.png, episodes.csv), resumable;
     returns tribo.ImpactMap for lookups."""
     grid = Grid.of(speed=speed, angle_deg=angle_deg, phi0_deg=phi0_deg, epsilon=epsilon)
-    settings = dict(settings or {})
-    limit = DEFAULT_LIMIT if limit is None else limit
-    image = FmuImage.load(find_fmu(fmu, "si"))
-    specs = prepare_map(grid, particle, wall, settings, limit, image, omega0)
-    executor = _executor(serial, scheduler, workers, processes)
-    with claim(out, "impact map", map_setup(grid, particle, wall, settings, limit, omega0),
-               image.sha256, fresh):
-        report = run_impact_map(grid, particle, wall, settings, limit, image, out, executor,
-                                omega0=omega0, progress=progress, specs=specs)
-    if report.failed:
-        spec, error = report.failed[0]
-        raise RuntimeError(f"{len(report.failed)} episode(s) failed, e.g.: {error}")
+    job = MapJob(grid, particle, wall, dict(settings or {}),
+                 DEFAULT_LIMIT if limit is None else limit, omega0, fmu)
+    raise_on_failure(execute(job, out, executor_for(serial, scheduler, workers, processes),
+                             fresh=fresh, progress=progress), "episode")
     return ImpactMap.load(out)
 
 
@@ -244,9 +208,9 @@ def line_grain(particle: str = "PE", wall: str = "steel", *, voltage: float = 30
                                                   "phi0_deg": phi0_deg},
                 chute=dict(DEFAULT_CHUTE, **(chute or {})), settings=dict(settings or {}),
                 separator=dict(separator or {}), feed_width=0.0, charge_model=charge_model)
-    specs = line_specs(line, 1, 0, t_end)
-    specs[0].params["x_entry"] = float(x_entry)
     images = load_images(fmu, separator_fmu, line.separator, [voltage])
+    specs = line_specs(line, 1, 0, t_end, images.models)
+    specs[0].params["x_entry"] = float(x_entry)
     check_line(line, specs, images)
     check_separator(images.separator, dict(images.settings, x_entry=x_entry), [voltage], [size])
     result = run_line_grain(images, specs[0])
@@ -256,21 +220,11 @@ def line_grain(particle: str = "PE", wall: str = "steel", *, voltage: float = 30
 
 def _run_line(kind, line, n, seed, t_end, voltages, out, fmu, separator_fmu, scheduler,
               workers, serial, processes, fresh, progress, figure=True):
-    voltages = [float(v) for v in ([voltages] if isinstance(voltages, (int, float)) else voltages)]
-    line.check()
-    specs = line_specs(line, n, seed, t_end)
-    images = load_images(fmu, separator_fmu, line.separator, voltages)
-    check_line(line, specs, images)
-    executor = _executor(serial, scheduler, workers, processes)
-    with claim(out, "line", {"kind": kind, **line_setup(line, n, seed, t_end, voltages)},
-               images.sha256, fresh) as folder:
-        report = run_line(line, n, seed, t_end, images, out, executor, specs=specs,
-                          progress=progress, figure=figure)
-    report.backup = folder.backup
-    if report.failed:
-        spec, error = report.failed[0]
-        raise RuntimeError(f"{len(report.failed)} grain(s) failed, e.g.: {error}")
-    return report
+    voltages = [voltages] if isinstance(voltages, (int, float)) else voltages
+    job = LineJob(kind, line, n, seed, t_end, voltages, fmu, separator_fmu, figure=figure)
+    report = execute(job, out, executor_for(serial, scheduler, workers, processes), fresh=fresh,
+                     progress=progress)
+    return raise_on_failure(report, "grain")
 
 
 def line_population(n: int, *, seed: int = 0, particle: str = "PE", wall: str = "steel",

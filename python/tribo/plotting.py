@@ -15,6 +15,13 @@ CHARGE_LABELS = {
     "sliding": "sliding Q / Q_saturation at rest  (mean Σ_i / Σ0)",
 }
 SHORT_CHARGE_LABELS = {"static": "static Q / Q_sat", "sliding": "sliding Q / Q_sat at rest"}
+
+
+def charge_label(model: str) -> str:
+    """The axis label of a charge model's mean charge Q_<model>: what it is normalised by
+    where the package knows it (CHARGE_LABELS), else its name."""
+    return CHARGE_LABELS.get(model, f"{model} Q  (mean over the segments)")
+
 EPSILON_LABEL = "roundness ε = b/a"
 HEIGHT_LABEL = "height of the centre Y / a"
 

@@ -62,9 +62,12 @@ CHUTE, SEPARATOR = "chute", "separator"
 CONNECTIONS = (("exited", "released"), ("u", "u_entry"), ("v", "v_entry"),
                ("charge_to_mass", "charge_to_mass"))
 # outputs shown as the components' connectors beside the connected ones: what a user reads
-OBSERVED = {CHUTE: ("exit_time", "charge_to_mass_static", "charge_to_mass_sliding"),
+# (and the chute's charge_to_mass_<model> of each charge model it has: `observed`)
+OBSERVED = {CHUTE: ("exit_time",),
             SEPARATOR: ("has_released", "ended", "landed", "bin", "x_end", "z_end",
                         "flight_time", "q_per_m")}
+# a charge model <name> of the chute: its switch charge_model_<name>, its ratio charge_to_mass_<name>
+SWITCH_PREFIX, CHARGE_TO_MASS_PREFIX = "charge_model_", "charge_to_mass_"
 # bound to one value in both components (the FMUs' defaults: a 1 mm polyethylene grain,
 # epsilon 0.6, on a chute tilted 30 degrees)
 SHARED = {"tilt": math.radians(30), "semi_major_axis": 5e-4, "epsilon": 0.6, "density": 950.0}
@@ -205,7 +208,7 @@ def system_structure(chute, separator, *, chute_source, separator_source, chute_
         component = _sub(elements, "ssd", "Component", name=name,
                          type="application/x-fmu-sharedlibrary", source=source)
         connectors = _sub(component, "ssd", "Connectors")
-        for key in connected[name] + list(OBSERVED[name]):
+        for key in connected[name] + observed(name, variables):
             v = variables[key]
             if v.ssc_type == "Enumeration":  # libcosim aborts on an Enumeration connector
                 raise ValueError(f"{name}.{key}: an Enumeration connector")
@@ -228,6 +231,17 @@ def system_structure(chute, separator, *, chute_source, separator_source, chute_
     _sub(_sub(annotation, "osp", "Algorithm"), "osp", "FixedStepAlgorithm",
          baseStepSize=_number(step_size))
     return root
+
+
+def observed(component, variables) -> list[str]:
+    """The outputs a component shows beside its connected ones: OBSERVED, and the chute's
+    charge-to-mass ratio of each charge model its switches name (fmu/charge_models.py
+    reads them the same way; this module keeps to the standard library)."""
+    models = [n[len(SWITCH_PREFIX):] for n, v in variables.items()
+              if n.startswith(SWITCH_PREFIX)
+              and v.causality in ("parameter", "structuralParameter")]
+    extra = [CHARGE_TO_MASS_PREFIX + m for m in models] if component == CHUTE else []
+    return list(OBSERVED[component]) + [n for n in extra if n in variables]
 
 
 def _xml(root):

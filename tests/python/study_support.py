@@ -17,8 +17,13 @@ BIN = os.path.dirname(PYTHON)  # the venv's bin/, where pip put the entry points
 
 
 def command(name: str) -> str:
-    """The path of a console command of the package (tribo-study, tribo-sweep)."""
+    """The path of a console command of the package (tribo, or an alias such as tribo-sweep)."""
     return os.path.join(BIN, name)
+
+
+def subcommand(name: str) -> list[str]:
+    """The command line of a subcommand of `tribo` (population, sweep, ...), as typed."""
+    return [command("tribo"), name]
 
 
 @cache

@@ -1,11 +1,15 @@
 """Every example runs as written: each ```python block of README.md and of the user guide's
 pages (docs/README.md's table), saved as a script and run in a fresh folder with the venv's
-Python, and each example line of the four commands' --help.
+Python; each example line of the subcommands' --help; and each command line of `tribo` that
+README.md and docs/ show (in code spans and blocks), which use the subcommands, not the
+aliases.
 
-The blocks run as they are: they are small on purpose. The --help examples show sizes a
+The blocks run as they are: they are small on purpose. The command examples show sizes a
 user would run (1000 particles, tau to 1000, an existing cluster); they run here at a small
 size, by the substitutions in `shrink` (each one named there), and the cluster examples on
 a scheduler and a worker started for the test."""
+
+import glob
 
 import os
 import re
@@ -20,7 +24,8 @@ import pytest
 from study_support import PYTHON, command
 from tribo_fmu import ROOT
 
-COMMANDS = ["tribo-study", "tribo-sweep", "tribo-population", "tribo-impact-map"]
+SUBCOMMANDS = ["study", "sweep", "population", "impact-map", "line"]
+ALIASES = ["tribo-study", "tribo-sweep", "tribo-population", "tribo-impact-map", "tribo-line"]
 
 
 def guide_pages() -> list[str]:
@@ -65,11 +70,11 @@ def test_each_python_block_runs_as_a_script(tmp_path, page, index, code):
     assert "Traceback" not in done.stderr and done.stdout.strip(), done.stderr[-3000:]
 
 
-def help_examples(name: str) -> list[str]:
-    """The example command lines of a command's --help (indented, starting with its name;
-    a trailing backslash continues a line)."""
-    text = subprocess.run([command(name), "--help"], capture_output=True, text=True, check=True,
-                          timeout=60).stdout
+def help_examples(sub: str) -> list[str]:
+    """The example command lines of a subcommand's --help (indented, starting with
+    `tribo <sub>`; a trailing backslash continues a line)."""
+    text = subprocess.run([command("tribo"), sub, "--help"], capture_output=True, text=True,
+                          check=True, timeout=60).stdout
     examples, current = [], None
     for line in text.splitlines():
         stripped = line.strip()
@@ -78,7 +83,7 @@ def help_examples(name: str) -> list[str]:
             if not stripped.endswith("\\"):
                 examples.append(current)
                 current = None
-        elif line.startswith("    ") and stripped.startswith(name + " "):
+        elif line.startswith("    ") and stripped.startswith(f"tribo {sub} "):
             if stripped.endswith("\\"):
                 current = stripped.rstrip("\\").strip()
             else:
@@ -86,13 +91,58 @@ def help_examples(name: str) -> list[str]:
     return examples
 
 
+def documents() -> list[str]:
+    """README.md and every page under docs/ (paths from the checkout)."""
+    pages = glob.glob(os.path.join(ROOT, "docs", "**", "*.md"), recursive=True)
+    return ["README.md"] + sorted(os.path.relpath(p, ROOT) for p in pages)
+
+
+# a command line in a code span (it may wrap onto the next line), in a fenced block or in an
+# indented block, by the venv's path or not: `tribo <sub> ...` (or an alias, which the docs
+# must not use)
+SPAN = re.compile(r"`(?:\.venv/bin/)?(tribo[ -][a-z][^`]*)`")
+FENCED = re.compile(r"^```(\w*)\n(.*?)^```", re.S | re.M)
+FENCED_LINE = re.compile(r"^\s*(?:\.venv/bin/)?(tribo[ -][a-z].*)$")
+INDENTED_LINE = re.compile(r"^    (?:\.venv/bin/)?(tribo[ -][a-z].*)$")
+
+
+def documented_commands() -> list[tuple[str, str]]:
+    """(page, command line) of each command of the package README.md and docs/ show."""
+    found = set()
+    for page in documents():
+        with open(os.path.join(ROOT, page), encoding="utf-8") as f:
+            text = f.read()
+        lines = [m.group(1) for m in SPAN.finditer(text)]
+        for language, block in FENCED.findall(text):
+            if language in ("", "sh", "bash", "console"):
+                lines += [m.group(1) for m in map(FENCED_LINE.match, block.splitlines()) if m]
+        lines += [m.group(1) for m in map(INDENTED_LINE.match, text.splitlines()) if m]
+        for line in lines:
+            words = shlex.split(line, comments=True)
+            if len(words) > 1 and (words[0] in ALIASES or (words[0] == "tribo"
+                                                           and words[1] in SUBCOMMANDS)):
+                found.add((page, " ".join(words)))
+    return sorted(found)
+
+
+DOCUMENTED = documented_commands()
+
+
+def test_the_docs_show_the_subcommands_not_the_aliases():
+    assert {line.split()[1] for _, line in DOCUMENTED if line.startswith("tribo ")} >= \
+        set(SUBCOMMANDS)
+    aliases = [f"{page}: {line}" for page, line in DOCUMENTED if line.split()[0] in ALIASES]
+    assert not aliases, aliases
+
+
 # a grid a:b:n, alone or as NAME=a:b:n (not a distribution such as uniform:0.3:1)
 GRID = re.compile(r"^(\w+=)?(-?[\d.]+(?:e-?\d+)?):(-?[\d.]+(?:e-?\d+)?):(\d+)$")
 
 
-def shrink(name: str, argv: list[str], scheduler: str) -> list[str]:
-    """An example at a small size: grids a:b:n of 2 values, 3 particles of 0.5 s, sweeps to
-    tau = 20, the study on one roundness to tau = 20, the cluster address the test's."""
+def shrink(sub: str, argv: list[str], scheduler: str) -> list[str]:
+    """An example at a small size: grids a:b:n of 2 values, 3 particles of 0.5 s, 3 grains
+    on a 5 cm chute, sweeps to tau = 20, the study on one roundness to tau = 20, the
+    cluster address the test's."""
     out = []
     args = list(argv)
     while args:
@@ -100,26 +150,28 @@ def shrink(name: str, argv: list[str], scheduler: str) -> list[str]:
         if a == "--scheduler":
             args.pop(0)
             out += ["--scheduler", scheduler]
-        elif a in ("-n", "--particles"):
+        elif a in ("-n", "--particles", "--grains") and not (sub == "line" and a == "--particles"):
             args.pop(0)
             out += [a, "3"]
-        elif a == "--t-end" and name == "tribo-sweep":
+        elif a == "--t-end" and sub == "sweep":
             args.pop(0)
             out += ["--t-end", "20"]
         else:
             out.append(GRID.sub(r"\1\2:\3:2", a))
-    if name == "tribo-population":
+    if sub == "population":
         out += ["--t-end", "0.5"]
-    if name == "tribo-study":
+    if sub == "line":
+        out += ["--chute-length", "0.05"]
+    if sub == "study":
         out += ["--epsilons", "1.0", "--t-end", "20", "--transition-width", "0.5"]
     return out + ["--no-progress"]
 
 
-EXAMPLES = [(name, line) for name in COMMANDS for line in help_examples(name)]
+EXAMPLES = [(sub, line) for sub in SUBCOMMANDS for line in help_examples(sub)]
 
 
 def test_every_command_has_examples_in_its_help():
-    assert {name for name, _ in EXAMPLES} == set(COMMANDS)
+    assert {sub for sub, _ in EXAMPLES} == set(SUBCOMMANDS)
     assert not [line for _, line in EXAMPLES if "..." in line]  # complete, not elided
 
 
@@ -151,16 +203,32 @@ def scheduler(tmp_path_factory):
                 p.kill()
 
 
-@pytest.mark.parametrize("name, line", EXAMPLES, ids=[line for _, line in EXAMPLES])
-def test_each_help_example_runs(tmp_path, scheduler, name, line):
-    argv = shlex.split(line, comments=True)[1:]
+def run_example(tmp_path, scheduler, line):
+    """A command line of `tribo`, shrunk, in a fresh folder: it succeeds without a traceback."""
+    sub, *argv = shlex.split(line, comments=True)[1:]
     if "--measured" in argv:  # the example's sieve data: a column per feed variable measured
         (tmp_path / argv[argv.index("--measured") + 1]).write_text(
             "epsilon,size\n0.45,4e-4\n0.7,8e-4\n0.9,1.2e-3\n")
-    argv = shrink(name, argv, scheduler)
+    argv = shrink(sub, argv, scheduler)
     started = time.perf_counter()
-    done = subprocess.run([command(name), *argv], cwd=tmp_path, capture_output=True, text=True,
-                          timeout=300)
-    assert done.returncode == 0, f"{name} {' '.join(argv)}:\n{done.stderr[-3000:]}"
+    done = subprocess.run([command("tribo"), sub, *argv], cwd=tmp_path, capture_output=True,
+                          text=True, timeout=300)
+    assert done.returncode == 0, f"tribo {sub} {' '.join(argv)}:\n{done.stderr[-3000:]}"
     assert "Traceback" not in done.stderr
     assert time.perf_counter() - started < 300
+
+
+@pytest.mark.parametrize("sub, line", EXAMPLES, ids=[line for _, line in EXAMPLES])
+def test_each_help_example_runs(tmp_path, scheduler, sub, line):
+    run_example(tmp_path, scheduler, line)
+
+
+# the documented command lines that are not also --help examples (those run above), less
+# the mentions of a subcommand by its name alone
+TO_RUN = sorted({line for _, line in DOCUMENTED if line.startswith("tribo ")
+                 and len(line.split()) > 2} - {line for _, line in EXAMPLES})
+
+
+@pytest.mark.parametrize("line", TO_RUN, ids=TO_RUN)
+def test_each_documented_command_runs(tmp_path, scheduler, line):
+    run_example(tmp_path, scheduler, line)

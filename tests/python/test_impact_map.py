@@ -1,4 +1,4 @@
-"""Charge-per-impact maps (tribo.impact.episode, tribo.impact.map, tribo-impact-map): one episode
+"""Charge-per-impact maps (tribo.impact.episode, tribo.impact.map, tribo impact-map): one episode
 ends at its lift-off or its time limit, the lookup against direct episodes at grid points and
 between them, resuming, bad input in one line, the figure's legends."""
 
@@ -7,7 +7,7 @@ import pytest
 
 import tribo
 from tribo.batch.executors import SerialExecutor
-from tribo.cli import impact_map as cli
+from tribo.cli.main import main as tribo_command
 from tribo.fmu import FmuImage
 from tribo.impact import plot as impact_plot
 from tribo.impact.episode import Grid, ImpactError, episode_specs, run_episode
@@ -74,6 +74,7 @@ def test_the_map_is_written_with_its_metadata(small_map):
     assert meta["grid"]["angle_deg"]["values"] == [30.0, 60.0, 90.0]
     assert len(meta["model"]["fmu_sha256"]) == 64 and meta["model"]["instantiation_token"]
     assert meta["columns"]["charge_static"].startswith("C, on the cylinder of depth")
+    assert meta["columns"]["charge_to_mass_sliding"] == "C/kg"
     # what the charges in C depend on beyond the grid, in the table and the metadata: the
     # size as set, the cylinder depth as the FMU's default
     assert m.set_up == {"particle": "PE", "wall": "steel", "size": 1e-3, "cylinder_length": 1e-3,
@@ -157,7 +158,7 @@ def test_a_bad_grid_is_one_line(axes, says):
 ])
 def test_bad_input_to_the_command_is_one_line(tmp_path, capsys, argv, says):
     try:
-        status = cli.main(argv + ["--out", str(tmp_path / "m"), "--serial"])
+        status = tribo_command(["impact-map", *argv, "--out", str(tmp_path / "m"), "--serial"])
     except SystemExit as e:  # argparse's own errors
         status = e.code
     assert status == 2
@@ -169,7 +170,8 @@ def test_bad_input_to_the_command_is_one_line(tmp_path, capsys, argv, says):
 def test_the_figure_has_a_legend_on_every_panel(small_map, monkeypatch, tmp_path):
     figures = []
     monkeypatch.setattr(impact_plot, "save", lambda fig, path: figures.append(fig) or path)
-    impact_plot.write_impact_figure(small_map[1].table, str(tmp_path / "f.png"), "t")
+    impact_plot.write_impact_figure(small_map[1].table, ("static", "sliding"),
+                                    str(tmp_path / "f.png"), "t")
     assert_legends_cover_no_data(figures[0])
     assert len(figures[0].axes) == 4
     for ax in figures[0].axes:

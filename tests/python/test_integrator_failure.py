@@ -2,7 +2,7 @@
 error and the logger says why, with the time and the state; the instance then only
 resets or restores a state.
 
-No valid scene starts such a run any more (the ranges keep the spin to what CVODE follows),
+No valid scene starts such a run (the ranges keep the spin to what CVODE follows),
 so a consistent but hostile FMU state brings the spin in: 1e12 rad per time unit in the
 committed point and in CVODE's restart point alike."""
 

@@ -135,7 +135,7 @@ def test_the_mixtures_masses_add_up_and_grade_and_recovery_are_theirs(sweep):
 
 def test_the_mixtures_fed_fraction_follows_the_mass_fraction():
     line = Line(("PE", "nylon"), fraction=0.5)
-    specs = line_specs(line, 1000, 0, 5.0)
+    specs = line_specs(line, 1000, 0, 5.0, ("static", "sliding"))
     n_pe = sum(s.params["particle"] == "PE" for s in specs)
     assert n_pe == round(1000 * (0.5 / 950) / (0.5 / 950 + 0.5 / 1140))
     assert all(abs(s.params["x_entry"]) <= 0.005 for s in specs)
@@ -148,8 +148,8 @@ def test_a_pair_of_one_polarity_is_refused():
 
 def test_a_resumed_folder_runs_nothing_again(tmp_path):
     line = Line(("PE", "nylon"), chute={"chute_length": 0.05, "tilt_deg": 30.0})
-    specs = line_specs(line, 4, 0, 5.0)
     images = load_images(None, None, {}, [10e3])
+    specs = line_specs(line, 4, 0, 5.0, images.models)
     check_line(line, specs, images)
     first = run_line(line, 4, 0, 5.0, images, str(tmp_path), SerialExecutor(), specs=specs,
                      progress=False)
@@ -160,7 +160,7 @@ def test_a_resumed_folder_runs_nothing_again(tmp_path):
 
 
 def cli(*args, cwd):
-    return subprocess.run([PYTHON, "-m", "tribo.cli.line", *args], cwd=cwd, capture_output=True,
+    return subprocess.run([PYTHON, "-m", "tribo", "line", *args], cwd=cwd, capture_output=True,
                           text=True, env=ENV, timeout=300)
 
 
@@ -183,7 +183,7 @@ def test_the_command_runs_a_grain_and_a_mixture(tmp_path):
     (["mixture", "--particles", "PE,PP"], "same sign"),
     (["grain", "--separator", "gap=1e-5"], "gap = 1e-05 is invalid"),
     (["grain", "--size", "0.2"], "size = 0.2 m does not fit the gap"),
-    (["mixture", "--charge-model", "both"], "--charge-model"),
+    (["mixture", "--charge-model", "both"], "charge_model = 'both': one of static, sliding"),
 ])
 def test_a_bad_value_is_refused_in_one_line_naming_it(tmp_path, args, text):
     done = cli(*args, cwd=tmp_path)
@@ -193,9 +193,9 @@ def test_a_bad_value_is_refused_in_one_line_naming_it(tmp_path, args, text):
 
 
 def help_examples() -> list[str]:
-    text = subprocess.run([PYTHON, "-m", "tribo.cli.line", "--help"], capture_output=True,
+    text = subprocess.run([PYTHON, "-m", "tribo", "line", "--help"], capture_output=True,
                           text=True, env=ENV, check=True, timeout=60).stdout
-    return [line.strip() for line in text.splitlines() if line.startswith("    tribo-line ")]
+    return [line.strip() for line in text.splitlines() if line.startswith("    tribo line ")]
 
 
 def test_each_help_example_runs_at_a_small_size(tmp_path):
@@ -203,7 +203,7 @@ def test_each_help_example_runs_at_a_small_size(tmp_path):
     examples = help_examples()
     assert len(examples) >= 4
     for line in examples:
-        argv = shlex.split(line)[1:]
+        argv = shlex.split(line)[2:]
         if "-n" in argv:
             argv[argv.index("-n") + 1] = "4"
         if "--voltages" in argv:

@@ -174,13 +174,13 @@ def pairs_used() -> set:
     PE and steel, where one of the two is left out)."""
     import subprocess
 
-    from study_support import command
+    from study_support import subcommand
     from test_examples import guide_pages
     from tribo_fmu import ROOT
 
     texts = [open(os.path.join(ROOT, p), encoding="utf-8").read() for p in guide_pages()]
-    texts += [subprocess.run([command(c), "--help"], capture_output=True, text=True, check=True,
-                             timeout=60).stdout for c in ("tribo-population", "tribo-impact-map")]
+    texts += [subprocess.run([*subcommand(c), "--help"], capture_output=True, text=True,
+                             check=True, timeout=60).stdout for c in ("population", "impact-map")]
     pairs = set()
     for text in texts:
         text = " ".join(text.split())
@@ -189,7 +189,7 @@ def pairs_used() -> set:
             p = re.search(r"particle=\"(\w+)\"", call)
             w = re.search(r"wall=\"(\w+)\"", call)
             pairs.add((p.group(1) if p else "PE", w.group(1) if w else "steel"))
-        for line in re.findall(r"tribo-(?:population|impact-map) [^\n]*?(?=tribo-|$)", text):
+        for line in re.findall(r"tribo (?:population|impact-map) [^\n]*?(?=tribo |$)", text):
             p = re.search(r"--particle (\w+)", line)
             w = re.search(r"--wall (\w+)", line)
             pairs.add((p.group(1) if p else "PE", w.group(1) if w else "steel"))

@@ -18,7 +18,7 @@ import pytest
 from fmpy import read_model_description, simulate_fmu
 
 import tribo
-from study_support import command
+from study_support import command, subcommand
 from tribo.fmu import model_description
 from tribo.fmu.locate import VARIANTS, build_dir
 from tribo.fmu.parameters import ParameterError
@@ -50,10 +50,15 @@ def test_nothing_in_the_repository_changes_sys_path():
     assert not offenders, offenders
 
 
-# The commands users type and the modules they run: a rename here breaks scripts and docs.
-COMMANDS = {"tribo-study": "tribo.cli.study:main", "tribo-sweep": "tribo.cli.sweep:main",
-            "tribo-population": "tribo.cli.population:main",
-            "tribo-impact-map": "tribo.cli.impact_map:main", "tribo-line": "tribo.cli.line:main"}
+# The commands users type and the functions they run: a rename here breaks scripts and docs.
+# One command, tribo, with a subcommand per job; the other names are its aliases.
+COMMANDS = {"tribo": "tribo.cli.main:main",
+            "tribo-study": "tribo.cli.main:study", "tribo-sweep": "tribo.cli.main:sweep",
+            "tribo-population": "tribo.cli.main:population",
+            "tribo-impact-map": "tribo.cli.main:impact_map", "tribo-line": "tribo.cli.main:line"}
+SUBCOMMANDS = ["population", "line", "impact-map", "sweep", "study"]
+ALIASES = {"tribo-study": "study", "tribo-sweep": "sweep", "tribo-population": "population",
+           "tribo-impact-map": "impact-map", "tribo-line": "line"}
 # The names `import tribo` gives (README.md, docs/): changing them is a decision about the
 # API, never a side effect of moving modules.
 PUBLIC = ["run", "run_si", "sweep", "load_results", "find_fmu", "materials", "population",
@@ -71,7 +76,23 @@ def test_console_commands(name):
     assert scripts[name] == COMMANDS[name]
     done = subprocess.run([command(name), "--help"], capture_output=True, text=True, timeout=60)
     assert done.returncode == 0 and done.stdout.startswith(f"usage: {name} ")
-    assert "--scheduler" in done.stdout and "--fresh" in done.stdout
+    if name == "tribo":
+        assert all(f"    {sub} " in done.stdout or f"    {sub}\n" in done.stdout
+                   for sub in SUBCOMMANDS), done.stdout
+    else:  # an alias says whose, and takes the subcommand's options
+        assert f"{name}: alias of `tribo {ALIASES[name]}`" in " ".join(done.stdout.split())
+        assert "--scheduler" in done.stdout and "--fresh" in done.stdout
+
+
+@pytest.mark.parametrize("sub", SUBCOMMANDS)
+def test_every_job_is_a_subcommand_of_tribo(sub):
+    done = subprocess.run([*subcommand(sub), "--help"], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0 and done.stdout.startswith(f"usage: tribo {sub} ")
+    assert "--scheduler" in done.stdout and "--fresh" in done.stdout and "--out FOLDER" in done.stdout
+    alias = {v: k for k, v in ALIASES.items()}[sub]
+    helped = subprocess.run([command(alias), "--help"], capture_output=True, text=True, timeout=60)
+    # the alias's options are the subcommand's
+    assert helped.stdout.split("options:")[1] == done.stdout.split("options:")[1]
 
 
 def test_the_public_api_is_pinned():

@@ -1,4 +1,4 @@
-"""Populations (tribo.population, tribo-population): the seeded draw, resuming, the summary
+"""Populations (tribo.population, tribo population): the seeded draw, resuming, the summary
 against a direct computation, bad input in one line, the figure's legends."""
 
 import numpy as np
@@ -7,7 +7,7 @@ import pytest
 
 import tribo
 from tribo.batch.executors import SerialExecutor
-from tribo.cli import population as cli
+from tribo.cli.main import main as tribo_command
 from tribo.fmu import FmuImage
 from tribo.populations import plot as population_plot
 from tribo.populations.feed import Feed, FeedError, draw, particle_parameters
@@ -70,7 +70,7 @@ def test_the_summary_is_the_direct_computation():
                             "charge_to_mass_static": rng.normal(-1e-9, 3e-10, 200),
                             "charge_to_mass_sliding": rng.lognormal(-10, 1, 200)})
     edges = [0.3, 0.5, 0.8, 1.0]
-    s = summarize_population(results, shape_edges=edges)
+    s = summarize_population(results, ("static", "sliding"), shape_edges=edges)
     for model in ("static", "sliding"):
         qm = results[f"charge_to_mass_{model}"].to_numpy()
         row = s[(s.grouping == "all") & (s.model == model)].iloc[0]
@@ -102,7 +102,7 @@ def test_the_summary_is_the_direct_computation():
     (["-n", "3", "--set", "chute_length=-0.3"], "chute_length = -0.3 is invalid"),
 ])
 def test_bad_input_is_one_line_before_anything_runs(tmp_path, capsys, argv, says):
-    assert cli.main(argv + ["--out", str(tmp_path / "p"), "--serial"]) == 2
+    assert tribo_command(["population", *argv, "--out", str(tmp_path / "p"), "--serial"]) == 2
     err = capsys.readouterr().err
     assert says in err and len(err.strip().splitlines()) == 1, err
     assert not (tmp_path / "p" / "particles.csv").exists()
@@ -111,7 +111,8 @@ def test_bad_input_is_one_line_before_anything_runs(tmp_path, capsys, argv, says
 def test_measured_values_with_an_unknown_column_are_one_line(tmp_path, capsys):
     path = tmp_path / "m.csv"
     path.write_text("epsilon,diameter\n0.5,1e-3\n")
-    assert cli.main(["-n", "3", "--measured", str(path), "--out", str(tmp_path / "p")]) == 2
+    assert tribo_command(["population", "-n", "3", "--measured", str(path), "--out",
+                          str(tmp_path / "p")]) == 2
     err = capsys.readouterr().err
     assert "diameter" in err and len(err.strip().splitlines()) == 1
 
@@ -130,9 +131,15 @@ def synthetic_population(n, seed=1):
                          "exit_speed": rng.uniform(0.5, 1, n)})
 
 
+def figure_of(results):
+    """The figure as the runner draws it: from the population's summary."""
+    summary = summarize_population(results, ("static", "sliding"))
+    return population_plot.population_figure(results, summary)
+
+
 def test_the_figure_has_a_legend_beside_every_panel_and_says_its_units():
     results = synthetic_population(60)
-    fig = population_plot.population_figure(results)
+    fig = figure_of(results)
     axes = fig.axes
     assert len(axes) == 8
     for ax in axes:
@@ -147,8 +154,8 @@ def test_the_figure_has_a_legend_beside_every_panel_and_says_its_units():
 
 def test_the_figures_mean_and_percentiles_are_the_summarys():
     results = synthetic_population(200, seed=3)
-    summary = summarize_population(results)
-    fig = population_plot.population_figure(results)
+    summary = summarize_population(results, ("static", "sliding"))
+    fig = population_plot.population_figure(results, summary)
     for ax, model in ((fig.axes[0], "static"), (fig.axes[4], "sliding")):
         row = summary[(summary.grouping == "all") & (summary.model == model)].iloc[0]
         lines = {line.get_label().split(" ")[0] if "percentile" not in line.get_label()
@@ -165,10 +172,27 @@ def test_the_figures_mean_and_percentiles_are_the_summarys():
     assert lines["5th percentile"].get_xdata()[0] > lines["95th percentile"].get_xdata()[0]
 
 
+def test_the_figure_draws_the_summary_it_is_given():
+    """The figure's classes and statistics are the summary's (computed once), not computed
+    again from the particles: a summary of other edges and one model gives that figure."""
+    results = synthetic_population(100, seed=4)
+    summary = summarize_population(results, ("sliding",), shape_edges=[0.3, 0.65, 1.0],
+                                   size_edges=[2e-4, 1e-3, 2e-3])
+    summary.loc[summary["grouping"] == "all", "mean"] = -1e-6  # a mean the rows do not give
+    fig = population_plot.population_figure(results, summary)
+    assert len(fig.axes) == 4 and "sliding" in fig.axes[0].get_xlabel()
+    mean = next(line for line in fig.axes[0].get_lines() if line.get_label().startswith("mean"))
+    assert mean.get_xdata()[0] == pytest.approx(1.0)  # µC/kg, the summary's
+    shapes = [t.get_text() for t in fig.axes[2].get_legend().get_texts()]
+    assert [t.split(" (")[0] for t in shapes] == ["ε 0.30–0.65", "ε 0.65–1.00"]
+    sizes = [t.get_text() for t in fig.axes[1].get_legend().get_texts()]
+    assert len(sizes) == 2 and sizes[0].startswith("size 0.0002–0.001 m")
+
+
 @pytest.mark.parametrize("n", [30, 100, 1000])
 def test_the_histograms_bins_follow_the_number_of_particles(n):
     results = synthetic_population(n, seed=n)
-    fig = population_plot.population_figure(results)
+    fig = figure_of(results)
     bars = [p for p in fig.axes[0].patches]
     assert len(bars) == population_plot.histogram_bins(n)
     assert population_plot.histogram_bins(30) >= 5  # not 3
@@ -195,6 +219,7 @@ def test_the_api_runs_a_population_and_the_command_says_how_it_went(tmp_path, ca
     for model in ("static", "sliding"):
         assert rows[f"capped_fraction_{model}"].between(0.0, 1.0).all()
     # the command over the same folder: everything already there
-    assert cli.main(["-n", "4", "--seed", "2", "--chute-length", "0.02", "--t-end", "1",
-                     "--out", str(tmp_path / "api"), "--serial", "--no-progress"]) == 0
+    assert tribo_command(["population", "-n", "4", "--seed", "2", "--chute-length", "0.02",
+                          "--t-end", "1", "--out", str(tmp_path / "api"), "--serial",
+                          "--no-progress"]) == 0
     assert "0 run, 4 already in the file" in capsys.readouterr().out

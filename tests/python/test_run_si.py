@@ -58,7 +58,7 @@ def test_the_stick_model_is_a_parameter_of_the_package_and_its_commands(tmp_path
         assert end["exited"] == 1 and end["impacts"] == 0
         ends[stick_model] = end["exit_time"]
     assert ends[0] == pytest.approx(ends[1], rel=1.2e-8)
-    base = [sys.executable, "-m", "tribo.cli.population", "-n", "2", "--serial", "--no-plot",
+    base = [sys.executable, "-m", "tribo", "population", "-n", "2", "--serial", "--no-plot",
             "--no-progress", "--chute-length", "0.05"]
     done = subprocess.run(base + ["--out", str(tmp_path / "a"), "--set", "stick_model=0"],
                           capture_output=True, text=True)

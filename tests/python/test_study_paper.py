@@ -1,4 +1,4 @@
-"""The study command (tribo-study, which scripts/main.sh runs) on a tiny setting: it runs on
+"""The study command (tribo study, which scripts/main.sh runs) on a tiny setting: it runs on
 the default local Dask cluster, writes its tables and figures (each panel with its legend,
 the axes saying what is normalised by what), and a second invocation reuses every run."""
 
@@ -10,14 +10,14 @@ import pandas as pd
 import pytest
 
 from figure_checks import assert_legends_cover_no_data
-from study_support import command
+from study_support import subcommand
 from tribo.study.figures import FIGURES
 
 
 @pytest.fixture(scope="module")
 def tiny_study(fmu_file, tmp_path_factory):
     out = tmp_path_factory.mktemp("study")
-    cmd = [command("tribo-study"), "--epsilons", "0.3,1.0", "--t-end", "200",
+    cmd = [*subcommand("study"), "--epsilons", "0.3,1.0", "--t-end", "200",
            "--transition-width", "0.25", "--out", str(out), "--fmu", fmu_file(3), "--workers", "2",
            "--no-progress"]
     first = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
@@ -67,7 +67,7 @@ def test_the_dashpots_side_by_side(fmu_file, tmp_path):
     """--dashpots 0,1: the grid with both normal dashpots, compared in one table and in the
     bounce and charge figures (a row per dashpot); the centre's runs are really the centre
     law's: at high friction it holds the centre's height and indents ten times deeper."""
-    cmd = [command("tribo-study"), "--epsilons", "0.3", "--t-end", "100",
+    cmd = [*subcommand("study"), "--epsilons", "0.3", "--t-end", "100",
            "--transition-width", "0.5", "--out", str(tmp_path), "--fmu", fmu_file(2), "--serial",
            "--no-progress", "--dashpots", "0,1"]
     done = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
@@ -102,7 +102,7 @@ def tiny_result(tiny_study, fmu_file):
 
 def test_the_study_uses_the_fmus_default_tolerances(tiny_study, tiny_result, fmu_file):
     """The runs carry the FMU's default rtol and atol (its modelDescription's start values),
-    and a grid run is, bit for bit, the run that leaves them unset; the old pinned rtol 1e-8
+    and a grid run is, bit for bit, the run that leaves them unset; a pinned rtol 1e-8
     gives other numbers."""
     from tribo.fmu import model_description
     from tribo.batch.particle import simulate
@@ -114,7 +114,7 @@ def test_the_study_uses_the_fmus_default_tolerances(tiny_study, tiny_result, fmu
     assert tiny_result.tolerances == start
     assert "(the FMU's defaults)" in (out / "study.md").read_text()
     row = runs.iloc[0]
-    params = {n: row[n] for n in ("epsilon", "mu", "nu", "n_segments", "charge_model", "integrator",
+    params = {n: row[n] for n in ("epsilon", "mu", "nu", "n_segments", "integrator",
                                   "damping_point", "Gamma", "beta_deg", "tau0", "Sigma0", "eta", "tau_r",
                                   "drop_speed")}
     from tribo.fmu import FmuImage

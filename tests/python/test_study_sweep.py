@@ -1,4 +1,4 @@
-"""Sweeps (tribo/batch/: sweep.py, executors.py, results.py, grid.py; tribo-sweep): Dask
+"""Sweeps (tribo/batch/: sweep.py, executors.py, results.py, grid.py; tribo sweep): Dask
 gives the serial run's numbers, an interrupted or limited sweep resumes without redoing
 finished runs and ends with the uninterrupted sweep's file, runs of different horizons
 share a file, a fresh start keeps the old file, and a sweep runs on an existing Dask
@@ -14,7 +14,7 @@ import time
 import pandas as pd
 import pytest
 
-from study_support import PYTHON, CountingRun, command, image_of, short_spec, without_timing
+from study_support import PYTHON, CountingRun, command, image_of, short_spec, subcommand, without_timing
 from tribo.batch.executors import DaskExecutor, SerialExecutor
 from tribo.batch.grid import PAPER_BASE, build_specs, parse_param
 from tribo.batch.particle import run_fmu
@@ -279,7 +279,7 @@ def listening_addresses(procs) -> list[str]:
 
 def test_sweep_cli_runs_and_resumes(fmu_file, tmp_path):
     out = tmp_path / "results.csv"
-    cmd = [command("tribo-sweep"), "--param", "epsilon=0.4,1.0",
+    cmd = [*subcommand("sweep"), "--param", "epsilon=0.4,1.0",
            "--param", "mu=0.1,1.0", "--param", "n_segments=64", "--t-end", "60", "--out", str(tmp_path),
            "--fmu", fmu_file(2), "--serial", "--no-progress", "--no-plot"]
     first = subprocess.run(cmd + ["--max-runs", "3"], capture_output=True, text=True, check=True)

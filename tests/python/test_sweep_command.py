@@ -1,4 +1,4 @@
-"""tribo-sweep as a new user tries it: a scheduler that does not answer, an HTTP server or
+"""tribo sweep as a new user tries it: a scheduler that does not answer, an HTTP server or
 a scheduler without workers at the address, or an address without a scheme or port; bad
 values and horizons; unwritable outputs; Ctrl-C; a longer horizon into the same folder;
 --fresh; the embedded cluster's network exposure; the figure. Each mistake is one line on
@@ -19,7 +19,7 @@ import pytest
 
 from figure_checks import assert_legends_cover_no_data
 
-from study_support import command
+from study_support import command, subcommand
 from tribo.batch.executors import DaskExecutor, scheduler_address
 
 SMALL = ["--param", "n_segments=64", "--no-progress"]
@@ -27,7 +27,7 @@ SMALL = ["--param", "n_segments=64", "--no-progress"]
 
 def sweep(*args, timeout=120):
     started = time.perf_counter()
-    done = subprocess.run([command("tribo-sweep"), *args], capture_output=True, text=True,
+    done = subprocess.run([*subcommand("sweep"), *args], capture_output=True, text=True,
                           timeout=timeout)
     return done, time.perf_counter() - started
 
@@ -41,7 +41,7 @@ def free_port():
 def assert_one_line_error(done, *words):
     assert done.returncode == 2, done
     lines = done.stderr.splitlines()
-    assert len(lines) == 1 and lines[0].startswith("tribo-sweep: error: "), done.stderr
+    assert len(lines) == 1 and lines[0].startswith("tribo sweep: error: "), done.stderr
     assert "Traceback" not in done.stderr and "sweep:" not in done.stdout  # nothing started
     for w in words:
         assert w in lines[0], (w, lines[0])
@@ -65,7 +65,7 @@ def test_a_scheduler_that_does_not_answer_is_one_line_within_seconds(fmu_file, t
                           "--out", str(tmp_path / "r"), "--scheduler", f"localhost:{port}",
                           "--connect-timeout", "2")
     assert_one_line_error(done, f"no Dask scheduler answered at tcp://localhost:{port} within 2 s")
-    assert elapsed < 15  # was 31 s with Dask's default timeout; here the timeout and the start-up
+    assert elapsed < 15  # the 2 s timeout and the start-up, not Dask's default (31 s)
     assert not (tmp_path / "r" / "results.csv").exists()
 
 
@@ -127,7 +127,7 @@ def test_a_scheduler_without_workers_is_one_line_within_the_timeout(fmu_file, tm
                           "--connect-timeout", "2", timeout=60)
     assert_one_line_error(done, f"the Dask scheduler at tcp://127.0.0.1:{port} has no workers",
                           f"dask worker tcp://127.0.0.1:{port}")
-    assert elapsed < 15  # a 40-line traceback before
+    assert elapsed < 15  # one line, not Dask's own traceback
 
 
 @pytest.mark.parametrize("args, words", [
@@ -161,8 +161,8 @@ def test_unwritable_outputs_are_one_line_before_any_run(fmu_file, tmp_path):
     a_file.write_text("")
     for out, says in ((a_file / "sweep", "cannot write"), ("/proc/tribo/sweep", "cannot write"),
                       (a_file, "cannot write"),
-                      # --out is a folder, for every command: an earlier version's file name is
-                      # refused, not made into a folder (or a file named like the folder)
+                      # --out is a folder, for every command: a file's name is refused, not
+                      # made into a folder (or a file named like the folder)
                       (tmp_path / "new" / "results.csv", "--out names the output folder, not a file")):
         done, _ = sweep("--param", "epsilon=0.5", *SMALL, "--t-end", "10", "--fmu", fmu_file(3),
                         "--serial", "--out", str(out))
@@ -202,7 +202,7 @@ def test_ctrl_c_keeps_the_finished_runs_and_says_how_to_resume(fmu_file, tmp_pat
     """SIGINT to the whole process group, as Ctrl-C in a terminal sends it: one message, no
     traceback, no process left behind; the same command then runs only the rest."""
     out = tmp_path / "sweep" / "results.csv"
-    cmd = [command("tribo-sweep"), "--param", "epsilon=0.2:1.0:6", "--param", "mu=1.0", *SMALL,
+    cmd = [*subcommand("sweep"), "--param", "epsilon=0.2:1.0:6", "--param", "mu=1.0", *SMALL,
            "--t-end", "600", "--fmu", fmu_file(3), "--out", str(out.parent), "--no-plot", *where]
     p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                          start_new_session=True)

@@ -12,14 +12,14 @@ import numpy as np
 import pytest
 
 import tribo
-from study_support import command
+from study_support import subcommand
 from tribo.fmu import model_description
 from tribo.fmu.names import (ParameterError, fmu_outputs, from_fmu_column, parameter_names,
                              renamed, to_fmu)
 from tribo_fmu import ROOT
 
 VARIANTS = [("dimensionless", 3), ("dimensionless", 2), ("si", 3), ("si", 2)]
-COMMANDS = ["tribo-study", "tribo-sweep", "tribo-population", "tribo-impact-map"]
+SUBCOMMANDS = ["study", "sweep", "population", "impact-map", "line"]
 
 
 def md_of(variant, version):
@@ -91,8 +91,8 @@ def test_values_are_echoed_as_given_and_a_text_value_names_its_parameter():
 
 
 def helps() -> dict:
-    return {name: subprocess.run([command(name), "--help"], capture_output=True, text=True,
-                                 check=True, timeout=60).stdout for name in COMMANDS}
+    return {name: subprocess.run([*subcommand(name), "--help"], capture_output=True, text=True,
+                                 check=True, timeout=60).stdout for name in SUBCOMMANDS}
 
 
 def test_the_commands_name_every_angle_in_degrees_and_the_size_as_size():
@@ -105,7 +105,7 @@ def test_the_commands_name_every_angle_in_degrees_and_the_size_as_size():
         for fmu_name in ("semi_major_axis", "tilt", "phi0", "drop_angle", "beta"):
             assert not re.search(rf"(?<![\w-]){fmu_name}(=|\s*\(rad)", text), (name, fmu_name)
         assert " rad)" not in text.replace("rad/s", "")
-    population = " ".join(helps()["tribo-population"].split())
+    population = " ".join(helps()["population"].split())
     assert "size is the long diameter 2a in m" in population and "angles in degrees" in population
 
 

@@ -104,6 +104,16 @@ class SerialExecutor:
                 raise KeyboardInterrupt
 
 
+def executor_for(serial: bool = False, scheduler: str | None = None, workers: int | None = None,
+                 processes: bool = False, connect_timeout: float = CONNECT_TIMEOUT_S):
+    """The executor of the API's and the commands' options: SerialExecutor (serial), or a
+    DaskExecutor (ValueError for an address Dask does not take). Nothing starts until it
+    is entered."""
+    if serial:
+        return SerialExecutor()
+    return DaskExecutor(scheduler, workers, connect_timeout=connect_timeout, processes=processes)
+
+
 class DaskExecutor:
     """Runs as Dask tasks: a local cluster of `workers` threads (default: one per core;
     processes=True: worker processes, one thread each), or the existing cluster at

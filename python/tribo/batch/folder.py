@@ -15,7 +15,7 @@ them, and the FMU's SHA-256):
   `fresh`, moved into <out>/backup-<n>/ like the above;
 - another command's results, or files without a record: refused in one line, `fresh` or
   not (nothing of another command's or of the user's is moved); files of this command
-  without a record (an earlier version's) move with `fresh`.
+  without a record move with `fresh`.
 
 The lock is an advisory lock on <out>/.tribo.lock held for the whole command (released
 when the process ends, however it ends): a second command into the same folder is refused
@@ -33,7 +33,8 @@ from ..fmu.names import format_number
 RECORD = "tribo.json"
 LOCK = ".tribo.lock"
 BACKUP_PREFIX = "backup-"
-# what each kind of command writes into its folder (an earlier version's files, recognised)
+# what each kind of command writes into its folder (so that its files without a record are
+# recognised as its own)
 OWN_FILES = {
     "study": ["study.md", "study_runs.csv", "transition_points.csv", "*.png", "runs"],
     "sweep": ["results.csv", "results.png", "results.backup-*.csv", "series"],
@@ -44,8 +45,8 @@ OWN_FILES = {
     "line": ["particles.csv", "particles.backup-*.csv", "landings", "landings.csv", "line.csv",
              "bins.csv", "line.png", "line.json"],
 }
-COMMANDS = {"study": "tribo-study", "sweep": "tribo-sweep", "population": "tribo-population",
-            "impact map": "tribo-impact-map", "line": "tribo-line"}
+COMMANDS = {"study": "tribo study", "sweep": "tribo sweep", "population": "tribo population",
+            "impact map": "tribo impact-map", "line": "tribo line"}
 
 
 class FolderError(ValueError):
@@ -86,8 +87,8 @@ def claim(out: str, kind: str, setup: dict, fmu_sha256: str, fresh: bool = False
                 raise FolderError(f"{out} holds files that no tribo command recorded ({_few(others)}): "
                                   f"give another --out, or an empty folder")
             if not fresh:
-                raise FolderError(f"{out} holds {kind} results without a record of their set-up "
-                                  f"(an earlier version's): give --fresh to start over (they are "
+                raise FolderError(f"{out} holds {kind} results without a record of their set-up: "
+                                  f"give --fresh to start over (they are "
                                   f"kept in {os.path.join(out, BACKUP_PREFIX)}<n>/), or another --out")
             _back_up(out, result, "the earlier results, without a record of their set-up,")
         elif record is not None:

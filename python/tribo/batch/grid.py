@@ -1,16 +1,25 @@
 """The runs of a parameter sweep: every combination of the values given for each swept
-parameter, over a base set-up.
+parameter, over a base set-up; and the sweep as a job (`SweepJob`, batch/job.py's flow:
+tribo.sweep and `tribo sweep`).
 
 The paper's base (docs/model.md section 7, CVODE, epsilon 0.5, mu = nu = 0.1, the FMU's
-default tolerances) or the FMU's start values; as in the paper, nu follows mu and tau_r
-follows tau0 unless they are swept too (tie=False: they don't).
+default tolerances, every charge model the FMU has at its switch's default) or the FMU's
+start values; as in the paper, nu follows mu and tau_r follows tau0 unless they are swept
+too (tie=False: they don't).
 """
 
 import itertools
+import os
 
 import numpy as np
 
+from ..fmu import FmuImage
+from ..fmu.locate import find_fmu
+from ..fmu.parameters import check_names, check_values, integer_names
+from .job import Job
+from .particle import communication_points
 from .specs import RunSpec, normalise_values
+from .sweep import FIGURE, RESULTS, SERIES, keys_of, run_sweep, sweep_setup
 
 # docs/model.md section 7 (the paper's set-up), with CVODE instead of the paper's fixed step
 # (faster at equal error, see docs/work_precision.md) at the FMU's default tolerances (rtol,
@@ -25,7 +34,6 @@ PAPER_SETUP = {
     "tau_r": 1.0,  # tau_r = tau0
     "n_segments": 2000,
     "drop_speed": 0.025,
-    "charge_model": 3,  # both charge models
     "integrator": 1,  # CVODE (Adams)
     "damping_point": 0,
 }
@@ -86,3 +94,55 @@ def values_of(specs: list[RunSpec]) -> dict:
         for name, value in s.params.items():
             out.setdefault(name, {})[value] = None
     return {name: list(values) for name, values in out.items()}
+
+
+class SweepJob(Job):
+    """A parameter sweep of the dimensionless FMU into an output folder (batch/job.py):
+    `swept` the (name, values) of each swept parameter, the rest as in build_specs; the
+    figure results.png unless figure=False, each run's series with series=True."""
+
+    kind, noun, results_file = "sweep", "run", RESULTS
+
+    def __init__(self, swept: list[tuple[str, list]], *, t_end: float, record_interval: float = 1.0,
+                 base: str = "paper", tie: bool = True, fmu=None, series: bool = False,
+                 figure: bool = True):
+        self.swept = [(name, list(values)) for name, values in swept]
+        self.names = [name for name, _ in self.swept]
+        self.t_end, self.record_interval = t_end, record_interval
+        self.base, self.tie, self.fmu = base, tie, fmu
+        self.series, self.figure = series, figure
+        self.keys = []
+
+    def prepare(self) -> None:
+        """The FMU, the swept values (types by the modelDescription, ranges by the FMU)
+        and the horizon, checked."""
+        if self.base not in ("paper", "fmu"):
+            raise ValueError(f"base = {self.base!r}: paper or fmu")
+        communication_points(self.t_end, self.record_interval)
+        self.image = FmuImage.load(find_fmu(self.fmu))
+        md = self.image.model_description()
+        check_names(md, self.names)
+        self.specs = build_specs(self.swept, PAPER_BASE if self.base == "paper" else {},
+                                 integer_names(md), self.t_end, self.record_interval, self.tie)
+        check_values(self.image, values_of(self.specs))  # by the FMU itself
+        self.sha256 = self.image.sha256
+        self.keys = keys_of(self.specs, self.image)
+
+    def setup(self) -> dict:
+        return sweep_setup(self.names, self.base, self.tie)
+
+    def describe(self, out: str, executor) -> str:
+        return (f"sweep: {len(self.specs)} runs to t = {self.t_end:g} on {executor.describe()}, "
+                f"into {out}")
+
+    def run(self, out: str, executor, *, progress: bool, max_runs: int | None):
+        report = run_sweep(self.specs, self.image, self.results_path(out), executor,
+                           series_dir=os.path.join(out, SERIES) if self.series else None,
+                           max_runs=max_runs, progress=progress, desc="sweep")
+        report.files.append(self.results_path(out))
+        if self.figure and len(report.results):
+            # matplotlib only when a figure is drawn: `import tribo` stays without it
+            from .plot import write_sweep_figure
+            report.files.append(write_sweep_figure(report.results, self.names,
+                                                   os.path.join(out, FIGURE)))
+        return report

@@ -16,16 +16,20 @@ import pandas as pd
 from fmpy.fmi1 import FMICallException
 
 from ..fmu import ERROR, FmuImage, Instance, record, unpacked
-from ..fmu.charge_models import segment_arrays
+from ..fmu.charge_models import MEAN_CHARGE_PREFIX, mean_charges, segment_arrays
 from ..fmu.names import fmu_outputs, from_fmu_column, in_package_terms, to_fmu
 from .specs import RunSpec
 from .summary import MOTION_CLASSES, summarize
 
-# The outputs the study records at every communication point (its summary and figures use them).
-RECORDED = ["X", "Y", "phi_deg", "U", "V", "Omega", "delta_y", "in_contact", "Q_static", "Q_sliding",
-            "contact_fraction", "turns", "motion_class"] \
-           + [f"fraction_{m}" for m in MOTION_CLASSES] \
-           + ["assumption_warnings"]
+
+def recorded(models) -> list[str]:
+    """The outputs the study records at every communication point (its summary and figures
+    use them), with the mean charge Q_<model> of each of `models`."""
+    return (["X", "Y", "phi_deg", "U", "V", "Omega", "delta_y", "in_contact"]
+            + [MEAN_CHARGE_PREFIX + m for m in models]
+            + ["contact_fraction", "turns", "motion_class"]
+            + [f"fraction_{m}" for m in MOTION_CLASSES] + ["assumption_warnings"])
+
 # more recorded points than this is a mistake in the horizon or the interval, not a run
 MAX_POINTS = 10_000_000
 
@@ -62,15 +66,15 @@ def communication_points(t_end: float, interval: float) -> np.ndarray:
 
 
 def simulate(image: FmuImage, params: dict, t_end: float, record_interval: float = 1.0,
-             outputs=tuple(RECORDED), segments: bool = False) -> Recording:
-    """Run the FMU from 0 to t_end with `params`, recording `outputs` every
-    record_interval (and, if `segments` and the FMU has the arrays, each segment's charge
-    at the end). Parameters and outputs by the package's names and in its units
-    (fmu/names.py: angles in degrees). A run the FMU ends early is recorded up to where it
-    ended."""
+             outputs=None, segments: bool = False) -> Recording:
+    """Run the FMU from 0 to t_end with `params`, recording `outputs` (default: the study's,
+    `recorded`) every record_interval (and, if `segments` and the FMU has the arrays, each
+    segment's charge at the end). Parameters and outputs by the package's names and in its
+    units (fmu/names.py: angles in degrees). A run the FMU ends early is recorded up to
+    where it ended."""
     times = communication_points(t_end, record_interval)
     md = image.model_description()
-    outputs = list(outputs)
+    outputs = recorded(mean_charges(md)) if outputs is None else list(outputs)
     fmu_params, fmu_names = to_fmu(md, params), fmu_outputs(md, outputs)
     with unpacked(image) as fmu_dir:
         instance = Instance(fmu_dir, name="tribo")
@@ -99,11 +103,11 @@ def simulate(image: FmuImage, params: dict, t_end: float, record_interval: float
 
 
 def run_fmu(image: FmuImage, spec: RunSpec) -> RunResult:
-    """The study's run: the RECORDED series, the segments' charges at the end (FMI 3.0)
+    """The study's run: the `recorded` series, the segments' charges at the end (FMI 3.0)
     and the summary row."""
     wall0, cpu0 = time.perf_counter(), time.thread_time()
     recording = simulate(image, spec.params, spec.t_end, spec.record_interval, segments=True)
-    row = summarize(recording.series, spec.t_end)
+    row = summarize(recording.series, spec.t_end, mean_charges(image.model_description()))
     # thread time: the run executes in this thread; a Dask worker's other threads
     # (communication, heartbeats) are not the run's cost
     row.update(cpu_s=time.thread_time() - cpu0, wall_s=time.perf_counter() - wall0)

@@ -2,16 +2,24 @@
 fraction and the turns against the first swept parameter, a line per combination of the
 other swept parameters (and per horizon, where the file holds several)."""
 
+import math
+
 import numpy as np
 
-from ..plotting import CHARGE_LABELS, distinct_colours, legend, plt, save
+from ..plotting import charge_label, distinct_colours, legend, plt, save
+from .summary import charge_column
 
-QUANTITIES = [  # column, axis label, log scale
-    ("Q_static_end", CHARGE_LABELS["static"], False),
-    ("Q_sliding_end", CHARGE_LABELS["sliding"], False),
+MOTION = [  # column, axis label, log scale
     ("contact_fraction", "contact fraction (time in contact / t_end)", False),
     ("turns_max", "most turns |φ − φ0| / 2π", True),
 ]
+
+
+def quantities(results) -> list[tuple]:
+    """(column, axis label, log scale) of each panel: the charge at the horizon of each
+    charge model the rows hold (Q_<model>_end), then the motion's."""
+    models = [c[2:-4] for c in results.columns if c.startswith("Q_") and c.endswith("_end")]
+    return [(charge_column(m, 1.0), charge_label(m), False) for m in models] + MOTION
 
 
 def write_sweep_figure(results, swept: list[str], path: str) -> str:
@@ -22,8 +30,12 @@ def write_sweep_figure(results, swept: list[str], path: str) -> str:
         others.append("t_end")
     groups = list(results.groupby(others, sort=True)) if others else [((), results)]
     colours = distinct_colours(len(groups))
-    fig, axes = plt.subplots(2, 2, figsize=(13, 8), squeeze=False, layout="constrained")
-    for ax, (column, label, log) in zip(axes.flat, QUANTITIES):
+    panels = quantities(results)
+    rows = math.ceil(len(panels) / 2)
+    fig, axes = plt.subplots(rows, 2, figsize=(13, 4 * rows), squeeze=False, layout="constrained")
+    for ax in axes.flat[len(panels):]:
+        ax.set_visible(False)
+    for ax, (column, label, log) in zip(axes.flat, panels):
         for colour, (values, g) in zip(colours, groups):
             g = g.sort_values(x)
             values = values if isinstance(values, tuple) else (values,)

@@ -2,11 +2,15 @@
 key (specs.run_key).
 
 Rows are appended (and flushed to disk) as runs finish, so an interrupted sweep loses
-at most the runs that were in flight; a row cut short by the interruption is dropped
-when the file is opened again. Starting a file afresh never deletes it: the old file is
-renamed to <name>.backup-<n>.csv first. `rewrite_in_order` puts the rows in a given order (the
-sweep does so when it completes). Floats are written in their shortest round-trip form, which
-pandas (3.x) reads back exactly: numbers survive the file bit for bit.
+at most the runs that were in flight. The file is read once, when it is opened: a last
+line cut short by an interruption is dropped. A header other than the runs' is refused in
+one line (`ResultsError`).
+
+Starting a file afresh never deletes it: the old file is renamed to <name>.backup-<n>.csv
+first. `close(keys)` returns the rows of the given keys, in that order, and puts the file
+in that order when it holds exactly those runs. Floats are written in their shortest
+round-trip form, which pandas (3.x) reads back exactly: numbers survive the file bit for
+bit.
 """
 
 import os
@@ -17,9 +21,23 @@ KEY = "key"
 _TEXT_COLUMNS = {KEY: str, "fmu_sha256": str}
 
 
+class ResultsError(ValueError):
+    """A results file that cannot be resumed (the message, one line, says why and what to do)."""
+
+
 def read_results(path: str) -> pd.DataFrame:
     """A results file as a DataFrame (what a user does with pandas.read_csv, with exact floats)."""
     return pd.read_csv(path, dtype=_TEXT_COLUMNS)
+
+
+def count_rows(path: str, keys=None) -> int:
+    """How many rows of the results file (of `keys`, if given) read back; 0 for a file
+    that is missing or cannot be read."""
+    try:
+        found = read_results(path)[KEY]
+    except (OSError, ValueError, KeyError, UnicodeDecodeError, pd.errors.ParserError):
+        return 0
+    return len(set(found) & set(keys)) if keys is not None else found.nunique()
 
 
 class ResultsFile:
@@ -33,37 +51,39 @@ class ResultsFile:
         self.path = os.path.abspath(path)
         self.columns = list(columns)
         self.backup = None  # where fresh=True moved an earlier file
-        if fresh and os.path.exists(path):
-            self.backup = backup_path(path)
-            os.replace(path, self.backup)
-        self._open_or_create()
+        self.note = None  # a line for the user about the file, if any
+        if fresh and os.path.exists(self.path):
+            self.backup = backup_path(self.path)
+            os.replace(self.path, self.backup)
+        self.rows = self._open_or_create()  # the finished runs' rows, read once
 
-    def _open_or_create(self):
-        header = ",".join(self.columns) + "\n"
+    def _open_or_create(self) -> pd.DataFrame:
+        data = b""
         if os.path.exists(self.path):
             with open(self.path, "rb") as f:
                 data = f.read()
-            # a run killed mid-write leaves a last line without its newline: drop it
-            complete = data[: data.rfind(b"\n") + 1]
-            if complete:
-                found = complete.split(b"\n", 1)[0].decode().split(",")
-                if found != self.columns:
-                    raise ValueError(f"{self.path} holds runs with other columns ({_difference(found, self.columns)}): "
-                                     f"write to another file, or start this one afresh (--fresh; the "
-                                     f"old file is kept as a backup)")
-                if len(complete) != len(data):
-                    with open(self.path, "wb") as f:
-                        f.write(complete)
-                return
-        os.makedirs(os.path.dirname(os.path.abspath(self.path)), exist_ok=True)
-        with open(self.path, "w") as f:
-            f.write(header)
-
-    def read(self) -> pd.DataFrame:
+        lines = data.split(b"\n")
+        tail = lines.pop()  # after the last newline: empty, or a row cut short
+        if not lines:  # a new file, or not even its header was written in full
+            os.makedirs(os.path.dirname(self.path), exist_ok=True)
+            with open(self.path, "w") as f:
+                f.write(",".join(self.columns) + "\n")
+            return read_results(self.path)
+        found = lines[0].decode().split(",")
+        if found != self.columns:
+            raise ResultsError(f"{self.path} holds runs with other columns "
+                               f"({_difference(found, self.columns)}): write to another folder, "
+                               f"or start this one afresh (--fresh, fresh=True; the old file is "
+                               f"kept as a backup)")
+        if tail:  # a run killed mid-write leaves a last line without its newline: drop it
+            with open(self.path, "wb") as f:
+                f.write(data[: len(data) - len(tail)])
         return read_results(self.path).drop_duplicates(KEY, keep="first")
 
-    def finished_keys(self) -> set[str]:
-        return set(self.read()[KEY])
+    @property
+    def finished(self) -> set[str]:
+        """The keys of the rows found when the file was opened."""
+        return set(self.rows[KEY])
 
     def append(self, row: dict) -> None:
         if set(row) != set(self.columns):
@@ -76,14 +96,22 @@ class ResultsFile:
             f.flush()
             os.fsync(f.fileno())
 
-    def rewrite_in_order(self, keys: list[str]) -> None:
-        """Rows of `keys` first, in that order, then any others as they were."""
-        df = self.read()
-        rank = {k: i for i, k in enumerate(keys)}
-        df = df.assign(_rank=df[KEY].map(rank).fillna(len(rank))).sort_values("_rank", kind="stable")
-        tmp = self.path + ".tmp"
-        df.drop(columns="_rank").to_csv(tmp, index=False)
-        os.replace(tmp, self.path)
+    def close(self, keys: list[str], done=None) -> pd.DataFrame:
+        """The rows of `keys` that are in the file (and `done(key)`, if given: e.g. their
+        series are on disk too), in that order. A file that holds exactly those runs, all
+        done, is rewritten in that order (a file several sweeps share keeps the order its
+        rows came in)."""
+        table = read_results(self.path).drop_duplicates(KEY, keep="first")
+        found = set(table[KEY])
+        finished = [k for k in keys if k in found and (done is None or done(k))]
+        if found == set(keys) and len(finished) == len(keys):
+            rank = {k: i for i, k in enumerate(keys)}
+            table = table.iloc[table[KEY].map(rank).argsort(kind="stable")]
+            tmp = self.path + ".tmp"
+            table.to_csv(tmp, index=False)
+            os.replace(tmp, self.path)
+            table = read_results(self.path)
+        return table.set_index(KEY).loc[finished].reset_index()
 
 
 def backup_path(path: str) -> str:

@@ -8,9 +8,11 @@ Definitions (used in the tables, the figures and the docs):
   to span a bounce or a turn of the particle (tens of time units) and short against the
   run. Y is recorded every `record_interval` (1 time unit), which resolves a ballistic
   apex to ~1e-4 (Gamma cos(beta) (1/2)^2 / 2).
-* charges: Q_static and Q_sliding at REPORT_FRACTIONS of the horizon (1000, 2000, ...,
-  5000 for the paper's tau = 5000), in columns named by the fraction, not the time
-  (Q_static_20pct, ..., Q_static_end), so that runs of different horizons share them.
+* charges: the mean charge Q_<model> of each charge model the FMU outputs one for
+  (Q_static and Q_sliding: fmu/charge_models.py's `mean_charges`) at REPORT_FRACTIONS of
+  the horizon (1000, 2000, ..., 5000 for the paper's tau = 5000), in columns named by the
+  fraction, not the time (Q_static_20pct, ..., Q_static_end), so that runs of different
+  horizons share them.
 * motion classes: the FMU's fractions of time in each class over the whole run, and the
   same fractions after the warm-up (the FMU classifies over a ~20-unit exponential
   window, so the first WARMUP units read as "bouncing" while that window fills up). The
@@ -81,10 +83,11 @@ def fractions_after(series: pd.DataFrame, t_from: float) -> dict[str, float]:
     return out
 
 
-def summary_columns() -> list[str]:
-    """The names of `summarize`'s row, in its order (a results file's header needs them
-    before the first run has finished); the same for every horizon."""
-    charges = charge_columns("static") + charge_columns("sliding")
+def summary_columns(models) -> list[str]:
+    """The names of `summarize`'s row for the charge models `models`, in its order (a
+    results file's header needs them before the first run has finished); the same for
+    every horizon."""
+    charges = [c for model in models for c in charge_columns(model)]
     return (charges + ["contact_fraction", "turns", "turns_max", "turned_over", "motion_class_end"]
             + [f"fraction_{m}" for m in MOTION_CLASSES]
             + [f"fraction_{m}_after_warmup" for m in MOTION_CLASSES]
@@ -92,12 +95,13 @@ def summary_columns() -> list[str]:
                "bounce_amplitude_mean"])
 
 
-def summarize(series: pd.DataFrame, t_end: float) -> dict:
-    """The summary row of a run (column name -> number)."""
+def summarize(series: pd.DataFrame, t_end: float, models) -> dict:
+    """The summary row of a run (column name -> number), with the charges Q_<model> of
+    `models`."""
     tau = series["time"].to_numpy()
     last = series.iloc[-1]
     row = {}
-    for model in ("static", "sliding"):
+    for model in models:
         q = series[f"Q_{model}"].to_numpy()
         for f, t in zip(REPORT_FRACTIONS, report_times(t_end)):
             row[charge_column(model, f)] = float(np.interp(t, tau, q))

@@ -3,21 +3,22 @@
 `run_sweep` keys every run (specs.run_key), skips the runs whose rows are already in the
 results file (and whose time series are on disk, if series are kept), runs the rest on
 the executor, and appends each finished run's row to the file at once. Interrupt it at
-any point and call it again with the same runs: only the unfinished ones run. When the file
-holds exactly the sweep's runs, all finished, it is put in the sweep's order (a file
-shared by several sweeps keeps the order its rows came in). Runs of different horizons
-share the columns, so they can share a file.
+any point and call it again with the same runs: only the unfinished ones run. The file is
+read once, when the sweep opens it, and once at the end, for the report's rows (a file that
+holds exactly the sweep's runs, all finished, is put in the sweep's order; a file shared by
+several sweeps keeps the order its rows came in). Runs of different horizons share the
+columns, so they can share a file.
 """
 
 import os
-from dataclasses import dataclass, field
 
 import pandas as pd
 from tqdm.auto import tqdm
 
-from ..fmu import FmuImage
+from ..fmu.charge_models import mean_charges
+from .job import Report
 from .particle import run_fmu
-from .results import KEY, ResultsFile, read_results
+from .results import KEY, ResultsFile
 from .specs import RunSpec, run_key
 from .summary import summary_columns
 
@@ -27,30 +28,13 @@ RESULTS, FIGURE, SERIES = "results.csv", "results.png", "series"
 TIMING_COLUMNS = ["cpu_s", "wall_s"]  # differ from one execution of a run to the next
 
 
-@dataclass
-class SweepReport:
-    keys: list[str]  # of every run of the sweep, in its order
-    results: pd.DataFrame  # the rows of the sweep's finished runs, in the sweep's order
-    executed: int = 0  # runs executed by this call
-    skipped: int = 0  # runs found finished in the results file
-    failed: list = field(default_factory=list)  # (spec, exception) of runs that raised
-    backup: str | None = None  # where a fresh start moved the earlier results file
-
-    @property
-    def complete(self) -> bool:
-        return len(self.results) == len(self.keys)
-
-
-def sweep_columns(specs: list[RunSpec], result_columns: list[str] | None = None,
-                  constants: dict | None = None) -> list[str]:
+def sweep_columns(specs: list[RunSpec], results: list[str], constants: dict | None = None) -> list[str]:
     """The results file's header: the key, the constants (e.g. the materials), the
-    parameters, the run's set-up, the result columns (default: the study's summary) and
-    the timings."""
+    parameters, the run's set-up, the result columns and the timings."""
     names = list(specs[0].params)
     if any(list(s.params) != names for s in specs):
         raise ValueError("the runs of one sweep must set the same parameters")
-    results = summary_columns() if result_columns is None else list(result_columns)
-    return [KEY] + list(constants or {}) + names + RUN_COLUMNS + results + TIMING_COLUMNS
+    return [KEY] + list(constants or {}) + names + RUN_COLUMNS + list(results) + TIMING_COLUMNS
 
 
 def sweep_setup(swept: list[str], base: str, tie: bool) -> dict:
@@ -61,48 +45,31 @@ def sweep_setup(swept: list[str], base: str, tie: bool) -> dict:
     return {"swept": list(swept), "base": base, "tie": bool(tie)}
 
 
-def check_out_folder(out: str) -> None:
-    """ValueError, one line, for an --out that names a results file rather than a folder
-    (as an earlier version took it)."""
-    if out.lower().endswith((".csv", ".png")):
-        parent = os.path.dirname(out) or "."
-        raise ValueError(f"{out}: --out names the output folder, not a file ({RESULTS} and "
-                         f"{FIGURE} go into it): e.g. {parent}")
-
-
-def keys_of(specs: list[RunSpec], image: FmuImage) -> list[str]:
+def keys_of(specs: list[RunSpec], image) -> list[str]:
     """The sweep's run keys, each once, in the sweep's order."""
     return list(dict.fromkeys(run_key(s, image.sha256) for s in specs))
 
 
-def kept(results_path: str, keys: list[str]) -> int:
-    """How many of `keys` have their row in the results file."""
-    if not os.path.exists(results_path):
-        return 0
-    try:
-        return len(set(read_results(results_path)[KEY]) & set(keys))
-    except (ValueError, pd.errors.EmptyDataError):
-        return 0
-
-
-def run_sweep(specs: list[RunSpec], image: FmuImage, results_path: str, executor, *,
+def run_sweep(specs: list[RunSpec], image, results_path: str, executor, *,
               resume: bool = True, series_dir: str | None = None, max_runs: int | None = None,
               progress: bool = True, desc: str = "runs", run=run_fmu,
-              result_columns: list[str] | None = None, constants: dict | None = None) -> SweepReport:
+              result_columns: list[str] | None = None, constants: dict | None = None) -> Report:
     """Run `specs` (skipping finished ones if `resume`), appending a row per finished run
     to `results_path` and, if `series_dir` is given, writing each run's time series to
     <series_dir>/<key>.csv. `max_runs` caps the runs this call executes (the rest stay
     to be done). `run(image, spec)` -> RunResult is the function the executor runs;
-    `result_columns` the names of its row (default: the study's summary); `constants`
-    columns with the same value on every row (what the runs share but do not pass to
-    the FMU by name, e.g. the materials' names), after the key."""
+    `result_columns` the names of its row (default: the study's summary of the FMU's
+    charge models); `constants` columns with the same value on every row (what the runs
+    share but do not pass to the FMU by name, e.g. the materials' names), after the key.
+    The report's results are the finished runs' rows, in the sweep's order."""
     keys = [run_key(s, image.sha256) for s in specs]
     unique = list(dict.fromkeys(keys))
     spec_of = dict(zip(keys, specs))
     constants = dict(constants or {})
+    if result_columns is None:
+        result_columns = summary_columns(mean_charges(image.model_description()))
     results = ResultsFile(results_path, sweep_columns(specs, result_columns, constants),
                           fresh=not resume)
-    backup = results.backup
     if series_dir:
         series_dir = os.path.abspath(series_dir)  # as the results file's path (results.py)
         os.makedirs(series_dir, exist_ok=True)
@@ -110,10 +77,9 @@ def run_sweep(specs: list[RunSpec], image: FmuImage, results_path: str, executor
     def finished(key):
         return series_dir is None or os.path.exists(series_path(series_dir, key))
 
-    done = {k for k in results.finished_keys() if finished(k)}
-    todo = [k for k in unique if k not in done]
-    report = SweepReport(keys=unique, results=pd.DataFrame(), skipped=len(unique) - len(todo),
-                         backup=backup)
+    todo = [k for k in unique if not (k in results.finished and finished(k))]
+    report = Report(keys=unique, skipped=len(unique) - len(todo), backup=results.backup,
+                    notes=[results.note] if results.note else [])
     if max_runs is not None:
         todo = todo[:max_runs]
 
@@ -136,12 +102,7 @@ def run_sweep(specs: list[RunSpec], image: FmuImage, results_path: str, executor
             results.append(row)
             report.executed += 1
 
-    table = results.read()
-    finished_keys = [k for k in unique if k in set(table[KEY]) and finished(k)]
-    if set(table[KEY]) == set(unique) and len(finished_keys) == len(unique):
-        results.rewrite_in_order(unique)  # the file is this sweep's, and it is complete
-        table = results.read()
-    report.results = table.set_index(KEY).loc[finished_keys].reset_index()
+    report.results = results.close(unique, done=finished)
     return report
 
 

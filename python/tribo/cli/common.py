@@ -1,14 +1,17 @@
-"""What the commands share: errors in one line, the checks made before any run (the
-output is writable, the scheduler's address is one Dask takes), the output folder (--out,
-the same for every command) and where runs execute."""
+"""What the subcommands share: the parser (errors in one line), argument types, the options every job takes (--out, --fresh,
+where runs execute, --no-progress) and `run_job`, which runs a job through the package's
+one flow (tribo/batch/job.py) and meets every mistake with one line."""
 
 import argparse
-import os
 import sys
-import tempfile
 
-from ..batch.executors import DaskExecutor, SerialExecutor
+from ..batch.executors import executor_for
 from ..batch.grid import parse_values
+from ..batch.job import execute, kept
+
+# what a mistake in the input raises (every error class of the package is one of these, with
+# a message of one line): the command says it in one line and exits 2
+INPUT_ERRORS = (ValueError, OSError)
 
 
 class OneLineParser(argparse.ArgumentParser):
@@ -18,12 +21,12 @@ class OneLineParser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message} (see --help)\n")
 
 
-def command_parser(prog: str, doc: str) -> OneLineParser:
-    """A command's parser: its description the first paragraph of the module's docstring
-    `doc`, the rest of it the epilogue of --help."""
-    return OneLineParser(prog=prog, description=doc.split("\n\n")[0],
-                         formatter_class=argparse.RawDescriptionHelpFormatter,
-                         epilog=doc.split("\n\n", 1)[1])
+def described(doc: str) -> dict:
+    """A parser's description (the first paragraph of a module's docstring `doc`) and
+    epilogue (the rest of it)."""
+    head, _, rest = doc.partition("\n\n")
+    return {"description": head, "epilog": rest,
+            "formatter_class": argparse.RawDescriptionHelpFormatter}
 
 
 def numbers(text: str) -> tuple:
@@ -53,23 +56,6 @@ def value_list(text: str) -> list:
         raise argparse.ArgumentTypeError(f"{text!r}: {e}") from None
 
 
-def fail(prog: str, message: str, status: int = 2) -> int:
-    print(f"{prog}: error: {message}", file=sys.stderr, flush=True)
-    return status
-
-
-def check_writable_dir(path: str) -> None:
-    """OSError, naming the path, unless files can be made in the folder (made if missing)."""
-    if os.path.exists(path) and not os.path.isdir(path):
-        raise OSError(f"cannot write into {path}: a file, not a folder")
-    try:
-        os.makedirs(path, exist_ok=True)
-        with tempfile.NamedTemporaryFile(dir=path, prefix=".tribo_write_check_"):
-            pass
-    except OSError as e:
-        raise OSError(f"cannot write into {path}: {e.strerror or e}") from None
-
-
 def positive_number(text: str) -> float:
     """argparse type: a positive number."""
     try:
@@ -81,11 +67,31 @@ def positive_number(text: str) -> float:
     return value
 
 
-def add_out_option(p: argparse.ArgumentParser, default: str) -> None:
+def fail(prog: str, message: str, status: int = 2) -> int:
+    print(f"{prog}: error: {message}", file=sys.stderr, flush=True)
+    return status
+
+
+def add_out_option(p: argparse.ArgumentParser, default: str | None) -> None:
+    shown = f" (default {default})" if default else ""
     p.add_argument("--out", default=default, metavar="FOLDER",
-                   help=f"the output folder (default {default}): it holds one command's "
-                        f"results of one set-up; another's is refused, --fresh starts it over "
-                        f"(what it held is kept in FOLDER/backup-<n>/)")
+                   help=f"the output folder{shown}: it holds one command's results of one "
+                        f"set-up; another's is refused, --fresh starts it over (what it held is "
+                        f"kept in FOLDER/backup-<n>/)")
+
+
+def add_job_options(p: argparse.ArgumentParser, *, max_runs: str | None = None,
+                    fresh: bool = True) -> None:
+    """--fresh, --max-runs (where the job takes it: `max_runs` says what it counts),
+    --no-progress and where runs execute."""
+    add_execution_options(p)
+    if fresh:
+        p.add_argument("--fresh", action="store_true",
+                       help="start the folder over (what it held is kept in <out>/backup-<n>/)")
+    if max_runs:
+        p.add_argument("--max-runs", type=int, help=f"run at most this many {max_runs} now "
+                                                    f"(the rest later)")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
 def add_execution_options(p: argparse.ArgumentParser) -> None:
@@ -108,9 +114,37 @@ def add_execution_options(p: argparse.ArgumentParser) -> None:
 def executor_of(args):
     """The executor the options ask for (ValueError for an address Dask does not take).
     Nothing starts until it is entered."""
-    if args.serial:
-        return SerialExecutor()
     if args.workers is not None and args.workers < 1:
         raise ValueError(f"--workers {args.workers}: at least 1")
-    return DaskExecutor(args.scheduler, args.workers, connect_timeout=args.connect_timeout,
-                        processes=args.processes)
+    return executor_for(args.serial, args.scheduler, args.workers, args.processes,
+                        args.connect_timeout)
+
+
+def run_job(args, make_job, tell) -> int:
+    """A subcommand's run: the job `make_job(args)` through the package's flow into
+    args.out (batch/job.py), saying what happens; then `tell(job, report)` gives the lines
+    that report it. A mistake is one line on stderr (exit 2), Ctrl-C one line saying what is
+    kept (exit 130), failed runs exit 1."""
+    job = None
+    try:
+        job = make_job(args)
+        executor = executor_of(args)
+        report = execute(job, args.out, executor, fresh=getattr(args, "fresh", False),
+                         progress=not args.no_progress, max_runs=getattr(args, "max_runs", None),
+                         say=lambda line: print(line, flush=True))
+    except INPUT_ERRORS as e:
+        return fail(args.prog, one_line(e))
+    except KeyboardInterrupt:
+        what = kept(job, args.out) if job is not None and hasattr(job, "sha256") else "nothing kept"
+        print(f"{args.prog}: interrupted: {what}; run the same command to resume",
+              file=sys.stderr, flush=True)
+        return 130
+    for line in report.notes + tell(job, report):
+        print(line)
+    return 1 if report.failed else 0
+
+
+def one_line(e: BaseException) -> str:
+    """An error's message on one line (the first, for a message of several)."""
+    text = str(e).strip() or type(e).__name__
+    return text.splitlines()[0]

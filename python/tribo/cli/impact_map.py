@@ -1,9 +1,9 @@
-"""tribo-impact-map: the charge one wall impact transfers, as a map over impact speed,
+"""tribo impact-map: the charge one wall impact transfers, as a map over impact speed,
 impact angle, orientation and roundness for a materials pair, through the SI FMU on Dask.
 
-    tribo-impact-map --speed 0.5:10:5 --angle-deg 15:90:6 --phi0-deg 0:90:4 \\
+    tribo impact-map --speed 0.5:10:5 --angle-deg 15:90:6 --phi0-deg 0:90:4 \\
         --epsilon 0.4,0.7,1 --particle PE --wall steel --out out/impact_map
-    tribo-impact-map --speed 1,4 --angle-deg 45,90 --set size=4e-4 --out out/impact_small
+    tribo impact-map --speed 1,4 --angle-deg 45,90 --set size=4e-4 --out out/impact_small
 
 Each grid point is one impact episode (tribo/impact/episode.py): the particle arrives with
 its lowest point touching a level plate, at the speed (m/s) and angle (--angle-deg:
@@ -16,37 +16,29 @@ default 1e-3) and the cylinder depth (--set cylinder_length=..., m, default 1e-3
 SI FMU's: the charges in C are for that depth (q/m does not depend on it).
 
 Writes into the folder --out: impact_map.csv (speed, angle_deg, phi0_deg, epsilon, then
-charge_static, charge_sliding (C per impact on the cylinder of the depth set),
-charge_to_mass_static, charge_to_mass_sliding (C/kg), rebound_u, rebound_v, rebound_speed
-(m/s), rebound_angle_deg, rebound_omega (rad/s), contact_time (s), lifted_off, time_end,
-t_star, then the set-up on every row: particle, wall, size, cylinder_length),
+charge_<model> for each charge model of the FMU (static, sliding: C per impact on the
+cylinder of the depth set), then charge_to_mass_<model> (C/kg), rebound_u, rebound_v,
+rebound_speed (m/s), rebound_angle_deg, rebound_omega (rad/s), contact_time (s),
+lifted_off, time_end, t_star, then the set-up on every row: particle, wall, size,
+cylinder_length),
 impact_map.json (the set-up, the grid, time limit, the FMU and package versions),
 impact_map.png (its title the set-up) and episodes.csv (the runs as they finish: an
 interrupted map resumes when the same command is run again; another set-up or grid needs
 another --out, or --fresh). A wall model looks charges up with tribo.ImpactMap.load(out).
-Dask: as tribo-sweep (a local cluster in this process, or --scheduler).
+Dask: as tribo sweep (a local cluster in this process, or --scheduler).
 """
 
 import os
-import sys
 
-from ..batch.executors import ClusterUnreachable
-from ..batch.folder import FolderError, claim
-from ..batch.sweep import keys_of, kept
-from ..fmu import FmuImage
-from ..fmu.locate import find_fmu
 from ..impact.episode import DEFAULT_LIMIT, Grid
-from ..impact.map import EPISODES, map_setup, prepare_map, run_impact_map
-from ..materials import MaterialError
-from .common import (add_execution_options, add_out_option, check_writable_dir, command_parser,
-                     executor_of, fail, name_value, value_list)
+from ..impact.map import MapJob
+from .common import add_job_options, add_out_option, name_value, run_job, value_list
 
-PROG = "tribo-impact-map"
-
+NAME = "impact-map"
+HELP = "the charge one wall impact transfers, over speed, angle, orientation and roundness"
 
 
-def parse_args(argv=None):
-    p = command_parser(PROG, __doc__)
+def add_arguments(p) -> None:
     p.add_argument("--speed", type=value_list, required=True, metavar="VALUES", help="impact speeds, m/s")
     p.add_argument("--angle-deg", type=value_list, required=True, metavar="VALUES",
                    help="impact angles, degrees from the plate's surface (90: head-on)")
@@ -64,57 +56,26 @@ def parse_args(argv=None):
                    help=f"time limit of an episode in t* (default {DEFAULT_LIMIT:g})")
     add_out_option(p, os.path.join("out", "impact_map"))
     p.add_argument("--fmu", help="the SI FMU (default: tribo_si_fmi3.fmu of the build)")
-    add_execution_options(p)
-    p.add_argument("--fresh", action="store_true",
-                   help="start the folder over (what it held is kept in <out>/backup-<n>/)")
-    p.add_argument("--max-runs", type=int, help="run at most this many episodes now (the rest later)")
+    add_job_options(p, max_runs="episodes")
     p.add_argument("--no-plot", action="store_true", help="no figure")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
-    return p.parse_args(argv)
 
 
-def main(argv=None) -> int:
-    args = parse_args(argv)
-    keys = []
-    path = os.path.join(args.out, EPISODES)
-    try:
-        try:
-            grid = Grid.of(speed=args.speed, angle_deg=args.angle_deg, phi0_deg=args.phi0_deg,
-                           epsilon=args.epsilon)
-            image = FmuImage.load(find_fmu(args.fmu, "si"))
-            settings = dict(args.set)
-            specs = prepare_map(grid, args.particle, args.wall, settings, args.limit, image, args.omega0)
-            if args.max_runs is not None and args.max_runs < 0:
-                raise ValueError(f"--max-runs {args.max_runs}: at least 0")
-            check_writable_dir(args.out)
-            executor = executor_of(args)
-            keys = keys_of(specs, image)
-        except (ValueError, OSError, MaterialError) as e:
-            return fail(PROG, str(e))
-        setup = map_setup(grid, args.particle, args.wall, settings, args.limit, args.omega0)
-        with claim(args.out, "impact map", setup, image.sha256, args.fresh) as folder:
-            if folder.note:
-                print(f"impact map: {folder.note}", flush=True)
-            print(f"impact map: {len(specs)} episodes of {args.particle} on {args.wall} into "
-                  f"{args.out}", flush=True)
-            report = run_impact_map(grid, args.particle, args.wall, settings, args.limit, image,
-                                    args.out, executor, omega0=args.omega0,
-                                    max_runs=args.max_runs, progress=not args.no_progress,
-                                    figure=not args.no_plot, specs=specs)
-    except (ClusterUnreachable, FolderError) as e:
-        return fail(PROG, str(e))
-    except KeyboardInterrupt:
-        print(f"{PROG}: interrupted: {kept(path, keys)} of {len(keys)} episodes kept in {path}; "
-              f"run the same command to resume", file=sys.stderr, flush=True)
-        return 130
-    print(f"impact map: {report.executed} run, {report.skipped} already in the file, "
-          f"{len(report.failed)} failed; {report.total} episodes")
+def job_of(args) -> MapJob:
+    grid = Grid.of(speed=args.speed, angle_deg=args.angle_deg, phi0_deg=args.phi0_deg,
+                   epsilon=args.epsilon)
+    return MapJob(grid, args.particle, args.wall, dict(args.set), args.limit, args.omega0,
+                  args.fmu, figure=not args.no_plot)
+
+
+def told(job, report) -> list[str]:
+    lines = [f"impact map: {report.executed} run, {report.skipped} already in the file, "
+             f"{len(report.failed)} failed; {report.total} episodes"]
     if report.table is not None:
         sustained = int((report.table["lifted_off"] == 0).sum())
-        print(f"impact map: {sustained} of {len(report.table)} episodes in sustained contact at the "
-              f"time limit; wrote {', '.join(report.files)}")
-    return 1 if report.failed else 0
+        lines.append(f"impact map: {sustained} of {len(report.table)} episodes in sustained "
+                     f"contact at the time limit; wrote {', '.join(report.files)}")
+    return lines
 
 
-if __name__ == "__main__":
-    sys.exit(main())
+def run(args) -> int:
+    return run_job(args, job_of, told)

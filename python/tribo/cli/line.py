@@ -1,20 +1,20 @@
-"""tribo-line: grains through the separation line, the SI chute and then the free-fall
+"""tribo line: grains through the separation line, the SI chute and then the free-fall
 separator from the chute's exit state (docs/line.md): one grain, a binary mixture at one
 voltage, or a mixture's voltage sweep with grade and recovery.
 
-    tribo-line grain --particle nylon --voltage 30e3
-    tribo-line mixture -n 1000 --seed 1 --voltage 30e3 --out out/line-mixture
-    tribo-line sweep -n 1000 --seed 1 --voltages 5e3:40e3:8 --workers 2 --out out/line-sweep
-    tribo-line sweep -n 200 --particles PE,nylon --fraction 0.3 --splitter -0.005 --out out/line-30
+    tribo line grain --particle nylon --voltage 30e3
+    tribo line mixture -n 1000 --seed 1 --voltage 30e3 --out out/line-mixture
+    tribo line sweep -n 1000 --seed 1 --voltages 5e3:40e3:8 --workers 2 --out out/line-sweep
+    tribo line sweep -n 200 --particles PE,nylon --fraction 0.3 --splitter -0.005 --out out/line-30
 
 grain prints the grain's exit from the chute and its landing. mixture and sweep draw n
-grains from the feed of tribo-population (the reference case's: shapes 0.3-1, sizes
+grains from the feed of tribo population (the reference case's: shapes 0.3-1, sizes
 0.2-2 mm, on 0.3 m of steel tilted 30 degrees), the two materials of --particles (default
 PE and nylon, which charge negatively and positively on steel) by their mass fraction
 (--fraction of the first, default 0.5), each grain entering the separator at a point drawn
 across --feed-width (m, default 0.01). The chute runs once per grain with one charge model
-(--charge-model static, the default, or sliding: the two are alternative laws of the same
-charge), the separator once per voltage. The products split at --splitter (m, default 0,
+(--charge-model: static, the default, or another of the SI FMU's charge models, such as
+sliding: alternative laws of the same charge), the separator once per voltage. The products split at --splitter (m, default 0,
 the centre line between the bins of the two plates' sides). Separator settings (gap,
 height, n_bins, air_density, ...) by --separator NAME=VALUE, chute parameters by --set.
 
@@ -22,27 +22,21 @@ Writes into --out: particles.csv (a row per grain: material, chute results, q/m,
 landing at the first voltage), landings.csv (a row per grain and voltage), line.csv (a row
 per voltage: masses per material in each product, on each plate, not collected; grade and
 recovery of each product), bins.csv, line.png (a sweep), line.json. An interrupted run
-resumes when the same command is run again. Dask: as tribo-population.
+resumes when the same command is run again. Dask: as tribo population.
 """
 
 import math
 import os
-import sys
 
-from ..batch.executors import ClusterUnreachable
-from ..batch.folder import FolderError, claim
-from ..fmu.names import ParameterError, format_number
-from ..line.grain import (CHARGE_MODELS, LineError, check_separator, load_images,
-                          run_line_grain)
-from ..line.mixture import (DEFAULT_FEED_WIDTH, DEFAULT_PAIR, Line, check_line, line_setup,
-                            line_specs, run_line)
-from ..materials import MaterialError
-from ..populations.distributions import DistributionError
-from ..populations.feed import DEFAULT_CHUTE, FeedError
-from .common import (add_execution_options, add_out_option, check_writable_dir, command_parser,
-                     executor_of, fail, name_value)
+from ..fmu.names import format_number
+from ..line.grain import LineError, check_separator, load_images, run_line_grain
+from ..line.mixture import DEFAULT_FEED_WIDTH, DEFAULT_PAIR, Line, LineJob, check_line, line_specs
+from ..populations.feed import DEFAULT_CHUTE
+from .common import (INPUT_ERRORS, add_job_options, add_out_option, fail, name_value, one_line,
+                     run_job)
 
-PROG = "tribo-line"
+NAME = "line"
+HELP = "grains down the SI chute and through the separator: one grain, a mixture, a voltage sweep"
 VOLTAGE_DEFAULT = 30e3
 
 
@@ -60,8 +54,7 @@ def voltages_of(text: str) -> list[float]:
         raise ValueError(f"--voltages {text}: expected LOW:HIGH:N or V1,V2,... in V") from None
 
 
-def parse_args(argv=None):
-    p = command_parser(PROG, __doc__)
+def add_arguments(p) -> None:
     p.add_argument("mode", choices=("grain", "mixture", "sweep"),
                    help="one grain, a mixture at one voltage, or a mixture's voltage sweep")
     p.add_argument("-n", "--grains", type=int, default=200, help="grains of a mixture (default 200)")
@@ -85,8 +78,9 @@ def parse_args(argv=None):
                    help=f"mixture: width of the feed across the gap, m (default {DEFAULT_FEED_WIDTH:g})")
     p.add_argument("--splitter", type=float, default=0.0,
                    help="mixture: the products' splitter across the gap, m (default 0)")
-    p.add_argument("--charge-model", default="static", choices=CHARGE_MODELS,
-                   help="the chute's one charge model (default static)")
+    p.add_argument("--charge-model", default="static", metavar="MODEL",
+                   help="the chute's one charge model, one of the SI FMU's (default static; "
+                        "sliding)")
     p.add_argument("--chute-length", type=float, default=DEFAULT_CHUTE["chute_length"],
                    help=f"m (default {DEFAULT_CHUTE['chute_length']:g})")
     p.add_argument("--tilt-deg", type=float, default=DEFAULT_CHUTE["tilt_deg"],
@@ -100,29 +94,29 @@ def parse_args(argv=None):
     p.add_argument("--fmu", help="the SI chute FMU (default: the build's tribo_si_fmi3.fmu)")
     p.add_argument("--separator-fmu", help="the separator FMU (default: the build's "
                                            "tribo_separator_fmi3.fmu)")
-    add_execution_options(p)
-    p.add_argument("--fresh", action="store_true",
-                   help="start the folder over (what it held is kept in <out>/backup-<n>/)")
+    add_job_options(p)
     p.add_argument("--no-plot", action="store_true", help="no figure")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
-    return p.parse_args(argv)
 
 
 def chute_of(args) -> dict:
     return {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg}
 
 
-def run_grain(args) -> int:
-    for name in ("size", "epsilon", "phi0_deg", "x_entry", "voltage"):
+def check_finite(args, names) -> None:
+    for name in names:
         if not math.isfinite(getattr(args, name)):
             raise LineError(f"--{name.replace('_', '-')} {getattr(args, name)}: a finite number")
+
+
+def run_grain(args) -> int:
+    check_finite(args, ("size", "epsilon", "phi0_deg", "x_entry", "voltage"))
     line = Line((args.particle,), args.wall, distributions={"epsilon": args.epsilon, "size": args.size,
                                                           "phi0_deg": args.phi0_deg},
                 chute=chute_of(args), settings=dict(args.set), separator=dict(args.separator),
                 feed_width=0.0, charge_model=args.charge_model)
-    specs = line_specs(line, 1, 0, args.t_end)
-    specs[0].params["x_entry"] = args.x_entry
     images = load_images(args.fmu, args.separator_fmu, line.separator, [args.voltage])
+    specs = line_specs(line, 1, 0, args.t_end, images.models)
+    specs[0].params["x_entry"] = args.x_entry
     check_line(line, specs, images)
     check_separator(images.separator, dict(line.separator, x_entry=args.x_entry),
                     [args.voltage], [args.size])
@@ -146,17 +140,12 @@ def run_grain(args) -> int:
     return 0
 
 
-def prepare(args):
-    if args.mode == "sweep":
-        voltages = voltages_of(args.voltages)
-    else:
-        voltages = [args.voltage]
+def job_of(args) -> LineJob:
+    voltages = voltages_of(args.voltages) if args.mode == "sweep" else [args.voltage]
     bad = [v for v in voltages if not math.isfinite(v)]
     if bad:
         raise LineError(f"voltage {bad[0]}: a finite number of V")
-    for name in ("fraction", "feed_width", "splitter"):
-        if not math.isfinite(getattr(args, name)):
-            raise LineError(f"--{name.replace('_', '-')} {getattr(args, name)}: a finite number")
+    check_finite(args, ("fraction", "feed_width", "splitter"))
     line = Line(tuple(p.strip() for p in args.particles.split(",")), args.wall, args.fraction,
                 chute=chute_of(args), settings=dict(args.set), separator=dict(args.separator),
                 feed_width=args.feed_width, charge_model=args.charge_model,
@@ -164,45 +153,25 @@ def prepare(args):
     line.check()
     if len(line.particles) != 2:
         raise LineError(f"--particles {args.particles}: two materials A,B")
-    specs = line_specs(line, args.grains, args.seed, args.t_end)
-    images = load_images(args.fmu, args.separator_fmu, line.separator, voltages)
-    check_line(line, specs, images)
-    check_writable_dir(args.out)
-    return line, specs, images, voltages, executor_of(args)
+    return LineJob("mixture", line, args.grains, args.seed, args.t_end, voltages, args.fmu,
+                   args.separator_fmu, figure=not args.no_plot)
 
 
-def main(argv=None) -> int:
-    args = parse_args(argv)
-    try:
-        if args.mode == "grain":
-            return run_grain(args)
-        line, specs, images, voltages, executor = prepare(args)
-    except (ValueError, OSError, DistributionError, MaterialError, FeedError, ParameterError) as e:
-        return fail(PROG, str(e))
-    try:
-        setup = {"kind": "mixture", **line_setup(line, args.grains, args.seed, args.t_end, voltages)}
-        with claim(args.out, "line", setup, images.sha256, args.fresh) as folder:
-            if folder.note:
-                print(f"line: {folder.note}", flush=True)
-            print(f"line: {args.grains} grains of {' + '.join(line.particles)} on {line.wall} "
-                  f"(seed {args.seed}) at {len(voltages)} voltage(s) into {args.out}", flush=True)
-            report = run_line(line, args.grains, args.seed, args.t_end, images, args.out,
-                              executor, specs=specs, progress=not args.no_progress,
-                              figure=not args.no_plot)
-    except (ClusterUnreachable, FolderError) as e:
-        return fail(PROG, str(e))
-    except KeyboardInterrupt:
-        print(f"{PROG}: interrupted: run the same command to resume", file=sys.stderr, flush=True)
-        return 130
-    print(f"line: {report.executed} grains run, {report.skipped} already in the file, "
-          f"{len(report.failed)} failed")
+def told(job, report) -> list[str]:
+    lines = [f"line: {report.executed} grains run, {report.skipped} already in the file, "
+             f"{len(report.failed)} failed"]
     if report.table is not None:
         cols = ["voltage"] + [c for c in report.table.columns
                               if c.startswith(("grade_", "recovery_"))]
-        print(report.table[cols].to_string(index=False, float_format=lambda v: f"{v:.4g}"))
-        print(f"line: wrote {', '.join(report.files)}")
-    return 1 if report.failed else 0
+        lines += [report.table[cols].to_string(index=False, float_format=lambda v: f"{v:.4g}"),
+                  f"line: wrote {', '.join(report.files)}"]
+    return lines
 
 
-if __name__ == "__main__":
-    sys.exit(main())
+def run(args) -> int:
+    if args.mode != "grain":
+        return run_job(args, job_of, told)
+    try:
+        return run_grain(args)
+    except INPUT_ERRORS as e:
+        return fail(args.prog, one_line(e))

@@ -1,10 +1,10 @@
-"""tribo-population: a particle population down the chute through the SI FMU, on Dask: N
+"""tribo population: a particle population down the chute through the SI FMU, on Dask: N
 particles drawn from a feed with a seed, one row per particle, the q/m summary and figure.
 
-    tribo-population -n 1000 --seed 1 --out out/population
-    tribo-population -n 200 --particle PP --wall glass --epsilon uniform:0.5:1 \\
+    tribo population -n 1000 --seed 1 --out out/population
+    tribo population -n 200 --particle PP --wall glass --epsilon uniform:0.5:1 \\
         --size lognormal:1e-3:0.3 --chute-length 0.5 --tilt-deg 35 --out out/pp-glass
-    tribo-population -n 500 --measured sieve.csv --out out/sieve   # measured rows, drawn
+    tribo population -n 500 --measured sieve.csv --out out/sieve   # measured rows, drawn
 
 The feed variables (tribo/populations/feed.py) take a number or a distribution: uniform:LOW:HIGH,
 normal:MEAN:SD, lognormal:MEDIAN:SIGMA, choice:V1,V2,...; --measured CSV gives columns of
@@ -17,39 +17,31 @@ from 10 mm onto 0.3 m of steel tilted 30 degrees).
 
 Writes into the folder --out: particles.csv (one row per particle: the materials, the seed,
 every parameter of its run (the feed variables, the chute, the materials' constants), then
-exited, exit_time, u, v, exit_speed, omega, charge_static, charge_sliding (C, on the
-cylinder of depth cylinder_length), charge_to_mass_static, charge_to_mass_sliding (C/kg),
-capped_fraction_static, capped_fraction_sliding (of the boundary at the breakdown limit),
+exited, exit_time, u, v, exit_speed, omega, then for each charge model of the FMU
+(static, sliding) charge_<model> (C, on the cylinder of depth cylinder_length),
+charge_to_mass_<model> (C/kg), capped_fraction_<model> (of the boundary at the breakdown
+limit),
 contact_fraction, impacts (contacts made while approaching the plate: bounces, the drop's
 first landing included), fraction_flight ... fraction_bouncing, cpu_s, wall_s), summary.csv (q/m in C/kg:
 n, mean, std, percentiles 5 25 50 75 95, overall and per shape and size class),
 population.png and population.json. Read the mean for what a stream carries (README.md,
 docs/populations.md). An interrupted population (Ctrl-C) resumes when the same command
 is run again; another set-up needs another --out, or --fresh (the folder's earlier
-contents are kept in <out>/backup-<n>/). Dask: as tribo-sweep (a local cluster in this
+contents are kept in <out>/backup-<n>/). Dask: as tribo sweep (a local cluster in this
 process, or --scheduler).
 """
 
 import os
-import sys
 
-from ..batch.executors import ClusterUnreachable
-from ..batch.folder import FolderError, claim
-from ..batch.sweep import keys_of, kept
-from ..fmu import FmuImage
-from ..fmu.locate import find_fmu
-from ..materials import MaterialError
-from ..populations.distributions import DistributionError
 from ..populations.feed import DEFAULT_CHUTE, FEED_UNITS, FEED_VARIABLES, Feed, read_measured
-from ..populations.runner import PARTICLES, population_setup, prepare_population, run_population
-from .common import (add_execution_options, add_out_option, check_writable_dir, command_parser,
-                     executor_of, fail, name_value, numbers)
+from ..populations.runner import PopulationJob
+from .common import add_job_options, add_out_option, name_value, numbers, run_job
 
-PROG = "tribo-population"
+NAME = "population"
+HELP = "particles drawn from a feed, down the chute (SI FMU): q/m statistics and figure"
 
 
-def parse_args(argv=None):
-    p = command_parser(PROG, __doc__)
+def add_arguments(p) -> None:
     p.add_argument("-n", "--particles", type=int, required=True, help="how many particles")
     p.add_argument("--seed", type=int, default=0, help="the draw's seed (default 0)")
     p.add_argument("--particle", default="PE", help="particle material (default PE)")
@@ -73,72 +65,36 @@ def parse_args(argv=None):
                    help="edges of the size classes, m (default: 4 equal classes over the range)")
     add_out_option(p, os.path.join("out", "population"))
     p.add_argument("--fmu", help="the SI FMU (default: tribo_si_fmi3.fmu of the build)")
-    add_execution_options(p)
-    p.add_argument("--fresh", action="store_true",
-                   help="start the folder over (what it held is kept in <out>/backup-<n>/)")
-    p.add_argument("--max-runs", type=int, help="run at most this many particles now (the rest later)")
+    add_job_options(p, max_runs="particles")
     p.add_argument("--no-plot", action="store_true", help="no figure")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
-    return p.parse_args(argv)
 
 
-def prepare(args):
-    """Everything checked before any cluster starts: the feed, every particle's values (by
-    the FMU), the horizon and the output folder."""
+def job_of(args) -> PopulationJob:
     measured = read_measured(args.measured) if args.measured else None
     distributions = {n: getattr(args, n) for n in FEED_VARIABLES if getattr(args, n) is not None}
-    settings = dict(args.set)
     feed = Feed(args.particle, args.wall, distributions,
-                {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg}, settings, measured)
-    image = FmuImage.load(find_fmu(args.fmu, "si"))
-    specs = prepare_population(feed, args.particles, args.seed, args.t_end, image)
-    if args.max_runs is not None and args.max_runs < 0:
-        raise ValueError(f"--max-runs {args.max_runs}: at least 0")
-    check_writable_dir(args.out)
-    return feed, image, specs, executor_of(args)
+                {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg}, dict(args.set),
+                measured)
+    return PopulationJob(feed, args.particles, args.seed, args.t_end, args.fmu,
+                         figure=not args.no_plot, shape_edges=args.shape_classes,
+                         size_edges=args.size_classes)
 
 
-def main(argv=None) -> int:
-    args = parse_args(argv)
-    path = os.path.join(args.out, PARTICLES)
-    keys = []
-    try:
-        try:
-            feed, image, specs, executor = prepare(args)
-            keys = keys_of(specs, image)
-        except (ValueError, OSError, DistributionError, MaterialError) as e:
-            return fail(PROG, str(e))
-        setup = population_setup(feed, args.particles, args.seed, args.t_end)
-        with claim(args.out, "population", setup, image.sha256, args.fresh) as folder:
-            if folder.note:
-                print(f"population: {folder.note}", flush=True)
-            print(f"population: {args.particles} particles of {feed.particle} on {feed.wall} "
-                  f"(seed {args.seed}) into {args.out}", flush=True)
-            report = run_population(feed, args.particles, args.seed, args.t_end, image, args.out,
-                                    executor, max_runs=args.max_runs,
-                                    progress=not args.no_progress, figure=not args.no_plot,
-                                    shape_edges=args.shape_classes, size_edges=args.size_classes,
-                                    specs=specs)
-    except (ClusterUnreachable, FolderError) as e:
-        return fail(PROG, str(e))
-    except KeyboardInterrupt:
-        n = kept(path, keys)
-        print(f"{PROG}: interrupted: {n} of {args.particles} particles kept in {path}; run the "
-              f"same command to resume", file=sys.stderr, flush=True)
-        return 130
-    print(f"population: {report.executed} run, {report.skipped} already in the file, "
-          f"{len(report.failed)} failed; {len(report.results)} of {report.total} done")
+def told(job, report) -> list[str]:
+    lines = [f"population: {report.executed} run, {report.skipped} already in the file, "
+             f"{len(report.failed)} failed; {len(report.results)} of {report.total} done"]
     if report.summary is not None:
         table = report.summary.copy()
         for c in table.columns[5:]:
             if c != "n":
                 table[c] = table[c] * 1e6
-        print("q/m (µC/kg; size classes in m; the mean is what the stream carries per kg, the "
-              "median the typical grain: docs/populations.md):")
-        print(table.drop(columns=["low", "high"]).to_string(index=False, float_format=lambda v: f"{v:.4g}"))
-        print(f"population: wrote {', '.join(report.files)}")
-    return 1 if report.failed else 0
+        lines += ["q/m (µC/kg; size classes in m; the mean is what the stream carries per kg, "
+                  "the median the typical grain: docs/populations.md):",
+                  table.drop(columns=["low", "high"]).to_string(
+                      index=False, float_format=lambda v: f"{v:.4g}"),
+                  f"population: wrote {', '.join(report.files)}"]
+    return lines
 
 
-if __name__ == "__main__":
-    sys.exit(main())
+def run(args) -> int:
+    return run_job(args, job_of, told)

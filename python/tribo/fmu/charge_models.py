@@ -6,11 +6,24 @@ Each registered model <name> gives both FMUs its switch parameter charge_model_<
 the enumeration tribo.Switch) and, in FMI 3.0, its per-segment array: segment_charge_<name>
 in the dimensionless FMU, segment_sigma_<name> in the SI one (the names the tables,
 src/chute/quantities.def and src/si/si_quantities.def, make of a registry row).
+
+The SI FMU's outputs of each model are named by the model too: charge_<name>,
+charge_per_length_<name>, charge_to_mass_<name>, sigma_mean_<name>, capped_fraction_<name>,
+charge_lost_<name>; the dimensionless FMU's mean charge of a model is Q_<name> where the
+model has one (`mean_charges`). The package makes its column names from the model list
+(`per_model`), so that a new model's columns appear in every table.
+
+Models are selected by their switches only: the parameter `charge_model` (a bitmask of the
+first two models) is refused in one line naming the switches (`REMOVED`, fmu/names.py).
 """
 
 SWITCH_PREFIX = "charge_model_"
 SWITCH_TYPE = "tribo.Switch"
 ARRAY_PREFIXES = ("segment_charge_", "segment_sigma_")
+MEAN_CHARGE_PREFIX = "Q_"
+# parameter name -> why the package refuses it, told with the FMU's switches
+REMOVED = {"charge_model": "charge_model was removed: each charge model has its own switch, "
+                           "{switches} (1 on, 0 off)"}
 
 
 def charge_models(md) -> tuple[str, ...]:
@@ -18,6 +31,32 @@ def charge_models(md) -> tuple[str, ...]:
     return tuple(v.name[len(SWITCH_PREFIX):] for v in md.modelVariables
                  if v.name.startswith(SWITCH_PREFIX) and v.declaredType is not None
                  and v.declaredType.name == SWITCH_TYPE)
+
+
+def switches(models) -> list[str]:
+    """The switch parameters of the models: charge_model_<name>."""
+    return [SWITCH_PREFIX + m for m in models]
+
+
+def per_model(prefixes, models) -> list[str]:
+    """Column names, a prefix at a time, each for every model: per_model(("charge_",
+    "charge_to_mass_"), ("static", "sliding")) -> charge_static, charge_sliding,
+    charge_to_mass_static, charge_to_mass_sliding."""
+    return [prefix + m for prefix in prefixes for m in models]
+
+
+def mean_charges(md) -> tuple[str, ...]:
+    """The models whose mean charge Q_<name> the FMU outputs (the dimensionless FMU's)."""
+    outputs = {v.name for v in md.modelVariables if v.causality == "output"}
+    return tuple(m for m in charge_models(md) if MEAN_CHARGE_PREFIX + m in outputs)
+
+
+def removed_message(md, name: str) -> str | None:
+    """The line that refuses a removed parameter, naming the FMU's switches (None for
+    another name)."""
+    if name not in REMOVED:
+        return None
+    return REMOVED[name].format(switches=", ".join(switches(charge_models(md))))
 
 
 def segment_arrays(md) -> dict[str, str]:

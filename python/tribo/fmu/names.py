@@ -21,6 +21,7 @@ import re
 from dataclasses import dataclass
 from typing import Callable
 
+from .charge_models import removed_message
 from .instance import PARAMETER_CAUSALITIES
 
 DEGREES = "_deg"
@@ -119,7 +120,12 @@ def _refusal(md, name: str, kind: str) -> ParameterError:
 
 
 def check_parameter_names(md, names) -> None:
-    """ParameterError, one line, unless every name is a parameter by the package's names."""
+    """ParameterError, one line, unless every name is a parameter by the package's names
+    (a removed one, such as charge_model, told with what replaces it)."""
+    for name in names:
+        message = removed_message(md, name)
+        if message:
+            raise ParameterError(message)
     known = parameter_names(md)
     fmu_only = [n for n in names if n in _by_fmu_name(md)]
     if fmu_only:

@@ -1,6 +1,6 @@
 """Charge-per-impact maps: the charge one wall impact transfers, over impact speed, angle,
 orientation and roundness, through the SI FMU (`tribo.impact_map`, `tribo.ImpactMap`,
-tribo-impact-map).
+tribo impact-map).
 
     episode  one impact episode (run_end = first_liftoff) and a map's grid
     map      a map's runs, table and metadata, and the lookup ImpactMap

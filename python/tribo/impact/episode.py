@@ -9,8 +9,8 @@ or at the time limit (`limit` contact periods' worth of t*, read from the FMU): 
 contact, `lifted_off` = 0. Gravity stays on (its effect over an impact of microseconds is
 the model's, not removed).
 
-Its results (EPISODE_COLUMNS): the charge each model transferred (C on the cylinder of the
-depth set, and per unit mass), the rebound (velocity along and normal to the plate, speed,
+Its results (`episode_columns`): the charge each charge model of the FMU transferred (C on
+the cylinder of the depth set, and per unit mass; fmu/charge_models.py), the rebound (velocity along and normal to the plate, speed,
 angle from the surface in degrees, spin), the contact time and whether it lifted off.
 
 A map's grid point is (speed m/s, angle_deg, phi0_deg, epsilon): angles in degrees, as
@@ -27,6 +27,7 @@ from fmpy.fmi1 import FMICallException
 from ..batch.particle import RunResult
 from ..batch.specs import RunSpec
 from ..fmu import ERROR, FmuImage, Instance, unpacked
+from ..fmu.charge_models import charge_models, per_model
 from ..fmu.names import in_package_terms, to_fmu
 from ..materials import pair_values
 
@@ -35,18 +36,20 @@ AXIS_UNITS = {"speed": "m/s", "angle_deg": "deg from the plate's surface (90: he
               "phi0_deg": "deg, long axis from the plate", "epsilon": "b/a"}
 AXIS_RANGES = {"speed": (0.0, 1e3, False), "angle_deg": (0.0, 90.0, False),
                "phi0_deg": (-180.0, 180.0, True), "epsilon": (1e-3, 1.0, True)}  # low, high, low end included
-EPISODE_OUTPUTS = ["charge_static", "charge_sliding", "charge_to_mass_static",
-                   "charge_to_mass_sliding", "u", "v", "omega", "contact_time", "lifted_off",
-                   "impacts"]
-EPISODE_COLUMNS = ["charge_static", "charge_sliding", "charge_to_mass_static",
-                   "charge_to_mass_sliding", "rebound_u", "rebound_v", "rebound_speed",
-                   "rebound_angle_deg", "rebound_omega", "contact_time", "lifted_off", "time_end",
-                   "t_star"]
+# the SI FMU's outputs of each charge model an episode's row holds (charge_<model>, ...)
+MODEL_PREFIXES = ("charge_", "charge_to_mass_")
+MOTION_COLUMNS = ["rebound_u", "rebound_v", "rebound_speed", "rebound_angle_deg",
+                  "rebound_omega", "contact_time", "lifted_off", "time_end", "t_star"]
 DEFAULT_LIMIT = 200.0  # contact periods' worth of t* before an episode counts as sustained
 
 
 class ImpactError(ValueError):
     """A grid or an episode the FMU cannot run (the message names the value)."""
+
+
+def episode_columns(models) -> list[str]:
+    """The columns of an episode's results row, for the charge models `models`."""
+    return per_model(MODEL_PREFIXES, models) + MOTION_COLUMNS
 
 
 def episode_parameters(base: dict, speed: float, angle_deg: float, phi0_deg: float,
@@ -107,9 +110,10 @@ def episode_specs(grid: Grid, particle: str, wall: str, settings: dict, limit: f
 
 
 def run_episode(image: FmuImage, spec: RunSpec) -> RunResult:
-    """One impact episode: its row (EPISODE_COLUMNS)."""
+    """One impact episode: its row (`episode_columns` of the FMU's charge models)."""
     wall0, cpu0 = time.perf_counter(), time.thread_time()
     md = image.model_description()
+    charges = per_model(MODEL_PREFIXES, charge_models(md))
     with unpacked(image) as fmu_dir:
         instance = Instance(fmu_dir, name="tribo_impact")
         try:
@@ -117,7 +121,7 @@ def run_episode(image: FmuImage, spec: RunSpec) -> RunResult:
             instance.init(0.0)
             t_star = instance.get("t_star")
             instance.step_to(spec.t_end * t_star)
-            end = instance.get_many(EPISODE_OUTPUTS)
+            end = instance.get_many(charges + ["u", "v", "omega", "contact_time", "lifted_off"])
             reached = instance.t
             instance.terminate()
         except FMICallException as e:
@@ -126,13 +130,11 @@ def run_episode(image: FmuImage, spec: RunSpec) -> RunResult:
                                f"{in_package_terms(md, errors[-1]) if errors else e}") from None
         finally:
             instance.free()
-    row = {"charge_static": end["charge_static"], "charge_sliding": end["charge_sliding"],
-           "charge_to_mass_static": end["charge_to_mass_static"],
-           "charge_to_mass_sliding": end["charge_to_mass_sliding"],
-           "rebound_u": end["u"], "rebound_v": end["v"],
-           "rebound_speed": math.hypot(end["u"], end["v"]),
-           "rebound_angle_deg": math.degrees(math.atan2(end["v"], end["u"])),
-           "rebound_omega": end["omega"], "contact_time": end["contact_time"],
-           "lifted_off": int(end["lifted_off"]), "time_end": reached, "t_star": t_star}
+    row = {name: end[name] for name in charges}
+    row.update({"rebound_u": end["u"], "rebound_v": end["v"],
+                "rebound_speed": math.hypot(end["u"], end["v"]),
+                "rebound_angle_deg": math.degrees(math.atan2(end["v"], end["u"])),
+                "rebound_omega": end["omega"], "contact_time": end["contact_time"],
+                "lifted_off": int(end["lifted_off"]), "time_end": reached, "t_star": t_star})
     row.update(cpu_s=time.thread_time() - cpu0, wall_s=time.perf_counter() - wall0)
     return RunResult(row, None)

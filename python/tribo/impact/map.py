@@ -4,7 +4,7 @@ written as a table with its metadata, and the lookup a DEM or CFD wall model cal
 
     <out>/episodes.csv     the runs, one row each as they finish (resumable)
     <out>/impact_map.csv   the map: the grid's axes (speed, angle_deg, phi0_deg, epsilon),
-                           the episode's results (episode.EPISODE_COLUMNS), in the grid's
+                           the episode's results (episode.episode_columns), in the grid's
                            order, then the set-up the charges depend on (SET_UP_COLUMNS:
                            materials, size, cylinder depth), the same on every row
     <out>/impact_map.json  metadata: the set-up (materials, size, cylinder depth, every SI
@@ -29,12 +29,16 @@ import numpy as np
 import pandas as pd
 
 from ..batch.grid import values_of
+from ..batch.job import Job, Report
 from ..batch.sweep import keys_of, run_sweep
 from ..fmu import FmuImage
+from ..fmu.charge_models import charge_models
+from ..fmu.locate import find_fmu
 from ..fmu.names import format_number, start_value
 from ..fmu.parameters import check_values
 from ..materials import material
-from .episode import AXES, AXIS_UNITS, EPISODE_COLUMNS, Grid, episode_specs, run_episode
+from .episode import (AXES, AXIS_UNITS, MODEL_PREFIXES, Grid, episode_columns, episode_specs,
+                      run_episode)
 
 EPISODES, TABLE, METADATA, FIGURE = "episodes.csv", "impact_map.csv", "impact_map.json", "impact_map.png"
 # what a charge per impact depends on beyond the grid: the pair, the size, and the depth of
@@ -42,15 +46,11 @@ EPISODES, TABLE, METADATA, FIGURE = "episodes.csv", "impact_map.csv", "impact_ma
 SET_UP_COLUMNS = ["particle", "wall", "size", "cylinder_length"]
 
 
-@dataclass
-class MapReport:
-    table: pd.DataFrame | None  # None until every episode has run
-    total: int
-    executed: int
-    skipped: int
-    failed: list
-    files: list
-    backup: str | None = None
+@dataclass(kw_only=True)
+class MapReport(Report):
+    """The episodes' rows (`results`) and, once every episode has run, the map's table."""
+
+    table: pd.DataFrame | None = None
 
 
 def prepare_map(grid: Grid, particle: str, wall: str, settings: dict, limit: float,
@@ -89,6 +89,7 @@ def set_up_title(set_up: dict) -> str:
 def map_metadata(grid: Grid, particle: str, wall: str, settings: dict, limit: float,
                  omega0: float, image: FmuImage) -> dict:
     md = image.model_description()
+    columns = episode_columns(charge_models(md))
     try:
         version = package_metadata.version("tribo")
     except package_metadata.PackageNotFoundError:
@@ -97,16 +98,18 @@ def map_metadata(grid: Grid, particle: str, wall: str, settings: dict, limit: fl
             "settings": settings, "omega0_rad_s": omega0,
             "time_limit_t_star": limit,
             "grid": {a: {"values": list(getattr(grid, a)), "unit": AXIS_UNITS[a]} for a in AXES},
-            "columns": {c: _unit(c) for c in EPISODE_COLUMNS + SET_UP_COLUMNS},
+            "columns": {c: _unit(c) for c in columns + SET_UP_COLUMNS},
             "model": {"fmu": image.name, "fmu_sha256": image.sha256,
                       "instantiation_token": md.guid, "generation_tool": md.generationTool,
                       "package_version": version}}
 
 
 def _unit(column: str) -> str:
-    per_depth = "C, on the cylinder of depth cylinder_length"
-    return {"charge_static": per_depth, "charge_sliding": per_depth, "charge_to_mass_static": "C/kg",
-            "charge_to_mass_sliding": "C/kg", "rebound_u": "m/s", "rebound_v": "m/s",
+    units = dict(zip(MODEL_PREFIXES, ("C, on the cylinder of depth cylinder_length", "C/kg")))
+    for prefix in sorted(units, key=len, reverse=True):  # charge_to_mass_ before charge_
+        if column.startswith(prefix):
+            return units[prefix]
+    return {"rebound_u": "m/s", "rebound_v": "m/s",
             "rebound_speed": "m/s", "rebound_angle_deg": "deg from the surface",
             "rebound_omega": "rad/s", "contact_time": "s", "lifted_off": "1 (0: sustained contact)",
             "time_end": "s", "t_star": "s", "particle": "material", "wall": "material",
@@ -117,33 +120,69 @@ def run_impact_map(grid: Grid, particle: str, wall: str, settings: dict, limit: 
                    image: FmuImage, out: str, executor, *, omega0: float = 0.0,
                    resume: bool = True, max_runs: int | None = None, progress: bool = True,
                    figure: bool = True, specs=None) -> MapReport:
+    """The map's episodes on the executor (entered by the caller, or a SerialExecutor),
+    then, once all have run, its table, metadata and figure."""
     specs = specs if specs is not None else prepare_map(grid, particle, wall, settings, limit,
                                                         image, omega0)
     os.makedirs(out, exist_ok=True)
-    with executor:
-        report = run_sweep(specs, image, os.path.join(out, EPISODES), executor, resume=resume,
-                           max_runs=max_runs, progress=progress, desc="episodes",
-                           run=run_episode, result_columns=EPISODE_COLUMNS)
-    files = [os.path.join(out, EPISODES)]
-    table = None
+    models = charge_models(image.model_description())
+    columns = episode_columns(models)
+    runs = run_sweep(specs, image, os.path.join(out, EPISODES), executor, resume=resume,
+                     max_runs=max_runs, progress=progress, desc="episodes", run=run_episode,
+                     result_columns=columns)
+    report = MapReport(**vars(runs))
+    report.files.append(os.path.join(out, EPISODES))
     if report.complete:
-        keys = keys_of(specs, image)
         by_key = report.results.set_index("key")
         points = pd.DataFrame(grid.points(), columns=list(AXES))
-        table = pd.concat([points, by_key.loc[keys, EPISODE_COLUMNS].reset_index(drop=True)], axis=1)
+        table = pd.concat([points, by_key.loc[report.keys, columns].reset_index(drop=True)], axis=1)
         set_up = map_set_up(particle, wall, settings, image)
-        table = table.assign(**{c: set_up[c] for c in SET_UP_COLUMNS})
-        table.to_csv(os.path.join(out, TABLE), index=False)
+        report.table = table.assign(**{c: set_up[c] for c in SET_UP_COLUMNS})
+        report.table.to_csv(os.path.join(out, TABLE), index=False)
         with open(os.path.join(out, METADATA), "w") as f:
             json.dump(map_metadata(grid, particle, wall, settings, limit, omega0, image), f, indent=2)
-        files += [os.path.join(out, TABLE), os.path.join(out, METADATA)]
+        report.files += [os.path.join(out, TABLE), os.path.join(out, METADATA)]
         if figure:
             # matplotlib only when a figure is drawn: `import tribo` stays without it
             from .plot import write_impact_figure
-            files.append(write_impact_figure(table, os.path.join(out, FIGURE),
-                                             f"charge per impact: {set_up_title(set_up)}"))
-    return MapReport(table, len(report.keys), report.executed, report.skipped, report.failed,
-                     files, report.backup)
+            report.files.append(write_impact_figure(report.table, models, os.path.join(out, FIGURE),
+                                                    f"charge per impact: {set_up_title(set_up)}"))
+    return report
+
+
+class MapJob(Job):
+    """A charge-per-impact map into an output folder (batch/job.py's flow): the episodes of
+    `grid` for the pair, `settings` (other SI parameters), the time limit (t*) and spin
+    omega0, through the SI FMU `fmu`."""
+
+    kind, noun, results_file = "impact map", "episode", EPISODES
+
+    def __init__(self, grid: Grid, particle: str, wall: str, settings: dict, limit: float,
+                 omega0: float = 0.0, fmu=None, *, figure: bool = True):
+        self.grid, self.particle, self.wall = grid, particle, wall
+        self.settings, self.limit, self.omega0, self.fmu = dict(settings), limit, omega0, fmu
+        self.figure = figure
+        self.keys = []
+
+    def prepare(self) -> None:
+        self.image = FmuImage.load(find_fmu(self.fmu, "si"))
+        self.specs = prepare_map(self.grid, self.particle, self.wall, self.settings, self.limit,
+                                 self.image, self.omega0)
+        self.sha256 = self.image.sha256
+        self.keys = keys_of(self.specs, self.image)
+
+    def setup(self) -> dict:
+        return map_setup(self.grid, self.particle, self.wall, self.settings, self.limit,
+                         self.omega0)
+
+    def describe(self, out: str, executor) -> str:
+        return (f"impact map: {len(self.specs)} episodes of {self.particle} on {self.wall} into "
+                f"{out}")
+
+    def run(self, out: str, executor, *, progress: bool, max_runs: int | None) -> MapReport:
+        return run_impact_map(self.grid, self.particle, self.wall, self.settings, self.limit,
+                              self.image, out, executor, omega0=self.omega0, max_runs=max_runs,
+                              progress=progress, figure=self.figure, specs=self.specs)
 
 
 class ImpactMap:
@@ -153,8 +192,10 @@ class ImpactMap:
         missing = [a for a in AXES if a not in metadata.get("grid", {})]
         if missing:
             raise ValueError(f"the map's metadata has no axis {', '.join(missing)} (its axes: "
-                             f"{', '.join(metadata.get('grid', {}))}): a map of an earlier "
-                             f"version, whose angles were named angle and phi0; make it again")
+                             f"{', '.join(metadata.get('grid', {}))}, the package's are "
+                             f"{', '.join(AXES)}): make the map again")
+        # the looked-up quantities: the metadata's columns less the set-up
+        self.columns = [c for c in metadata.get("columns", {}) if c not in SET_UP_COLUMNS]
         self.table = table
         self.metadata = metadata
         self.axes = {a: np.asarray(metadata["grid"][a]["values"], dtype=float) for a in AXES}
@@ -162,12 +203,12 @@ class ImpactMap:
         shape = tuple(len(self.axes[a]) for a in AXES)
         if len(table) != int(np.prod(shape)):
             raise ValueError(f"the table has {len(table)} rows, the grid {int(np.prod(shape))} points")
-        self._values = {c: table[c].to_numpy(dtype=float).reshape(shape) for c in EPISODE_COLUMNS}
+        self._values = {c: table[c].to_numpy(dtype=float).reshape(shape) for c in self.columns}
         self._interpolators = {}
 
     @classmethod
     def load(cls, folder: str) -> "ImpactMap":
-        """The map written into `folder` by run_impact_map (tribo-impact-map --out)."""
+        """The map written into `folder` by run_impact_map (tribo impact-map --out)."""
         with open(os.path.join(folder, METADATA)) as f:
             meta = json.load(f)
         return cls(pd.read_csv(os.path.join(folder, TABLE)), meta)
@@ -177,7 +218,7 @@ class ImpactMap:
         from scipy.interpolate import RegularGridInterpolator
 
         if quantity not in self._values:
-            raise KeyError(f"{quantity!r} is not a column of the map ({', '.join(EPISODE_COLUMNS)})")
+            raise KeyError(f"{quantity!r} is not a column of the map ({', '.join(self.columns)})")
         if quantity not in self._interpolators:
             values = self._values[quantity]
             index = tuple(slice(None) if a in self.varying else 0 for a in AXES)

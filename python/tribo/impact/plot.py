@@ -8,19 +8,20 @@ from ..plotting import distinct_colours, legend, plt, save
 CHARGE_UNIT, CHARGE_FACTOR = "pC", 1e12
 
 
-def write_impact_figure(table, path: str, title: str) -> str:
-    """table: the map (impact_map.csv)."""
-    return save(impact_figure(table, title), path)
+def write_impact_figure(table, models, path: str, title: str) -> str:
+    """table: the map (impact_map.csv); models: its charge models (a row each)."""
+    return save(impact_figure(table, models, title), path)
 
 
-def impact_figure(table, title: str):
+def impact_figure(table, models, title: str):
     """The figure (see the module's text), its legends beside the panels."""
     epsilons = sorted(table["epsilon"].unique())
     colours = distinct_colours(len(epsilons))
     top_speed, top_angle = table["speed"].max(), table["angle_deg"].max()
     n_phi = table["phi0_deg"].nunique()
-    fig, axes = plt.subplots(2, 2, figsize=(14, 9), layout="constrained")
-    for row, model in zip(axes, ("static", "sliding")):
+    fig, axes = plt.subplots(len(models), 2, figsize=(14, 4.5 * len(models)),
+                             layout="constrained", squeeze=False)
+    for row, model in zip(axes, models):
         column = f"charge_{model}"
         for ax, x, fixed, fixed_value, unit in ((row[0], "angle_deg", "speed", top_speed, "m/s"),
                                                 (row[1], "speed", "angle_deg", top_angle, "deg")):

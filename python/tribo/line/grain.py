@@ -13,11 +13,12 @@ reaches the bins or a plate, located exactly. The chute's part does not depend o
 separator's settings: a voltage sweep runs it once per grain and the separator once per
 voltage.
 
-The chute runs with ONE charge model (`charge_model`, "static" by default), the one its output
-`charge_to_mass` carries (`charge_to_mass_model`): the static and sliding models are
-alternative laws of the same grain's charge (docs/model.md section 5), and the other one's
-work would be spent for nothing. The static model is the default because it is the one the
-populations' results are read with (docs/populations.md); "sliding" may be chosen.
+The chute runs with ONE charge model (`charge_model`, a name of the SI FMU's registered
+models, fmu/charge_models.py; "static" by default), the one its output `charge_to_mass`
+carries (`charge_to_mass_model`): the charge models are alternative laws of the same
+grain's charge (docs/model.md section 5), and the others' work would be spent for nothing.
+The static model is the default because it is the one the populations' results are read
+with (docs/populations.md); any other registered model may be chosen.
 """
 
 import hashlib
@@ -31,14 +32,13 @@ import pandas as pd
 from ..batch.particle import RunResult
 from ..batch.specs import RunSpec
 from ..fmu import FmuImage, Instance, unpacked
+from ..fmu.charge_models import charge_models, switches
 from ..fmu.locate import find_fmu
-from ..fmu.names import ParameterError, format_number, to_fmu
+from ..fmu.names import format_number, to_fmu
 from ..fmu.parameters import check_values
-from ..populations.feed import RESULT_COLUMNS as CHUTE_COLUMNS
+from ..populations.feed import result_columns as chute_columns
 from ..populations.feed import run_particle
 
-CHARGE_MODELS = ("static", "sliding")
-DEFAULT_CHARGE_MODEL = "static"
 # the separator's parameters the chute's grain and scene bind, by the package's names
 SHARED = ("size", "epsilon", "density", "tilt_deg", "gravity")
 # the separator's settings a line may give, by the package's names (docs/separator.md)
@@ -60,13 +60,18 @@ class LineError(ValueError):
     """A line that cannot be run as given (the message, one line, names the value)."""
 
 
-def charge_model_settings(charge_model: str) -> dict:
-    """The chute's switches that leave one charge model on, and its charge_to_mass_model
-    (the registry's row from 1: CHARGE_MODELS is in the registry's order)."""
-    if charge_model not in CHARGE_MODELS:
-        raise LineError(f"charge_model = {charge_model!r}: one of {', '.join(CHARGE_MODELS)}")
-    return {f"charge_model_{m}": int(m == charge_model) for m in CHARGE_MODELS} | \
-        {"charge_to_mass_model": CHARGE_MODELS.index(charge_model) + 1}
+def charge_model_settings(charge_model: str, models) -> dict:
+    """The chute's switches that leave one charge model of `models` (the SI FMU's, in the
+    registry's order) on, and its charge_to_mass_model (the registry's row, from 1)."""
+    if charge_model not in models:
+        raise LineError(f"charge_model = {charge_model!r}: one of {', '.join(models)}")
+    return {switch: int(m == charge_model) for m, switch in zip(models, switches(models))} | \
+        {"charge_to_mass_model": models.index(charge_model) + 1}
+
+
+def the_charge_model(params: dict, models) -> str:
+    """The one model a grain's chute parameters leave on (charge_model_settings)."""
+    return next(m for m, switch in zip(models, switches(models)) if params.get(switch, 1))
 
 
 @dataclass(frozen=True)
@@ -84,6 +89,11 @@ class LineImages:
     @property
     def name(self) -> str:
         return f"{self.chute.name} + {self.separator.name}"
+
+    @property
+    def models(self) -> tuple:
+        """The chute's charge models (fmu/charge_models.py)."""
+        return charge_models(self.chute.model_description())
 
     @property
     def sha256(self) -> str:
@@ -163,7 +173,7 @@ def chute_params_of(params: dict) -> dict:
 
 
 def run_line_grain(images: LineImages, spec: RunSpec) -> RunResult:
-    """One grain: the chute once (its row: populations.feed.RESULT_COLUMNS), then the
+    """One grain: the chute once (its row: populations.feed.result_columns), then the
     separator at each voltage of `images`. The row gains GRAIN_COLUMNS and, for the first
     voltage, LANDING_COLUMNS; `series` holds one row per voltage (LANDING_COLUMNS)."""
     wall0, cpu0 = time.perf_counter(), time.thread_time()
@@ -171,8 +181,8 @@ def run_line_grain(images: LineImages, spec: RunSpec) -> RunResult:
     chute = run_particle(images.chute, chute_spec)
     row = dict(chute.row)
     end = chute.series.iloc[-1]
-    model = next(m for m in CHARGE_MODELS if spec.params.get(f"charge_model_{m}", 1))
-    q = float(end[f"charge_to_mass_{model}"])  # the other model is off: the sum is this one
+    model = the_charge_model(spec.params, images.models)
+    q = float(end[f"charge_to_mass_{model}"])
     exited = bool(row["exited"])
     t_exit = float(row["time_end"])
     inputs = {"u_entry": float(end["u"]), "v_entry": float(end["v"]),
@@ -196,7 +206,9 @@ def run_line_grain(images: LineImages, spec: RunSpec) -> RunResult:
     return RunResult(row, pd.DataFrame(landings))
 
 
-RESULT_COLUMNS = CHUTE_COLUMNS + GRAIN_COLUMNS + LANDING_COLUMNS + ["chute_cpu_s"]
+def result_columns(models) -> list[str]:
+    """The columns of a grain's results row, for the chute's charge models `models`."""
+    return chute_columns(models) + GRAIN_COLUMNS + LANDING_COLUMNS + ["chute_cpu_s"]
 
 
 def load_images(chute_fmu, separator_fmu, settings: dict, voltages, horizon=SEPARATOR_HORIZON):
@@ -205,7 +217,3 @@ def load_images(chute_fmu, separator_fmu, settings: dict, voltages, horizon=SEPA
                       FmuImage.load(find_fmu(separator_fmu, "separator")),
                       dict(settings), tuple(float(v) for v in voltages), float(horizon))
 
-
-def check_horizon(horizon: float) -> None:
-    if not (isinstance(horizon, (int, float)) and math.isfinite(horizon) and horizon > 0):
-        raise ParameterError(f"the separator's horizon = {horizon!r}: a positive number of seconds")

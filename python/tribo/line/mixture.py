@@ -47,15 +47,16 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from ..batch.job import Job, Report
 from ..batch.results import KEY
 from ..batch.specs import RunSpec
-from ..batch.sweep import read_series, run_sweep
-from ..fmu.names import format_number
+from ..batch.sweep import keys_of, read_series, run_sweep
 from ..fmu.parameters import check_values
 from ..materials import material, pair_sigma0
 from ..populations.feed import DEFAULT_CHUTE, Feed, FeedError, draw, particle_parameters
-from .grain import (LANDING_COLUMNS, RESULT_COLUMNS, LineError, LineImages, charge_model_settings,
-                    check_separator, chute_params_of, run_line_grain)
+from .grain import (LANDING_COLUMNS, LineError, LineImages, charge_model_settings,
+                    check_separator, chute_params_of, load_images, result_columns,
+                    run_line_grain)
 
 PARTICLES, LANDINGS, TABLE, BINS, FIGURE, METADATA = ("particles.csv", "landings.csv", "line.csv",
                                                       "bins.csv", "line.png", "line.json")
@@ -82,7 +83,9 @@ class Line:
     charge_model: str = "static"
     splitter: float = 0.0
 
-    def check(self) -> None:
+    def check(self, models=None) -> None:
+        """LineError, one line, for a value the line cannot run with; the charge model too
+        where the chute's `models` are given."""
         if isinstance(self.particles, str):
             self.particles = (self.particles,)
         self.particles = tuple(self.particles)
@@ -101,7 +104,8 @@ class Line:
             raise LineError(f"splitter = {self.splitter!r}: a position across the gap, m")
         if "x_entry" in self.separator:
             raise LineError("x_entry is drawn for each grain across feed_width: give feed_width")
-        charge_model_settings(self.charge_model)
+        if models is not None:
+            charge_model_settings(self.charge_model, models)
         if len(keys) == 2:
             signs = [math.copysign(1, pair_sigma0(k, self.wall)) for k in keys]
             if signs[0] == signs[1]:
@@ -131,12 +135,13 @@ def counts(line: Line, n: int) -> list[int]:
     return [n_a, n - n_a]
 
 
-def line_specs(line: Line, n: int, seed: int, t_end: float) -> list[RunSpec]:
-    """Each grain's run: its material, entry point and chute parameters."""
-    line.check()
+def line_specs(line: Line, n: int, seed: int, t_end: float, models) -> list[RunSpec]:
+    """Each grain's run: its material, entry point and chute parameters (one of the chute's
+    charge models `models` on: the line's)."""
+    line.check(models)
     if not (isinstance(t_end, (int, float)) and math.isfinite(t_end) and t_end > 0):
         raise FeedError(f"the horizon t_end must be a positive number of seconds, got {t_end!r}")
-    settings = dict(line.settings, **charge_model_settings(line.charge_model))
+    settings = dict(line.settings, **charge_model_settings(line.charge_model, models))
     base = Feed(line.particles[0], line.wall, dict(line.distributions), dict(line.chute), settings)
     drawn = draw(base, n, seed)
     rng = np.random.default_rng([seed, 1])  # the entry points: a stream of their own
@@ -173,54 +178,84 @@ def line_setup(line: Line, n: int, seed: int, t_end: float, voltages) -> dict:
             "line": line.describe()}
 
 
-@dataclass
-class LineReport:
-    results: pd.DataFrame  # a row per finished grain (particles.csv)
-    landings: pd.DataFrame | None  # a row per grain and voltage, once all have run
-    table: pd.DataFrame | None  # a row per voltage (line.csv)
-    bins: pd.DataFrame | None
-    total: int
-    executed: int
-    skipped: int
-    failed: list
-    files: list
-    backup: str | None = None
+@dataclass(kw_only=True)
+class LineReport(Report):
+    """The grains' rows (`results`: particles.csv) and, once all have run, a row per grain
+    and voltage (`landings`), per voltage (`table`: line.csv) and per bin (`bins`)."""
 
-    @property
-    def complete(self) -> bool:
-        return len(self.results) == self.total
+    landings: pd.DataFrame | None = None
+    table: pd.DataFrame | None = None
+    bins: pd.DataFrame | None = None
 
 
 def run_line(line: Line, n: int, seed: int, t_end: float, images: LineImages, out: str, executor,
              *, specs=None, progress: bool = True, figure: bool = True,
              max_runs: int | None = None) -> LineReport:
-    specs = specs if specs is not None else line_specs(line, n, seed, t_end)
+    """The grains on the executor (entered by the caller, or a SerialExecutor), then, once
+    all have run, the landings, the tally per voltage and bin, and the figure."""
+    specs = specs if specs is not None else line_specs(line, n, seed, t_end, images.models)
     os.makedirs(out, exist_ok=True)
     described = line.describe()
     with open(os.path.join(out, METADATA), "w") as f:
         json.dump({**line_setup(line, n, seed, t_end, images.voltages), "chute_fmu": images.chute.name,
                    "separator_fmu": images.separator.name, "sha256": images.sha256}, f, indent=2)
-    with executor:
-        report = run_sweep(specs, images, os.path.join(out, PARTICLES), executor,
-                           series_dir=os.path.join(out, LANDINGS_DIR), max_runs=max_runs,
-                           progress=progress, desc="grains", run=run_line_grain,
-                           result_columns=RESULT_COLUMNS,
-                           constants={"wall": described["wall"], "seed": seed})
-    files = [os.path.join(out, PARTICLES), os.path.join(out, METADATA)]
-    landings = table = bins = None
+    runs = run_sweep(specs, images, os.path.join(out, PARTICLES), executor,
+                     series_dir=os.path.join(out, LANDINGS_DIR), max_runs=max_runs,
+                     progress=progress, desc="grains", run=run_line_grain,
+                     result_columns=result_columns(images.models),
+                     constants={"wall": described["wall"], "seed": seed})
+    report = LineReport(**vars(runs))
+    report.files += [os.path.join(out, PARTICLES), os.path.join(out, METADATA)]
     if report.complete:
-        landings = collect_landings(report.results, os.path.join(out, LANDINGS_DIR))
-        landings.to_csv(os.path.join(out, LANDINGS), index=False, float_format="%.10g")
-        table, bins = tally(landings, line, int(images.settings.get("n_bins", n_bins_of(images))))
-        table.to_csv(os.path.join(out, TABLE), index=False, float_format="%.10g")
-        bins.to_csv(os.path.join(out, BINS), index=False, float_format="%.10g")
-        files += [os.path.join(out, f) for f in (LANDINGS, TABLE, BINS)]
+        report.landings = collect_landings(report.results, os.path.join(out, LANDINGS_DIR))
+        report.landings.to_csv(os.path.join(out, LANDINGS), index=False, float_format="%.10g")
+        report.table, report.bins = tally(report.landings, line,
+                                          int(images.settings.get("n_bins", n_bins_of(images))))
+        report.table.to_csv(os.path.join(out, TABLE), index=False, float_format="%.10g")
+        report.bins.to_csv(os.path.join(out, BINS), index=False, float_format="%.10g")
+        report.files += [os.path.join(out, f) for f in (LANDINGS, TABLE, BINS)]
         if figure and len(line.particles) == 2 and len(images.voltages) > 1:
             # matplotlib only when a figure is drawn: `import tribo` stays without it
             from .plot import write_line_figure
-            files.append(write_line_figure(table, line, n, seed, os.path.join(out, FIGURE)))
-    return LineReport(report.results, landings, table, bins, len(report.keys), report.executed,
-                      report.skipped, report.failed, files, report.backup)
+            report.files.append(write_line_figure(report.table, line, n, seed,
+                                                  os.path.join(out, FIGURE)))
+    return report
+
+
+class LineJob(Job):
+    """Grains through the line into an output folder (batch/job.py's flow): n grains of
+    `line` drawn with `seed`, the chute to `t_end` s, the separator at each of `voltages`;
+    `kind` ("population", "mixture") goes into the folder's record."""
+
+    kind, noun, results_file = "line", "grain", PARTICLES
+
+    def __init__(self, kind: str, line: Line, n: int, seed: int, t_end: float, voltages,
+                 fmu=None, separator_fmu=None, *, figure: bool = True):
+        self.line_kind, self.line, self.n, self.seed, self.t_end = kind, line, n, seed, t_end
+        self.voltages = [float(v) for v in voltages]
+        self.fmu, self.separator_fmu, self.figure = fmu, separator_fmu, figure
+        self.keys = []
+
+    def prepare(self) -> None:
+        self.line.check()
+        self.images = load_images(self.fmu, self.separator_fmu, self.line.separator, self.voltages)
+        self.specs = line_specs(self.line, self.n, self.seed, self.t_end, self.images.models)
+        check_line(self.line, self.specs, self.images)
+        self.sha256 = self.images.sha256
+        self.keys = keys_of(self.specs, self.images)
+
+    def setup(self) -> dict:
+        return {"kind": self.line_kind,
+                **line_setup(self.line, self.n, self.seed, self.t_end, self.voltages)}
+
+    def describe(self, out: str, executor) -> str:
+        return (f"line: {self.n} grains of {' + '.join(self.line.particles)} on {self.line.wall} "
+                f"(seed {self.seed}) at {len(self.voltages)} voltage(s) into {out}")
+
+    def run(self, out: str, executor, *, progress: bool, max_runs: int | None) -> LineReport:
+        return run_line(self.line, self.n, self.seed, self.t_end, self.images, out, executor,
+                        specs=self.specs, progress=progress, figure=self.figure,
+                        max_runs=max_runs)
 
 
 def n_bins_of(images: LineImages) -> int:
@@ -287,6 +322,3 @@ def tally(landings: pd.DataFrame, line: Line, n_bins: int) -> tuple[pd.DataFrame
         rows.append(row)
     return pd.DataFrame(rows), pd.DataFrame(bin_rows)
 
-
-def fmt(value) -> str:
-    return format_number(float(value))

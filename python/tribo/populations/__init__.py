@@ -1,5 +1,5 @@
 """Particle populations: a feed drawn with a seed, each particle run down the chute through
-the SI FMU (`tribo.population`, tribo-population).
+the SI FMU (`tribo.population`, tribo population).
 
     distributions  a feed variable's distribution, as text, drawn with a seed
     feed           a feed, its seeded draw, one particle's run

@@ -20,11 +20,12 @@ conversion here: the FMU maps the SI set-up onto the model) from the drop to the
 exit or the horizon, keyed like a sweep's run (batch.specs.run_key), so that a population is
 resumable like a sweep (batch.sweep.run_sweep).
 
-Per particle (RESULT_COLUMNS), after the materials and every parameter of its run (the
+Per particle (`result_columns`), after the materials and every parameter of its run (the
 feed variables, the chute, the materials' constants): whether and when it left the chute; its velocity
-there (u along, v normal to the chute, the speed, the spin); both models' charge and
+there (u along, v normal to the chute, the speed, the spin); each charge model's charge and
 charge-to-mass ratio, and the fraction of the boundary held at the air-breakdown limit
-(capped_fraction_*, model.md section 8b); the contact fraction; impacts, the contacts made
+(capped_fraction_<model>, model.md section 8b; the models are the FMU's,
+fmu/charge_models.py); the contact fraction; impacts, the contacts made
 while approaching the plate (the core's count, model.md section 3b: each bounce is one, the
 drop's first landing included); the fraction of the time in each motion class.
 """
@@ -41,6 +42,7 @@ from ..batch.particle import RunResult, simulate
 from ..batch.specs import RunSpec
 from ..batch.summary import MOTION_CLASSES
 from ..fmu import FmuImage
+from ..fmu.charge_models import charge_models, per_model
 from ..materials import material, pair_values
 from .distributions import Distribution, parse
 
@@ -57,17 +59,23 @@ DEFAULT_DISTRIBUTIONS = {"epsilon": "uniform:0.3:1", "size": "uniform:2e-4:2e-3"
                          "drop_speed": 0.0, "drop_angle_deg": 0.0}
 DEFAULT_CHUTE = {"chute_length": 0.3, "tilt_deg": 30.0}
 
-MODELS = ("static", "sliding")
-OUTPUTS = (["exited", "exit_time", "u", "v", "omega", "contact_fraction", "impacts",
-            "assumption_warnings"]
-           + [f"charge_{m}" for m in MODELS] + [f"charge_to_mass_{m}" for m in MODELS]
-           + [f"capped_fraction_{m}" for m in MODELS]
-           + [f"fraction_{c}" for c in MOTION_CLASSES])
-RESULT_COLUMNS = ["exited", "exit_time", "time_end", "u", "v", "exit_speed", "omega",
-                  "charge_static", "charge_sliding", "charge_to_mass_static",
-                  "charge_to_mass_sliding", "capped_fraction_static", "capped_fraction_sliding",
-                  "contact_fraction", "impacts"] \
-    + [f"fraction_{c}" for c in MOTION_CLASSES] + ["assumption_warnings"]
+# the SI FMU's outputs of each charge model a particle's row holds (charge_<model>, ...)
+MODEL_PREFIXES = ("charge_", "charge_to_mass_", "capped_fraction_")
+
+
+def outputs(models) -> list[str]:
+    """The SI FMU's outputs a particle's run records, for the charge models `models`."""
+    return (["exited", "exit_time", "u", "v", "omega", "contact_fraction", "impacts",
+             "assumption_warnings"] + per_model(MODEL_PREFIXES, models)
+            + [f"fraction_{c}" for c in MOTION_CLASSES])
+
+
+def result_columns(models) -> list[str]:
+    """The columns of a particle's results row, for the charge models `models`."""
+    return (["exited", "exit_time", "time_end", "u", "v", "exit_speed", "omega"]
+            + per_model(MODEL_PREFIXES, models) + ["contact_fraction", "impacts"]
+            + [f"fraction_{c}" for c in MOTION_CLASSES] + ["assumption_warnings"])
+
 # communication steps per run
 STEPS_PER_RUN = 100
 # the FMU's work limit per step, raised to its maximum: a particle that rocks down the chute
@@ -183,12 +191,14 @@ def specs_of(feed: Feed, n: int, seed: int, t_end: float, defaults: dict | None 
 
 
 def run_particle(image: FmuImage, spec: RunSpec) -> RunResult:
-    """One particle down the chute: its results row (RESULT_COLUMNS)."""
+    """One particle down the chute: its results row (`result_columns` of the FMU's charge
+    models)."""
     wall0, cpu0 = time.perf_counter(), time.thread_time()
-    recording = simulate(image, spec.params, spec.t_end, spec.record_interval, OUTPUTS)
+    recorded = outputs(charge_models(image.model_description()))
+    recording = simulate(image, spec.params, spec.t_end, spec.record_interval, recorded)
     end = recording.series.iloc[-1]
     row = {"time_end": float(end["time"]), "exit_speed": math.hypot(end["u"], end["v"])}
-    row.update({name: float(end[name]) for name in OUTPUTS})
+    row.update({name: float(end[name]) for name in recorded})
     row["exited"] = int(row["exited"])
     row["impacts"] = int(row["impacts"])
     row["assumption_warnings"] = int(row["assumption_warnings"])

@@ -1,7 +1,8 @@
-"""The figure of a population: for each charge model (a row), the q/m histogram with the
-summary's mean and percentiles, q/m against roundness (a colour per size class) and
-against size (a colour per shape class), and the exit speed against the charge (a colour
-per shape class).
+"""The figure of a population, drawn from its summary (summary.py: the charge models, the
+class edges and the statistics) and its particles' rows (the points): for each charge
+model (a row), the q/m histogram with the summary's mean and percentiles, q/m against
+roundness (a colour per size class) and against size (a colour per shape class), and the
+exit speed against the charge (a colour per shape class).
 
 A population's q/m spans decades, so the panels use log axes of its magnitude, drawn with
 the polarity of the pair: −q/m when every particle charges negatively (σ0 < 0), q/m when
@@ -16,7 +17,7 @@ import numpy as np
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 from ..plotting import distinct_colours, legend, plt, save
-from .summary import class_edges, classes_of, statistics
+from .summary import classes_of, edges_of
 
 QM_UNIT, QM_FACTOR = "µC/kg", 1e6
 CHARGE_UNIT, CHARGE_FACTOR = "pC", 1e12
@@ -43,7 +44,9 @@ def _magnitude_label(sign: int, what: str) -> str:
     return {-1: f"−{what}", 1: what, 0: f"|{what}|"}[sign]
 
 
-def _by_class(results, column, edges, unit):
+def _by_class(results, summary, grouping, column, unit):
+    """(name, rows) of each class of a grouping, by the summary's edges."""
+    edges = edges_of(summary, grouping)
     labels = classes_of(results[column], edges)
     groups = []
     for i, interval in enumerate(labels.cat.categories):
@@ -74,9 +77,9 @@ def _scatter(ax, groups, colours, x, y, xlabel, ylabel, title, logx=False, logy=
     legend(ax, outside=True)
 
 
-def _histogram(ax, qm, model):
+def _histogram(ax, qm, model, stats):
     """The q/m histogram of a charge model on a log axis of its magnitude, with the mean and
-    percentiles of the signed values (summary.statistics, as in summary.csv)."""
+    percentiles of the signed values (`stats`: the summary's row of all particles)."""
     sign = polarity(qm)
     shown = np.abs(qm.to_numpy(dtype=float)) * QM_FACTOR
     positive = shown[shown > 0]
@@ -92,7 +95,6 @@ def _histogram(ax, qm, model):
     zero = len(shown) - len(positive)
     if zero:
         ax.plot([], [], " ", label=f"{zero} with q/m = 0 (not on the log axis)")
-    stats = statistics(qm)
     for column, style, name in MARKED:
         value = stats[column] * QM_FACTOR
         if value != 0 and np.isfinite(value):
@@ -106,15 +108,18 @@ def _histogram(ax, qm, model):
     return sign
 
 
-def population_figure(results, shape_edges=None, size_edges=None, title: str = ""):
-    """results: the population's rows (one per particle)."""
-    shapes = _by_class(results, "epsilon", class_edges(results["epsilon"], shape_edges), "")
-    sizes = _by_class(results, "size", class_edges(results["size"], size_edges), "m")
+def population_figure(results, summary, title: str = ""):
+    """results: the population's rows (one per particle); summary: its summary (summary.py)."""
+    models = list(dict.fromkeys(summary["model"]))
+    shapes = _by_class(results, summary, "shape", "epsilon", "")
+    sizes = _by_class(results, summary, "size", "size", "m")
     shape_colours = distinct_colours(len(shapes))
     size_colours = distinct_colours(len(sizes))
-    fig, axes = plt.subplots(2, 4, figsize=(26, 10), layout="constrained")
-    for row, model in zip(axes, ("static", "sliding")):
-        sign = _histogram(row[0], results[f"charge_to_mass_{model}"], model)
+    fig, axes = plt.subplots(len(models), 4, figsize=(26, 5 * len(models)), layout="constrained",
+                             squeeze=False)
+    overall = summary[summary["grouping"] == "all"].set_index("model")
+    for row, model in zip(axes, models):
+        sign = _histogram(row[0], results[f"charge_to_mass_{model}"], model, overall.loc[model])
         label = f"{_magnitude_label(sign, 'q/m')}, {model} model ({QM_UNIT})"
         qm_of = lambda g: g[f"charge_to_mass_{model}"].abs() * QM_FACTOR  # noqa: E731
         _scatter(row[1], sizes, size_colours, lambda g: g["epsilon"], qm_of,
@@ -132,6 +137,5 @@ def population_figure(results, shape_edges=None, size_edges=None, title: str = "
     return fig
 
 
-def write_population_figure(results, path: str, shape_edges=None, size_edges=None,
-                            title: str = "") -> str:
-    return save(population_figure(results, shape_edges, size_edges, title), path)
+def write_population_figure(results, summary, path: str, title: str = "") -> str:
+    return save(population_figure(results, summary, title), path)

@@ -15,30 +15,25 @@ from dataclasses import dataclass
 import pandas as pd
 
 from ..batch.grid import values_of
-from ..batch.sweep import run_sweep
+from ..batch.job import Job, Report
+from ..batch.sweep import keys_of, run_sweep
 from ..fmu import FmuImage
+from ..fmu.charge_models import charge_models
+from ..fmu.locate import find_fmu
 from ..fmu.names import format_number, start_value
 from ..fmu.parameters import check_values
-from .feed import RESULT_COLUMNS, Feed, run_particle, specs_of
+from .feed import Feed, result_columns, run_particle, specs_of
 from .summary import summarize_population
 
 PARTICLES, SUMMARY, FIGURE, METADATA = "particles.csv", "summary.csv", "population.png", "population.json"
 
 
-@dataclass
-class PopulationReport:
-    results: pd.DataFrame  # the finished particles, in the draw's order
-    summary: pd.DataFrame | None  # None until every particle has run
-    total: int
-    executed: int
-    skipped: int
-    failed: list  # (spec, exception)
-    files: list
-    backup: str | None = None
+@dataclass(kw_only=True)
+class PopulationReport(Report):
+    """The particles' rows (`results`, in the draw's order) and, once every particle has
+    run, their summary."""
 
-    @property
-    def complete(self) -> bool:
-        return len(self.results) == self.total
+    summary: pd.DataFrame | None = None
 
 
 def population_setup(feed: Feed, n: int, seed: int, t_end: float) -> dict:
@@ -60,6 +55,9 @@ def run_population(feed: Feed, n: int, seed: int, t_end: float, image: FmuImage,
                    executor, *, resume: bool = True, max_runs: int | None = None,
                    progress: bool = True, figure: bool = True, shape_edges=None,
                    size_edges=None, specs=None) -> PopulationReport:
+    """The population's runs on the executor (entered by the caller, or a SerialExecutor),
+    then, once all have run, its summary and figure: feed -> runs -> particles.csv ->
+    summary.csv -> population.png."""
     specs = specs if specs is not None else prepare_population(feed, n, seed, t_end, image)
     os.makedirs(out, exist_ok=True)
     described = feed.describe()
@@ -67,18 +65,18 @@ def run_population(feed: Feed, n: int, seed: int, t_end: float, image: FmuImage,
                 "fmu_sha256": image.sha256, "feed": described}
     with open(os.path.join(out, METADATA), "w") as f:
         json.dump(metadata, f, indent=2)
-    with executor:
-        report = run_sweep(specs, image, os.path.join(out, PARTICLES), executor, resume=resume,
-                           max_runs=max_runs, progress=progress, desc="particles",
-                           run=run_particle, result_columns=RESULT_COLUMNS,
-                           constants={"particle": described["particle"],
-                                      "wall": described["wall"], "seed": seed})
-    files = [os.path.join(out, PARTICLES), os.path.join(out, METADATA)]
-    summary = None
+    models = charge_models(image.model_description())
+    runs = run_sweep(specs, image, os.path.join(out, PARTICLES), executor, resume=resume,
+                     max_runs=max_runs, progress=progress, desc="particles", run=run_particle,
+                     result_columns=result_columns(models),
+                     constants={"particle": described["particle"], "wall": described["wall"],
+                                "seed": seed})
+    report = PopulationReport(**vars(runs))
+    report.files += [os.path.join(out, PARTICLES), os.path.join(out, METADATA)]
     if report.complete:
-        summary = summarize_population(report.results, shape_edges, size_edges)
-        summary.to_csv(os.path.join(out, SUMMARY), index=False)
-        files.append(os.path.join(out, SUMMARY))
+        report.summary = summarize_population(report.results, models, shape_edges, size_edges)
+        report.summary.to_csv(os.path.join(out, SUMMARY), index=False)
+        report.files.append(os.path.join(out, SUMMARY))
         if figure:
             # matplotlib only when a figure is drawn: `import tribo` stays without it
             from .plot import write_population_figure
@@ -86,7 +84,39 @@ def run_population(feed: Feed, n: int, seed: int, t_end: float, image: FmuImage,
             title = (f"{n} particles of {described['particle']} on {described['wall']} (seed "
                      f"{seed}), at the exit of a {format_number(chute['chute_length'])} m chute "
                      f"tilted {format_number(chute['tilt_deg'])}°")
-            files.append(write_population_figure(report.results, os.path.join(out, FIGURE),
-                                                 shape_edges, size_edges, title))
-    return PopulationReport(report.results, summary, len(report.keys), report.executed,
-                            report.skipped, report.failed, files, report.backup)
+            report.files.append(write_population_figure(report.results, report.summary,
+                                                        os.path.join(out, FIGURE), title))
+    return report
+
+
+class PopulationJob(Job):
+    """A population into an output folder (batch/job.py's flow): n particles drawn from
+    `feed` with `seed`, each to `t_end` s through the SI FMU `fmu` (a path, 2 / 3, or the
+    build's)."""
+
+    kind, noun, results_file = "population", "particle", PARTICLES
+
+    def __init__(self, feed: Feed, n: int, seed: int = 0, t_end: float = 5.0, fmu=None, *,
+                 figure: bool = True, shape_edges=None, size_edges=None):
+        self.feed, self.n, self.seed, self.t_end, self.fmu = feed, n, seed, t_end, fmu
+        self.figure, self.shape_edges, self.size_edges = figure, shape_edges, size_edges
+        self.keys = []
+
+    def prepare(self) -> None:
+        self.image = FmuImage.load(find_fmu(self.fmu, "si"))
+        self.specs = prepare_population(self.feed, self.n, self.seed, self.t_end, self.image)
+        self.sha256 = self.image.sha256
+        self.keys = keys_of(self.specs, self.image)
+
+    def setup(self) -> dict:
+        return population_setup(self.feed, self.n, self.seed, self.t_end)
+
+    def describe(self, out: str, executor) -> str:
+        return (f"population: {self.n} particles of {self.feed.particle} on {self.feed.wall} "
+                f"(seed {self.seed}) into {out}")
+
+    def run(self, out: str, executor, *, progress: bool, max_runs: int | None) -> PopulationReport:
+        return run_population(self.feed, self.n, self.seed, self.t_end, self.image, out, executor,
+                              max_runs=max_runs, progress=progress, figure=self.figure,
+                              shape_edges=self.shape_edges, size_edges=self.size_edges,
+                              specs=self.specs)

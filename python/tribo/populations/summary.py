@@ -1,6 +1,9 @@
 """What a process engineer reads off a population: the charge-to-mass distribution of each
 charge model (count, mean, standard deviation, percentiles) over all particles, per shape
-class (ranges of epsilon) and per size class (ranges of the long diameter)."""
+class (ranges of epsilon) and per size class (ranges of the long diameter).
+
+The summary is computed once, from the particles' rows, and holds the class edges (`low`,
+`high`) with the statistics: the figure (plot.py) draws it, it does not compute them again."""
 
 import numpy as np
 import pandas as pd
@@ -36,15 +39,16 @@ def classes_of(values: pd.Series, edges: np.ndarray) -> pd.Series:
     return pd.cut(values, edges, include_lowest=True)
 
 
-def summarize_population(results: pd.DataFrame, shape_edges=None, size_edges=None) -> pd.DataFrame:
-    """One row per (grouping, class, charge model): grouping "all", "shape" (classes of
-    epsilon) or "size" (classes of the long diameter, m), with the statistics of q/m
-    (C/kg) over that class's particles."""
+def summarize_population(results: pd.DataFrame, models, shape_edges=None,
+                         size_edges=None) -> pd.DataFrame:
+    """One row per (charge model of `models`, grouping, class): grouping "all", "shape"
+    (classes of epsilon) or "size" (classes of the long diameter, m), with the class's
+    edges and the statistics of q/m (C/kg) over its particles."""
     rows = []
     groupings = [("all", None, None),
                  ("shape", "epsilon", class_edges(results["epsilon"], shape_edges)),
                  ("size", "size", class_edges(results["size"], size_edges))]
-    for model in ("static", "sliding"):
+    for model in models:
         qm = results[f"charge_to_mass_{model}"]
         for grouping, column, edges in groupings:
             if column is None:
@@ -58,3 +62,9 @@ def summarize_population(results: pd.DataFrame, shape_edges=None, size_edges=Non
                              "low": lo, "high": hi, "model": model,
                              **statistics(qm[labels == interval])})
     return pd.DataFrame(rows, columns=["grouping", "class", "low", "high", "model"] + STAT_COLUMNS)
+
+
+def edges_of(summary: pd.DataFrame, grouping: str) -> np.ndarray:
+    """The class edges of a grouping ("shape" or "size") as the summary holds them."""
+    rows = summary[(summary["grouping"] == grouping) & (summary["model"] == summary["model"].iloc[0])]
+    return np.append(rows["low"].to_numpy(dtype=float), float(rows["high"].iloc[-1]))

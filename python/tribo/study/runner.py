@@ -16,12 +16,16 @@ grid, which is the study's roundness grid) reuses them.
 
 import os
 import time
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 
 import pandas as pd
 
-from ..batch.sweep import read_segments, read_series, run_sweep
-from ..fmu.parameters import integer_names
+from ..batch.job import Job, Report, raise_on_failure
+from ..batch.particle import communication_points
+from ..batch.sweep import RESULTS, read_segments, read_series, run_sweep
+from ..fmu import FmuImage
+from ..fmu.locate import find_fmu
+from ..fmu.parameters import check_values, integer_names
 from . import figures, tables
 from .paper import FRICTION_CASES, paper_spec
 from .transition import Transition, find_transition
@@ -59,8 +63,11 @@ REDUCED = StudySettings(epsilons=(0.1, 0.3, 0.5, 0.7, 0.9, 1.0), t_end=1000.0,
                         transition_width=0.02)
 
 
-@dataclass
-class StudyResult:
+@dataclass(kw_only=True)
+class StudyResult(Report):
+    """The study's report: `keys` every run it is made of (the grid, the eps_t searches, the
+    tolerance checks), `executed` those this invocation ran (the rest came from runs/)."""
+
     settings: StudySettings
     # one row per (dashpot, friction, epsilon) of the grid, with "friction" and
     # "damping_point" columns, the study's own dashpot first
@@ -70,15 +77,15 @@ class StudyResult:
     transitions: dict  # friction -> Transition
     transition_points: pd.DataFrame  # every evaluated point of the searches
     tolerance_checks: pd.DataFrame  # the bracket ends at CHECK_TOLERANCES
-    executed: int = 0  # runs executed by this invocation (the rest came from runs/)
-    total_runs: int = 0
     wall_s: float = 0.0  # of this invocation, until the figures and tables were written
     executor: str = ""
     fmu_name: str = ""
     fmu_sha256: str = ""
     tolerances: dict = field(default_factory=dict)  # rtol and atol the runs used
-    backup: str | None = None  # where --fresh moved the earlier results
-    files: list = field(default_factory=list)
+
+    @property
+    def total_runs(self) -> int:
+        return len(self.keys)
 
     @property
     def runs(self) -> pd.DataFrame:
@@ -104,7 +111,7 @@ def run_study(settings: StudySettings, image, out_dir: str, executor, *, resume:
     runs_dir = os.path.join(out_dir, "runs")
     results_path = os.path.join(runs_dir, "results.csv")
     series_dir = os.path.join(runs_dir, "series")
-    counts = {"executed": 0, "total": set(), "backup": None}
+    counts = {"executed": 0, "keys": {}, "backup": None}
     # set in every run, so that the results file says which; the grid's equal the runs
     # that leave them at the FMU's defaults, bit for bit
     tolerances = tolerances_of(image, settings)
@@ -114,11 +121,9 @@ def run_study(settings: StudySettings, image, out_dir: str, executor, *, resume:
         report = run_sweep(specs, image, results_path, executor, resume=not fresh,
                            series_dir=series_dir, progress=progress, desc=desc)
         counts["backup"] = counts["backup"] or report.backup
-        if report.failed:
-            spec, error = report.failed[0]
-            raise RuntimeError(f"{len(report.failed)} run(s) failed, e.g. {spec.params}: {error}")
+        raise_on_failure(report, "run")
         counts["executed"] += report.executed
-        counts["total"].update(report.keys)
+        counts["keys"].update(dict.fromkeys(report.keys))
         return report.results
 
     def spec(e, friction, dashpot=settings.dashpot, **overrides):
@@ -147,9 +152,11 @@ def run_study(settings: StudySettings, image, out_dir: str, executor, *, resume:
                                        on_grid=evaluated["epsilon"].isin(found.grid)))
         checks += _tolerance_check(found, friction, spec, sweep)
 
-    result = StudyResult(settings, runs, series, segments, transitions,
-                         pd.concat(points, ignore_index=True), pd.DataFrame(checks),
-                         executed=counts["executed"], total_runs=len(counts["total"]),
+    result = StudyResult(settings=settings, all_runs=runs, all_series=series,
+                         all_segments=segments, transitions=transitions,
+                         transition_points=pd.concat(points, ignore_index=True),
+                         tolerance_checks=pd.DataFrame(checks), keys=list(counts["keys"]),
+                         results=runs, executed=counts["executed"],
                          executor=executor.describe(), fmu_name=image.name,
                          fmu_sha256=image.sha256, tolerances=tolerances,
                          backup=counts["backup"])
@@ -178,3 +185,51 @@ def tolerances_of(image, settings: StudySettings) -> dict:
     out = {name: float(variables[name].start) for name in ("rtol", "atol") if name in variables}
     out.update(dict(settings.tolerances))
     return out
+
+
+class StudyJob(Job):
+    """The study into an output folder (batch/job.py's flow), with `settings` (FULL,
+    REDUCED or one of them replaced), the FMU `fmu` (a path, 2 / 3, or the build's);
+    `command` (the command line, for study.md) and `started` (time.perf_counter() at its
+    start, for the reported wall time)."""
+
+    kind, noun, results_file = "study", "run", os.path.join("runs", RESULTS)
+
+    def __init__(self, settings: StudySettings, fmu=None, *, command: str = "",
+                 started: float | None = None):
+        self.settings, self.fmu, self.command, self.started = settings, fmu, command, started
+        self.keys = []  # made as the eps_t search goes: not known beforehand
+
+    def prepare(self) -> None:
+        """The FMU, every parameter value of the grid (by the FMU), the horizon and the
+        search's settings, checked."""
+        s = self.settings
+        communication_points(s.t_end, s.record_interval)
+        if not s.transition_width > 0:
+            raise ValueError(f"--transition-width {s.transition_width:g}: must be > 0")
+        if s.points_per_round < 1:
+            raise ValueError(f"--points-per-round {s.points_per_round}: at least 1")
+        self.image = FmuImage.load(find_fmu(self.fmu))
+        integers = integer_names(self.image.model_description())
+        specs = [paper_spec(e, f, s.t_end, integer_names=integers, damping_point=d,
+                            **dict(s.tolerances))
+                 for d in s.dashpots for f in s.frictions for e in s.epsilons]
+        values = {}
+        for spec in specs:
+            for name, value in spec.params.items():
+                values.setdefault(name, []).append(value)
+        check_values(self.image, values)
+        self.sha256 = self.image.sha256
+
+    def setup(self) -> dict:
+        return asdict(self.settings)
+
+    def describe(self, out: str, executor) -> str:
+        s = self.settings
+        return (f"study: {len(s.epsilons)} roundness values x {len(s.frictions)} friction cases "
+                f"to tau = {s.t_end:g}, damping_point {', '.join(map(str, s.dashpots))}, FMU "
+                f"{self.image.name}, into {out}, on {executor.describe()}")
+
+    def run(self, out: str, executor, *, progress: bool, max_runs: int | None) -> StudyResult:
+        return run_study(self.settings, self.image, out, executor, progress=progress,
+                         command=self.command, started=self.started)

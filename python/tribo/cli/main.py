@@ -1,0 +1,101 @@
+"""tribo: the tribocharging particle model's FMUs from the command line, one subcommand per
+job (`tribo <command> --help` for each).
+
+Every job writes into an output folder (--out) that holds one command's results of one
+set-up, runs on Dask (a local cluster in this process, --scheduler for an existing one,
+--serial for none), resumes when run again after an interruption, and meets a mistake
+with one line (docs/sweeps.md). The package's functions (tribo.population, tribo.sweep,
+...) run the same jobs from Python.
+"""
+
+import importlib
+import sys
+import time
+
+from .common import OneLineParser, described
+
+# the subcommands, each a module of this folder (tribo/cli/<module>.py) with NAME, HELP,
+# add_arguments(parser) and run(args): a new subcommand is its module and its line here
+SUBCOMMANDS = (
+    "population",
+    "line",
+    "impact_map",
+    "sweep",
+    "study",
+)
+# the names the commands had before `tribo` took them as subcommands: console scripts
+# (pyproject.toml) that run the subcommand, their --help saying whose alias they are
+ALIASES = {"tribo-population": "population", "tribo-line": "line",
+           "tribo-impact-map": "impact_map", "tribo-sweep": "sweep", "tribo-study": "study"}
+
+
+def subcommand(module_name: str):
+    return importlib.import_module(f"{__package__}.{module_name}")
+
+
+def add_subcommand(p, module, prog: str) -> None:
+    """A subcommand's options on the parser p (its prog set for the messages)."""
+    module.add_arguments(p)
+    p.set_defaults(run=module.run, prog=prog)
+
+
+def parser() -> OneLineParser:
+    p = OneLineParser(prog="tribo", **described(__doc__))
+    commands = p.add_subparsers(title="commands", dest="command", metavar="COMMAND",
+                                required=True, parser_class=OneLineParser)
+    for name in SUBCOMMANDS:
+        module = subcommand(name)
+        sub = commands.add_parser(module.NAME, help=module.HELP, **described(module.__doc__))
+        add_subcommand(sub, module, sub.prog)
+    return p
+
+
+def main(argv=None) -> int:
+    return _run(parser(), argv, 1)
+
+
+def _run(p, argv, skip: int) -> int:
+    """Parse argv (default: the command line) and run its subcommand, telling it the
+    arguments as typed after the `skip` that name it and when the command started (what
+    a job may report: the study's study.md says both)."""
+    started = time.perf_counter()
+    argv = sys.argv[1:] if argv is None else list(argv)
+    args = p.parse_args(argv)
+    args.typed, args.started = argv[skip:], started
+    return args.run(args)
+
+
+def alias(name: str, argv=None) -> int:
+    """The console script `name` (ALIASES): its subcommand's options and run, its --help
+    saying it is an alias."""
+    module = subcommand(ALIASES[name])
+    new = f"tribo {module.NAME}"
+    options = described(module.__doc__)
+    options["description"] = f"{name}: alias of `{new}`. {options['description']}"
+    p = OneLineParser(prog=name, **options)
+    add_subcommand(p, module, name)
+    return _run(p, argv, 0)
+
+
+def population(argv=None) -> int:
+    return alias("tribo-population", argv)
+
+
+def line(argv=None) -> int:
+    return alias("tribo-line", argv)
+
+
+def impact_map(argv=None) -> int:
+    return alias("tribo-impact-map", argv)
+
+
+def sweep(argv=None) -> int:
+    return alias("tribo-sweep", argv)
+
+
+def study(argv=None) -> int:
+    return alias("tribo-study", argv)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
