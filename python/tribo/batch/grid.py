@@ -9,6 +9,7 @@ too (tie=False: they don't).
 """
 
 import itertools
+import math
 import os
 
 import numpy as np
@@ -18,7 +19,7 @@ from ..fmu.locate import find_fmu
 from ..fmu.parameters import check_names, check_values, integer_names
 from .job import Job
 from .particle import communication_points
-from .specs import RunSpec, normalise_values
+from .specs import RunSpec, check_count, normalise_values
 from .sweep import FIGURE, RESULTS, SERIES, keys_of, run_sweep, sweep_setup
 
 # docs/model.md section 7 (the paper's set-up), with CVODE instead of the paper's fixed step
@@ -46,12 +47,16 @@ def parse_values(text: str) -> list[float]:
     try:
         if ":" in text:
             a, b, n = text.split(":")
-            if int(n) < 1:
+            a, b, n = float(a), float(b), int(n)
+            if n < 1:
                 raise ValueError("need at least one value")
-            return list(np.linspace(float(a), float(b), int(n)))
-        values = [float(v) for v in text.split(",") if v.strip()]
+        else:
+            values = [float(v) for v in text.split(",") if v.strip()]
     except ValueError as e:
         raise ValueError(f"{e} (expected a:b:n, v1,v2,... or v)") from None
+    if ":" in text:
+        check_count(n, f"{text}: the number of values")
+        return list(np.linspace(a, b, n))
     if not values:
         raise ValueError("no values (expected a:b:n, v1,v2,... or v)")
     return values
@@ -75,6 +80,8 @@ def build_specs(swept: list[tuple[str, list[float]]], base: dict, integer_names,
     twice = sorted({n for n in names if names.count(n) > 1})
     if twice:
         raise ValueError(f"given more than once: {', '.join(twice)}")
+    check_count(math.prod(len(values) for _, values in swept),
+                f"runs of the grid {' x '.join(str(len(v)) for _, v in swept)}")
     specs = []
     for combo in itertools.product(*(values for _, values in swept)):
         params = dict(base, **dict(zip(names, combo)))

@@ -14,6 +14,18 @@ from dataclasses import dataclass, field
 # Parameters given as decimals (e.g. from a linspace) are rounded to this many decimal
 # places, so that 0.30000000000000004 and 0.3 are the same run.
 DECIMALS = 12
+# The most runs one job may have (a sweep's grid, a population, a map's episodes, a line's
+# grains), and the most values one list a:b:n may give: a million runs of a tenth of a
+# second are a day of one core, and their specs take about 1 GB of memory. A larger number is
+# a typing mistake more often than a plan: refused in one line before any memory is taken.
+MAX_RUNS = 1_000_000
+
+
+def check_count(n: int, what: str) -> None:
+    """ValueError, one line naming the number and the bound, for more than MAX_RUNS."""
+    if n > MAX_RUNS:
+        raise ValueError(f"{what}: {n} is more than the {MAX_RUNS} one job may have "
+                         f"(split it into several)")
 
 
 @dataclass(frozen=True)

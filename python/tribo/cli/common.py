@@ -134,6 +134,8 @@ def run_job(args, make_job, tell) -> int:
                          say=lambda line: print(line, flush=True))
     except INPUT_ERRORS as e:
         return fail(args.prog, one_line(e))
+    except MemoryError:  # what the bounds (batch/specs.py's MAX_RUNS) let through
+        return fail(args.prog, "not enough memory for this job: make it smaller")
     except KeyboardInterrupt:
         what = kept(job, args.out) if job is not None and hasattr(job, "sha256") else "nothing kept"
         print(f"{args.prog}: interrupted: {what}; run the same command to resume",

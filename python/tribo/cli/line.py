@@ -28,6 +28,7 @@ resumes when the same command is run again. Dask: as tribo population.
 import math
 import os
 
+from ..batch.specs import check_count
 from ..fmu.names import format_number
 from ..line.grain import LineError, check_separator, load_images, run_line_grain
 from ..line.mixture import DEFAULT_FEED_WIDTH, DEFAULT_PAIR, Line, LineJob, check_line, line_specs
@@ -48,10 +49,14 @@ def voltages_of(text: str) -> list[float]:
             lo, hi, n = float(parts[0]), float(parts[1]), int(parts[2])
             if n < 1:
                 raise ValueError
-            return [lo] if n == 1 else [lo + (hi - lo) * i / (n - 1) for i in range(n)]
-        return [float(v) for v in text.split(",")]
+        else:
+            values = [float(v) for v in text.split(",")]
     except ValueError:
         raise ValueError(f"--voltages {text}: expected LOW:HIGH:N or V1,V2,... in V") from None
+    if len(parts) != 3:
+        return values
+    check_count(n, f"--voltages {text}: the number of voltages")
+    return [lo] if n == 1 else [lo + (hi - lo) * i / (n - 1) for i in range(n)]
 
 
 def add_arguments(p) -> None:

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 from fmpy.fmi1 import FMICallException
 
 from ..batch.particle import RunResult
-from ..batch.specs import RunSpec
+from ..batch.specs import RunSpec, check_count
 from ..fmu import ERROR, FmuImage, Instance, unpacked
 from ..fmu.charge_models import charge_models, per_model
 from ..fmu.names import in_package_terms, to_fmu
@@ -89,7 +89,10 @@ class Grid:
             raise ImpactError(f"the grid's axes are {', '.join(AXES)}"
                               + (f"; missing {', '.join(missing)}" if missing else "")
                               + (f"; unknown {', '.join(unknown)}" if unknown else ""))
-        return cls(**{a: tuple(check_axis(a, axes[a])) for a in AXES})
+        grid = cls(**{a: tuple(check_axis(a, axes[a])) for a in AXES})
+        check_count(math.prod(len(getattr(grid, a)) for a in AXES),
+                    f"episodes of the grid {' x '.join(str(len(getattr(grid, a))) for a in AXES)}")
+        return grid
 
     def points(self) -> list[tuple]:
         return list(itertools.product(self.speed, self.angle_deg, self.phi0_deg, self.epsilon))

@@ -49,7 +49,7 @@ import pandas as pd
 
 from ..batch.job import Job, Report
 from ..batch.results import KEY
-from ..batch.specs import RunSpec
+from ..batch.specs import RunSpec, check_count
 from ..batch.sweep import keys_of, read_series, run_sweep
 from ..fmu.parameters import check_values
 from ..materials import material, pair_sigma0
@@ -238,6 +238,10 @@ class LineJob(Job):
 
     def prepare(self) -> None:
         self.line.check()
+        check_count(len(self.voltages), "the number of voltages")
+        if isinstance(self.n, int):
+            check_count(self.n * len(self.voltages), f"separator runs of {self.n} grains at "
+                                                     f"{len(self.voltages)} voltages")
         self.images = load_images(self.fmu, self.separator_fmu, self.line.separator, self.voltages)
         self.specs = line_specs(self.line, self.n, self.seed, self.t_end, self.images.models)
         check_line(self.line, self.specs, self.images)

@@ -39,7 +39,7 @@ import numpy as np
 import pandas as pd
 
 from ..batch.particle import RunResult, simulate
-from ..batch.specs import RunSpec
+from ..batch.specs import RunSpec, check_count
 from ..batch.summary import MOTION_CLASSES
 from ..fmu import FmuImage
 from ..fmu.charge_models import charge_models, per_model
@@ -158,6 +158,7 @@ def draw(feed: Feed, n: int, seed: int) -> pd.DataFrame:
     """n particles' feed variables (a column each), drawn with the seed."""
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise FeedError(f"the number of particles must be a whole number >= 1, got {n!r}")
+    check_count(int(n), "the number of particles")
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
         raise FeedError(f"the seed must be a whole number >= 0, got {seed!r}")
     distributions = feed.resolved()

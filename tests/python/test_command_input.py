@@ -1,0 +1,56 @@
+"""Bad input to `tribo` and its subcommands, and to the package's functions, as a user
+meets it: every mistake is one line on stderr (no traceback) and a non-zero exit, before
+anything runs or any memory is taken for it.
+
+The commands run in a process whose address space is limited (LIMIT_BYTES): a size that
+were taken for real would fail there at once instead of filling the machine's memory."""
+
+import resource
+import subprocess
+
+import pytest
+
+import tribo
+from study_support import subcommand
+from tribo.batch.specs import MAX_RUNS
+
+LIMIT_BYTES = 4 << 30
+
+
+def limited():
+    resource.setrlimit(resource.RLIMIT_AS, (LIMIT_BYTES, LIMIT_BYTES))
+
+
+def run(sub, *args, cwd=None, timeout=300):
+    return subprocess.run([*subcommand(sub), *args], capture_output=True, text=True, cwd=cwd,
+                          timeout=timeout, preexec_fn=limited)
+
+
+def one_line_error(done, sub, *words):
+    lines = done.stderr.strip().splitlines()
+    assert done.returncode == 2 and len(lines) == 1, done.stderr[-3000:]
+    assert lines[0].startswith(f"tribo {sub}: error: ") and "Traceback" not in done.stderr
+    for w in words:
+        assert w in lines[0], (w, lines[0])
+    return lines[0]
+
+
+@pytest.mark.parametrize("sub, args, says", [
+    ("population", ["-n", "100000000000"], f"100000000000 is more than the {MAX_RUNS}"),
+    ("line", ["sweep", "--voltages", "1:2:1000000000"], f"1000000000 is more than the {MAX_RUNS}"),
+    ("impact-map", ["--speed", "0:1:100000000", "--angle-deg", "90"],
+     f"100000000 is more than the {MAX_RUNS}"),
+    ("sweep", ["--param", "epsilon=0.1:1:100000", "--param", "mu=0.1:1:100000", "--t-end", "10"],
+     f"10000000000 is more than the {MAX_RUNS}"),
+    ("impact-map", ["--speed", "0.1:1:1000", "--angle-deg", "1:90:1000", "--epsilon", "0.1:1:10"],
+     f"10000000 is more than the {MAX_RUNS}"),
+], ids=["particles", "voltages", "speeds", "sweep grid", "map grid"])
+def test_a_size_beyond_the_bound_is_one_line_naming_it(tmp_path, sub, args, says):
+    done = run(sub, *args, "--out", str(tmp_path / "o"), "--serial")
+    one_line_error(done, sub, says)
+    assert not (tmp_path / "o").exists()
+
+
+def test_the_api_refuses_a_size_beyond_the_bound(tmp_path):
+    with pytest.raises(ValueError, match=f"100000000000 is more than the {MAX_RUNS}"):
+        tribo.population(10**11, out=str(tmp_path / "p"), serial=True)
