@@ -7,6 +7,7 @@ were taken for real would fail there at once instead of filling the machine's me
 
 import resource
 import subprocess
+import zipfile
 
 import pytest
 
@@ -54,3 +55,30 @@ def test_a_size_beyond_the_bound_is_one_line_naming_it(tmp_path, sub, args, says
 def test_the_api_refuses_a_size_beyond_the_bound(tmp_path):
     with pytest.raises(ValueError, match=f"100000000000 is more than the {MAX_RUNS}"):
         tribo.population(10**11, out=str(tmp_path / "p"), serial=True)
+
+
+@pytest.mark.parametrize("sub, args", [
+    ("population", ["-n", "2"]), ("impact-map", ["--speed", "1", "--angle-deg", "90"]),
+    ("sweep", ["--param", "epsilon=0.5", "--t-end", "5"]), ("line", ["mixture", "-n", "2"]),
+    ("study", ["--epsilons", "1.0", "--t-end", "5"]),
+])
+def test_a_file_that_is_not_an_fmu_is_one_line(tmp_path, sub, args):
+    junk = tmp_path / "junk.fmu"
+    junk.write_bytes(b"this is not a zip archive\n")
+    done = run(sub, *args, "--fmu", str(junk), "--out", str(tmp_path / "o"), "--serial")
+    one_line_error(done, sub, f"{junk}: not an FMU (not a zip archive)")
+
+
+@pytest.mark.parametrize("members, says", [
+    ({"readme.txt": "no description"}, "no modelDescription.xml in the archive"),
+    ({"modelDescription.xml": "<fmiModelDescription"}, "its modelDescription.xml: "),
+], ids=["no description", "not XML"])
+def test_an_archive_that_is_not_an_fmu_is_one_line(tmp_path, members, says):
+    fake = tmp_path / "fake.fmu"
+    with zipfile.ZipFile(fake, "w") as z:
+        for name, text in members.items():
+            z.writestr(name, text)
+    done = run("population", "-n", "2", "--fmu", str(fake), "--out", str(tmp_path / "o"))
+    one_line_error(done, "population", f"{fake}: not an FMU ({says}")
+    with pytest.raises(ValueError, match="not an FMU"):
+        tribo.population(2, fmu=str(fake), out=str(tmp_path / "api"), serial=True)

@@ -1,6 +1,7 @@
 """An .fmu file as bytes (`FmuImage`), so that a task on any Dask worker, local or on
 another machine, can run it without a shared file system; `unpacked(image)` gives a
-private directory with it unpacked, removed afterwards."""
+private directory with it unpacked, removed afterwards. A file that is not an FMU is
+refused when it is loaded, in one line (`FmuError`)."""
 
 import contextlib
 import hashlib
@@ -13,6 +14,10 @@ from dataclasses import dataclass
 from fmpy import read_model_description
 
 
+class FmuError(ValueError):
+    """A file that is not an FMU the package can run (the message, one line, names it)."""
+
+
 @dataclass(frozen=True)
 class FmuImage:
     """The bytes of an .fmu file, its name and their SHA-256."""
@@ -23,9 +28,16 @@ class FmuImage:
 
     @classmethod
     def load(cls, path: str) -> "FmuImage":
+        """The FMU at `path`: FmuError for a file that is not one (not a zip archive, no
+        modelDescription.xml in it, or one fmpy cannot read)."""
         with open(path, "rb") as f:
             data = f.read()
-        return cls(os.path.basename(path), data, hashlib.sha256(data).hexdigest())
+        image = cls(os.path.basename(path), data, hashlib.sha256(data).hexdigest())
+        try:
+            image.model_description()
+        except FmuError as e:
+            raise FmuError(f"{path}: {e}") from None
+        return image
 
     def model_description(self):
         """The model description, read from the bytes (cached per FMU)."""
@@ -34,12 +46,20 @@ class FmuImage:
 
 def _description_of_bytes(sha256: str, data: bytes):
     if sha256 not in _descriptions_by_hash:
-        with zipfile.ZipFile(io.BytesIO(data)) as z, \
-                tempfile.TemporaryDirectory(prefix="tribo_md_") as tmp:
-            path = os.path.join(tmp, "modelDescription.xml")
-            with open(path, "wb") as f:
-                f.write(z.read("modelDescription.xml"))
-            _descriptions_by_hash[sha256] = read_model_description(path, validate=False)
+        try:
+            with zipfile.ZipFile(io.BytesIO(data)) as z, \
+                    tempfile.TemporaryDirectory(prefix="tribo_md_") as tmp:
+                path = os.path.join(tmp, "modelDescription.xml")
+                with open(path, "wb") as f:
+                    f.write(z.read("modelDescription.xml"))
+                _descriptions_by_hash[sha256] = read_model_description(path, validate=False)
+        except zipfile.BadZipFile:
+            raise FmuError("not an FMU (not a zip archive)") from None
+        except KeyError:
+            raise FmuError("not an FMU (no modelDescription.xml in the archive)") from None
+        except Exception as e:  # fmpy's reader raises what its XML parser raises
+            raise FmuError(f"not an FMU (its modelDescription.xml: "
+                           f"{str(e).splitlines()[0] if str(e) else type(e).__name__})") from None
     return _descriptions_by_hash[sha256]
 
 
