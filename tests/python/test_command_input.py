@@ -1,6 +1,7 @@
 """Bad input to `tribo` and its subcommands, and to the package's functions, as a user
 meets it: every mistake is one line on stderr (no traceback) and a non-zero exit, before
-anything runs or any memory is taken for it.
+anything runs or any memory is taken for it; a results file that does not read back as
+written is never kept as results (its rows run again).
 
 The commands run in a process whose address space is limited (LIMIT_BYTES): a size that
 were taken for real would fail there at once instead of filling the machine's memory."""
@@ -9,6 +10,7 @@ import resource
 import subprocess
 import zipfile
 
+import pandas as pd
 import pytest
 
 import tribo
@@ -16,6 +18,7 @@ from study_support import subcommand
 from tribo.batch.specs import MAX_RUNS
 
 LIMIT_BYTES = 4 << 30
+SHORT = ["--chute-length", "0.02", "--t-end", "1", "--serial", "--no-progress", "--no-plot"]
 
 
 def limited():
@@ -82,3 +85,53 @@ def test_an_archive_that_is_not_an_fmu_is_one_line(tmp_path, members, says):
     one_line_error(done, "population", f"{fake}: not an FMU ({says}")
     with pytest.raises(ValueError, match="not an FMU"):
         tribo.population(2, fmu=str(fake), out=str(tmp_path / "api"), serial=True)
+
+
+@pytest.fixture
+def population(tmp_path):
+    """A finished 3-particle population's folder, its command line and rows."""
+    out = tmp_path / "p"
+    argv = ["-n", "3", "--seed", "5", "--out", str(out), *SHORT]
+    done = run("population", *argv)
+    assert done.returncode == 0, done.stderr
+    return out, argv, pd.read_csv(out / "particles.csv")
+
+
+def test_a_results_file_of_other_columns_is_one_line(population):
+    out, argv, _ = population
+    path = out / "particles.csv"
+    text = path.read_text()
+    path.write_text(text.replace("exit_time", "exit_t", 1))
+    one_line_error(run("population", *argv), "population", f"{path} holds runs with other columns",
+                   "the file has exit_t", "--fresh")
+
+
+def test_junk_appended_to_a_results_file_is_left_out_and_the_runs_are_kept(population):
+    out, argv, rows = population
+    path = out / "particles.csv"
+    with open(path, "ab") as f:
+        f.write(b"\xff\xfe\x00 not text\n\x80\x81,2,3\nalso,not,a,row\n\x9c")
+    again = run("population", *argv)
+    assert again.returncode == 0 and "Traceback" not in again.stderr, again.stderr
+    assert "0 run, 3 already in the file" in again.stdout
+    assert "3 row(s) that do not read back" in again.stdout  # the cut-short last one: dropped
+    pd.testing.assert_frame_equal(pd.read_csv(path), rows)
+    assert (out / "particles.backup-1.csv").read_bytes().endswith(b"also,not,a,row\n\x9c")
+
+
+def test_a_garbled_row_is_run_again_not_kept(population):
+    out, argv, rows = population
+    path = out / "particles.csv"
+    lines = path.read_text().splitlines(keepends=True)
+    column = lines[0].split(",").index("charge_to_mass_static")
+    fields = lines[2].split(",")
+    fields[column] = "x.y01"
+    lines[2] = ",".join(fields)
+    path.write_text("".join(lines))
+    again = run("population", *argv)
+    assert again.returncode == 0 and "Traceback" not in again.stderr, again.stderr
+    assert "1 run, 2 already in the file" in again.stdout
+    assert "x.y01" not in path.read_text()
+    # the particle run again gives its number back, bit for bit
+    pd.testing.assert_frame_equal(pd.read_csv(path).drop(columns=["cpu_s", "wall_s"]),
+                                  rows.drop(columns=["cpu_s", "wall_s"]))

@@ -3,8 +3,11 @@ key (specs.run_key).
 
 Rows are appended (and flushed to disk) as runs finish, so an interrupted sweep loses
 at most the runs that were in flight. The file is read once, when it is opened: a last
-line cut short by an interruption is dropped. A header other than the runs' is refused in
-one line (`ResultsError`).
+line cut short by an interruption is dropped, and so is any row that does not read back
+as written (not UTF-8, another number of fields, a number column holding text such as
+`x.y01`): nothing that cannot be read back is kept as a result. Such rows are moved out
+(the file as it was is kept as <name>.backup-<n>.csv, said in `note`), and their runs
+run again. A header other than the runs' is refused in one line (`ResultsError`).
 
 Starting a file afresh never deletes it: the old file is renamed to <name>.backup-<n>.csv
 first. `close(keys)` returns the rows of the given keys, in that order, and puts the file
@@ -13,6 +16,7 @@ round-trip form, which pandas (3.x) reads back exactly: numbers survive the file
 bit.
 """
 
+import csv
 import os
 
 import pandas as pd
@@ -41,17 +45,21 @@ def count_rows(path: str, keys=None) -> int:
 
 
 class ResultsFile:
-    """A results CSV with a fixed header (`columns`, the first of which is KEY)."""
+    """A results CSV with a fixed header (`columns`, the first of which is KEY); the
+    columns in `text_columns` (and KEY, fmu_sha256) hold text, every other one a number
+    or nothing (NaN)."""
 
-    def __init__(self, path: str, columns: list[str], fresh: bool = False):
+    def __init__(self, path: str, columns: list[str], fresh: bool = False, text_columns=()):
         if columns[0] != KEY:
             raise ValueError(f"the first column must be {KEY!r}")
         # absolute: FMU runs in other threads change the working directory for a moment
         # (fmu/instance.py)
         self.path = os.path.abspath(path)
         self.columns = list(columns)
-        self.backup = None  # where fresh=True moved an earlier file
-        self.note = None  # a line for the user about the file, if any
+        self.numeric = [i for i, c in enumerate(self.columns)
+                        if c not in _TEXT_COLUMNS and c not in set(text_columns)]
+        self.backup = None  # where fresh=True, or rows that do not read back, moved the file
+        self.note = None  # the line that says rows were moved out
         if fresh and os.path.exists(self.path):
             self.backup = backup_path(self.path)
             os.replace(self.path, self.backup)
@@ -69,16 +77,49 @@ class ResultsFile:
             with open(self.path, "w") as f:
                 f.write(",".join(self.columns) + "\n")
             return read_results(self.path)
-        found = lines[0].decode().split(",")
-        if found != self.columns:
-            raise ResultsError(f"{self.path} holds runs with other columns "
-                               f"({_difference(found, self.columns)}): write to another folder, "
-                               f"or start this one afresh (--fresh, fresh=True; the old file is "
-                               f"kept as a backup)")
-        if tail:  # a run killed mid-write leaves a last line without its newline: drop it
-            with open(self.path, "wb") as f:
-                f.write(data[: len(data) - len(tail)])
+        self._check_header(lines[0])
+        bad = [n for n, line in enumerate(lines[1:], 2) if not self._readable(line)]
+        if bad:
+            self.backup = backup_path(self.path)
+            os.replace(self.path, self.backup)
+            self.note = (f"{self.path}: {len(bad)} row(s) that do not read back as numbers "
+                         f"(line {', '.join(map(str, bad[:5]))}{', ...' if len(bad) > 5 else ''}) "
+                         f"left out, their runs run again (the file as it was: {self.backup})")
+        if bad or tail:
+            keep = [line for n, line in enumerate(lines, 1) if n not in set(bad)]
+            tmp = self.path + ".tmp"
+            with open(tmp, "wb") as f:
+                f.write(b"".join(line + b"\n" for line in keep))
+            os.replace(tmp, self.path)
         return read_results(self.path).drop_duplicates(KEY, keep="first")
+
+    def _check_header(self, line: bytes) -> None:
+        try:
+            found = line.decode().split(",")
+        except UnicodeDecodeError:
+            found = None
+        if found != self.columns:
+            what = _difference(found, self.columns) if found else "a header that is not text"
+            raise ResultsError(f"{self.path} holds runs with other columns ({what}): write to "
+                               f"another folder, or start this one afresh (--fresh, fresh=True; "
+                               f"the old file is kept as a backup)")
+
+    def _readable(self, line: bytes) -> bool:
+        """Whether a row reads back: text, the header's number of fields, a key, numbers
+        (or nothing) where numbers go."""
+        try:
+            fields = next(csv.reader([line.decode()]))
+        except (UnicodeDecodeError, StopIteration, csv.Error):
+            return False
+        if len(fields) != len(self.columns) or not fields[0]:
+            return False
+        for i in self.numeric:
+            if fields[i]:
+                try:
+                    float(fields[i])
+                except ValueError:
+                    return False
+        return True
 
     @property
     def finished(self) -> set[str]:

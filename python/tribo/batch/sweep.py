@@ -4,7 +4,8 @@
 results file (and whose time series are on disk, if series are kept), runs the rest on
 the executor, and appends each finished run's row to the file at once. Interrupt it at
 any point and call it again with the same runs: only the unfinished ones run. The file is
-read once, when the sweep opens it, and once at the end, for the report's rows (a file that
+read once, when the sweep opens it (batch/results.py: a row that does not read back is
+left out and its run runs again), and once at the end, for the report's rows (a file that
 holds exactly the sweep's runs, all finished, is put in the sweep's order; a file shared by
 several sweeps keeps the order its rows came in). Runs of different horizons share the
 columns, so they can share a file.
@@ -35,6 +36,12 @@ def sweep_columns(specs: list[RunSpec], results: list[str], constants: dict | No
     if any(list(s.params) != names for s in specs):
         raise ValueError("the runs of one sweep must set the same parameters")
     return [KEY] + list(constants or {}) + names + RUN_COLUMNS + list(results) + TIMING_COLUMNS
+
+
+def text_columns(specs: list[RunSpec], constants: dict) -> list[str]:
+    """The columns that hold text (a material's name): every other one holds numbers."""
+    return [name for name, value in {**constants, **specs[0].params}.items()
+            if isinstance(value, str)]
 
 
 def sweep_setup(swept: list[str], base: str, tie: bool) -> dict:
@@ -69,7 +76,7 @@ def run_sweep(specs: list[RunSpec], image, results_path: str, executor, *,
     if result_columns is None:
         result_columns = summary_columns(mean_charges(image.model_description()))
     results = ResultsFile(results_path, sweep_columns(specs, result_columns, constants),
-                          fresh=not resume)
+                          fresh=not resume, text_columns=text_columns(specs, constants))
     if series_dir:
         series_dir = os.path.abspath(series_dir)  # as the results file's path (results.py)
         os.makedirs(series_dir, exist_ok=True)
