@@ -6,6 +6,7 @@ written is never kept as results (its rows run again).
 The commands run in a process whose address space is limited (LIMIT_BYTES): a size that
 were taken for real would fail there at once instead of filling the machine's memory."""
 
+import os
 import resource
 import subprocess
 import zipfile
@@ -15,6 +16,8 @@ import pytest
 
 import tribo
 from study_support import subcommand
+from tribo.batch import job as batch_job
+from tribo.batch.folder import LOCK, FolderError, claim
 from tribo.batch.specs import MAX_RUNS
 
 LIMIT_BYTES = 4 << 30
@@ -135,3 +138,38 @@ def test_a_garbled_row_is_run_again_not_kept(population):
     # the particle run again gives its number back, bit for bit
     pd.testing.assert_frame_equal(pd.read_csv(path).drop(columns=["cpu_s", "wall_s"]),
                                   rows.drop(columns=["cpu_s", "wall_s"]))
+
+
+def test_an_unwritable_output_folder_is_one_clear_error_from_the_api(tmp_path, monkeypatch):
+    """Files cannot be made in the folder (a read-only folder, for anyone but root): the API
+    raises one OSError naming the folder, before anything runs."""
+    out = tmp_path / "read-only"
+    out.mkdir()
+
+    def refused(*args, **kwargs):
+        raise PermissionError(13, "Permission denied")
+
+    monkeypatch.setattr(batch_job.tempfile, "NamedTemporaryFile", refused)
+    with pytest.raises(OSError, match=f"^cannot write into {out}: Permission denied$"):
+        tribo.population(2, out=str(out), serial=True, chute={"chute_length": 0.02}, t_end=1.0)
+    assert os.listdir(out) == []
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root writes into a read-only folder")
+def test_a_read_only_output_folder_is_one_clear_error_from_the_api(tmp_path):
+    out = tmp_path / "read-only"
+    out.mkdir()
+    out.chmod(0o555)
+    try:
+        with pytest.raises(OSError, match=f"cannot write into {out}"):
+            tribo.population(2, out=str(out), serial=True, chute={"chute_length": 0.02}, t_end=1.0)
+    finally:
+        out.chmod(0o755)
+
+
+def test_a_lock_that_cannot_be_opened_is_a_folder_error(tmp_path):
+    out = tmp_path / "o"
+    (out / LOCK).mkdir(parents=True)  # not a file: open() fails as on a read-only folder
+    with pytest.raises(FolderError, match=f"^cannot write into {out}: "):
+        with claim(str(out), "population", {}, "0" * 64):
+            pass

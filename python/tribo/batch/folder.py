@@ -189,7 +189,10 @@ def _write_record(out: str, kind: str, setup: dict, fmu_sha256: str) -> None:
 def _locked(out: str, kind: str):
     path = os.path.join(out, LOCK)
     made = not os.path.exists(path)
-    f = open(path, "a+", encoding="utf-8")
+    try:
+        f = open(path, "a+", encoding="utf-8")
+    except OSError as e:  # a read-only folder, a lock that is not a file
+        raise FolderError(f"cannot write into {out}: {e.strerror or e}") from None
     try:
         if not _try_lock(f):
             f.seek(0)
