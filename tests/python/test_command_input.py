@@ -15,7 +15,7 @@ import pandas as pd
 import pytest
 
 import tribo
-from study_support import subcommand
+from study_support import BIN, subcommand
 from tribo.batch import job as batch_job
 from tribo.batch.folder import LOCK, FolderError, claim
 from tribo.batch.specs import MAX_RUNS
@@ -173,3 +173,30 @@ def test_a_lock_that_cannot_be_opened_is_a_folder_error(tmp_path):
     with pytest.raises(FolderError, match=f"^cannot write into {out}: "):
         with claim(str(out), "population", {}, "0" * 64):
             pass
+
+
+@pytest.mark.parametrize("sub, args, typed", [
+    ("population", ["-n", "2", "--tilt", "0.5"], "--tilt 0.5"),
+    ("line", ["grain", "--tilt", "0.5"], "--tilt 0.5"),
+    ("impact-map", ["--speed", "1", "--angle-deg", "90", "--phi0", "0"], "--phi0 0"),
+    ("sweep", ["--param", "epsilon=0.5", "--t", "5"], "--t 5"),
+    ("study", ["--eps", "0.5"], "--eps 0.5"),
+])
+def test_an_option_is_taken_by_its_full_name_only(tmp_path, sub, args, typed):
+    done = run(sub, *args, "--out", str(tmp_path / "o"))
+    line = one_line_error(done, sub, f"unrecognized arguments: {typed}")
+    assert line.endswith("(see --help)")
+    alias = subprocess.run([os.path.join(BIN, f"tribo-{sub}"), *args, "--out", str(tmp_path / "o")],
+                           capture_output=True, text=True, timeout=120)
+    assert alias.returncode == 2 and f"unrecognized arguments: {typed}" in alias.stderr
+
+
+@pytest.mark.parametrize("sub, args, says", [
+    ("line", ["grain", "--size", "-1e-3"], "size = -0.001 is invalid"),
+    ("population", ["-n", "2", "--size", "-1e-3"], "size = -0.001 is invalid"),
+    ("population", ["-n", "2", "--chute-length", "-3e-1"], "chute_length = -0.3 is invalid"),
+    ("impact-map", ["--speed", "-1e0", "--angle-deg", "90"], "speed = -1"),
+    ("sweep", ["--param", "epsilon=0.5", "--t-end", "-1e1"], "t_end must be a positive number"),
+])
+def test_a_negative_number_is_a_value_whose_check_answers(tmp_path, sub, args, says):
+    one_line_error(run(sub, *args, "--out", str(tmp_path / "o"), "--serial"), sub, says)

@@ -1,8 +1,10 @@
-"""What the subcommands share: the parser (errors in one line), argument types, the options every job takes (--out, --fresh,
+"""What the subcommands share: the parser (errors in one line, no prefix matching, negative
+numbers read as values), argument types, the options every job takes (--out, --fresh,
 where runs execute, --no-progress) and `run_job`, which runs a job through the package's
 one flow (tribo/batch/job.py) and meets every mistake with one line."""
 
 import argparse
+import re
 import sys
 
 from ..batch.executors import executor_for
@@ -15,7 +17,18 @@ INPUT_ERRORS = (ValueError, OSError)
 
 
 class OneLineParser(argparse.ArgumentParser):
-    """argparse, with a usage error in one line (no usage block)."""
+    """argparse, with a usage error in one line (no usage block), options only by their
+    full names (`--tilt` is not taken for `--tilt-deg`), and a negative number after an
+    option read as its value (`--size -1e-3`), so that the value's check answers."""
+
+    # -1, -.5, -1e-3, -inf, -nan, and lists such as -1,2 or -1:1:3: no option starts so
+    # (argparse's own takes -1 and -0.5 only)
+    _negative_number_matcher = re.compile(r"^-(\.?\d|inf|nan)", re.IGNORECASE)
+
+    def __init__(self, *args, **kwargs):
+        kwargs["allow_abbrev"] = False
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = OneLineParser._negative_number_matcher
 
     def error(self, message):
         self.exit(2, f"{self.prog}: error: {message} (see --help)\n")

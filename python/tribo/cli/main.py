@@ -43,10 +43,12 @@ def parser() -> OneLineParser:
     p = OneLineParser(prog="tribo", **described(__doc__))
     commands = p.add_subparsers(title="commands", dest="command", metavar="COMMAND",
                                 required=True, parser_class=OneLineParser)
+    p.subcommands = {}  # name -> its parser, which says what it does not take (_run)
     for name in SUBCOMMANDS:
         module = subcommand(name)
         sub = commands.add_parser(module.NAME, help=module.HELP, **described(module.__doc__))
         add_subcommand(sub, module, sub.prog)
+        p.subcommands[module.NAME] = sub
     return p
 
 
@@ -60,7 +62,10 @@ def _run(p, argv, skip: int) -> int:
     a job may report: the study's study.md says both)."""
     started = time.perf_counter()
     argv = sys.argv[1:] if argv is None else list(argv)
-    args = p.parse_args(argv)
+    args, unknown = p.parse_known_args(argv)
+    if unknown:  # said by the subcommand, whose options they are not
+        parser = getattr(p, "subcommands", {}).get(getattr(args, "command", None), p)
+        parser.error(f"unrecognized arguments: {' '.join(unknown)}")
     args.typed, args.started = argv[skip:], started
     return args.run(args)
 
