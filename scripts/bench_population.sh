@@ -12,8 +12,10 @@ shift || true
 workers=("${@:-1 2}")
 for w in ${workers[@]}; do
   out=out/bench_population/workers-$w
-  # a new folder each time: every particle runs (the same folder would resume)
+  # a new folder each time: every particle runs (the same folder would resume); its parent
+  # holds the log
   rm -rf "$out"
+  mkdir -p "$(dirname "$out")"
   start=$(date +%s.%N)
   .venv/bin/tribo population -n "$n" --seed 1 --workers "$w" --out "$out" --no-progress --no-plot ${TRIBO_POPULATION_OPTIONS:-} > "$out.log" 2>&1 \
     || { cat "$out.log"; exit 1; }

@@ -1,13 +1,15 @@
 """Bad input to `tribo` and its subcommands, and to the package's functions, as a user
 meets it: every mistake is one line on stderr (no traceback) and a non-zero exit, before
 anything runs or any memory is taken for it; a results file that does not read back as
-written is never kept as results (its rows run again).
+written is never kept as results (its rows run again); the documented benchmark runs on a
+fresh clone.
 
 The commands run in a process whose address space is limited (LIMIT_BYTES): a size that
 were taken for real would fail there at once instead of filling the machine's memory."""
 
 import os
 import resource
+import shutil
 import subprocess
 import zipfile
 
@@ -19,6 +21,7 @@ from study_support import BIN, subcommand
 from tribo.batch import job as batch_job
 from tribo.batch.folder import LOCK, FolderError, claim
 from tribo.batch.specs import MAX_RUNS
+from tribo_fmu import ROOT
 
 LIMIT_BYTES = 4 << 30
 SHORT = ["--chute-length", "0.02", "--t-end", "1", "--serial", "--no-progress", "--no-plot"]
@@ -200,3 +203,17 @@ def test_an_option_is_taken_by_its_full_name_only(tmp_path, sub, args, typed):
 ])
 def test_a_negative_number_is_a_value_whose_check_answers(tmp_path, sub, args, says):
     one_line_error(run(sub, *args, "--out", str(tmp_path / "o"), "--serial"), sub, says)
+
+
+def test_the_population_benchmark_runs_on_a_fresh_clone(tmp_path):
+    """scripts/bench_population.sh as a fresh clone has it: no out/ folder yet."""
+    clone = tmp_path / "clone"
+    (clone / "scripts").mkdir(parents=True)
+    shutil.copy(os.path.join(ROOT, "scripts", "bench_population.sh"), clone / "scripts")
+    (clone / ".venv").symlink_to(os.path.dirname(BIN))
+    env = dict(os.environ, TRIBO_POPULATION_OPTIONS="--chute-length 0.02 --t-end 1")
+    done = subprocess.run([str(clone / "scripts" / "bench_population.sh"), "2", "1"], cwd=clone,
+                          capture_output=True, text=True, env=env, timeout=300)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "1 worker(s): 2 of 2 particles" in done.stdout
+    assert (clone / "out" / "bench_population" / "workers-1.log").is_file()
