@@ -14,7 +14,7 @@ import time
 import pandas as pd
 import pytest
 
-from study_support import PYTHON, CountingRun, command, image_of, short_spec, subcommand, without_timing
+from study_support import PYTHON, CountingRun, image_of, short_spec, subcommand, without_timing
 from tribo.batch.executors import DaskExecutor, SerialExecutor
 from tribo.batch.grid import PAPER_BASE, build_specs, parse_param
 from tribo.batch.particle import run_fmu

@@ -54,9 +54,8 @@ from ..batch.sweep import keys_of, read_series, run_sweep
 from ..fmu.parameters import check_values
 from ..materials import material, pair_sigma0
 from ..populations.feed import DEFAULT_CHUTE, Feed, FeedError, draw, particle_parameters
-from .grain import (LANDING_COLUMNS, LineError, LineImages, charge_model_settings,
-                    check_separator, chute_params_of, load_images, result_columns,
-                    run_line_grain)
+from .grain import (LineError, LineImages, charge_model_settings, check_separator,
+                    chute_params_of, load_images, result_columns, run_line_grain)
 
 PARTICLES, LANDINGS, TABLE, BINS, FIGURE, METADATA = ("particles.csv", "landings.csv", "line.csv",
                                                       "bins.csv", "line.png", "line.json")
