@@ -23,8 +23,8 @@ SUBCOMMANDS = (
     "sweep",
     "study",
 )
-# the names the commands had before `tribo` took them as subcommands: console scripts
-# (pyproject.toml) that run the subcommand, their --help saying whose alias they are
+# other names of the subcommands, as console scripts (pyproject.toml): each runs its
+# subcommand, with its options, and its --help says whose alias it is
 ALIASES = {"tribo-population": "population", "tribo-line": "line",
            "tribo-impact-map": "impact_map", "tribo-sweep": "sweep", "tribo-study": "study"}
 
