@@ -76,7 +76,8 @@ def alias(name: str, argv=None) -> int:
     module = subcommand(ALIASES[name])
     new = f"tribo {module.NAME}"
     options = described(module.__doc__)
-    options["description"] = f"{name}: alias of `{new}`. {options['description']}"
+    what = options["description"].removeprefix(f"{new}: ")
+    options["description"] = f"{name}: alias of `{new}`: {what}"
     p = OneLineParser(prog=name, **options)
     add_subcommand(p, module, name)
     return _run(p, argv, 0)
