@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "charge_registry.h"
 #include "param_table.h"
 
 tribo_status tribo_fail(tribo_model *m, tribo_status status, const char *fmt, ...)
@@ -17,16 +18,6 @@ tribo_status tribo_fail(tribo_model *m, tribo_status status, const char *fmt, ..
     vsnprintf(m->error, sizeof m->error, fmt, ap);
     va_end(ap);
     return status;
-}
-
-const tribo_integrator_ops *tribo_integrator_of_kind(int kind)
-{
-    switch (kind) {
-    case TRIBO_INTEGRATOR_FIXED_STEP: return &tribo_fixed_step_ops;
-    case TRIBO_INTEGRATOR_CVODE:
-    case TRIBO_INTEGRATOR_CVODE_BDF: return &tribo_cvode_ops;
-    }
-    return NULL;
 }
 
 void tribo_derive_params(tribo_model *m)
@@ -305,66 +296,6 @@ tribo_status tribo_charge_sweep(tribo_model *m, const tribo_contact_probe *probe
     return TRIBO_OK;
 }
 
-/* ---- the output point's charges ------------------------------------------------------------ */
-
-/* The committed charges with the pending updates applied: the committed arrays themselves
-   when nothing is pending, else full copies (for the per-segment arrays only: the scalar
-   outputs take the sums). Returns 0 if out of memory. */
-static int charges_out(tribo_model *m)
-{
-    tribo_charging *c = &m->charging;
-    if (m->n_pending == 0 || m->charges_out_valid)
-        return 1;
-    const size_t bytes = (size_t)c->n * sizeof(double);
-    for (int i = 0; i < c->n_models; i++) {
-        tribo_charge_slot *slot = &c->slot[i];
-        if (!slot->segments)
-            continue;
-        if (!slot->segments_out && !(slot->segments_out = malloc(bytes)))
-            return 0;
-        memcpy(slot->segments_out, slot->segments, bytes);
-    }
-    for (size_t i = 0; i < m->n_pending; i++)
-        tribo_charging_apply(c, &m->scene, &m->pending[i], TRIBO_CHARGE_PENDING);
-    m->charges_out_valid = 1;
-    return 1;
-}
-
-/* What the pending updates add to each model's sum. Returns 0 if out of memory. */
-static int pending_sums(tribo_model *m)
-{
-    if (m->pending_sums_valid)
-        return 1;
-    if (tribo_charging_pending_sums(&m->charging, &m->scene, m->pending, m->n_pending,
-                                    m->pending_sums, m->pending_lost) != 0)
-        return 0;
-    m->pending_sums_valid = 1;
-    return 1;
-}
-
-tribo_charge_view tribo_charge_view_of(tribo_model *m, int index)
-{
-    const tribo_charge_slot *slot = &m->charging.slot[index];
-    tribo_charge_view v = {&m->scene, slot->segments != NULL, m->charging.n, 0.0, 0.0,
-                           m->out.charge_globals + slot->globals_at,
-                           m->out.y + TRIBO_NMOTION + slot->quadratures_at};
-    if (v.selected && pending_sums(m)) {
-        v.sum = tribo_charging_sum(slot) + m->pending_sums[index];
-        v.lost = tribo_charging_lost(slot) + m->pending_lost[index];
-    } else if (v.selected) {
-        v.sum = v.lost = NAN;
-    }
-    return v;
-}
-
-const double *tribo_charge_values_of(tribo_model *m, int index)
-{
-    const tribo_charge_slot *slot = &m->charging.slot[index];
-    if (!charges_out(m))
-        return NULL;
-    return m->n_pending ? slot->segments_out : slot->segments;
-}
-
 /* Apply the pending charge updates to the committed charges and make the output point the
    committed one (before a tunable or an input changes there). */
 static void commit_output(tribo_model *m)
@@ -412,8 +343,7 @@ tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts
         report(err, err_size, msg);
         return NULL;
     }
-    const tribo_integrator_ops *integrator =
-        parts->integrator ? parts->integrator : tribo_integrator_of_kind(scene->integrator);
+    const tribo_integrator_ops *integrator = parts->integrator;
     if (!integrator) {
         snprintf(msg, sizeof msg, "%s = %d is not a known integrator", TRIBO_PARAM_NAME(integrator),
                  scene->integrator);
@@ -449,26 +379,6 @@ tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts
     return m;
 }
 
-tribo_parts tribo_registry_parts(const tribo_scene *scene)
-{
-    return (tribo_parts){.charge_models = TRIBO_CHARGE_MODELS,
-                         .n_charge_models = TRIBO_SEGMENTS_COUNT,
-                         .charge_selection = tribo_charge_selection(scene)};
-}
-
-tribo_model *tribo_create(const tribo_scene *scene, char *err, size_t err_size)
-{
-    if (scene) {
-        char msg[512];
-        if (tribo_scene_validate(scene, msg, sizeof msg) != TRIBO_OK) {
-            report(err, err_size, msg);
-            return NULL;
-        }
-    }
-    const tribo_parts registry = tribo_registry_parts(scene);
-    return tribo_create_from_parts(scene, &registry, err, err_size);
-}
-
 void tribo_free(tribo_model *m)
 {
     if (!m)
@@ -498,7 +408,7 @@ tribo_status tribo_reset(tribo_model *m)
 
 tribo_status tribo_check_outputs(tribo_model *m)
 {
-    if (!pending_sums(m))
+    if (!tribo_pending_sums(m))
         return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
     for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++) {
         const double v = tribo_get(m, (tribo_quantity)q);
@@ -641,7 +551,7 @@ tribo_status tribo_get_segment_charges(tribo_model *m, tribo_segment_charge whic
         return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT,
                           "segment array of %zu values given, %s = %d", n,
                           TRIBO_PARAM_NAME(n_segments), m->charging.n);
-    if (!charges_out(m))
+    if (!tribo_charges_out(m))
         return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
     const tribo_charge_slot *slot = &m->charging.slot[which];
     const tribo_charge_view v = tribo_charge_view_of(m, which);
