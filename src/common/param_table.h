@@ -1,8 +1,8 @@
 /*
  * param_table.h: a table of parameters (tribo_param_info rows over one struct) and what is
- * done with one by name, value or string, whichever table it is: the model's scene
- * (quantities.def, scene.c) or the SI front end's (si_quantities.def, si.c). Internal to the
- * core.
+ * done with one by name, value or string (param_table.c), whichever table it is: the model's
+ * scene (quantities.def, scene.c), the SI front end's (si_quantities.def, si.c) or the
+ * separator's (separator_quantities.def). Internal to the core.
  */
 #ifndef TRIBO_PARAM_TABLE_H
 #define TRIBO_PARAM_TABLE_H
