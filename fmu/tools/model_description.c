@@ -319,6 +319,19 @@ int main(int argc, char **argv)
         return 2;
     }
     const tribo_param_info *rtol = fmu_front_param_find("rtol");
+    /* a retired value reference stays retired: an importer that kept it must not reach another
+       variable through it */
+    size_t n_variables;
+    const fmu_variable *variables = fmu_variables(&n_variables);
+    for (size_t i = 0; i < n_variables; i++) {
+        const fmu_retired *r = fmu_retired_find(variables[i].vr);
+        if (r) {
+            fprintf(stderr, "model_description: %s takes value reference %u, retired (it was "
+                    "%s's, %s): take a new one\n", variables[i].name, r->vr, r->name,
+                    fmu_front_table_file);
+            return 1;
+        }
+    }
 
     puts("<?xml version=\"1.0\" encoding=\"UTF-8\"?>");
     /* (no double hyphen may stand in an XML comment) */

@@ -1,6 +1,6 @@
 /* charge_outputs.c: an instance's charges at its output point (the committed charges with
-   the pending updates applied), each model's view of them, and the outputs every model has
-   of the breakdown limit (docs/model.md §8b). This file reads the instance (model.h) so that
+   the pending updates applied), each model's view of them, and what every model has: the
+   mean of its values, the outputs of the breakdown limit (docs/model.md §8b). This file reads the instance (model.h) so that
    the charge models and their registry need not: a model's own outputs are computed in its
    file from the view made here (charge_interface.h). */
 #include <math.h>
@@ -79,15 +79,27 @@ double tribo_capped_fraction(tribo_model *m, int index)
            v.n;
 }
 
+/* The mean over the segments of a sum of the model's own values, in the units of its
+   reported values: segment_values is linear, so the mean of the reported values is the
+   value reported for the mean of its own. */
+static double reported_mean(tribo_model *m, int index, const tribo_charge_view *v, double sum)
+{
+    const double mean = sum / v->n;
+    double reported;
+    m->charging.slot[index].model->segment_values(&m->scene, v->globals, &mean, &reported, 1);
+    return reported;
+}
+
 double tribo_charge_lost(tribo_model *m, int index)
 {
     const tribo_charge_view v = tribo_charge_view_of(m, index);
-    if (!v.selected)
-        return 0.0;
-    /* the mean over the segments, in the units of the model's array (segment_values is
-       linear) */
-    const double mean = v.lost / v.n;
-    double reported;
-    m->charging.slot[index].model->segment_values(&m->scene, v.globals, &mean, &reported, 1);
-    return reported;
+    return v.selected ? reported_mean(m, index, &v, v.lost) : 0.0;
+}
+
+double tribo_get_mean_charge(tribo_model *m, tribo_segment_charge which)
+{
+    if ((unsigned)which >= (unsigned)m->charging.n_models)
+        return NAN;
+    const tribo_charge_view v = tribo_charge_view_of(m, which);
+    return v.selected ? reported_mean(m, which, &v, v.sum) : 0.0;
 }

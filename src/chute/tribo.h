@@ -260,6 +260,9 @@ int tribo_includes_charge_model(const tribo_model *model, tribo_segment_charge w
    Fails if the scene does not include that model. */
 tribo_status tribo_get_segment_charges(tribo_model *model, tribo_segment_charge which,
                                        double *out, size_t n);
+/* The mean of the values tribo_get_segment_charges copies, at the current time, without
+   copying them: 0 if the scene does not include that model (NaN for no model's array). */
+double tribo_get_mean_charge(tribo_model *model, tribo_segment_charge which);
 
 /* Work counters of the integrator since creation or the last reset. */
 typedef struct tribo_stats {

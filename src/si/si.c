@@ -201,12 +201,6 @@ static const struct mapping *mapping_of(const char *si_name)
     return NULL;
 }
 
-/* The output charge_to_mass has a formula for the static and the sliding model only (its row in
-   si_quantities.def): a model registered after them needs its own there first. */
-_Static_assert(TRIBO_SI_CHARGE_MODEL_COUNT == 2 && TRIBO_SEGMENTS_STATIC == 0 &&
-                   TRIBO_SEGMENTS_SLIDING == 1,
-               "charge_to_mass (si_quantities.def) knows the static and sliding models only");
-
 /* The model charge_to_mass carries: the one charge_to_mass_model names, or with 0 the first
    the scene includes (registry order), so that switching a model off alone never leaves the
    output to the wrong law. A model named must run where another one does, else the
@@ -368,6 +362,11 @@ const char *tribo_si_quantity_name(tribo_si_quantity q)
 #include "si_quantities.def"
     };
     return (unsigned)q < TRIBO_SI_QUANTITY_COUNT ? names[q] : NULL;
+}
+
+double tribo_si_sigma_mean(const tribo_si_derived *d, tribo_model *m, tribo_segment_charge which)
+{
+    return tribo_si_segment_factor(d, which) * tribo_get_mean_charge(m, which);
 }
 
 double tribo_si_segment_factor(const tribo_si_derived *d, tribo_segment_charge which)

@@ -129,9 +129,18 @@ Test(si, a_neutral_pair_runs_and_charges_nothing)
     cr_assert(m, "%s", err);
     cr_assert_eq(tribo_advance_fully(m, 2000.0), TRIBO_OK, "%s", tribo_last_error(m));
     cr_expect(tribo_get(m, TRIBO_QUANTITY_STATIC) != 0.0, "the model charged in its own units");
-    for (int q = TRIBO_SI_QUANTITY_CHARGE_STATIC; q <= TRIBO_SI_QUANTITY_SIGMA_S; q++)
-        cr_expect_eq(tribo_si_get(&d, m, (tribo_si_quantity)q), 0.0, "%s",
-                     tribo_si_quantity_name((tribo_si_quantity)q));
+    /* every output that is a charge or a charge density, each model's and the coupling's (the
+       calculated parameters, such as the unit sigma_scale, follow the outputs) */
+    int charges = 0;
+    for (int q = 0; q < TRIBO_SI_QUANTITY_T_STAR; q++) {
+        const char *name = tribo_si_quantity_name((tribo_si_quantity)q);
+        if (strncmp(name, "charge", 6) == 0 || strncmp(name, "sigma", 5) == 0) {
+            cr_expect_eq(tribo_si_get(&d, m, (tribo_si_quantity)q), 0.0, "%s", name);
+            charges++;
+        }
+    }
+    /* per model: charge, per length, to mass, sigma_mean, charge lost; charge_to_mass, sigma_s */
+    cr_expect_eq(charges, 5 * TRIBO_SEGMENTS_COUNT + 2);
     tribo_free(m);
 }
 
@@ -256,6 +265,52 @@ Test(si, the_outputs_are_the_models_in_si_units)
     const tribo_si_derived deep = derived_of(&s);
     cr_expect_eq(tribo_si_get(&deep, m, TRIBO_SI_QUANTITY_Q_PER_M_STATIC), tribo_si_get(&d, m, TRIBO_SI_QUANTITY_Q_PER_M_STATIC));
     cr_expect_eq(tribo_si_get(&deep, m, TRIBO_SI_QUANTITY_CHARGE_STATIC), 0.25 * per_length);
+    tribo_free(m);
+}
+
+Test(si, every_registered_model_has_its_charge_from_the_mean_of_its_values)
+{
+    tribo_si_scene s = si_of("drop_height=5e-4 n_segments=200");
+    const tribo_si_derived d = derived_of(&s);
+    tribo_model *m = make(&d.scene);
+    cr_assert_eq(tribo_advance_fully(m, 2e4), TRIBO_OK, "%s", tribo_last_error(m));
+    static const struct {
+        tribo_segment_charge which;
+        tribo_si_quantity charge, per_length, to_mass, sigma_mean;
+    } MODELS[] = {
+#define TRIBO_CHARGE_MODEL(id, name, slot, model, on, values)                                   \
+    {TRIBO_SEGMENTS_##id, TRIBO_SI_QUANTITY_CHARGE_##id, TRIBO_SI_QUANTITY_CHARGE_PER_LENGTH_##id, \
+     TRIBO_SI_QUANTITY_Q_PER_M_##id, TRIBO_SI_QUANTITY_SIGMA_MEAN_##id},
+#include "charge_registry.def"
+#undef TRIBO_CHARGE_MODEL
+    };
+    double values[200];
+    for (size_t k = 0; k < sizeof MODELS / sizeof *MODELS; k++) {
+        const tribo_segment_charge w = MODELS[k].which;
+        /* the mean of the values tribo_get_segment_charges gives, without copying them */
+        cr_assert_eq(tribo_get_segment_charges(m, w, values, 200), TRIBO_OK);
+        double sum = 0.0;
+        for (int i = 0; i < 200; i++)
+            sum += values[i];
+        const double mean = tribo_get_mean_charge(m, w);
+        cr_expect(mean != 0.0 && close_to(mean, sum / 200, 1e-12), "%g %g", mean, sum / 200);
+        /* in SI units: times the model's factor, then over the boundary, the depth, the mass */
+        const double sigma = tribo_si_segment_factor(&d, w) * mean;
+        const double per_length = d.perimeter * sigma;
+        cr_expect_eq(tribo_si_get(&d, m, MODELS[k].sigma_mean), sigma);
+        cr_expect_eq(tribo_si_get(&d, m, MODELS[k].per_length), per_length);
+        cr_expect_eq(tribo_si_get(&d, m, MODELS[k].charge), 1e-3 * per_length);
+        cr_expect_eq(tribo_si_get(&d, m, MODELS[k].to_mass), per_length / d.mass_per_length);
+        /* and charge_to_mass carries it where charge_to_mass_model names it */
+        tribo_si_derived named = d;
+        named.charge_to_mass_model = (int)w + 1;
+        cr_expect_eq(tribo_si_get(&named, m, TRIBO_SI_QUANTITY_Q_PER_M),
+                     tribo_si_get(&d, m, MODELS[k].to_mass));
+    }
+    /* the means are the models' own outputs, exactly */
+    cr_expect_eq(tribo_get_mean_charge(m, TRIBO_SEGMENTS_STATIC), tribo_get(m, TRIBO_QUANTITY_STATIC));
+    cr_expect_eq(tribo_get_mean_charge(m, TRIBO_SEGMENTS_SLIDING), tribo_get(m, TRIBO_QUANTITY_SLIDING));
+    cr_expect(isnan(tribo_get_mean_charge(m, TRIBO_SEGMENTS_COUNT)));
     tribo_free(m);
 }
 

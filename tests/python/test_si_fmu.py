@@ -285,6 +285,20 @@ def test_an_si_value_out_of_its_range_is_refused_naming_it(fmu_dir, version):
     s.free()
 
 
+@pytest.mark.parametrize("version", VERSIONS)
+def test_a_retired_value_reference_is_refused_saying_what_took_its_place(fmu_dir, version):
+    # the per-model charge outputs the registry's rows make, at 510 + slot, ...: their former
+    # value references stay retired (si_quantities.def's TRIBO_RETIRED rows)
+    s = Slave(fmu_dir(version, SI), version).init()
+    real = s.fmu.getReal if version == 2 else s.fmu.getFloat64
+    assert status_of(real, [213]) == ERROR
+    assert ("value reference 213 is retired (it was charge_static's): charge_static is value "
+            "reference 510") in s.errors()[-1]
+    assert s.variables["charge_static"].valueReference == 510
+    assert s.variables["sigma_mean_sliding"].valueReference == 541
+    s.free()
+
+
 # (what is set, the model's parameter out of range, the SI inputs the message must name)
 DERIVED_OUT_OF_RANGE = [
     # a particle so soft and heavy that gravity out-weighs its stiffness: Gamma ~ 2e4 > 10
