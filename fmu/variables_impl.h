@@ -115,7 +115,7 @@ static const fmu_variable VARIABLES[] = {
 /* The value references retired (TRIBO_RETIRED rows), and an end that is none of them (a
    table may have none). */
 static const fmu_retired RETIRED[] = {
-#define TRIBO_RETIRED(vr, name, instead) {vr, name, instead},
+#define TRIBO_RETIRED(kind, vr, name, instead) {vr, name, instead},
 #include FMU_TABLE
     {0, NULL, NULL}};
 const fmu_retired *fmu_retired_find(fmu_vr vr)

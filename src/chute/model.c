@@ -460,6 +460,8 @@ tribo_status tribo_advance_fully(tribo_model *m, double t)
 tribo_status tribo_set_param(tribo_model *m, const char *name, double value)
 {
     const tribo_param_info *p = tribo_param_find(name);
+    if (!p && tribo_param_retired_why(name))
+        return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT, "%s", tribo_param_retired_why(name));
     if (!p)
         return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT, "unknown parameter '%s'",
                           name ? name : "(null)");

@@ -16,7 +16,11 @@ static const tribo_param_info PARAMS[] = {
 };
 
 #define N_PARAMS (sizeof PARAMS / sizeof PARAMS[0])
-static const tribo_param_table_of TABLE = {PARAMS, N_PARAMS};
+static const tribo_param_retired RETIRED[] = {
+#define TRIBO_RETIRED TRIBO_PARAM_RETIRED_ROW
+#include "quantities.def"
+    {NULL, NULL}};
+static const tribo_param_table_of TABLE = {PARAMS, N_PARAMS, RETIRED};
 
 static const tribo_param_info INPUTS[TRIBO_INPUT_COUNT] = {
 #define TRIBO_INPUT(id_, ...) [TRIBO_INPUT_##id_] = TRIBO_INPUT_INFO(__VA_ARGS__),
@@ -40,6 +44,8 @@ const tribo_param_info *tribo_param_table(size_t *count)
 }
 
 const tribo_param_info *tribo_param_find(const char *name) { return tribo_table_find(TABLE, name); }
+
+const char *tribo_param_retired_why(const char *name) { return tribo_table_retired(TABLE, name); }
 
 const tribo_param_info *tribo_param_of_field(size_t offset)
 {

@@ -54,13 +54,6 @@ typedef enum tribo_status {
 
 /* ---- the scene: every parameter of the table (quantities.def) ------------------- */
 
-typedef enum tribo_charge_models {
-    TRIBO_CHARGE_NONE = 0,
-    TRIBO_CHARGE_STATIC = 1,  /* docs/model.md §5a */
-    TRIBO_CHARGE_SLIDING = 2, /* docs/model.md §5b */
-    TRIBO_CHARGE_BOTH = 3
-} tribo_charge_models;
-
 typedef enum tribo_integrator_kind {
     TRIBO_INTEGRATOR_FIXED_STEP = 0, /* classical RK4, fixed step dt (the paper's)  */
     TRIBO_INTEGRATOR_CVODE = 1,      /* SUNDIALS CVODE, Adams, with event location  */
@@ -253,7 +246,7 @@ typedef enum tribo_segment_charge {
 } tribo_segment_charge;
 
 /* Whether the instance's scene includes the charge model of that array (its switch
-   charge_model_<name>, and the older charge_model). */
+   charge_model_<name>). */
 int tribo_includes_charge_model(const tribo_model *model, tribo_segment_charge which);
 
 /* Copy the per-segment charge densities (n = n_segments values) at the current time.

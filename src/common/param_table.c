@@ -101,12 +101,23 @@ tribo_status tribo_params_check(const tribo_param_info *rows, int n, const doubl
     return TRIBO_OK;
 }
 
+const char *tribo_table_retired(tribo_param_table_of t, const char *name)
+{
+    for (const tribo_param_retired *r = t.retired; r && r->name && name; r++)
+        if (strcmp(r->name, name) == 0)
+            return r->instead;
+    return NULL;
+}
+
 tribo_status tribo_table_set(tribo_param_table_of t, void *scene, const char *name, double value,
                              char *msg, size_t msg_size)
 {
     const tribo_param_info *p = tribo_table_find(t, name);
     if (!p) {
-        if (msg && msg_size)
+        const char *instead = tribo_table_retired(t, name);
+        if (msg && msg_size && instead)
+            snprintf(msg, msg_size, "%s", instead);
+        else if (msg && msg_size)
             snprintf(msg, msg_size, "unknown parameter '%s'", name ? name : "(null)");
         return TRIBO_ERR_INVALID_ARGUMENT;
     }

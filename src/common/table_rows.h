@@ -49,5 +49,5 @@
 #define TRIBO_ENUM_ITEM(id, name, value, description)
 #endif
 #ifndef TRIBO_RETIRED
-#define TRIBO_RETIRED(vr, name, instead)
+#define TRIBO_RETIRED(kind, vr, name, instead)
 #endif

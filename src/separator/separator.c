@@ -20,7 +20,7 @@ static const tribo_param_info PARAMS[] = {
 #define TRIBO_PARAMETER(...) TRIBO_PARAM_INFO(tribo_separator_scene, __VA_ARGS__),
 #include "separator_quantities.def"
 };
-static const tribo_param_table_of TABLE = {PARAMS, sizeof PARAMS / sizeof PARAMS[0]};
+static const tribo_param_table_of TABLE = {PARAMS, sizeof PARAMS / sizeof PARAMS[0], NULL};
 
 /* released is a switch: an integer in [0, 1] for the checks and messages */
 static const tribo_param_info INPUTS[TRIBO_SEPARATOR_INPUT_COUNT] = {

@@ -57,7 +57,11 @@ static const tribo_param_info PARAMS[SLOT_COUNT] = {
     [RANGE_SLOT_OF_##name].max_inclusive = TRIBO_##max_end,
 #include "quantities.def"
 };
-static const tribo_param_table_of TABLE = {PARAMS, ROW_COUNT};
+static const tribo_param_retired RETIRED[] = {
+#define TRIBO_RETIRED TRIBO_PARAM_RETIRED_ROW
+#include "si_quantities.def"
+    {NULL, NULL}};
+static const tribo_param_table_of TABLE = {PARAMS, ROW_COUNT, RETIRED};
 
 static const tribo_param_info INPUTS[TRIBO_SI_INPUT_COUNT] = {
 #define TRIBO_INPUT(id_, ...) [TRIBO_SI_INPUT_##id_] = TRIBO_INPUT_INFO(__VA_ARGS__),
@@ -222,20 +226,10 @@ static tribo_status charge_to_mass_model_included(const tribo_si_scene *si, trib
         return TRIBO_OK;
     if (msg && msg_size) {
         const char *name = TRIBO_CHARGE_MODELS[slot]->name;
-        char switch_name[64];
-        snprintf(switch_name, sizeof switch_name, "charge_model_%s", name);
-        const double on = tribo_param_read(si, tribo_si_param_find(switch_name));
-        if (on == 0.0)
-            snprintf(msg, msg_size,
-                     "charge_to_mass_model = %d names the %s charge model, which %s = 0 leaves "
-                     "out of the scene: switch it on, or choose an included model",
-                     si->charge_to_mass_model, name, switch_name);
-        else
-            snprintf(msg, msg_size,
-                     "charge_to_mass_model = %d names the %s charge model, which charge_model = %d "
-                     "leaves out of the scene (its bit %d is clear): set it, or choose an "
-                     "included model",
-                     si->charge_to_mass_model, name, si->charge_model, slot);
+        snprintf(msg, msg_size,
+                 "charge_to_mass_model = %d names the %s charge model, which charge_model_%s = 0 "
+                 "leaves out of the scene: switch it on, or choose an included model",
+                 si->charge_to_mass_model, name, name);
     }
     return TRIBO_ERR_INVALID_ARGUMENT;
 }

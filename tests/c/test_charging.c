@@ -6,12 +6,12 @@
 #include "charge_registry.h"
 #include "charging.h"
 
-/* The registry's models (static, sliding), both selected. */
+/* The registry's models, every one selected. */
 static tribo_charging make(double eps, int n)
 {
     tribo_charging c;
     cr_assert_eq(tribo_charging_init(&c, TRIBO_CHARGE_MODELS, TRIBO_SEGMENTS_COUNT,
-                                     TRIBO_CHARGE_BOTH, eps, n), 0);
+                                     (1u << TRIBO_SEGMENTS_COUNT) - 1u, eps, n), 0);
     return c;
 }
 

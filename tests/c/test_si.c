@@ -51,7 +51,7 @@ Test(si, the_reference_case_maps_as_model_md_section_8_says)
     /* the dimensionless choices pass through */
     cr_expect_eq(d.scene.n_segments, 2000);
     cr_expect_eq(d.scene.integrator, TRIBO_INTEGRATOR_CVODE);
-    cr_expect_eq(d.scene.charge_model, TRIBO_CHARGE_BOTH);
+    cr_expect(d.scene.charge_model_static == 1 && d.scene.charge_model_sliding == 1);
     /* a stiffness given directly wins over the moduli */
     tribo_si_scene k = si_of("contact_stiffness=2e9");
     const tribo_si_derived dk = derived_of(&k);
@@ -347,9 +347,11 @@ Test(si, charge_to_mass_carries_the_one_model_charge_to_mass_model_names)
     cr_expect(strstr(err, "charge_to_mass_model = 2") && strstr(err, "charge_model_sliding = 0") &&
                   !strchr(err, '\n'),
               "%s", err);
-    tribo_si_scene legacy = si_of("charge_model=2 charge_to_mass_model=1");
-    cr_expect_eq(tribo_si_derive(&legacy, &dd, err, sizeof err), TRIBO_ERR_INVALID_ARGUMENT);
-    cr_expect(strstr(err, "charge_to_mass_model = 1") && strstr(err, "charge_model = 2"), "%s", err);
+    /* the selection as one enumeration of subsets is gone: each model has its switch */
+    cr_expect_eq(tribo_si_scene_apply(&s, "charge_model=3", err, sizeof err),
+                 TRIBO_ERR_INVALID_ARGUMENT);
+    cr_expect(strstr(err, "charge_model was removed") && strstr(err, "charge_model_sliding"), "%s",
+              err);
     tribo_si_scene fine = si_of("charge_model_static=0");
     fine.charge_to_mass_model = 2;
     cr_expect_eq(tribo_si_derive(&fine, &dd, err, sizeof err), TRIBO_OK, "%s", err);
@@ -357,11 +359,8 @@ Test(si, charge_to_mass_carries_the_one_model_charge_to_mass_model_names)
     tribo_si_scene first = si_of("charge_model_static=0");
     cr_expect_eq(tribo_si_derive(&first, &dd, err, sizeof err), TRIBO_OK, "%s", err);
     cr_expect_eq(dd.charge_to_mass_model, 2);
-    tribo_si_scene legacy_first = si_of("charge_model=2");
-    cr_expect_eq(tribo_si_derive(&legacy_first, &dd, err, sizeof err), TRIBO_OK, "%s", err);
-    cr_expect_eq(dd.charge_to_mass_model, 2);
     /* no model at all: nothing charges, and charge_to_mass is 0 whichever it names */
-    tribo_si_scene none = si_of("charge_model=0");
+    tribo_si_scene none = si_of("charge_model_static=0 charge_model_sliding=0");
     cr_expect_eq(tribo_si_derive(&none, &dd, err, sizeof err), TRIBO_OK, "%s", err);
     tribo_model *uncharged = tribo_create(&dd.scene, err, sizeof err);
     cr_assert(uncharged, "%s", err);

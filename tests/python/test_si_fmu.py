@@ -169,7 +169,7 @@ COMPARED = {"semi_major_axis": 5e-4, "epsilon": 0.5, "density": 950.0,
             "omega0": 50.0, "n_segments": 64, "dt": 5e-4}
 MODEL_OF_SI = {"epsilon": "epsilon", "mu": "mu", "nu": "nu", "eta": "eta", "tilt": "beta",
                "phi0": "phi0", "drop_angle": "drop_angle", "n_segments": "n_segments",
-               "charge_model": "charge_model", "integrator": "integrator", "dt": "dt",
+               "integrator": "integrator", "dt": "dt",
                "rtol": "rtol", "atol": "atol", "v_reg": "v_reg", "damping_point": "damping_point",
                "stick_model": "stick_model", "work_limit": "work_limit", "Gamma": "Gamma", "tau0": "tau0", "tau_r": "tau_r",
                "Sigma0": "Sigma0", "chute_length_scaled": "chute_length",

@@ -114,7 +114,7 @@ def test_the_study_uses_the_fmus_default_tolerances(tiny_study, tiny_result, fmu
     assert tiny_result.tolerances == start
     assert "(the FMU's defaults)" in (out / "study.md").read_text()
     row = runs.iloc[0]
-    params = {n: row[n] for n in ("epsilon", "mu", "nu", "n_segments", "charge_model", "integrator",
+    params = {n: row[n] for n in ("epsilon", "mu", "nu", "n_segments", "integrator",
                                   "damping_point", "Gamma", "beta_deg", "tau0", "Sigma0", "eta", "tau_r",
                                   "drop_speed")}
     from tribo.fmu import FmuImage

@@ -11,6 +11,9 @@ from tribo.batch.particle import run_fmu
 from tribo.batch.sweep import run_sweep
 from tribo.study.transition import find_transition
 
+# the motion alone: every charge model switched off
+NO_CHARGE = dict(charge_model_static=0, charge_model_sliding=0)
+
 GRID = [round(0.1 * k, 10) for k in range(1, 11)]
 
 
@@ -70,12 +73,12 @@ def test_finds_the_high_friction_transition_of_the_fmu(fmu_file, tmp_path):
 
     def turns(epsilons):
         with SerialExecutor() as ex:
-            report = run_sweep([short_spec(e, "high", charge_model=0) for e in epsilons], image, path,
+            report = run_sweep([short_spec(e, "high", **NO_CHARGE) for e in epsilons], image, path,
                                ex, progress=False)
         return [bool(v) for v in report.results["turned_over"]]
 
     t = find_transition(turns, [0.1, 0.3, 0.5], width=0.02, points_per_round=2)
     assert t.found and 0.3 <= t.lo < t.hi <= 0.4 and t.hi - t.lo <= 0.02 + 1e-12
     assert t.monotonic
-    lo, hi = (run_fmu(image, short_spec(e, "high", charge_model=0)).row for e in (t.lo, t.hi))
+    lo, hi = (run_fmu(image, short_spec(e, "high", **NO_CHARGE)).row for e in (t.lo, t.hi))
     assert lo["turns_max"] < 0.5 <= hi["turns_max"]

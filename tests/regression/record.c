@@ -90,7 +90,7 @@ static void record_study(const char *prefix, int damping_point)
                 s.epsilon = e / 10.0;
                 s.mu = s.nu = f ? 1.0 : 0.1;
                 s.damping_point = damping_point;
-                s.charge_model = TRIBO_CHARGE_BOTH;
+                s.charge_model_static = s.charge_model_sliding = 1;
                 s.integrator = integrator ? TRIBO_INTEGRATOR_CVODE : TRIBO_INTEGRATOR_FIXED_STEP;
                 s.rtol = 1e-8;
                 s.atol = 1e-10;

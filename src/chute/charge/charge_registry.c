@@ -21,6 +21,5 @@ unsigned tribo_charge_selection(const tribo_scene *s)
         on |= 1u << TRIBO_SEGMENTS_##id;
 #include "charge_registry.def"
 #undef TRIBO_CHARGE_MODEL
-    const unsigned legacy = (1u << TRIBO_CHARGE_MODEL_LEGACY) - 1u;
-    return on & (~legacy | ((unsigned)s->charge_model & legacy));
+    return on;
 }

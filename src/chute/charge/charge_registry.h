@@ -14,9 +14,7 @@ extern const tribo_charge_model *const TRIBO_CHARGE_MODELS[TRIBO_SEGMENTS_COUNT]
 #undef TRIBO_CHARGE_MODEL
 
 /* The registered models a scene includes: bit i for TRIBO_CHARGE_MODELS[i], where its switch
-   charge_model_<name> is on and, for the first TRIBO_CHARGE_MODEL_LEGACY slots (static, sliding),
-   bit i of the older charge_model is set too. */
-#define TRIBO_CHARGE_MODEL_LEGACY 2
+   charge_model_<name> is on. */
 unsigned tribo_charge_selection(const tribo_scene *s);
 
 /* The outputs of the models' own (quantities.def's rows), each defined in its model's file
