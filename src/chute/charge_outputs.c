@@ -98,7 +98,7 @@ double tribo_charge_lost(tribo_model *m, int index)
 
 double tribo_get_mean_charge(tribo_model *m, tribo_segment_charge which)
 {
-    if ((unsigned)which >= (unsigned)m->charging.n_models)
+    if (!m || (unsigned)which >= (unsigned)m->charging.n_models)
         return NAN;
     const tribo_charge_view v = tribo_charge_view_of(m, which);
     return v.selected ? reported_mean(m, which, &v, v.sum) : 0.0;

@@ -6,8 +6,6 @@
 #include "charge_registry.h"
 #include "model.h"
 
-#include <stdio.h>
-
 const tribo_integrator_ops *tribo_integrator_of_kind(int kind)
 {
     switch (kind) {
@@ -20,22 +18,15 @@ const tribo_integrator_ops *tribo_integrator_of_kind(int kind)
 
 tribo_parts tribo_registry_parts(const tribo_scene *scene)
 {
+    /* (a NULL scene gets no parts: tribo_create_from_parts refuses it) */
     return (tribo_parts){.charge_models = TRIBO_CHARGE_MODELS,
                          .n_charge_models = TRIBO_SEGMENTS_COUNT,
-                         .charge_selection = tribo_charge_selection(scene),
-                         .integrator = tribo_integrator_of_kind(scene->integrator)};
+                         .charge_selection = scene ? tribo_charge_selection(scene) : 0u,
+                         .integrator = scene ? tribo_integrator_of_kind(scene->integrator) : NULL};
 }
 
 tribo_model *tribo_create(const tribo_scene *scene, char *err, size_t err_size)
 {
-    if (scene) {
-        char msg[512];
-        if (tribo_scene_validate(scene, msg, sizeof msg) != TRIBO_OK) {
-            if (err && err_size)
-                snprintf(err, err_size, "%s", msg);
-            return NULL;
-        }
-    }
     const tribo_parts registry = tribo_registry_parts(scene);
     return tribo_create_from_parts(scene, &registry, err, err_size);
 }

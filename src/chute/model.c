@@ -326,13 +326,14 @@ static void report(char *err, size_t err_size, const char *msg)
 tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts *parts,
                                      char *err, size_t err_size)
 {
-    const tribo_charge_model *const *models = parts->charge_models;
-    const int n_models = parts->n_charge_models;
     char msg[512];
-    if (!scene) {
-        report(err, err_size, "scene is NULL");
+    if (!scene || !parts) {
+        report(err, err_size, scene ? "parts is NULL" : "scene is NULL");
         return NULL;
     }
+    const tribo_charge_model *const *models = parts->charge_models;
+    const int n_models = parts->n_charge_models;
+    /* the scene is validated here, once, whoever made the parts */
     if (tribo_scene_validate(scene, msg, sizeof msg) != TRIBO_OK) {
         report(err, err_size, msg);
         return NULL;
@@ -392,12 +393,16 @@ void tribo_free(tribo_model *m)
 
 void tribo_set_logger(tribo_model *m, tribo_log_fn fn, void *user)
 {
+    if (!m)
+        return;
     m->log = fn;
     m->log_user = user;
 }
 
 tribo_status tribo_reset(tribo_model *m)
 {
+    if (!m)
+        return TRIBO_ERR_INVALID_ARGUMENT;
     initial_point(m, &m->committed);
     m->ended = 0;
     tribo_charging_reset(&m->charging);
@@ -421,6 +426,8 @@ tribo_status tribo_check_outputs(tribo_model *m)
 
 tribo_status tribo_advance(tribo_model *m, double t)
 {
+    if (!m)
+        return TRIBO_ERR_INVALID_ARGUMENT;
     if (!isfinite(t) || t < m->out.t)
         return tribo_fail(m, TRIBO_ERR_TIME,
                           "cannot advance to t = %.17g: the instance is at t = %.17g", t,
@@ -459,6 +466,8 @@ tribo_status tribo_advance_fully(tribo_model *m, double t)
 
 tribo_status tribo_set_param(tribo_model *m, const char *name, double value)
 {
+    if (!m)
+        return TRIBO_ERR_INVALID_ARGUMENT;
     const tribo_param_info *p = tribo_param_find(name);
     if (!p && tribo_param_retired_why(name))
         return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT, "%s", tribo_param_retired_why(name));
@@ -484,6 +493,10 @@ tribo_status tribo_set_param(tribo_model *m, const char *name, double value)
 
 tribo_status tribo_set_inputs(tribo_model *m, const double values[TRIBO_INPUT_COUNT])
 {
+    if (!m)
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    if (!values)
+        return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT, "the inputs' values are NULL");
     if (tribo_params_check(tribo_input_table(NULL), TRIBO_INPUT_COUNT, values, m->error,
                            sizeof m->error) != TRIBO_OK)
         return TRIBO_ERR_INVALID_ARGUMENT;
@@ -503,16 +516,22 @@ tribo_status tribo_set_external_force(tribo_model *m, double F_T, double F_N)
     return tribo_set_inputs(m, values);
 }
 
-const tribo_scene *tribo_get_scene(const tribo_model *m) { return &m->scene; }
+const tribo_scene *tribo_get_scene(const tribo_model *m) { return m ? &m->scene : NULL; }
 
-const char *tribo_last_error(const tribo_model *m) { return m->error; }
+const char *tribo_last_error(const tribo_model *m) { return m ? m->error : "the instance is NULL"; }
 
-void tribo_get_stats(const tribo_model *m, tribo_stats *s) { *s = m->stats; }
+void tribo_get_stats(const tribo_model *m, tribo_stats *s)
+{
+    if (s)
+        *s = m ? m->stats : (tribo_stats){0};
+}
 
 /* ---- what can be read ------------------------------------------------------------------------ */
 
 double tribo_get(tribo_model *m, tribo_quantity which)
 {
+    if (!m)
+        return NAN;
     const tribo_point *p = &m->out;
     switch (which) {
 #define TRIBO_TIME(id, name, vr, unit, description, value) \
@@ -537,12 +556,16 @@ const char *tribo_quantity_name(tribo_quantity q)
 
 int tribo_includes_charge_model(const tribo_model *m, tribo_segment_charge which)
 {
-    return (unsigned)which < (unsigned)m->charging.n_models && m->charging.slot[which].selected;
+    return m && (unsigned)which < (unsigned)m->charging.n_models && m->charging.slot[which].selected;
 }
 
 tribo_status tribo_get_segment_charges(tribo_model *m, tribo_segment_charge which, double *out,
                                        size_t n)
 {
+    if (!m)
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    if (!out)
+        return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT, "the segment array to copy into is NULL");
     if ((unsigned)which >= (unsigned)m->charging.n_models || !m->charging.slot[which].segments)
         return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT,
                           "the scene does not include the %s charge model",

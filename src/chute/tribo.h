@@ -171,8 +171,11 @@ typedef struct tribo_model tribo_model;
    callback if one is set; level 0 = info, 1 = warning. */
 typedef void (*tribo_log_fn)(void *user, int level, const char *message);
 
-/* Create an instance at time 0 in the scene's initial state. On failure returns NULL
-   and writes the reason into err (if err is not NULL). */
+/* Create an instance at time 0 in the scene's initial state. On failure (an invalid scene,
+   a NULL one, no memory, an integrator that cannot be set up: the SUNDIALS call that failed
+   is named) returns NULL and writes the reason into err (if err is not NULL).
+   Every function below given a NULL instance refuses it and does nothing: a status
+   TRIBO_ERR_INVALID_ARGUMENT, a value NaN, tribo_last_error "the instance is NULL". */
 tribo_model *tribo_create(const tribo_scene *scene, char *err, size_t err_size);
 void tribo_free(tribo_model *model);
 void tribo_set_logger(tribo_model *model, tribo_log_fn fn, void *user);

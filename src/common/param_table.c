@@ -12,6 +12,8 @@
 
 void tribo_table_defaults(tribo_param_table_of t, void *scene, size_t scene_size)
 {
+    if (!scene)
+        return;
     memset(scene, 0, scene_size);
     for (size_t i = 0; i < t.n; i++)
         tribo_param_write(scene, &t.rows[i], t.rows[i].start);
@@ -27,6 +29,8 @@ const tribo_param_info *tribo_table_find(tribo_param_table_of t, const char *nam
 
 double tribo_param_read(const void *scene, const tribo_param_info *p)
 {
+    if (!scene || !p)
+        return NAN;
     const char *base = (const char *)scene + p->offset;
     if (p->type != TRIBO_TYPE_REAL) {
         int v;
@@ -40,6 +44,8 @@ double tribo_param_read(const void *scene, const tribo_param_info *p)
 
 void tribo_param_write(void *scene, const tribo_param_info *p, double value)
 {
+    if (!scene || !p)
+        return;
     char *base = (char *)scene + p->offset;
     if (p->type != TRIBO_TYPE_REAL) {
         /* saturated: a value an int cannot hold is invalid anyway, and reads back otherwise */
@@ -112,6 +118,11 @@ const char *tribo_table_retired(tribo_param_table_of t, const char *name)
 tribo_status tribo_table_set(tribo_param_table_of t, void *scene, const char *name, double value,
                              char *msg, size_t msg_size)
 {
+    if (!scene) {
+        if (msg && msg_size)
+            snprintf(msg, msg_size, "scene is NULL");
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    }
     const tribo_param_info *p = tribo_table_find(t, name);
     if (!p) {
         const char *instead = tribo_table_retired(t, name);

@@ -240,6 +240,11 @@ tribo_status tribo_si_derive(const tribo_si_scene *si, tribo_si_derived *d, char
     tribo_status st = tribo_table_validate(TABLE, si, msg, msg_size);
     if (st != TRIBO_OK)
         return st;
+    if (!d) {
+        if (msg && msg_size)
+            snprintf(msg, msg_size, "the derived set-up's struct is NULL");
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    }
     if (!(si->x0 < si->chute_length)) {
         if (msg && msg_size)
             snprintf(msg, msg_size,
@@ -295,6 +300,11 @@ tribo_status tribo_si_model_param(const tribo_si_derived *d, const tribo_param_i
                                   double value, const char **model_name, double *model_value,
                                   char *msg, size_t msg_size)
 {
+    if (!d || !p || !model_name || !model_value) {
+        if (msg && msg_size)
+            snprintf(msg, msg_size, "tribo_si_model_param: a NULL argument");
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    }
     const struct mapping *map = mapping_of(p->name);
     if (!map || map->how == FORCE) {
         if (msg && msg_size)
@@ -313,6 +323,11 @@ tribo_status tribo_si_model_inputs(const tribo_si_derived *d,
                                    const double values[TRIBO_SI_INPUT_COUNT],
                                    double model_values[TRIBO_INPUT_COUNT], char *msg, size_t msg_size)
 {
+    if (!d || !values || !model_values) {
+        if (msg && msg_size)
+            snprintf(msg, msg_size, "tribo_si_model_inputs: a NULL argument");
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    }
     const tribo_param_info *model = tribo_input_table(NULL);
     for (int i = 0; i < TRIBO_SI_INPUT_COUNT; i++) {
         if (tribo_param_check(&INPUTS[i], values[i], msg, msg_size) != TRIBO_OK)
@@ -332,6 +347,8 @@ tribo_status tribo_si_model_inputs(const tribo_si_derived *d,
 
 double tribo_si_get(const tribo_si_derived *d, tribo_model *m, tribo_si_quantity q)
 {
+    if (!d)
+        return NAN;
 #define Q(id) tribo_get(m, TRIBO_QUANTITY_##id)
     switch (q) {
 #define TRIBO_TIME(id, name, vr, unit, description, value) \
@@ -365,6 +382,8 @@ double tribo_si_sigma_mean(const tribo_si_derived *d, tribo_model *m, tribo_segm
 
 double tribo_si_segment_factor(const tribo_si_derived *d, tribo_segment_charge which)
 {
+    if (!d || (unsigned)which >= TRIBO_SEGMENTS_COUNT)
+        return NAN;
     /* each model declares the unit of its values (charge_interface.h, model.md §8) */
     switch (TRIBO_CHARGE_MODELS[which]->si_unit) {
     case TRIBO_CHARGE_PER_SIGMA0: return d->sigma0;
