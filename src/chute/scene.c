@@ -131,12 +131,3 @@ tribo_status tribo_scene_check_combinations(const tribo_scene *scene, char *msg,
     }
     return TRIBO_OK;
 }
-
-const tribo_param_info *tribo_scene_structure_differs(const tribo_scene *a, const tribo_scene *b)
-{
-    for (size_t i = 0; i < N_PARAMS; i++)
-        if (PARAMS[i].variability == TRIBO_PARAM_STRUCTURAL &&
-            tribo_param_read(a, &PARAMS[i]) != tribo_param_read(b, &PARAMS[i]))
-            return &PARAMS[i];
-    return NULL;
-}

@@ -159,9 +159,6 @@ tribo_status tribo_scene_validate(const tribo_scene *scene, char *msg, size_t ms
 /* The combinations of valid parameters a scene must also satisfy: the drop lies on the chute,
    X0 < chute_length (model.md §9). A failure names the parameters and their values. */
 tribo_status tribo_scene_check_combinations(const tribo_scene *scene, char *msg, size_t msg_size);
-/* The first structural parameter in which two scenes differ, or NULL if they have the
-   same structure (an instance of one can load the other's state). */
-const tribo_param_info *tribo_scene_structure_differs(const tribo_scene *a, const tribo_scene *b);
 
 /* ---- the instance --------------------------------------------------------------- */
 

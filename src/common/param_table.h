@@ -35,8 +35,8 @@
      .type = TRIBO_TYPE_REAL, .min = min_, .max = max_, .min_inclusive = TRIBO_CLOSED,         \
      .max_inclusive = TRIBO_CLOSED, .start = 0.0, .variability = TRIBO_PARAM_TUNABLE}
 
-/* A parameter the table had and no longer has (its TRIBO_RETIRED row of kind PARAMETER):
-   setting it by name is refused with `instead`. */
+/* A parameter taken out of the table (its TRIBO_RETIRED row of kind PARAMETER): setting it
+   by name is refused with `instead`. */
 typedef struct tribo_param_retired {
     const char *name;
     const char *instead;

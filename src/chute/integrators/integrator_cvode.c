@@ -366,7 +366,6 @@ static tribo_status fail_at(cvode_integrator *c, double t, const double *y, cons
 static void capture_interpolant(cvode_integrator *c);
 static void find_grazing_switch(cvode_integrator *c, double t_start);
 
-/* Take one CVODE step from the end of the last one; it becomes the open step. */
 /* The longest piece of a flight, in units of slow_step, and the most evaluations of the
    clearance a piece spends looking for the flight's end before it ends where it got to (so
    that a flight that never comes down, or spins fast, is taken in bounded pieces). */
@@ -403,6 +402,8 @@ static tribo_status take_flight_piece(cvode_integrator *c)
     return TRIBO_OK;
 }
 
+/* Take one step from the end of the last one (a CVODE step in contact, a piece of the flight
+   in flight); it becomes the open step. */
 static tribo_status take_step(cvode_integrator *c)
 {
     if (!tribo_touching(&c->phase))
@@ -457,10 +458,10 @@ static void dense(cvode_integrator *c, double t, double *y)
 /* CVODE sees a switch only where a root function has changed sign between the ends of a
    step. A switch function can dip past zero and back within one step: in stick under
    normal lock the undamped tangential oscillation brings the stretch to the (constant)
-   Coulomb limit almost tangentially, and a dip of 1e-6 went unseen. So each step is also
-   sampled inside on the dense output; the first sample past a switch (beyond the rounding
-   of that function's values in the step) is bisected to the crossing, and the step ends
-   there as if CVODE had found it. */
+   Coulomb limit almost tangentially, and a dip of 1e-6 past it lies within one step, unseen
+   at its ends. So each step is also sampled inside on the dense output; the first sample
+   past a switch (beyond the rounding of that function's values in the step) is bisected to
+   the crossing, and the step ends there as if CVODE had found it. */
 #define GRAZING_SAMPLES 8
 
 static void switch_functions(cvode_integrator *c, double t, double *g)
