@@ -271,6 +271,10 @@ Test(si, the_outputs_are_the_models_in_si_units)
 Test(si, every_registered_model_has_its_charge_from_the_mean_of_its_values)
 {
     tribo_si_scene s = si_of("drop_height=5e-4 n_segments=200");
+    /* every registered model, the ones off by default too */
+#define TRIBO_CHARGE_MODEL(id, name, slot, model, on, values) s.charge_model_##name = 1;
+#include "charge_registry.def"
+#undef TRIBO_CHARGE_MODEL
     const tribo_si_derived d = derived_of(&s);
     tribo_model *m = make(&d.scene);
     cr_assert_eq(tribo_advance_fully(m, 2e4), TRIBO_OK, "%s", tribo_last_error(m));
@@ -337,7 +341,10 @@ Test(si, charge_to_mass_carries_the_one_model_charge_to_mass_model_names)
     const tribo_param_info *p = tribo_si_param_find("charge_to_mass_model");
     cr_expect(p->min == 0.0 && p->max == TRIBO_SEGMENTS_COUNT && p->type == TRIBO_TYPE_INTEGER);
     char err[512];
-    cr_expect_eq(tribo_si_scene_apply(&s, "charge_to_mass_model=3", err, sizeof err),
+    char past_the_rows[64];
+    snprintf(past_the_rows, sizeof past_the_rows, "charge_to_mass_model=%d",
+             TRIBO_SEGMENTS_COUNT + 1);
+    cr_expect_eq(tribo_si_scene_apply(&s, past_the_rows, err, sizeof err),
                  TRIBO_ERR_INVALID_ARGUMENT);
 
     /* a model switched off cannot be the one carried: one line naming both */
