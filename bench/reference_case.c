@@ -137,11 +137,11 @@ int main(int argc, char **argv)
 
     printf("reference case: a = %g m, epsilon = %g, rho = %g kg/m3, E_p = %g Pa, nu_p = %g, "
            "E_w = %g Pa, nu_w = %g, tilt = %g deg, mu = %g, nu = %g, L = %g m, t0 = %g s, "
-           "drop %g m at %g m/s, charge_model = %d\n",
+           "drop %g m at %g m/s, charge models: static %d, sliding %d\n",
            si.semi_major_axis, si.epsilon, si.density, si.youngs_modulus_particle,
            si.poisson_ratio_particle, si.youngs_modulus_wall, si.poisson_ratio_wall,
            si.tilt * 180.0 / M_PI, si.mu, si.nu, si.chute_length, si.charging_time,
-           si.drop_height, si.drop_speed, si.charge_model);
+           si.drop_height, si.drop_speed, si.charge_model_static, si.charge_model_sliding);
     printf("derived: t_star = %.4g s, Gamma = %.4g, tau0 = %.4g, Sigma0 = %.4g, k' = %.4g N/m2, "
            "m' = %.4g kg/m\n",
            d.t_star, d.scene.Gamma, d.scene.tau0, d.scene.Sigma0, d.k_prime, d.mass_per_length);

@@ -114,7 +114,7 @@ int main(int argc, char **argv)
 
     printf("1. CPU per unit of work, per kind (the default limit, 1e6)\n");
     unit_cost("fixed steps (RK4)", "integrator=0", 1000.0);
-    unit_cost("CVODE steps (no charging)", "charge_model=0 n_segments=16 stick_model=0", 1e5);
+    unit_cost("CVODE steps (no charging)", "charge_model_static=0 charge_model_sliding=0 n_segments=16 stick_model=0", 1e5);
     unit_cost("the sweep's looks (spinning needle)", "epsilon=1e-3 Gamma=10 tau0=1e9 eta=0 "
               "tau_r=1e9 n_segments=100000 phi0=-1e6 Omega0=-100 rtol=1e-14", 0.1);
     unit_cost("segment updates (wide contact)", "mu=100 eta=0 tau_r=1e9 n_segments=100000 "

@@ -51,9 +51,9 @@ int main(int argc, char **argv)
         return 2;
     }
     printf("# epsilon = %g, mu = %g, nu = %g, Gamma = %g, beta = %g deg, tau0 = %g, "
-           "charge_model = %d, integrator = %d (%s)\n",
+           "charge_model_static = %d, charge_model_sliding = %d, integrator = %d (%s)\n",
            scene.epsilon, scene.mu, scene.nu, scene.Gamma, scene.beta * (180.0 / M_PI), scene.tau0,
-           scene.charge_model, scene.integrator,
+           scene.charge_model_static, scene.charge_model_sliding, scene.integrator,
            scene.integrator == TRIBO_INTEGRATOR_FIXED_STEP ? "fixed step" : "CVODE");
     printf("%10s %12s %12s %12s %12s %10s %8s\n", "tau", "Q_static", "Q_sliding", "X", "Y",
            "contact", "turns");

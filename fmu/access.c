@@ -56,7 +56,12 @@ static const fmu_variable *resolve(fmu_instance *inst, const char *fn, fmu_vr vr
 {
     const fmu_variable *v = fmu_variable_find(vr, inst->fmi_version);
     if (!v) {
-        fmu_error(inst, "%s: unknown value reference %u", fn, vr);
+        const fmu_retired *r = fmu_retired_find(vr);
+        if (r)
+            fmu_error(inst, "%s: value reference %u is retired (it was %s's): %s", fn, vr,
+                      r->name, r->instead);
+        else
+            fmu_error(inst, "%s: unknown value reference %u", fn, vr);
         return NULL;
     }
     if (!(types & FMU_TYPE_BIT(v->type))) {

@@ -113,6 +113,16 @@ const fmu_display_unit *fmu_display_units(const char *unit, size_t *index);
 const fmu_enumeration *fmu_enumerations(size_t *count);
 /* The items of the enumeration with index `enumeration`, in increasing value. */
 const fmu_enum_item *fmu_enum_items(int enumeration, size_t *count);
+/* A value reference that a published variable had and no row takes again (TRIBO_RETIRED
+   rows of the front end's table): what to use instead. */
+typedef struct fmu_retired {
+    fmu_vr vr;
+    const char *name;    /* the variable that had it */
+    const char *instead; /* what to use */
+} fmu_retired;
+/* The retired value reference vr, or NULL. */
+const fmu_retired *fmu_retired_find(fmu_vr vr);
+
 /* The row with value reference vr declared in FMI version fmi_version, or NULL. */
 const fmu_variable *fmu_variable_find(fmu_vr vr, int fmi_version);
 int fmu_variable_in_version(const fmu_variable *v, int fmi_version);

@@ -112,6 +112,20 @@ static const fmu_variable VARIABLES[] = {
      "1", -1},
 };
 
+/* The value references retired (TRIBO_RETIRED rows), and an end that is none of them (a
+   table may have none). */
+static const fmu_retired RETIRED[] = {
+#define TRIBO_RETIRED(kind, vr, name, instead) {vr, name, instead},
+#include FMU_TABLE
+    {0, NULL, NULL}};
+const fmu_retired *fmu_retired_find(fmu_vr vr)
+{
+    for (const fmu_retired *r = RETIRED; r->name; r++)
+        if (r->vr == vr)
+            return r;
+    return NULL;
+}
+
 /* hold_at_end as a parameter row: a switch (0, 1), fixed, false by default */
 static const tribo_param_info HOLD_AT_END = {
     .name = "hold_at_end", .description = "", .unit = "1", .vr = FMU_HOLD_AT_END_VR,

@@ -6,7 +6,7 @@
 #   scripts/main.sh --full   the paper's study (epsilon 0.1..1.0, tau to 5000): out/study-full/
 # Other arguments go to `tribo study` (see `tribo study --help`), e.g. --out docs/study,
 # --scheduler tcp://host:8786 (an existing Dask cluster), --fresh.
-# The single run through the C API that this script used to make: build/tribo_paper_run.
+# One run of the paper's case through the C API alone: build/tribo_paper_run.
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 "$ROOT/scripts/setup.sh"

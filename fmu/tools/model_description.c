@@ -300,6 +300,23 @@ static void write_fmi3_variables(void)
 
 /* ---- the description ------------------------------------------------------------------- */
 
+/* A retired value reference stays retired, so that an importer that kept it cannot reach
+   another variable through it: whether a row takes one (said on stderr). */
+static int takes_a_retired_value_reference(void)
+{
+    size_t n;
+    const fmu_variable *v = fmu_variables(&n);
+    for (size_t i = 0; i < n; i++) {
+        const fmu_retired *r = fmu_retired_find(v[i].vr);
+        if (r) {
+            fprintf(stderr, "model_description: %s takes value reference %u, retired (it was "
+                    "%s's, %s): take a new one\n", v[i].name, r->vr, r->name, fmu_front_table_file);
+            return 1;
+        }
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     const int version = argc == 4 ? atoi(argv[1]) : 0;
@@ -319,6 +336,8 @@ int main(int argc, char **argv)
         return 2;
     }
     const tribo_param_info *rtol = fmu_front_param_find("rtol");
+    if (takes_a_retired_value_reference())
+        return 1;
 
     puts("<?xml version=\"1.0\" encoding=\"UTF-8\"?>");
     /* (no double hyphen may stand in an XML comment) */

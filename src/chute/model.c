@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "charge_registry.h"
 #include "param_table.h"
 
 tribo_status tribo_fail(tribo_model *m, tribo_status status, const char *fmt, ...)
@@ -17,16 +18,6 @@ tribo_status tribo_fail(tribo_model *m, tribo_status status, const char *fmt, ..
     vsnprintf(m->error, sizeof m->error, fmt, ap);
     va_end(ap);
     return status;
-}
-
-const tribo_integrator_ops *tribo_integrator_of_kind(int kind)
-{
-    switch (kind) {
-    case TRIBO_INTEGRATOR_FIXED_STEP: return &tribo_fixed_step_ops;
-    case TRIBO_INTEGRATOR_CVODE:
-    case TRIBO_INTEGRATOR_CVODE_BDF: return &tribo_cvode_ops;
-    }
-    return NULL;
 }
 
 void tribo_derive_params(tribo_model *m)
@@ -305,66 +296,6 @@ tribo_status tribo_charge_sweep(tribo_model *m, const tribo_contact_probe *probe
     return TRIBO_OK;
 }
 
-/* ---- the output point's charges ------------------------------------------------------------ */
-
-/* The committed charges with the pending updates applied: the committed arrays themselves
-   when nothing is pending, else full copies (for the per-segment arrays only: the scalar
-   outputs take the sums). Returns 0 if out of memory. */
-static int charges_out(tribo_model *m)
-{
-    tribo_charging *c = &m->charging;
-    if (m->n_pending == 0 || m->charges_out_valid)
-        return 1;
-    const size_t bytes = (size_t)c->n * sizeof(double);
-    for (int i = 0; i < c->n_models; i++) {
-        tribo_charge_slot *slot = &c->slot[i];
-        if (!slot->segments)
-            continue;
-        if (!slot->segments_out && !(slot->segments_out = malloc(bytes)))
-            return 0;
-        memcpy(slot->segments_out, slot->segments, bytes);
-    }
-    for (size_t i = 0; i < m->n_pending; i++)
-        tribo_charging_apply(c, &m->scene, &m->pending[i], TRIBO_CHARGE_PENDING);
-    m->charges_out_valid = 1;
-    return 1;
-}
-
-/* What the pending updates add to each model's sum. Returns 0 if out of memory. */
-static int pending_sums(tribo_model *m)
-{
-    if (m->pending_sums_valid)
-        return 1;
-    if (tribo_charging_pending_sums(&m->charging, &m->scene, m->pending, m->n_pending,
-                                    m->pending_sums, m->pending_lost) != 0)
-        return 0;
-    m->pending_sums_valid = 1;
-    return 1;
-}
-
-tribo_charge_view tribo_charge_view_of(tribo_model *m, int index)
-{
-    const tribo_charge_slot *slot = &m->charging.slot[index];
-    tribo_charge_view v = {&m->scene, slot->segments != NULL, m->charging.n, 0.0, 0.0,
-                           m->out.charge_globals + slot->globals_at,
-                           m->out.y + TRIBO_NMOTION + slot->quadratures_at};
-    if (v.selected && pending_sums(m)) {
-        v.sum = tribo_charging_sum(slot) + m->pending_sums[index];
-        v.lost = tribo_charging_lost(slot) + m->pending_lost[index];
-    } else if (v.selected) {
-        v.sum = v.lost = NAN;
-    }
-    return v;
-}
-
-const double *tribo_charge_values_of(tribo_model *m, int index)
-{
-    const tribo_charge_slot *slot = &m->charging.slot[index];
-    if (!charges_out(m))
-        return NULL;
-    return m->n_pending ? slot->segments_out : slot->segments;
-}
-
 /* Apply the pending charge updates to the committed charges and make the output point the
    committed one (before a tunable or an input changes there). */
 static void commit_output(tribo_model *m)
@@ -395,13 +326,14 @@ static void report(char *err, size_t err_size, const char *msg)
 tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts *parts,
                                      char *err, size_t err_size)
 {
-    const tribo_charge_model *const *models = parts->charge_models;
-    const int n_models = parts->n_charge_models;
     char msg[512];
-    if (!scene) {
-        report(err, err_size, "scene is NULL");
+    if (!scene || !parts) {
+        report(err, err_size, scene ? "parts is NULL" : "scene is NULL");
         return NULL;
     }
+    const tribo_charge_model *const *models = parts->charge_models;
+    const int n_models = parts->n_charge_models;
+    /* the scene is validated here, once, whoever made the parts */
     if (tribo_scene_validate(scene, msg, sizeof msg) != TRIBO_OK) {
         report(err, err_size, msg);
         return NULL;
@@ -412,8 +344,7 @@ tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts
         report(err, err_size, msg);
         return NULL;
     }
-    const tribo_integrator_ops *integrator =
-        parts->integrator ? parts->integrator : tribo_integrator_of_kind(scene->integrator);
+    const tribo_integrator_ops *integrator = parts->integrator;
     if (!integrator) {
         snprintf(msg, sizeof msg, "%s = %d is not a known integrator", TRIBO_PARAM_NAME(integrator),
                  scene->integrator);
@@ -449,26 +380,6 @@ tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts
     return m;
 }
 
-tribo_parts tribo_registry_parts(const tribo_scene *scene)
-{
-    return (tribo_parts){.charge_models = TRIBO_CHARGE_MODELS,
-                         .n_charge_models = TRIBO_SEGMENTS_COUNT,
-                         .charge_selection = tribo_charge_selection(scene)};
-}
-
-tribo_model *tribo_create(const tribo_scene *scene, char *err, size_t err_size)
-{
-    if (scene) {
-        char msg[512];
-        if (tribo_scene_validate(scene, msg, sizeof msg) != TRIBO_OK) {
-            report(err, err_size, msg);
-            return NULL;
-        }
-    }
-    const tribo_parts registry = tribo_registry_parts(scene);
-    return tribo_create_from_parts(scene, &registry, err, err_size);
-}
-
 void tribo_free(tribo_model *m)
 {
     if (!m)
@@ -482,12 +393,16 @@ void tribo_free(tribo_model *m)
 
 void tribo_set_logger(tribo_model *m, tribo_log_fn fn, void *user)
 {
+    if (!m)
+        return;
     m->log = fn;
     m->log_user = user;
 }
 
 tribo_status tribo_reset(tribo_model *m)
 {
+    if (!m)
+        return TRIBO_ERR_INVALID_ARGUMENT;
     initial_point(m, &m->committed);
     m->ended = 0;
     tribo_charging_reset(&m->charging);
@@ -498,7 +413,7 @@ tribo_status tribo_reset(tribo_model *m)
 
 tribo_status tribo_check_outputs(tribo_model *m)
 {
-    if (!pending_sums(m))
+    if (!tribo_pending_sums(m))
         return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
     for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++) {
         const double v = tribo_get(m, (tribo_quantity)q);
@@ -511,6 +426,8 @@ tribo_status tribo_check_outputs(tribo_model *m)
 
 tribo_status tribo_advance(tribo_model *m, double t)
 {
+    if (!m)
+        return TRIBO_ERR_INVALID_ARGUMENT;
     if (!isfinite(t) || t < m->out.t)
         return tribo_fail(m, TRIBO_ERR_TIME,
                           "cannot advance to t = %.17g: the instance is at t = %.17g", t,
@@ -549,7 +466,11 @@ tribo_status tribo_advance_fully(tribo_model *m, double t)
 
 tribo_status tribo_set_param(tribo_model *m, const char *name, double value)
 {
+    if (!m)
+        return TRIBO_ERR_INVALID_ARGUMENT;
     const tribo_param_info *p = tribo_param_find(name);
+    if (!p && tribo_param_retired_why(name))
+        return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT, "%s", tribo_param_retired_why(name));
     if (!p)
         return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT, "unknown parameter '%s'",
                           name ? name : "(null)");
@@ -572,6 +493,10 @@ tribo_status tribo_set_param(tribo_model *m, const char *name, double value)
 
 tribo_status tribo_set_inputs(tribo_model *m, const double values[TRIBO_INPUT_COUNT])
 {
+    if (!m)
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    if (!values)
+        return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT, "the inputs' values are NULL");
     if (tribo_params_check(tribo_input_table(NULL), TRIBO_INPUT_COUNT, values, m->error,
                            sizeof m->error) != TRIBO_OK)
         return TRIBO_ERR_INVALID_ARGUMENT;
@@ -591,16 +516,22 @@ tribo_status tribo_set_external_force(tribo_model *m, double F_T, double F_N)
     return tribo_set_inputs(m, values);
 }
 
-const tribo_scene *tribo_get_scene(const tribo_model *m) { return &m->scene; }
+const tribo_scene *tribo_get_scene(const tribo_model *m) { return m ? &m->scene : NULL; }
 
-const char *tribo_last_error(const tribo_model *m) { return m->error; }
+const char *tribo_last_error(const tribo_model *m) { return m ? m->error : "the instance is NULL"; }
 
-void tribo_get_stats(const tribo_model *m, tribo_stats *s) { *s = m->stats; }
+void tribo_get_stats(const tribo_model *m, tribo_stats *s)
+{
+    if (s)
+        *s = m ? m->stats : (tribo_stats){0};
+}
 
 /* ---- what can be read ------------------------------------------------------------------------ */
 
 double tribo_get(tribo_model *m, tribo_quantity which)
 {
+    if (!m)
+        return NAN;
     const tribo_point *p = &m->out;
     switch (which) {
 #define TRIBO_TIME(id, name, vr, unit, description, value) \
@@ -625,12 +556,16 @@ const char *tribo_quantity_name(tribo_quantity q)
 
 int tribo_includes_charge_model(const tribo_model *m, tribo_segment_charge which)
 {
-    return (unsigned)which < (unsigned)m->charging.n_models && m->charging.slot[which].selected;
+    return m && (unsigned)which < (unsigned)m->charging.n_models && m->charging.slot[which].selected;
 }
 
 tribo_status tribo_get_segment_charges(tribo_model *m, tribo_segment_charge which, double *out,
                                        size_t n)
 {
+    if (!m)
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    if (!out)
+        return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT, "the segment array to copy into is NULL");
     if ((unsigned)which >= (unsigned)m->charging.n_models || !m->charging.slot[which].segments)
         return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT,
                           "the scene does not include the %s charge model",
@@ -641,7 +576,7 @@ tribo_status tribo_get_segment_charges(tribo_model *m, tribo_segment_charge whic
         return tribo_fail(m, TRIBO_ERR_INVALID_ARGUMENT,
                           "segment array of %zu values given, %s = %d", n,
                           TRIBO_PARAM_NAME(n_segments), m->charging.n);
-    if (!charges_out(m))
+    if (!tribo_charges_out(m))
         return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
     const tribo_charge_slot *slot = &m->charging.slot[which];
     const tribo_charge_view v = tribo_charge_view_of(m, which);

@@ -3,7 +3,7 @@
 #ifndef TRIBO_MODEL_H
 #define TRIBO_MODEL_H
 
-#include "charge_registry.h"
+#include "charge_interface.h"
 #include "charging.h"
 #include "dynamics.h"
 #include "integrator.h"
@@ -51,10 +51,10 @@ struct tribo_model {
 };
 
 /* What an instance is made of: its charge models, those of charge_selection's bits
-   (bit i: charge_models[i]), and its integrator (NULL: the one of scene->integrator).
-   tribo_create uses the registry (charge_registry.def) with the scene's selection
-   (tribo_charge_selection) and the scene's integrator; a test can plug in models or an
-   integrator of its own. */
+   (bit i: charge_models[i]), and its integrator (NULL: the scene's integrator kind has
+   none, and the instance is refused). tribo_create uses the registry (charge_registry.def)
+   with the scene's selection (tribo_charge_selection) and the integrator of the scene's
+   kind (create.c); a test can plug in models or an integrator of its own. */
 typedef struct tribo_parts {
     const tribo_charge_model *const *charge_models;
     int n_charge_models;
@@ -65,12 +65,27 @@ typedef struct tribo_parts {
 /* The registry's models as the scene selects them, with the scene's integrator. */
 tribo_parts tribo_registry_parts(const tribo_scene *scene);
 
+tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts *parts,
+                                     char *err, size_t err_size);
+
+/* ---- the charges at the output point (charge_outputs.c) ------------------------------------ */
+
+/* Makes the output point's per-segment values (the committed ones with the pending updates
+   applied: copies, for the arrays only) when updates are pending. Returns 0 if out of
+   memory. */
+int tribo_charges_out(tribo_model *m);
+/* Makes what the pending updates add to each model's sum. Returns 0 if out of memory. */
+int tribo_pending_sums(tribo_model *m);
+/* The view of the model at `index` of the instance's model set, for its own outputs. */
+tribo_charge_view tribo_charge_view_of(tribo_model *m, int index);
 /* The output point's values of the model at `index` (its own units; NULL if out of
    memory). */
 const double *tribo_charge_values_of(tribo_model *m, int index);
-
-tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts *parts,
-                                     char *err, size_t err_size);
+/* Every model's outputs of the breakdown limit (docs/model.md §8b): the fraction of its
+   segments at the limit, and the charge lost to the gas as a mean over the segments in the
+   units of its array (0 for a model the scene leaves out). */
+double tribo_capped_fraction(tribo_model *m, int index);
+double tribo_charge_lost(tribo_model *m, int index);
 
 /* Recompute dyn from the scene (after a tunable changed). */
 void tribo_derive_params(tribo_model *m);

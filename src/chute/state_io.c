@@ -24,7 +24,7 @@
 #include <string.h>
 
 static const char MAGIC[8] = {'T', 'R', 'I', 'B', 'O', 'S', 'T', '1'};
-enum { STATE_VERSION = 6 };
+enum { STATE_VERSION = 7 };
 
 /* Fields of a point, in order; the contact evaluation is stored with it because some
    integrators (phases of the force law) cannot recompute it from y alone. */
@@ -112,6 +112,8 @@ static size_t charge_count(const tribo_model *m)
 
 size_t tribo_state_size(const tribo_model *m)
 {
+    if (!m)
+        return 0;
     size_t n_params;
     tribo_param_table(&n_params);
     return header_size() + n_params * sizeof(double) + 3 * sizeof(double) /* F_T, F_N, t_out */
@@ -122,6 +124,8 @@ size_t tribo_state_size(const tribo_model *m)
 
 tribo_status tribo_state_save(const tribo_model *m, void *buffer, size_t size)
 {
+    if (!m)
+        return TRIBO_ERR_INVALID_ARGUMENT;
     const size_t need = tribo_state_size(m);
     if (!buffer || size < need)
         return tribo_fail((tribo_model *)m, TRIBO_ERR_INVALID_ARGUMENT,
@@ -409,6 +413,8 @@ static tribo_status apply_state(tribo_model *m, const loaded *l)
 
 tribo_status tribo_state_load(tribo_model *m, const void *buffer, size_t size)
 {
+    if (!m)
+        return TRIBO_ERR_INVALID_ARGUMENT;
     loaded l;
     tribo_status st = read_state(m, buffer, size, &l, 1);
     size_t backup_size = 0;

@@ -54,13 +54,6 @@ typedef enum tribo_status {
 
 /* ---- the scene: every parameter of the table (quantities.def) ------------------- */
 
-typedef enum tribo_charge_models {
-    TRIBO_CHARGE_NONE = 0,
-    TRIBO_CHARGE_STATIC = 1,  /* docs/model.md §5a */
-    TRIBO_CHARGE_SLIDING = 2, /* docs/model.md §5b */
-    TRIBO_CHARGE_BOTH = 3
-} tribo_charge_models;
-
 typedef enum tribo_integrator_kind {
     TRIBO_INTEGRATOR_FIXED_STEP = 0, /* classical RK4, fixed step dt (the paper's)  */
     TRIBO_INTEGRATOR_CVODE = 1,      /* SUNDIALS CVODE, Adams, with event location  */
@@ -166,9 +159,6 @@ tribo_status tribo_scene_validate(const tribo_scene *scene, char *msg, size_t ms
 /* The combinations of valid parameters a scene must also satisfy: the drop lies on the chute,
    X0 < chute_length (model.md §9). A failure names the parameters and their values. */
 tribo_status tribo_scene_check_combinations(const tribo_scene *scene, char *msg, size_t msg_size);
-/* The first structural parameter in which two scenes differ, or NULL if they have the
-   same structure (an instance of one can load the other's state). */
-const tribo_param_info *tribo_scene_structure_differs(const tribo_scene *a, const tribo_scene *b);
 
 /* ---- the instance --------------------------------------------------------------- */
 
@@ -178,8 +168,11 @@ typedef struct tribo_model tribo_model;
    callback if one is set; level 0 = info, 1 = warning. */
 typedef void (*tribo_log_fn)(void *user, int level, const char *message);
 
-/* Create an instance at time 0 in the scene's initial state. On failure returns NULL
-   and writes the reason into err (if err is not NULL). */
+/* Create an instance at time 0 in the scene's initial state. On failure (an invalid scene,
+   a NULL one, no memory, an integrator that cannot be set up: the SUNDIALS call that failed
+   is named) returns NULL and writes the reason into err (if err is not NULL).
+   Every function below given a NULL instance refuses it and does nothing: a status
+   TRIBO_ERR_INVALID_ARGUMENT, a value NaN, tribo_last_error "the instance is NULL". */
 tribo_model *tribo_create(const tribo_scene *scene, char *err, size_t err_size);
 void tribo_free(tribo_model *model);
 void tribo_set_logger(tribo_model *model, tribo_log_fn fn, void *user);
@@ -253,13 +246,16 @@ typedef enum tribo_segment_charge {
 } tribo_segment_charge;
 
 /* Whether the instance's scene includes the charge model of that array (its switch
-   charge_model_<name>, and the older charge_model). */
+   charge_model_<name>). */
 int tribo_includes_charge_model(const tribo_model *model, tribo_segment_charge which);
 
 /* Copy the per-segment charge densities (n = n_segments values) at the current time.
    Fails if the scene does not include that model. */
 tribo_status tribo_get_segment_charges(tribo_model *model, tribo_segment_charge which,
                                        double *out, size_t n);
+/* The mean of the values tribo_get_segment_charges copies, at the current time, without
+   copying them: 0 if the scene does not include that model (NaN for no model's array). */
+double tribo_get_mean_charge(tribo_model *model, tribo_segment_charge which);
 
 /* Work counters of the integrator since creation or the last reset. */
 typedef struct tribo_stats {

@@ -1,8 +1,8 @@
 /*
  * param_table.h: a table of parameters (tribo_param_info rows over one struct) and what is
- * done with one by name, value or string, whichever table it is: the model's scene
- * (quantities.def, scene.c) or the SI front end's (si_quantities.def, si.c). Internal to the
- * core.
+ * done with one by name, value or string (param_table.c), whichever table it is: the model's
+ * scene (quantities.def, scene.c), the SI front end's (si_quantities.def, si.c) or the
+ * separator's (separator_quantities.def). Internal to the core.
  */
 #ifndef TRIBO_PARAM_TABLE_H
 #define TRIBO_PARAM_TABLE_H
@@ -35,9 +35,21 @@
      .type = TRIBO_TYPE_REAL, .min = min_, .max = max_, .min_inclusive = TRIBO_CLOSED,         \
      .max_inclusive = TRIBO_CLOSED, .start = 0.0, .variability = TRIBO_PARAM_TUNABLE}
 
+/* A parameter taken out of the table (its TRIBO_RETIRED row of kind PARAMETER): setting it
+   by name is refused with `instead`. */
+typedef struct tribo_param_retired {
+    const char *name;
+    const char *instead;
+} tribo_param_retired;
+/* The retired parameters of a table, each row of kind PARAMETER, ending in a NULL name. */
+#define TRIBO_RETIRED_PARAMETER(name, instead) {name, instead},
+#define TRIBO_RETIRED_OUTPUT(name, instead)
+#define TRIBO_PARAM_RETIRED_ROW(kind, vr, name, instead) TRIBO_RETIRED_##kind(name, instead)
+
 typedef struct tribo_param_table_of {
     const tribo_param_info *rows;
     size_t n;
+    const tribo_param_retired *retired; /* NULL: none */
 } tribo_param_table_of;
 
 /* The name of the scene's parameter `field` as its row in quantities.def gives it, and the
@@ -48,12 +60,18 @@ typedef struct tribo_param_table_of {
 #define TRIBO_PARAM_ITEM_NAME(field, value) tribo_param_item_name(offsetof(tribo_scene, field), value)
 const tribo_param_info *tribo_param_of_field(size_t offset);
 const char *tribo_param_item_name(size_t offset, int value);
+/* Why the scene has no parameter `name` where quantities.def retired it (what to use
+   instead), or NULL. */
+const char *tribo_param_retired_why(const char *name);
 
 /* Every row at its start value (the rest of the struct zero). */
 void tribo_table_defaults(tribo_param_table_of t, void *scene, size_t scene_size);
 /* The row named `name`, or NULL. */
 const tribo_param_info *tribo_table_find(tribo_param_table_of t, const char *name);
-/* Set `name` to `value` after checking it (tribo_param_check); an unknown name is refused. */
+/* What to use instead of the retired parameter `name`, or NULL where it is none. */
+const char *tribo_table_retired(tribo_param_table_of t, const char *name);
+/* Set `name` to `value` after checking it (tribo_param_check); an unknown name is refused,
+   a retired one saying what to use instead. */
 tribo_status tribo_table_set(tribo_param_table_of t, void *scene, const char *name, double value,
                              char *msg, size_t msg_size);
 /* "name=value name=value ...", each with tribo_table_set; stops at the first refused. */

@@ -48,3 +48,6 @@
 #ifndef TRIBO_ENUM_ITEM
 #define TRIBO_ENUM_ITEM(id, name, value, description)
 #endif
+#ifndef TRIBO_RETIRED
+#define TRIBO_RETIRED(kind, vr, name, instead)
+#endif

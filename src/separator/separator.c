@@ -20,7 +20,7 @@ static const tribo_param_info PARAMS[] = {
 #define TRIBO_PARAMETER(...) TRIBO_PARAM_INFO(tribo_separator_scene, __VA_ARGS__),
 #include "separator_quantities.def"
 };
-static const tribo_param_table_of TABLE = {PARAMS, sizeof PARAMS / sizeof PARAMS[0]};
+static const tribo_param_table_of TABLE = {PARAMS, sizeof PARAMS / sizeof PARAMS[0], NULL};
 
 /* released is a switch: an integer in [0, 1] for the checks and messages */
 static const tribo_param_info INPUTS[TRIBO_SEPARATOR_INPUT_COUNT] = {
@@ -107,6 +107,11 @@ tribo_status tribo_separator_derive(const tribo_separator_scene *sc, tribo_separ
     const tribo_status st = tribo_table_validate(TABLE, sc, msg, msg_size);
     if (st != TRIBO_OK)
         return st;
+    if (!d) {
+        if (msg && msg_size)
+            snprintf(msg, msg_size, "the derived numbers' struct is NULL");
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    }
     tribo_separator_derived r = {0};
     r.field = -sc->voltage / sc->gap;
     /* Choice (model.md §10 leaves it to the implementation): the 2D chute grain, an ellipse
@@ -146,6 +151,8 @@ tribo_status tribo_separator_derive(const tribo_separator_scene *sc, tribo_separ
 void tribo_separator_drag(const tribo_separator_scene *sc, const tribo_separator_derived *d,
                           const double v[3], double out[3])
 {
+    if (!sc || !d || !v || !out)
+        return;
     const double speed = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     const double rho = sc->air_density, mu = sc->air_viscosity;
     double k = 0.0; /* F_drag = m k v */
@@ -248,7 +255,7 @@ tribo_separator *tribo_separator_create(const tribo_separator_scene *scene, char
     tribo_separator_derived d;
     if (!scene) {
         if (err && err_size)
-            snprintf(err, err_size, "no scene");
+            snprintf(err, err_size, "scene is NULL");
         return NULL;
     }
     if (tribo_separator_derive(scene, &d, err, err_size) != TRIBO_OK)
@@ -280,10 +287,24 @@ void tribo_separator_free(tribo_separator *s)
     free(s);
 }
 
-const tribo_separator_scene *tribo_separator_get_scene(const tribo_separator *s) { return &s->scene; }
-const tribo_separator_derived *tribo_separator_get_derived(const tribo_separator *s) { return &s->d; }
-const char *tribo_separator_last_error(const tribo_separator *s) { return s->error; }
-tribo_separator_end tribo_separator_end_of(const tribo_separator *s) { return (tribo_separator_end)s->end; }
+const tribo_separator_scene *tribo_separator_get_scene(const tribo_separator *s)
+{
+    return s ? &s->scene : NULL;
+}
+
+const tribo_separator_derived *tribo_separator_get_derived(const tribo_separator *s)
+{
+    return s ? &s->d : NULL;
+}
+
+const char *tribo_separator_last_error(const tribo_separator *s)
+{
+    return s ? s->error : "the instance is NULL";
+}
+tribo_separator_end tribo_separator_end_of(const tribo_separator *s)
+{
+    return s ? (tribo_separator_end)s->end : TRIBO_SEPARATOR_RUNNING;
+}
 
 /* Entry (model.md §10): the chute-frame velocity (u down-slope, v away from the chute) in
    the lab frame. Down-slope is cos(beta) horizontally and -sin(beta) vertically; the
@@ -304,6 +325,12 @@ static void release(tribo_separator *s)
 
 tribo_status tribo_separator_set_inputs(tribo_separator *s, const double values[TRIBO_SEPARATOR_INPUT_COUNT])
 {
+    if (!s)
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    if (!values) {
+        snprintf(s->error, sizeof s->error, "the inputs' values are NULL");
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    }
     if (tribo_params_check(INPUTS, TRIBO_SEPARATOR_INPUT_COUNT, values, s->error,
                            sizeof s->error) != TRIBO_OK)
         return TRIBO_ERR_INVALID_ARGUMENT;
@@ -350,6 +377,8 @@ static tribo_status advance_short(tribo_separator *s, double t)
 
 tribo_status tribo_separator_advance(tribo_separator *s, double t)
 {
+    if (!s)
+        return TRIBO_ERR_INVALID_ARGUMENT;
     if (!isfinite(t) || t < s->t || t > TRIBO_TIME_MAX) {
         snprintf(s->error, sizeof s->error,
                  "advance to t = %.17g s is invalid: the valid range is %.17g <= t <= %g (the time "
@@ -415,6 +444,8 @@ tribo_status tribo_separator_advance(tribo_separator *s, double t)
 
 double tribo_separator_reynolds(const tribo_separator *s)
 {
+    if (!s)
+        return NAN;
     const double speed = sqrt(s->y[IVX] * s->y[IVX] + s->y[IVY] * s->y[IVY] + s->y[IVZ] * s->y[IVZ]);
     if (!(s->scene.air_viscosity > 0.0))
         return 0.0; /* no viscosity: Re is not a number the model uses */
@@ -423,17 +454,21 @@ double tribo_separator_reynolds(const tribo_separator *s)
 
 int tribo_separator_bin_of(const tribo_separator_scene *sc, double x)
 {
+    if (!sc)
+        return 0;
     const double k = floor((x + sc->gap / 2.0) / sc->gap * sc->n_bins);
     return k < 0 ? 1 : k >= sc->n_bins ? sc->n_bins : (int)k + 1;
 }
 
 int tribo_separator_bin(const tribo_separator *s)
 {
-    return s->end == TRIBO_SEPARATOR_LANDED ? tribo_separator_bin_of(&s->scene, s->y[IX]) : 0;
+    return s && s->end == TRIBO_SEPARATOR_LANDED ? tribo_separator_bin_of(&s->scene, s->y[IX]) : 0;
 }
 
 double tribo_separator_calculated(const tribo_separator_derived *d, tribo_separator_quantity q)
 {
+    if (!d)
+        return NAN;
     switch (q) {
 #define TRIBO_CALCULATED(id, name, vr, unit, variability, description, value)                     \
     case TRIBO_SEPARATOR_Q_##id:                                                                 \
@@ -445,6 +480,8 @@ double tribo_separator_calculated(const tribo_separator_derived *d, tribo_separa
 
 double tribo_separator_get(const tribo_separator *s, tribo_separator_quantity q)
 {
+    if (!s)
+        return NAN;
     const tribo_separator_derived *d = &s->d;
     switch (q) {
 #define TRIBO_TIME(id, name, vr, unit, description, value)                                       \
@@ -476,7 +513,7 @@ size_t tribo_separator_state_size(const tribo_separator *s)
 
 tribo_status tribo_separator_state_save(const tribo_separator *s, void *buffer, size_t size)
 {
-    if (!buffer || size != tribo_separator_state_size(s))
+    if (!s || !buffer || size != tribo_separator_state_size(s))
         return TRIBO_ERR_INVALID_ARGUMENT;
     tribo_writer w = {buffer};
     tribo_write_bytes(&w, MAGIC, sizeof MAGIC);
@@ -503,6 +540,8 @@ static tribo_status refuse(tribo_separator *s, const char *why)
 
 tribo_status tribo_separator_state_load(tribo_separator *s, const void *buffer, size_t size)
 {
+    if (!s)
+        return TRIBO_ERR_INVALID_ARGUMENT;
     if (!buffer || size != tribo_separator_state_size(s))
         return refuse(s, "its size is not this model's");
     tribo_reader r = tribo_reader_of(buffer, size);

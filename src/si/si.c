@@ -57,7 +57,11 @@ static const tribo_param_info PARAMS[SLOT_COUNT] = {
     [RANGE_SLOT_OF_##name].max_inclusive = TRIBO_##max_end,
 #include "quantities.def"
 };
-static const tribo_param_table_of TABLE = {PARAMS, ROW_COUNT};
+static const tribo_param_retired RETIRED[] = {
+#define TRIBO_RETIRED TRIBO_PARAM_RETIRED_ROW
+#include "si_quantities.def"
+    {NULL, NULL}};
+static const tribo_param_table_of TABLE = {PARAMS, ROW_COUNT, RETIRED};
 
 static const tribo_param_info INPUTS[TRIBO_SI_INPUT_COUNT] = {
 #define TRIBO_INPUT(id_, ...) [TRIBO_SI_INPUT_##id_] = TRIBO_INPUT_INFO(__VA_ARGS__),
@@ -201,12 +205,6 @@ static const struct mapping *mapping_of(const char *si_name)
     return NULL;
 }
 
-/* The output charge_to_mass has a formula for the static and the sliding model only (its row in
-   si_quantities.def): a model registered after them needs its own there first. */
-_Static_assert(TRIBO_SI_CHARGE_MODEL_COUNT == 2 && TRIBO_SEGMENTS_STATIC == 0 &&
-                   TRIBO_SEGMENTS_SLIDING == 1,
-               "charge_to_mass (si_quantities.def) knows the static and sliding models only");
-
 /* The model charge_to_mass carries: the one charge_to_mass_model names, or with 0 the first
    the scene includes (registry order), so that switching a model off alone never leaves the
    output to the wrong law. A model named must run where another one does, else the
@@ -228,20 +226,10 @@ static tribo_status charge_to_mass_model_included(const tribo_si_scene *si, trib
         return TRIBO_OK;
     if (msg && msg_size) {
         const char *name = TRIBO_CHARGE_MODELS[slot]->name;
-        char switch_name[64];
-        snprintf(switch_name, sizeof switch_name, "charge_model_%s", name);
-        const double on = tribo_param_read(si, tribo_si_param_find(switch_name));
-        if (on == 0.0)
-            snprintf(msg, msg_size,
-                     "charge_to_mass_model = %d names the %s charge model, which %s = 0 leaves "
-                     "out of the scene: switch it on, or choose an included model",
-                     si->charge_to_mass_model, name, switch_name);
-        else
-            snprintf(msg, msg_size,
-                     "charge_to_mass_model = %d names the %s charge model, which charge_model = %d "
-                     "leaves out of the scene (its bit %d is clear): set it, or choose an "
-                     "included model",
-                     si->charge_to_mass_model, name, si->charge_model, slot);
+        snprintf(msg, msg_size,
+                 "charge_to_mass_model = %d names the %s charge model, which charge_model_%s = 0 "
+                 "leaves out of the scene: switch it on, or choose an included model",
+                 si->charge_to_mass_model, name, name);
     }
     return TRIBO_ERR_INVALID_ARGUMENT;
 }
@@ -252,6 +240,11 @@ tribo_status tribo_si_derive(const tribo_si_scene *si, tribo_si_derived *d, char
     tribo_status st = tribo_table_validate(TABLE, si, msg, msg_size);
     if (st != TRIBO_OK)
         return st;
+    if (!d) {
+        if (msg && msg_size)
+            snprintf(msg, msg_size, "the derived set-up's struct is NULL");
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    }
     if (!(si->x0 < si->chute_length)) {
         if (msg && msg_size)
             snprintf(msg, msg_size,
@@ -307,6 +300,11 @@ tribo_status tribo_si_model_param(const tribo_si_derived *d, const tribo_param_i
                                   double value, const char **model_name, double *model_value,
                                   char *msg, size_t msg_size)
 {
+    if (!d || !p || !model_name || !model_value) {
+        if (msg && msg_size)
+            snprintf(msg, msg_size, "tribo_si_model_param: a NULL argument");
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    }
     const struct mapping *map = mapping_of(p->name);
     if (!map || map->how == FORCE) {
         if (msg && msg_size)
@@ -325,6 +323,11 @@ tribo_status tribo_si_model_inputs(const tribo_si_derived *d,
                                    const double values[TRIBO_SI_INPUT_COUNT],
                                    double model_values[TRIBO_INPUT_COUNT], char *msg, size_t msg_size)
 {
+    if (!d || !values || !model_values) {
+        if (msg && msg_size)
+            snprintf(msg, msg_size, "tribo_si_model_inputs: a NULL argument");
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    }
     const tribo_param_info *model = tribo_input_table(NULL);
     for (int i = 0; i < TRIBO_SI_INPUT_COUNT; i++) {
         if (tribo_param_check(&INPUTS[i], values[i], msg, msg_size) != TRIBO_OK)
@@ -344,6 +347,8 @@ tribo_status tribo_si_model_inputs(const tribo_si_derived *d,
 
 double tribo_si_get(const tribo_si_derived *d, tribo_model *m, tribo_si_quantity q)
 {
+    if (!d)
+        return NAN;
 #define Q(id) tribo_get(m, TRIBO_QUANTITY_##id)
     switch (q) {
 #define TRIBO_TIME(id, name, vr, unit, description, value) \
@@ -370,8 +375,15 @@ const char *tribo_si_quantity_name(tribo_si_quantity q)
     return (unsigned)q < TRIBO_SI_QUANTITY_COUNT ? names[q] : NULL;
 }
 
+double tribo_si_sigma_mean(const tribo_si_derived *d, tribo_model *m, tribo_segment_charge which)
+{
+    return tribo_si_segment_factor(d, which) * tribo_get_mean_charge(m, which);
+}
+
 double tribo_si_segment_factor(const tribo_si_derived *d, tribo_segment_charge which)
 {
+    if (!d || (unsigned)which >= TRIBO_SEGMENTS_COUNT)
+        return NAN;
     /* each model declares the unit of its values (charge_interface.h, model.md §8) */
     switch (TRIBO_CHARGE_MODELS[which]->si_unit) {
     case TRIBO_CHARGE_PER_SIGMA0: return d->sigma0;

@@ -115,6 +115,10 @@ const char *tribo_si_quantity_name(tribo_si_quantity q);
 /* The per-segment arrays in C/m^2: the model's (tribo_get_segment_charges) times this. */
 double tribo_si_segment_factor(const tribo_si_derived *d, tribo_segment_charge which);
 
+/* The mean charge density of a charge model over the boundary, C/m^2: the mean of its
+   per-segment values (tribo_get_mean_charge) times its factor above (0 without the model). */
+double tribo_si_sigma_mean(const tribo_si_derived *d, tribo_model *m, tribo_segment_charge which);
+
 /* The charge per unit length of the cylinder, C/m, of a mean charge density over its
    boundary (model.md §8: Q' = (a P(epsilon) / N) sum sigma_i). */
 static inline double tribo_si_charge_per_length(const tribo_si_derived *d, double sigma_mean)

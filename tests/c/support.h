@@ -25,6 +25,14 @@ static inline tribo_scene scene_of(const char *settings)
     return s;
 }
 
+/* Every registered charge model switched off (charge_registry.def): the motion alone. */
+static inline void no_charge_models(tribo_scene *s)
+{
+#define TRIBO_CHARGE_MODEL(id, name, slot, model, on, values) s->charge_model_##name = 0;
+#include "charge_registry.def"
+#undef TRIBO_CHARGE_MODEL
+}
+
 /* A new instance of the scene; the test fails with the reason if there is none. */
 static inline tribo_model *make(const tribo_scene *s)
 {

@@ -15,7 +15,7 @@
 Test(breakdown, a_sliding_run_stays_at_the_limit_and_books_the_lost_charge)
 {
     for (int integrator = 0; integrator < 2; integrator++) {
-        tribo_scene s = scene_of("epsilon=0.3 mu=1 nu=1 n_segments=400 charge_model=2 Sigma_bd=0.005 dt=1e-3");
+        tribo_scene s = scene_of("epsilon=0.3 mu=1 nu=1 n_segments=400 charge_model_static=0 Sigma_bd=0.005 dt=1e-3");
         s.integrator = integrator;
         char err[512];
         tribo_model *m = tribo_create(&s, err, sizeof err);

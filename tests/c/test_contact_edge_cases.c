@@ -16,7 +16,7 @@
 Test(contact_edge_cases, fixed_step_stable_in_a_stiff_normal_lock, .timeout = 60)
 {
     tribo_scene s = scene_of("Gamma=0.5 drop_speed=1.0 nu=1.0");
-    s.charge_model = TRIBO_CHARGE_NONE;
+    no_charge_models(&s);
     tribo_model *fixed, *cvode;
     make_fixed_and_cvode(s, &fixed, &cvode);
     advance_both(fixed, cvode, 5.0);
@@ -62,7 +62,7 @@ Test(contact_edge_cases, particle_set_down_at_rest)
 Test(contact_edge_cases, grazing_stick_to_slip_is_seen)
 {
     tribo_scene s = scene_of("epsilon=0.01 mu=10.0 nu=3.0");
-    s.charge_model = TRIBO_CHARGE_NONE;
+    no_charge_models(&s);
     s.integrator = TRIBO_INTEGRATOR_CVODE;
     tribo_model *m = make(&s);
     double closest = 0.0;
@@ -95,7 +95,7 @@ Test(contact_edge_cases, deep_indentation_is_reported)
 {
     tribo_scene s = scene_of("epsilon=0.6 damping_point=1");
     s.mu = s.nu = 1.0;
-    s.charge_model = TRIBO_CHARGE_NONE;
+    no_charge_models(&s);
     s.integrator = TRIBO_INTEGRATOR_CVODE;
     tribo_model *m = make(&s);
     warnings = 0;
@@ -109,7 +109,7 @@ Test(contact_edge_cases, deep_indentation_is_reported)
     tribo_scene low;
     tribo_scene_defaults(&low);
     low.integrator = TRIBO_INTEGRATOR_CVODE;
-    low.charge_model = TRIBO_CHARGE_NONE;
+    no_charge_models(&low);
     tribo_model *ok = make(&low);
     cr_assert_eq(tribo_advance(ok, 100.0), TRIBO_OK);
     cr_expect_eq(tribo_get(ok, TRIBO_QUANTITY_ASSUMPTION_WARNINGS), 0.0);

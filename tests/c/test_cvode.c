@@ -29,7 +29,7 @@ Test(cvode, contact_onset_at_the_analytic_drop_time)
         tribo_scene s = cvode_scene(rtols[i]);
         s.epsilon = 1.0;
         s.gap0 = 0.01;
-        s.charge_model = TRIBO_CHARGE_NONE;
+        no_charge_models(&s);
         const double vn = s.drop_speed * cos(M_PI / 4), gn = s.Gamma * cos(M_PI / 4);
         const double t_star = (-vn + sqrt(vn * vn + 2 * gn * s.gap0)) / gn;
         tribo_model *m = make(&s);
@@ -52,7 +52,7 @@ static double balance(double rtol)
     tribo_scene s = cvode_scene(rtol);
     s.mu = 0.3;
     s.nu = 0.0;
-    s.charge_model = TRIBO_CHARGE_NONE;
+    no_charge_models(&s);
     tribo_model *m = make(&s);
     const double E0 = tribo_get(m, TRIBO_QUANTITY_ENERGY);
     double worst = 0.0;
@@ -88,7 +88,7 @@ Test(cvode, fixed_step_converges_to_cvode, .timeout = 60)
     tribo_scene ref_scene = cvode_scene(1e-12);
     ref_scene.epsilon = 0.3;
     ref_scene.v_reg = 1e-9;
-    ref_scene.charge_model = TRIBO_CHARGE_NONE;
+    no_charge_models(&ref_scene);
     tribo_model *ref = make(&ref_scene);
     cr_assert_eq(tribo_advance(ref, 20.0), TRIBO_OK);
     const double dts[] = {1.6e-2, 4e-3, 2.5e-4};
@@ -126,7 +126,7 @@ Test(cvode, regularised_lock_converges_to_the_set_valued_one, .timeout = 120)
     tribo_scene ref_scene = cvode_scene(1e-11);
     ref_scene.epsilon = 0.3;
     ref_scene.mu = ref_scene.nu = 1.0;
-    ref_scene.charge_model = TRIBO_CHARGE_NONE;
+    no_charge_models(&ref_scene);
     tribo_model *ref = make(&ref_scene);
     cr_assert_eq(tribo_advance(ref, 10.0), TRIBO_OK);
     const double v_regs[] = {1e-4, 1e-5, 1e-6};
@@ -157,7 +157,7 @@ Test(cvode, charging_does_not_steer_the_motion)
     s.mu = s.nu = 1.0;
     s.n_segments = 500;
     tribo_model *with = make(&s);
-    s.charge_model = TRIBO_CHARGE_NONE;
+    no_charge_models(&s);
     tribo_model *without = make(&s);
     advance_both(with, without, 50.0);
     const tribo_quantity q[] = {TRIBO_QUANTITY_X, TRIBO_QUANTITY_Y, TRIBO_QUANTITY_PHI, TRIBO_QUANTITY_U, TRIBO_QUANTITY_V,
@@ -201,7 +201,7 @@ Test(cvode, modes_are_visited_and_counted)
     for (int r = 0; r < 2; r++) {
         tribo_scene s = cvode_scene(1e-8);
         s.mu = s.nu = mus[r];
-        s.charge_model = TRIBO_CHARGE_NONE;
+        no_charge_models(&s);
         tribo_model *m = make(&s);
         for (int k = 1; k <= 2000; k++) {
             cr_assert_eq(tribo_advance(m, 0.05 * k), TRIBO_OK);
@@ -240,7 +240,7 @@ Test(cvode, too_much_work_stops_with_the_time_and_state, .timeout = 30)
 {
     tribo_scene s = cvode_scene(1e-8);
     s.gap0 = 1.0;
-    s.charge_model = TRIBO_CHARGE_NONE;
+    no_charge_models(&s);
     s.work_limit = 2147483647;
     tribo_model *m = make(&s);
     m->scene.Omega0 = 1e12; /* past validation: a test of the guard */

@@ -32,7 +32,7 @@ static tribo_scene spinning(double eps, double mu_nu, int integrator, int dampin
     s.mu = s.nu = mu_nu;
     s.integrator = integrator;
     s.damping_point = damping_point;
-    s.charge_model = TRIBO_CHARGE_NONE;
+    no_charge_models(&s);
     return s;
 }
 
@@ -123,7 +123,7 @@ Test(dashpot, lock_holds_the_indentation_while_the_particle_turns, .timeout = 60
     for (int centre = 0; centre < 2; centre++) {
         tribo_scene s = scene_of("epsilon=0.3 mu=1 nu=1");
         s.damping_point = centre ? TRIBO_DAMPING_CENTRE : TRIBO_DAMPING_CONTACT_POINT;
-        s.charge_model = TRIBO_CHARGE_NONE;
+        no_charge_models(&s);
         tribo_model *m = make(&s);
         int n_locked = 0;
         double dy0 = NAN, Y0 = NAN, dy_moved = 0.0, Y_moved = 0.0, phi_lo = INFINITY,
@@ -170,7 +170,7 @@ Test(dashpot, lock_holds_the_indentation_while_the_particle_turns, .timeout = 60
 Test(dashpot, lock_holds_the_indentation_over_a_long_run, .timeout = 60)
 {
     tribo_scene s = scene_of("epsilon=0.2 mu=1 nu=1");
-    s.charge_model = TRIBO_CHARGE_NONE;
+    no_charge_models(&s);
     tribo_model *m = make(&s);
     const double E0 = tribo_get(m, TRIBO_QUANTITY_ENERGY);
     cr_assert_eq(tribo_advance(m, 2.0), TRIBO_OK);
@@ -202,7 +202,7 @@ Test(dashpot, lock_holds_the_indentation_over_a_long_run, .timeout = 60)
 static void check_lock_force(const char *settings, int want_slip, double *worst, int *samples)
 {
     tribo_scene s = scene_of(settings);
-    s.charge_model = TRIBO_CHARGE_NONE;
+    no_charge_models(&s);
     const double h = 1e-3, g_n = s.Gamma * cos(s.beta);
     tribo_model *m = make(&s);
     for (int k = 1; k <= 300; k++) {
@@ -250,7 +250,7 @@ Test(dashpot, flat_plate_comes_to_rest_in_the_band)
     for (int i = 0; i < 3; i++) {
         tribo_scene s = scene_of("beta=0 drop_speed=0 gap0=0.001 mu=0.1");
         s.nu = nus[i];
-        s.charge_model = TRIBO_CHARGE_NONE;
+        no_charge_models(&s);
         tribo_model *m = make(&s);
         cr_assert_eq(tribo_advance(m, 200.0), TRIBO_OK);
         const double dy = tribo_get(m, TRIBO_QUANTITY_DELTA_Y), G = s.Gamma;
@@ -345,7 +345,7 @@ Test(dashpot, runs_visit_A_non_positive_without_a_lock_there, .timeout = 60)
             tribo_scene s = scene_of("mu=3 nu=3");
             s.epsilon = eps[e];
             s.Omega0 = spins[w];
-            s.charge_model = TRIBO_CHARGE_NONE;
+            no_charge_models(&s);
             const tribo_dyn_params p = params_of(&s);
             tribo_model *m = make(&s);
             for (int k = 1; k <= 6000; k++) {

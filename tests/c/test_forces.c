@@ -141,7 +141,7 @@ Test(forces, clamp)
 Test(forces, integrator_holds_the_coulomb_limit_and_resets_the_stretch)
 {
     tribo_scene s = scene_of("epsilon=0.6 mu=0.3 nu=0.3 gap0=0.002 Omega0=4.0 drop_speed=0.05 dt=1e-3");
-    s.charge_model = TRIBO_CHARGE_NONE;
+    no_charge_models(&s);
     s.integrator = TRIBO_INTEGRATOR_FIXED_STEP;
     char err[256];
     tribo_model *m = tribo_create(&s, err, sizeof err);

@@ -1,5 +1,5 @@
-/* Hostile and careless callers: each defect that fuzzing the FMUs found, held at
-   the core where it arose. The FMU-level ones and the fuzz suite: tests/python. */
+/* Hostile and careless callers: the calls and values that fuzzing the FMUs tries, each held
+   at the core that answers it. The FMU-level ones and the fuzz suite: tests/python. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdint.h>

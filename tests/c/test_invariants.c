@@ -15,7 +15,7 @@ static tribo_scene paper(double mu, double nu, double dt)
     s.nu = nu;
     s.integrator = TRIBO_INTEGRATOR_FIXED_STEP;
     s.dt = dt;
-    s.charge_model = TRIBO_CHARGE_NONE;
+    no_charge_models(&s);
     return s;
 }
 
@@ -158,7 +158,8 @@ Test(invariants, static_charge_bounded_and_non_decreasing, .timeout = 60)
         for (int i = 0; i < 2; i++) {
             tribo_scene s = paper(mus[i], mus[i], 1e-3);
             s.epsilon = 0.3;
-            s.charge_model = TRIBO_CHARGE_STATIC;
+            no_charge_models(&s);
+            s.charge_model_static = 1;
             s.n_segments = 500;
             s.integrator = integ ? TRIBO_INTEGRATOR_CVODE : TRIBO_INTEGRATOR_FIXED_STEP;
             tribo_model *m = make(&s);

@@ -93,7 +93,7 @@ Test(params, the_ranges_of_model_section_1)
         {"nu", 0.0, -1e-12},     {"Gamma", 1e-9, 0.0},           {"beta", 0.0, M_PI / 2},
         {"beta", nextafter(M_PI / 2, 0.0), -1e-9}, {"tau0", 1e-9, 0.0},            {"Sigma0", 1e-9, 0.0},
         {"eta", 0.0, -1e-12},    {"tau_r", 1e-9, 0.0},           {"n_segments", 16, 15},
-        {"v_reg", 1e-12, 0.0},   {"charge_model", 3, 4},         {"integrator", 2, 3},
+        {"v_reg", 1e-12, 0.0},   {"charge_model_static", 1, 2},  {"integrator", 2, 3},
         {"dt", 1e-3, 0.0},       {"gap0", 0.0, -1e-9},           {"drop_speed", 0.0, -1e-9},
         {"damping_point", 1, 2}, {"damping_point", 0, -1},
     };
@@ -139,7 +139,8 @@ Test(params, only_tunables_change_mid_run)
 Test(params, segment_charges_of_a_missing_model_are_refused)
 {
     tribo_scene s = scene_of("n_segments=32");
-    s.charge_model = TRIBO_CHARGE_STATIC;
+    no_charge_models(&s);
+    s.charge_model_static = 1;
     tribo_model *m = tribo_create(&s, NULL, 0);
     cr_assert(m);
     double out[32];
@@ -203,4 +204,25 @@ Test(params, a_message_finds_a_parameters_name_and_its_choices_in_the_table)
     /* a number has no items; an enumeration has no item past its last */
     cr_expect_str_eq(TRIBO_PARAM_ITEM_NAME(mu, 0), "?");
     cr_expect_str_eq(TRIBO_PARAM_ITEM_NAME(run_end, 2), "?");
+}
+
+Test(params, the_removed_charge_model_is_refused_naming_the_switches)
+{
+    /* the selection as one enumeration of subsets is gone: each model has its switch */
+    tribo_scene s = scene_of("");
+    char err[512];
+    cr_expect_eq(tribo_scene_set(&s, "charge_model", 3, err, sizeof err), TRIBO_ERR_INVALID_ARGUMENT);
+    cr_expect(strstr(err, "charge_model was removed") && strstr(err, "charge_model_static") &&
+                  strstr(err, "charge_model_sliding") && !strchr(err, '\n'),
+              "%s", err);
+    cr_expect_eq(tribo_scene_apply(&s, "mu=0.2 charge_model=1", err, sizeof err),
+                 TRIBO_ERR_INVALID_ARGUMENT);
+    cr_expect(strstr(err, "charge_model was removed"), "%s", err);
+    tribo_model *m = make(&s);
+    cr_expect_eq(tribo_set_param(m, "charge_model", 1), TRIBO_ERR_INVALID_ARGUMENT);
+    cr_expect(strstr(tribo_last_error(m), "charge_model was removed"), "%s", tribo_last_error(m));
+    tribo_free(m);
+    /* a name never in the table is unknown, as before */
+    cr_expect_eq(tribo_scene_set(&s, "charge_models", 3, err, sizeof err), TRIBO_ERR_INVALID_ARGUMENT);
+    cr_expect_str_eq(err, "unknown parameter 'charge_models'");
 }

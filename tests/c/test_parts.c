@@ -1,12 +1,13 @@
-/* The core's seams (src/chute/charge/charge_interface.h, src/chute/integrators/integrator.h): a charge model defined here,
-   in the test, runs through both integrators and the state save/load without any change
-   to them; every integrator hook's failure reaches the caller; an unknown integrator kind
-   is refused. */
+/* The core's seams (src/chute/charge/charge_interface.h,
+   src/chute/integrators/integrator.h): a charge model defined here, in the test, runs
+   through both integrators and the state save/load without any change to them; every
+   integrator hook's failure reaches the caller; an unknown integrator kind is refused. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "charge_registry.h"
 #include "model.h"
 #include "support.h"
 
@@ -88,7 +89,8 @@ static tribo_model *make_with_constant(int integrator)
     tribo_scene s = scene_of("epsilon=0.3 n_segments=500");
     s.integrator = integrator;
     const tribo_parts parts = {.charge_models = MODELS, .n_charge_models = 3,
-                               .charge_selection = 7 /* all three */};
+                               .charge_selection = 7 /* all three */,
+                               .integrator = tribo_integrator_of_kind(integrator)};
     char err[512];
     tribo_model *m = tribo_create_from_parts(&s, &parts, err, sizeof err);
     cr_assert(m, "%s", err);

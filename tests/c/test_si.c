@@ -51,7 +51,7 @@ Test(si, the_reference_case_maps_as_model_md_section_8_says)
     /* the dimensionless choices pass through */
     cr_expect_eq(d.scene.n_segments, 2000);
     cr_expect_eq(d.scene.integrator, TRIBO_INTEGRATOR_CVODE);
-    cr_expect_eq(d.scene.charge_model, TRIBO_CHARGE_BOTH);
+    cr_expect(d.scene.charge_model_static == 1 && d.scene.charge_model_sliding == 1);
     /* a stiffness given directly wins over the moduli */
     tribo_si_scene k = si_of("contact_stiffness=2e9");
     const tribo_si_derived dk = derived_of(&k);
@@ -129,9 +129,18 @@ Test(si, a_neutral_pair_runs_and_charges_nothing)
     cr_assert(m, "%s", err);
     cr_assert_eq(tribo_advance_fully(m, 2000.0), TRIBO_OK, "%s", tribo_last_error(m));
     cr_expect(tribo_get(m, TRIBO_QUANTITY_STATIC) != 0.0, "the model charged in its own units");
-    for (int q = TRIBO_SI_QUANTITY_CHARGE_STATIC; q <= TRIBO_SI_QUANTITY_SIGMA_S; q++)
-        cr_expect_eq(tribo_si_get(&d, m, (tribo_si_quantity)q), 0.0, "%s",
-                     tribo_si_quantity_name((tribo_si_quantity)q));
+    /* every output that is a charge or a charge density, each model's and the coupling's (the
+       calculated parameters, such as the unit sigma_scale, follow the outputs) */
+    int charges = 0;
+    for (int q = 0; q < TRIBO_SI_QUANTITY_T_STAR; q++) {
+        const char *name = tribo_si_quantity_name((tribo_si_quantity)q);
+        if (strncmp(name, "charge", 6) == 0 || strncmp(name, "sigma", 5) == 0) {
+            cr_expect_eq(tribo_si_get(&d, m, (tribo_si_quantity)q), 0.0, "%s", name);
+            charges++;
+        }
+    }
+    /* per model: charge, per length, to mass, sigma_mean, charge lost; charge_to_mass, sigma_s */
+    cr_expect_eq(charges, 5 * TRIBO_SEGMENTS_COUNT + 2);
     tribo_free(m);
 }
 
@@ -259,6 +268,56 @@ Test(si, the_outputs_are_the_models_in_si_units)
     tribo_free(m);
 }
 
+Test(si, every_registered_model_has_its_charge_from_the_mean_of_its_values)
+{
+    tribo_si_scene s = si_of("drop_height=5e-4 n_segments=200");
+    /* every registered model, the ones off by default too */
+#define TRIBO_CHARGE_MODEL(id, name, slot, model, on, values) s.charge_model_##name = 1;
+#include "charge_registry.def"
+#undef TRIBO_CHARGE_MODEL
+    const tribo_si_derived d = derived_of(&s);
+    tribo_model *m = make(&d.scene);
+    cr_assert_eq(tribo_advance_fully(m, 2e4), TRIBO_OK, "%s", tribo_last_error(m));
+    static const struct {
+        tribo_segment_charge which;
+        tribo_si_quantity charge, per_length, to_mass, sigma_mean;
+    } MODELS[] = {
+#define TRIBO_CHARGE_MODEL(id, name, slot, model, on, values)                                   \
+    {TRIBO_SEGMENTS_##id, TRIBO_SI_QUANTITY_CHARGE_##id, TRIBO_SI_QUANTITY_CHARGE_PER_LENGTH_##id, \
+     TRIBO_SI_QUANTITY_Q_PER_M_##id, TRIBO_SI_QUANTITY_SIGMA_MEAN_##id},
+#include "charge_registry.def"
+#undef TRIBO_CHARGE_MODEL
+    };
+    double values[200];
+    for (size_t k = 0; k < sizeof MODELS / sizeof *MODELS; k++) {
+        const tribo_segment_charge w = MODELS[k].which;
+        /* the mean of the values tribo_get_segment_charges gives, without copying them */
+        cr_assert_eq(tribo_get_segment_charges(m, w, values, 200), TRIBO_OK);
+        double sum = 0.0;
+        for (int i = 0; i < 200; i++)
+            sum += values[i];
+        const double mean = tribo_get_mean_charge(m, w);
+        cr_expect(mean != 0.0 && close_to(mean, sum / 200, 1e-12), "%g %g", mean, sum / 200);
+        /* in SI units: times the model's factor, then over the boundary, the depth, the mass */
+        const double sigma = tribo_si_segment_factor(&d, w) * mean;
+        const double per_length = d.perimeter * sigma;
+        cr_expect_eq(tribo_si_get(&d, m, MODELS[k].sigma_mean), sigma);
+        cr_expect_eq(tribo_si_get(&d, m, MODELS[k].per_length), per_length);
+        cr_expect_eq(tribo_si_get(&d, m, MODELS[k].charge), 1e-3 * per_length);
+        cr_expect_eq(tribo_si_get(&d, m, MODELS[k].to_mass), per_length / d.mass_per_length);
+        /* and charge_to_mass carries it where charge_to_mass_model names it */
+        tribo_si_derived named = d;
+        named.charge_to_mass_model = (int)w + 1;
+        cr_expect_eq(tribo_si_get(&named, m, TRIBO_SI_QUANTITY_Q_PER_M),
+                     tribo_si_get(&d, m, MODELS[k].to_mass));
+    }
+    /* the means are the models' own outputs, exactly */
+    cr_expect_eq(tribo_get_mean_charge(m, TRIBO_SEGMENTS_STATIC), tribo_get(m, TRIBO_QUANTITY_STATIC));
+    cr_expect_eq(tribo_get_mean_charge(m, TRIBO_SEGMENTS_SLIDING), tribo_get(m, TRIBO_QUANTITY_SLIDING));
+    cr_expect(isnan(tribo_get_mean_charge(m, TRIBO_SEGMENTS_COUNT)));
+    tribo_free(m);
+}
+
 Test(si, charge_to_mass_carries_the_one_model_charge_to_mass_model_names)
 {
     /* both models run (the defaults); each choice is that model's ratio, not their sum, and
@@ -282,7 +341,10 @@ Test(si, charge_to_mass_carries_the_one_model_charge_to_mass_model_names)
     const tribo_param_info *p = tribo_si_param_find("charge_to_mass_model");
     cr_expect(p->min == 0.0 && p->max == TRIBO_SEGMENTS_COUNT && p->type == TRIBO_TYPE_INTEGER);
     char err[512];
-    cr_expect_eq(tribo_si_scene_apply(&s, "charge_to_mass_model=3", err, sizeof err),
+    char past_the_rows[64];
+    snprintf(past_the_rows, sizeof past_the_rows, "charge_to_mass_model=%d",
+             TRIBO_SEGMENTS_COUNT + 1);
+    cr_expect_eq(tribo_si_scene_apply(&s, past_the_rows, err, sizeof err),
                  TRIBO_ERR_INVALID_ARGUMENT);
 
     /* a model switched off cannot be the one carried: one line naming both */
@@ -292,9 +354,11 @@ Test(si, charge_to_mass_carries_the_one_model_charge_to_mass_model_names)
     cr_expect(strstr(err, "charge_to_mass_model = 2") && strstr(err, "charge_model_sliding = 0") &&
                   !strchr(err, '\n'),
               "%s", err);
-    tribo_si_scene legacy = si_of("charge_model=2 charge_to_mass_model=1");
-    cr_expect_eq(tribo_si_derive(&legacy, &dd, err, sizeof err), TRIBO_ERR_INVALID_ARGUMENT);
-    cr_expect(strstr(err, "charge_to_mass_model = 1") && strstr(err, "charge_model = 2"), "%s", err);
+    /* the selection as one enumeration of subsets is gone: each model has its switch */
+    cr_expect_eq(tribo_si_scene_apply(&s, "charge_model=3", err, sizeof err),
+                 TRIBO_ERR_INVALID_ARGUMENT);
+    cr_expect(strstr(err, "charge_model was removed") && strstr(err, "charge_model_sliding"), "%s",
+              err);
     tribo_si_scene fine = si_of("charge_model_static=0");
     fine.charge_to_mass_model = 2;
     cr_expect_eq(tribo_si_derive(&fine, &dd, err, sizeof err), TRIBO_OK, "%s", err);
@@ -302,11 +366,8 @@ Test(si, charge_to_mass_carries_the_one_model_charge_to_mass_model_names)
     tribo_si_scene first = si_of("charge_model_static=0");
     cr_expect_eq(tribo_si_derive(&first, &dd, err, sizeof err), TRIBO_OK, "%s", err);
     cr_expect_eq(dd.charge_to_mass_model, 2);
-    tribo_si_scene legacy_first = si_of("charge_model=2");
-    cr_expect_eq(tribo_si_derive(&legacy_first, &dd, err, sizeof err), TRIBO_OK, "%s", err);
-    cr_expect_eq(dd.charge_to_mass_model, 2);
     /* no model at all: nothing charges, and charge_to_mass is 0 whichever it names */
-    tribo_si_scene none = si_of("charge_model=0");
+    tribo_si_scene none = si_of("charge_model_static=0 charge_model_sliding=0");
     cr_expect_eq(tribo_si_derive(&none, &dd, err, sizeof err), TRIBO_OK, "%s", err);
     tribo_model *uncharged = tribo_create(&dd.scene, err, sizeof err);
     cr_assert(uncharged, "%s", err);

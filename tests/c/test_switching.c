@@ -177,7 +177,8 @@ Test(switching, a_flight_never_takes_the_lowest_point_through_the_plate, .timeou
     const double eps[] = {0.2, 0.6, 0.95}, spins[] = {0.5, 3.0};
     for (int e = 0; e < 3; e++)
         for (int w = 0; w < 2; w++) {
-            tribo_scene s = scene_of("mu=0.3 nu=0.3 charge_model=0 gap0=0.3 drop_speed=0.2");
+            tribo_scene s = scene_of("mu=0.3 nu=0.3 gap0=0.3 drop_speed=0.2");
+            no_charge_models(&s);
             s.epsilon = eps[e];
             s.Omega0 = spins[w];
             tribo_model *m = make(&s);

@@ -121,11 +121,9 @@ class SI(Chute):
     @staticmethod
     def carried_model_included(values):
         """The charge model `charge_to_mass` carries (charge_to_mass_model, the registry's
-        row order from 1; 0, the first included) runs (its switch is on and, for the models
-        the older bitmask `charge_model` names, its bit there is set), or no model runs."""
+        row order from 1; 0, the first included) runs (its switch is on), or no model runs."""
         def included(slot):
-            in_mask = slot >= 2 or (int(values["charge_model"]) >> slot) & 1
-            return values[f"charge_model_{CHARGE_MODELS[slot]}"] != 0 and bool(in_mask)
+            return values[f"charge_model_{CHARGE_MODELS[slot]}"] != 0
 
         named = int(values["charge_to_mass_model"])
         return named == 0 or not any(included(k) for k in range(len(CHARGE_MODELS))) \

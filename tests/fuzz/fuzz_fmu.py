@@ -46,12 +46,13 @@ class Finding(Exception):
     """A call answered otherwise than the model expects."""
 
 
-# Defects of the core that refuse an instance's own state, each where the chute is shorter
-# than any the root finding resolves, each with a test that fails until the core is fixed
-# (tests/python/test_hostile.py, xfail strict). There, and only there, such a refusal is
-# counted in the summary (known_core_defects) instead of ending the sequence; the instance
-# must still be unchanged by it.
-KNOWN_CORE_DEFECTS = {
+# The core's refusals of an instance's own state after a run past a chute shorter than any
+# its root finding resolves (TINY_CHUTE and below), by their messages, each with the test
+# that holds it open (tests/python/test_hostile.py, xfail strict: it fails once the core
+# takes the state). There, and only there, such a refusal is counted in the summary
+# (own_states_refused_past_a_tiny_chute) instead of ending the sequence; the instance must
+# still be unchanged by it.
+OWN_STATE_REFUSALS_PAST_A_TINY_CHUTE = {
     "(the end of the run of the committed point)":
         "test_own_state_restores_after_a_step_past_a_very_short_chutes_end",
     "(contact time of the committed point)":
@@ -96,7 +97,7 @@ class Fuzzer:
         self.exits = 0  # steps in which the particle left the chute
         self.refusals = 0  # refused calls found to change nothing
         self.restores = 0  # own states found to restore
-        self.known_core_defects = []  # own states refused by a known defect (KNOWN_CORE_DEFECTS)
+        self.own_states_refused_past_a_tiny_chute = []  # (OWN_STATE_REFUSALS_PAST_A_TINY_CHUTE)
 
     # ---- one call, checked ------------------------------------------------------------
 
@@ -143,12 +144,13 @@ class Fuzzer:
         self.call("freeFMUState", inst.free_state, state)
         if status != OK:
             reason = inst.errors()[-1] if inst.errors() else ""
-            known = [test for message, test in KNOWN_CORE_DEFECTS.items() if message in reason]
+            known = [test for message, test in OWN_STATE_REFUSALS_PAST_A_TINY_CHUTE.items()
+                     if message in reason]
             if not (known and model is not None and
                     model.front.chute_length(model.values) <= TINY_CHUTE):
                 raise Finding(f"{what}: the instance refused its own state: {reason}")
-            self.known_core_defects.append({"call": what, "reason": reason, "test": known[0],
-                                            "values": dict(model.values)})
+            self.own_states_refused_past_a_tiny_chute.append({
+                "call": what, "reason": reason, "test": known[0], "values": dict(model.values)})
             self.unchanged(inst, f"setFMUState of the own state ({what})", data)
             return data
         if self.call("snapshot", inst.snapshot) != data:
@@ -544,12 +546,13 @@ def main():
                "core_failures": fuzzer.core_failures, "slow_steps": fuzzer.slow_steps,
                "exits": fuzzer.exits, "refusals_unchanged": fuzzer.refusals,
                "own_states_restored": fuzzer.restores,
-               "known_core_defects": fuzzer.known_core_defects,
+               "own_states_refused_past_a_tiny_chute": fuzzer.own_states_refused_past_a_tiny_chute,
                "findings": findings}
     if args.json:
         with open(args.json, "w") as f:
             json.dump(summary, f, indent=1)
-    print(json.dumps({k: (len(v) if k in ("core_failures", "slow_steps", "known_core_defects") else v)
+    listed = ("core_failures", "slow_steps", "own_states_refused_past_a_tiny_chute")
+    print(json.dumps({k: (len(v) if k in listed else v)
                       for k, v in summary.items() if k != "findings"}))
     for f in findings[:10]:
         print("FINDING:", json.dumps(f), file=sys.stderr)

@@ -9,8 +9,9 @@ from tribo_fmu import VERSIONS, WARNING, Slave
 # With the centre dashpot (damping_point = 1) at nu = 1 a particle turning over in normal
 # lock indents far beyond the contact model's assumptions (delta_y ~ 0.4 for eps = 0.6);
 # the paper's low-friction drop does not.
-DEEP = dict(epsilon=0.6, mu=1.0, nu=1.0, integrator=1, charge_model=0, damping_point=1)
-SHALLOW = dict(integrator=1, charge_model=0)
+NO_CHARGE = dict(charge_model_static=0, charge_model_sliding=0)
+DEEP = dict(epsilon=0.6, mu=1.0, nu=1.0, integrator=1, damping_point=1, **NO_CHARGE)
+SHALLOW = dict(integrator=1, **NO_CHARGE)
 
 
 @pytest.mark.parametrize("version", VERSIONS)

@@ -39,7 +39,7 @@ INVALID_VALUES = [
     ("beta", math.pi / 2, ["beta = 1.5707963267948966", "0 <= beta < 1.5708"]),
     ("dt", 0.5, ["dt = 0.5", "1e-09 <= dt <= 0.1"]),
     ("n_segments", 8, ["n_segments = 8", "16 <= n_segments <= 100000"]),
-    ("charge_model", 4, ["charge_model = 4", "0 <= charge_model <= 3"]),
+    ("charge_model_static", 2, ["charge_model_static = 2", "0 <= charge_model_static <= 1"]),
     ("integrator", -1, ["integrator = -1", "integrator <="]),
     ("damping_point", 2, ["damping_point = 2", "0 <= damping_point <= 1"]),
     ("work_limit", 0, ["work_limit = 0", "1 <= work_limit <= 2147483647"]),
@@ -118,6 +118,11 @@ def test_wrong_value_references_and_types_are_refused(fmu_dir, output_names, ver
     assert "X" in s.errors()[-1] and "output" in s.errors()[-1] and "0.5" in s.errors()[-1]
     assert status_of(set_real, [0], [3.0]) == ERROR
     assert "time" in s.errors()[-1] and "independent" in s.errors()[-1]
+    # the removed charge_model (an Enumeration: an Integer in FMI 2.0, an Int64 in 3.0)
+    set_enumeration = s.fmu.setInteger if version == 2 else s.fmu.setInt64
+    assert status_of(set_enumeration, [17], [3]) == ERROR
+    assert ("value reference 17 is retired (it was charge_model's): charge_model was removed: "
+            "select the charge models with their switches charge_model_<name>") in s.errors()[-1]
     assert status_of(set_integer, [x], [1]) == ERROR
     assert run_to_one(s, output_names) == undisturbed(fmu_dir, version, output_names)
 
@@ -133,15 +138,15 @@ def test_fmi3_value_counts_must_match(fmu_dir):
     assert "X" in s.errors()[-1] and "Float64" in s.errors()[-1]
 
 
-@pytest.mark.parametrize("charge_model, present", [(1, "static"), (2, "sliding")])
-def test_fmi3_array_of_a_model_left_out_reads_zeros(fmu_dir, reference_exe, charge_model, present):
+@pytest.mark.parametrize("present, absent", [("static", "sliding"), ("sliding", "static")])
+def test_fmi3_array_of_a_model_left_out_reads_zeros(fmu_dir, reference_exe, present, absent):
     """Documented choice: like Q_static / Q_sliding, a charge model the scene leaves out
     reads as zero charge, so an importer recording every output is not refused."""
-    s = fresh(fmu_dir, 3).init(charge_model=charge_model, **SMALL)
+    off = {f"charge_model_{absent}": 0}
+    s = fresh(fmu_dir, 3).init(**off, **SMALL)
     s.step_to(1.0)
-    core = core_run(reference_exe, dict(SMALL, charge_model=charge_model), [(1.0, [])],
+    core = core_run(reference_exe, dict(SMALL, **off), [(1.0, [])],
                     segments=True)[0]["segments"]
-    absent = "sliding" if present == "static" else "static"
     assert s.get(f"segment_charge_{present}") == core[present] and max(core[present]) > 0
     assert core[absent] is None and s.get(f"segment_charge_{absent}") == [0.0] * 64
 

@@ -60,8 +60,9 @@ def test_the_height_is_bounded_at_the_semi_minor_axis(image_force):
 
 def test_with_no_charge_the_coupled_run_is_the_uncoupled_one(image_force):
     outs = ("x", "y", "phi", "u", "v", "omega", "energy")
-    closed = image_force.run_coupled(params(charge_model=0), T_END, STEP, "sliding", outputs=outs)
-    open_ = image_force.run_coupled(params(charge_model=0), T_END, STEP, "sliding", couple=False,
+    off = dict(charge_model_static=0, charge_model_sliding=0)
+    closed = image_force.run_coupled(params(**off), T_END, STEP, "sliding", outputs=outs)
+    open_ = image_force.run_coupled(params(**off), T_END, STEP, "sliding", couple=False,
                                     outputs=outs)
     assert all(r["F_N_ext"] == 0.0 for r in closed[1][:-1])
     np.testing.assert_array_equal(closed[0], open_[0])

@@ -29,7 +29,8 @@ def with_spin(data, old, new):
 def test_cvode_failure_is_an_fmi_error_with_time_and_state(fmu_dir, version):
     # the work limit raised, so that CVODE's guard against runaway integration speaks first
     s = Slave(fmu_dir(version), version).init(integrator=1, Omega0=77.0, gap0=0.5,
-                                               charge_model=0, work_limit=2**31 - 1)
+                                               charge_model_static=0, charge_model_sliding=0,
+                                               work_limit=2**31 - 1)
     hostile = with_spin(s.serialize(s.get_state()), 77.0, 1e12)
     s.set_state(s.deserialize(hostile))
     # a spin of 1e12 would need steps of 2e-13 to follow the lowest point

@@ -169,7 +169,7 @@ COMPARED = {"semi_major_axis": 5e-4, "epsilon": 0.5, "density": 950.0,
             "omega0": 50.0, "n_segments": 64, "dt": 5e-4}
 MODEL_OF_SI = {"epsilon": "epsilon", "mu": "mu", "nu": "nu", "eta": "eta", "tilt": "beta",
                "phi0": "phi0", "drop_angle": "drop_angle", "n_segments": "n_segments",
-               "charge_model": "charge_model", "integrator": "integrator", "dt": "dt",
+               "integrator": "integrator", "dt": "dt",
                "rtol": "rtol", "atol": "atol", "v_reg": "v_reg", "damping_point": "damping_point",
                "stick_model": "stick_model", "work_limit": "work_limit", "Gamma": "Gamma", "tau0": "tau0", "tau_r": "tau_r",
                "Sigma0": "Sigma0", "chute_length_scaled": "chute_length",
@@ -282,6 +282,20 @@ def test_an_si_value_out_of_its_range_is_refused_naming_it(fmu_dir, version):
     message = s.errors()[-1]
     assert "density" in message and "200000" in message and "100000" in message
     assert s.get("density") == 950.0
+    s.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_a_retired_value_reference_is_refused_saying_what_took_its_place(fmu_dir, version):
+    # the per-model charge outputs the registry's rows make, at 510 + slot, ...: their former
+    # value references stay retired (si_quantities.def's TRIBO_RETIRED rows)
+    s = Slave(fmu_dir(version, SI), version).init()
+    real = s.fmu.getReal if version == 2 else s.fmu.getFloat64
+    assert status_of(real, [213]) == ERROR
+    assert ("value reference 213 is retired (it was charge_static's): charge_static is value "
+            "reference 510") in s.errors()[-1]
+    assert s.variables["charge_static"].valueReference == 510
+    assert s.variables["sigma_mean_sliding"].valueReference == 541
     s.free()
 
 

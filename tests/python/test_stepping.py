@@ -64,7 +64,7 @@ def test_tunable_change_takes_effect_from_the_next_step(fmu_dir, reference_exe, 
 
 
 @pytest.mark.parametrize("version", VERSIONS)
-@pytest.mark.parametrize("name, value", [("epsilon", 0.3), ("n_segments", 32), ("charge_model", 1),
+@pytest.mark.parametrize("name, value", [("epsilon", 0.3), ("n_segments", 32), ("charge_model_static", 0),
                                          ("integrator", 1), ("Gamma", 0.002), ("dt", 1e-4),
                                          ("damping_point", 1)])
 def test_structural_and_fixed_parameters_are_refused_after_initialization(

@@ -11,6 +11,9 @@ from tribo.batch.particle import run_fmu
 from tribo.batch.sweep import run_sweep
 from tribo.study.transition import find_transition
 
+# the motion alone: every charge model switched off
+NO_CHARGE = dict(charge_model_static=0, charge_model_sliding=0)
+
 GRID = [round(0.1 * k, 10) for k in range(1, 11)]
 # the runs without charging (turning does not depend on it: charging does not act back)
 NO_CHARGE = {"charge_model_static": 0, "charge_model_sliding": 0}

@@ -45,7 +45,7 @@ def test_flags_are_booleans_and_counts_integers(fmu_dir, version):
 
 
 ENUMERATIONS = {  # variable: (type, items by value)
-    "charge_model": ("tribo.ChargeModels", ["none", "static", "sliding", "both"]),
+    "charge_model_static": ("tribo.Switch", ["off", "on"]),
     "integrator": ("tribo.Integrator", ["fixed_step", "cvode_adams", "cvode_bdf"]),
     "motion_class": ("tribo.MotionClass", ["flight", "rocking", "rolling", "tumbling", "bouncing"]),
     "run_end": ("tribo.RunEnd", ["chute_exit", "first_liftoff"]),

@@ -24,7 +24,8 @@ from .sweep import FIGURE, RESULTS, SERIES, keys_of, run_sweep, sweep_setup
 
 # docs/model.md section 7 (the paper's set-up), with CVODE instead of the paper's fixed step
 # (faster at equal error, see docs/work_precision.md) at the FMU's default tolerances (rtol,
-# atol: not set here), and the normal dashpot on the contact point (docs/model.md section 3).
+# atol: not set here), with every charge model (the FMU's default switches), and the normal
+# dashpot on the contact point (docs/model.md section 3).
 # The study sets epsilon, mu and nu per run; a sweep's paper base takes PAPER_BASE's.
 PAPER_SETUP = {
     "Gamma": 0.001,

@@ -7,7 +7,7 @@
  * saturation density Sigma_s) and quadratures (rates integrated along the motion: the
  * sliding model's frictional work per unit area omega). Everything else (which segments
  * touch, for how long, the saving and loading of states, the outputs' plumbing) is
- * generic: charging.c, charge_sweep.c, state_io.c.
+ * generic: charging.c, charge_sweep.c, state_io.c, charge_outputs.c.
  *
  * To add a model: one file implementing a tribo_charge_model, and one row registering it in
  * charge_registry.def (CONTRIBUTING.md walks through it).
@@ -115,6 +115,19 @@ typedef struct tribo_charge_model {
     /* The unit of its reported values in the SI front end. */
     tribo_charge_si_unit si_unit;
 } tribo_charge_model;
+
+/* A model's state at the output point of an instance, as the outputs of its own
+   (quantities.def: Q_static, Sigma_s, ...) read it: the instance makes it
+   (tribo_charge_view_of, model.h), the model's file computes its outputs from it. */
+typedef struct tribo_charge_view {
+    const tribo_scene *scene;
+    int selected;
+    int n;
+    double sum;                /* of its n values, pending updates included (NaN: out of memory) */
+    double lost;               /* the sum of what the breakdown limit took, pending included */
+    const double *globals;     /* its global states */
+    const double *quadratures; /* its quadratures   */
+} tribo_charge_view;
 
 /* Sum of an array of n values. */
 double tribo_sum(const double *v, long n);

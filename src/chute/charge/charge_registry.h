@@ -14,36 +14,16 @@ extern const tribo_charge_model *const TRIBO_CHARGE_MODELS[TRIBO_SEGMENTS_COUNT]
 #undef TRIBO_CHARGE_MODEL
 
 /* The registered models a scene includes: bit i for TRIBO_CHARGE_MODELS[i], where its switch
-   charge_model_<name> is on and, for the first TRIBO_CHARGE_MODEL_LEGACY slots (static, sliding),
-   bit i of the older charge_model is set too. */
-#define TRIBO_CHARGE_MODEL_LEGACY 2
+   charge_model_<name> is on. */
 unsigned tribo_charge_selection(const tribo_scene *s);
 
-/* A model's state at the output point of an instance. */
-typedef struct tribo_charge_view {
-    const tribo_scene *scene;
-    int selected;
-    int n;
-    double sum;                /* of its n values, pending updates included (NaN: out of memory) */
-    double lost;               /* the sum of what the breakdown limit took, pending included */
-    const double *globals;     /* its global states */
-    const double *quadratures; /* its quadratures   */
-} tribo_charge_view;
-
-/* The view of the model at `index` of the instance's model set (model.c). */
-tribo_charge_view tribo_charge_view_of(tribo_model *m, int index);
-
-/* Every model's outputs of the breakdown limit (docs/model.md §8b): the fraction of its
-   segments at the limit, and the charge lost to the gas as a mean over the segments in the
-   units of its array (0 for a model the scene leaves out). */
-double tribo_capped_fraction(tribo_model *m, int index);
-double tribo_charge_lost(tribo_model *m, int index);
-
-/* The outputs the models contribute (quantities.def). */
-double tribo_static_charge(tribo_model *m);
-double tribo_sliding_charge(tribo_model *m);
-double tribo_sliding_mean_density(tribo_model *m);
-double tribo_sliding_saturation(tribo_model *m);
-double tribo_sliding_work(tribo_model *m);
+/* The outputs of the models' own (quantities.def's rows), each defined in its model's file
+   from the model's view at the output point (the table's accessor passes
+   tribo_charge_view_of(m, TRIBO_SEGMENTS_<id>)). */
+double tribo_static_charge(tribo_charge_view v);
+double tribo_sliding_charge(tribo_charge_view v);
+double tribo_sliding_mean_density(tribo_charge_view v);
+double tribo_sliding_saturation(tribo_charge_view v);
+double tribo_sliding_work(tribo_charge_view v);
 
 #endif

@@ -160,25 +160,17 @@ const tribo_charge_model tribo_charge_sliding = {
     .si_unit = TRIBO_CHARGE_PER_SIGMA0,
 };
 
-double tribo_sliding_charge(tribo_model *m)
+double tribo_sliding_charge(tribo_charge_view v)
 {
-    const tribo_charge_view v = tribo_charge_view_of(m, TRIBO_SEGMENTS_SLIDING);
     /* Q_sliding, §5b */
     return v.selected ? v.sum / v.n / v.globals[SIGMA0_REF] : 0.0;
 }
 
-double tribo_sliding_mean_density(tribo_model *m)
+double tribo_sliding_mean_density(tribo_charge_view v)
 {
-    const tribo_charge_view v = tribo_charge_view_of(m, TRIBO_SEGMENTS_SLIDING);
     return v.selected ? v.sum / v.n : 0.0; /* mean Sigma_i, §5b */
 }
 
-double tribo_sliding_saturation(tribo_model *m)
-{
-    return tribo_charge_view_of(m, TRIBO_SEGMENTS_SLIDING).globals[SIGMA_S];
-}
+double tribo_sliding_saturation(tribo_charge_view v) { return v.globals[SIGMA_S]; }
 
-double tribo_sliding_work(tribo_model *m)
-{
-    return tribo_charge_view_of(m, TRIBO_SEGMENTS_SLIDING).quadratures[WORK];
-}
+double tribo_sliding_work(tribo_charge_view v) { return v.quadratures[WORK]; }

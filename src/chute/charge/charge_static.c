@@ -53,8 +53,7 @@ const tribo_charge_model tribo_charge_static = {
     .si_unit = TRIBO_CHARGE_PER_SIGMA0,
 };
 
-double tribo_static_charge(tribo_model *m)
+double tribo_static_charge(tribo_charge_view v)
 {
-    const tribo_charge_view v = tribo_charge_view_of(m, TRIBO_SEGMENTS_STATIC);
     return v.selected ? v.sum / v.n : 0.0; /* Q_static, §5a */
 }

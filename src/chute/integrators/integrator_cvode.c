@@ -108,6 +108,7 @@ typedef struct cvode_integrator {
     long long events_in_a_row;
 
     char message[256]; /* CVODE's last error message */
+    const char *failed_call; /* the SUNDIALS call of the set-up that failed (create) */
 } cvode_integrator;
 
 /* ---- the phase's right-hand side and root functions ---------------------------------- */
@@ -269,11 +270,20 @@ static int set_tolerances(cvode_integrator *c, const tribo_scene *scene)
     return CVodeSVtolerances(c->mem, scene->rtol, c->abstol) == CV_SUCCESS;
 }
 
+/* Whether a call of the set-up failed (`ok` false); the first that did is kept for the
+   message, by name, as SUNDIALS' own examples' check_retval do. */
+static int failed(cvode_integrator *c, int ok, const char *call)
+{
+    if (!ok && !c->failed_call)
+        c->failed_call = call;
+    return !ok;
+}
+
 static tribo_status create(tribo_model *m, void **data)
 {
     cvode_integrator *c = calloc(1, sizeof *c);
     if (!c)
-        return TRIBO_ERR_MEMORY;
+        return tribo_fail(m, TRIBO_ERR_MEMORY, "cannot set up CVODE: out of memory");
     *data = c;
     c->m = m;
     c->dyn = tribo_dynamics(m);
@@ -281,38 +291,42 @@ static tribo_status create(tribo_model *m, void **data)
     const tribo_scene *scene = tribo_get_scene(m);
     const int bdf = scene->integrator == TRIBO_INTEGRATOR_CVODE_BDF;
     /* one SUNDIALS context per instance: nothing is shared between instances */
-    if (SUNContext_Create(NULL, &c->ctx) != 0)
-        goto fail;
-    c->y = N_VNew_Serial(c->n, c->ctx);
-    c->dky = N_VNew_Serial(c->n, c->ctx);
-    c->abstol = N_VNew_Serial(c->n, c->ctx);
-    c->mem = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, c->ctx);
-    if (!c->y || !c->dky || !c->abstol || !c->mem)
+    if (failed(c, SUNContext_Create(NULL, &c->ctx) == 0, "SUNContext_Create") ||
+        failed(c, (c->y = N_VNew_Serial(c->n, c->ctx)) != NULL, "N_VNew_Serial") ||
+        failed(c, (c->dky = N_VNew_Serial(c->n, c->ctx)) != NULL, "N_VNew_Serial") ||
+        failed(c, (c->abstol = N_VNew_Serial(c->n, c->ctx)) != NULL, "N_VNew_Serial") ||
+        failed(c, (c->mem = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, c->ctx)) != NULL, "CVodeCreate"))
         goto fail;
     N_VConst(0.0, c->y);
-    if (CVodeSetErrHandlerFn(c->mem, error_handler, c) != CV_SUCCESS ||
-        CVodeInit(c->mem, rhs, 0.0, c->y) != CV_SUCCESS || !set_tolerances(c, scene) ||
-        CVodeSetUserData(c->mem, c) != CV_SUCCESS ||
-        CVodeRootInit(c->mem, N_ROOTS, roots) != CV_SUCCESS ||
-        CVodeSetNoInactiveRootWarn(c->mem) != CV_SUCCESS ||
-        CVodeSetMaxHnilWarns(c->mem, -1) != CV_SUCCESS)
+    if (failed(c, CVodeSetErrHandlerFn(c->mem, error_handler, c) == CV_SUCCESS,
+               "CVodeSetErrHandlerFn") ||
+        failed(c, CVodeInit(c->mem, rhs, 0.0, c->y) == CV_SUCCESS, "CVodeInit") ||
+        failed(c, set_tolerances(c, scene), "CVodeSVtolerances") ||
+        failed(c, CVodeSetUserData(c->mem, c) == CV_SUCCESS, "CVodeSetUserData") ||
+        failed(c, CVodeRootInit(c->mem, N_ROOTS, roots) == CV_SUCCESS, "CVodeRootInit") ||
+        failed(c, CVodeSetNoInactiveRootWarn(c->mem) == CV_SUCCESS, "CVodeSetNoInactiveRootWarn") ||
+        failed(c, CVodeSetMaxHnilWarns(c->mem, -1) == CV_SUCCESS, "CVodeSetMaxHnilWarns"))
         goto fail;
     if (bdf) {
         /* Newton with a dense difference-quotient Jacobian: 10 states */
-        c->jac = SUNDenseMatrix(c->n, c->n, c->ctx);
-        c->ls = c->jac ? SUNLinSol_Dense(c->y, c->jac, c->ctx) : NULL;
-        if (!c->ls || CVodeSetLinearSolver(c->mem, c->ls, c->jac) != CV_SUCCESS)
+        if (failed(c, (c->jac = SUNDenseMatrix(c->n, c->n, c->ctx)) != NULL, "SUNDenseMatrix") ||
+            failed(c, (c->ls = SUNLinSol_Dense(c->y, c->jac, c->ctx)) != NULL, "SUNLinSol_Dense") ||
+            failed(c, CVodeSetLinearSolver(c->mem, c->ls, c->jac) == CV_SUCCESS,
+                   "CVodeSetLinearSolver"))
             goto fail;
     } else {
         /* non-stiff motion: Adams with fixed-point iteration, no Jacobian */
-        c->nls = SUNNonlinSol_FixedPoint(c->y, 0, c->ctx);
-        if (!c->nls || CVodeSetNonlinearSolver(c->mem, c->nls) != CV_SUCCESS)
+        if (failed(c, (c->nls = SUNNonlinSol_FixedPoint(c->y, 0, c->ctx)) != NULL,
+                   "SUNNonlinSol_FixedPoint") ||
+            failed(c, CVodeSetNonlinearSolver(c->mem, c->nls) == CV_SUCCESS,
+                   "CVodeSetNonlinearSolver"))
             goto fail;
     }
     return TRIBO_OK;
 fail:
-    tribo_fail(m, TRIBO_ERR_MEMORY, "cannot set up CVODE: %s",
-               c->message[0] ? c->message : "out of memory");
+    /* with CVODE's own message where its error handler was set and said why */
+    tribo_fail(m, TRIBO_ERR_MEMORY, "cannot set up CVODE: %s failed%s%s", c->failed_call,
+               c->message[0] ? ": " : "", c->message);
     destroy(c);
     *data = NULL;
     return TRIBO_ERR_MEMORY;
@@ -352,7 +366,6 @@ static tribo_status fail_at(cvode_integrator *c, double t, const double *y, cons
 static void capture_interpolant(cvode_integrator *c);
 static void find_grazing_switch(cvode_integrator *c, double t_start);
 
-/* Take one CVODE step from the end of the last one; it becomes the open step. */
 /* The longest piece of a flight, in units of slow_step, and the most evaluations of the
    clearance a piece spends looking for the flight's end before it ends where it got to (so
    that a flight that never comes down, or spins fast, is taken in bounded pieces). */
@@ -389,6 +402,8 @@ static tribo_status take_flight_piece(cvode_integrator *c)
     return TRIBO_OK;
 }
 
+/* Take one step from the end of the last one (a CVODE step in contact, a piece of the flight
+   in flight); it becomes the open step. */
 static tribo_status take_step(cvode_integrator *c)
 {
     if (!tribo_touching(&c->phase))
@@ -443,10 +458,10 @@ static void dense(cvode_integrator *c, double t, double *y)
 /* CVODE sees a switch only where a root function has changed sign between the ends of a
    step. A switch function can dip past zero and back within one step: in stick under
    normal lock the undamped tangential oscillation brings the stretch to the (constant)
-   Coulomb limit almost tangentially, and a dip of 1e-6 went unseen. So each step is also
-   sampled inside on the dense output; the first sample past a switch (beyond the rounding
-   of that function's values in the step) is bisected to the crossing, and the step ends
-   there as if CVODE had found it. */
+   Coulomb limit almost tangentially, and a dip of 1e-6 past it lies within one step, unseen
+   at its ends. So each step is also sampled inside on the dense output; the first sample
+   past a switch (beyond the rounding of that function's values in the step) is bisected to
+   the crossing, and the step ends there as if CVODE had found it. */
 #define GRAZING_SAMPLES 8
 
 static void switch_functions(cvode_integrator *c, double t, double *g)
