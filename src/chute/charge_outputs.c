@@ -14,15 +14,8 @@ int tribo_charges_out(tribo_model *m)
     tribo_charging *c = &m->charging;
     if (m->n_pending == 0 || m->charges_out_valid)
         return 1;
-    const size_t bytes = (size_t)c->n * sizeof(double);
-    for (int i = 0; i < c->n_models; i++) {
-        tribo_charge_slot *slot = &c->slot[i];
-        if (!slot->segments)
-            continue;
-        if (!slot->segments_out && !(slot->segments_out = malloc(bytes)))
-            return 0;
-        memcpy(slot->segments_out, slot->segments, bytes);
-    }
+    if (tribo_charging_copy_out(c) != 0)
+        return 0;
     for (size_t i = 0; i < m->n_pending; i++)
         tribo_charging_apply(c, &m->scene, &m->pending[i], TRIBO_CHARGE_PENDING);
     m->charges_out_valid = 1;
@@ -33,8 +26,8 @@ int tribo_pending_sums(tribo_model *m)
 {
     if (m->pending_sums_valid)
         return 1;
-    if (tribo_charging_pending_sums(&m->charging, &m->scene, m->pending, m->n_pending,
-                                    m->pending_sums, m->pending_lost) != 0)
+    if (tribo_charging_pending_totals(&m->charging, &m->scene, m->pending, m->n_pending,
+                                      &m->pending_totals) != 0)
         return 0;
     m->pending_sums_valid = 1;
     return 1;
@@ -43,14 +36,18 @@ int tribo_pending_sums(tribo_model *m)
 tribo_charge_view tribo_charge_view_of(tribo_model *m, int index)
 {
     const tribo_charge_slot *slot = &m->charging.slot[index];
-    tribo_charge_view v = {&m->scene, slot->segments != NULL, m->charging.n, 0.0, 0.0,
+    tribo_charge_view v = {&m->scene, slot->segments != NULL, m->charging.n, 0.0, 0.0, 0.0, 0.0,
                            m->out.charge_globals + slot->globals_at,
                            m->out.y + TRIBO_NMOTION + slot->quadratures_at};
     if (v.selected && tribo_pending_sums(m)) {
-        v.sum = tribo_charging_sum(slot) + m->pending_sums[index];
-        v.lost = tribo_charging_lost(slot) + m->pending_lost[index];
+        const tribo_charging *c = &m->charging;
+        const tribo_charge_totals *p = &m->pending_totals;
+        v.sum = tribo_charging_sum(c, index) + p->sum[index];
+        v.lost = tribo_charging_lost(c, index) + p->lost[index];
+        v.band_charge = tribo_compensated_value(&c->band_charge[index]) + p->band_charge[index];
+        v.band_lost = tribo_compensated_value(&c->band_lost[index]) + p->band_lost[index];
     } else if (v.selected) {
-        v.sum = v.lost = NAN;
+        v.sum = v.lost = v.band_charge = v.band_lost = NAN;
     }
     return v;
 }
@@ -63,6 +60,24 @@ const double *tribo_charge_values_of(tribo_model *m, int index)
     return m->n_pending ? slot->segments_out : slot->segments;
 }
 
+const double *tribo_charge_bands_of(tribo_model *m, int index, const tribo_band_geometry **geometry)
+{
+    const tribo_charge_slot *slot = &m->charging.slot[index];
+    if (!tribo_charges_out(m))
+        return NULL;
+    *geometry = m->n_pending ? &m->charging.bands_out : &m->charging.bands;
+    return m->n_pending ? slot->bands_out : slot->bands;
+}
+
+double tribo_charged_area(tribo_model *m)
+{
+    if (!m->charging.keep_bands)
+        return 0.0;
+    if (!tribo_pending_sums(m))
+        return NAN;
+    return tribo_compensated_value(&m->charging.area) + m->pending_totals.area;
+}
+
 /* ---- every model's outputs of the breakdown limit (docs/model.md §8b) -------------------- */
 
 double tribo_capped_fraction(tribo_model *m, int index)
@@ -70,7 +85,8 @@ double tribo_capped_fraction(tribo_model *m, int index)
     const tribo_charge_view v = tribo_charge_view_of(m, index);
     const tribo_charge_model *model = m->charging.slot[index].model;
     /* without a limit nothing stands at it: no copy of the segments is made to say so */
-    if (!v.selected || !model->cap || !isfinite(model->cap(&m->scene)))
+    if (!v.selected || !model->density_unit ||
+        !isfinite(m->scene.Sigma_bd / model->density_unit(&m->scene)))
         return 0.0;
     const double *values = tribo_charge_values_of(m, index);
     if (!values)

@@ -109,3 +109,11 @@ double tribo_arclength_parameter(const tribo_arclength *a, double s)
     }
     return t;
 }
+
+double tribo_spheroid_area(double eps)
+{
+    const double e = sqrt(fmax(0.0, 1.0 - eps * eps));
+    /* asin(e) / e -> 1 + e^2 / 6 as e -> 0 (a sphere), where the quotient loses its digits */
+    const double ratio = e < 1e-4 ? 1.0 + e * e / 6.0 : asin(e) / e;
+    return 2.0 * M_PI * eps * (eps + ratio);
+}

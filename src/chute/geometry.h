@@ -99,6 +99,10 @@ double tribo_arclength_parameter(const tribo_arclength *a, double s);
 /* The perimeter of the ellipse (cos t, eps sin t) by adaptive Gauss-Legendre quadrature. */
 double tribo_ellipse_perimeter(double eps);
 
+/* The surface area of the prolate spheroid of semi-axes 1, eps, eps (model.md §8c), in units
+   of a^2: 2 pi eps^2 + 2 pi eps asin(e) / e, e = sqrt(1 - eps^2) (4 pi for a sphere). */
+double tribo_spheroid_area(double eps);
+
 /* Arc length between parametric angles t0 < t1, by adaptive quadrature (reference
    value for tests and table building). */
 double tribo_arc_between(double eps, double t0, double t1);

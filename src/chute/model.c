@@ -221,8 +221,9 @@ void tribo_quadrature_rates(const tribo_model *m, const tribo_contact_eval *ev, 
             rates[k] = 0.0;
         return;
     }
-    const tribo_contact_kinematics k = {
-        m->dyn.mu, ev->delta_y, ev->vs, tribo_contact_curvature_radius(m->dyn.eps2, ev->pose.h)};
+    const tribo_contact_kinematics k = {m->dyn.mu, ev->delta_y, ev->vs,
+                                        tribo_contact_curvature_radius(m->dyn.eps2, ev->pose.h),
+                                        ev->pose.h};
     tribo_charging_quadrature_rates(&m->charging, &k, rates);
 }
 
@@ -257,6 +258,7 @@ void tribo_probe_contact(const tribo_model *m, const double *y, double *s_centre
     k->delta_y = dy;
     k->vs = y[TRIBO_IU] + g.h * y[TRIBO_IOMEGA];
     k->rho_c = rho_c;
+    k->h = g.h;
 }
 
 typedef struct sweep_target {
@@ -359,7 +361,8 @@ tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts
     m->scene = *scene;
     tribo_derive_params(m);
     const int st = tribo_charging_init(&m->charging, models, n_models, parts->charge_selection,
-                                       scene->epsilon, scene->n_segments);
+                                       scene->epsilon, scene->n_segments,
+                                       scene->grain_geometry == TRIBO_GRAIN_SPHEROID);
     if (st != 0) {
         snprintf(msg, sizeof msg,
                  st == -1 ? "out of memory (%s = %d)"
@@ -405,7 +408,7 @@ tribo_status tribo_reset(tribo_model *m)
         return TRIBO_ERR_INVALID_ARGUMENT;
     initial_point(m, &m->committed);
     m->ended = 0;
-    tribo_charging_reset(&m->charging);
+    tribo_charging_reset(&m->charging, &m->scene);
     memset(&m->stats, 0, sizeof m->stats);
     m->error[0] = '\0';
     return restart_here(m);

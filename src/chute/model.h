@@ -30,8 +30,7 @@ struct tribo_model {
     /* what the pending updates add to each model's sum and to the charge its breakdown limit
        took (valid when pending_sums_valid) */
     int pending_sums_valid;
-    double pending_sums[TRIBO_CHARGE_MAX_MODELS];
-    double pending_lost[TRIBO_CHARGE_MAX_MODELS];
+    tribo_charge_totals pending_totals;
 
     /* the work done by the advance under way (integrator.h: the units of work_limit) */
     double work;
@@ -81,6 +80,18 @@ tribo_charge_view tribo_charge_view_of(tribo_model *m, int index);
 /* The output point's values of the model at `index` (its own units; NULL if out of
    memory). */
 const double *tribo_charge_values_of(tribo_model *m, int index);
+/* The same for the model's band densities, with the bands' geometry (§8c; NULL without
+   bands or if out of memory). */
+const double *tribo_charge_bands_of(tribo_model *m, int index, const tribo_band_geometry **geometry);
+/* The grain's charged area, sum of W_i L_i (a^2; 0 without bands, §8c). */
+double tribo_charged_area(tribo_model *m);
+/* The grain's outputs (docs/model.md §8c, grain.c; 0 without bands or for a model the scene
+   leaves out): its charge by the model at `index`, in the units of the model's array times
+   a^2; the charge its bands lost at the breakdown limit, the same way; the area (a^2) of its
+   bands at the limit. */
+double tribo_grain_charge(tribo_model *m, int index);
+double tribo_grain_charge_lost(tribo_model *m, int index);
+double tribo_grain_capped_area(tribo_model *m, int index);
 /* Every model's outputs of the breakdown limit (docs/model.md §8b): the fraction of its
    segments at the limit, and the charge lost to the gas as a mean over the segments in the
    units of its array (0 for a model the scene leaves out). */

@@ -7,8 +7,9 @@
  *   at the chute's exit, or at the first lift-off),
  *   the committed point (with the charge models' quadratures and global states), for each
  *   selected charge model its committed per-segment charges, their running sum and the
- *   charge its breakdown limit took (each value and compensation), the integrator's own
- *   bytes.
+ *   charge its breakdown limit took (each value and compensation) and, where the grain keeps
+ *   bands (model.md §8c), its band densities with their charge and loss the same way; then
+ *   the bands' widths and hulls with the charged area; the integrator's own bytes.
  * The output point is not stored: it is recomputed from the committed point exactly as
  * the advance that made it did, so a loaded instance continues bit-identically.
  *
@@ -99,15 +100,32 @@ static void get_point(tribo_reader *r, const tribo_model *m, tribo_point *p)
 
 static size_t header_size(void) { return sizeof MAGIC + 2 * sizeof(int64_t); }
 
-/* The values of the committed per-segment charges and their sums, over every selected
-   model. */
+/* The values of the committed per-segment charges, bands and their totals, over every
+   selected model, and the bands' geometry. */
 static size_t charge_count(const tribo_model *m)
 {
+    const tribo_charging *c = &m->charging;
     size_t n = 0;
-    for (int i = 0; i < m->charging.n_models; i++)
-        if (m->charging.slot[i].segments)
-            n += (size_t)m->charging.n + 4;
+    for (int i = 0; i < c->n_models; i++)
+        if (c->slot[i].segments)
+            n += ((size_t)c->n + 4) * (c->keep_bands ? 2 : 1);
+    if (c->any_selected && c->keep_bands)
+        n += 3 * (size_t)c->n + 2;
     return n;
+}
+
+static void write_compensated(tribo_writer *w, const tribo_compensated *x)
+{
+    tribo_write_double(w, x->sum);
+    tribo_write_double(w, x->c);
+}
+
+static tribo_compensated read_compensated(tribo_reader *r)
+{
+    tribo_compensated x;
+    x.sum = tribo_read_double(r);
+    x.c = tribo_read_double(r);
+    return x;
 }
 
 size_t tribo_state_size(const tribo_model *m)
@@ -148,15 +166,26 @@ tribo_status tribo_state_save(const tribo_model *m, void *buffer, size_t size)
         tribo_write_int(&w, counters[i]);
     tribo_write_int(&w, m->ended);
     put_point(&w, m, &m->committed);
-    for (int i = 0; i < m->charging.n_models; i++) {
-        const tribo_charge_slot *slot = &m->charging.slot[i];
+    const tribo_charging *c = &m->charging;
+    const size_t bytes = (size_t)c->n * sizeof(double);
+    for (int i = 0; i < c->n_models; i++) {
+        const tribo_charge_slot *slot = &c->slot[i];
         if (!slot->segments)
             continue;
-        tribo_write_bytes(&w, slot->segments, (size_t)m->charging.n * sizeof(double));
-        tribo_write_double(&w, slot->sum);
-        tribo_write_double(&w, slot->sum_c);
-        tribo_write_double(&w, slot->lost);
-        tribo_write_double(&w, slot->lost_c);
+        tribo_write_bytes(&w, slot->segments, bytes);
+        write_compensated(&w, &c->sum[i]);
+        write_compensated(&w, &c->lost[i]);
+        if (!slot->bands)
+            continue;
+        tribo_write_bytes(&w, slot->bands, bytes);
+        write_compensated(&w, &c->band_charge[i]);
+        write_compensated(&w, &c->band_lost[i]);
+    }
+    if (c->any_selected && c->keep_bands) {
+        tribo_write_bytes(&w, c->bands.width, bytes);
+        tribo_write_bytes(&w, c->bands.lo, bytes);
+        tribo_write_bytes(&w, c->bands.hi, bytes);
+        write_compensated(&w, &c->area);
     }
     m->integrator->state_save(m->integrator_data, w.p);
     return TRIBO_OK;
@@ -189,15 +218,23 @@ typedef struct loaded {
     int ended;
     tribo_point committed;
     double *segments[TRIBO_CHARGE_MAX_MODELS]; /* owned; NULL for models not selected */
-    double sum[TRIBO_CHARGE_MAX_MODELS], sum_c[TRIBO_CHARGE_MAX_MODELS];
-    double lost[TRIBO_CHARGE_MAX_MODELS], lost_c[TRIBO_CHARGE_MAX_MODELS];
+    double *bands[TRIBO_CHARGE_MAX_MODELS];    /* owned; NULL without bands */
+    tribo_compensated sum[TRIBO_CHARGE_MAX_MODELS], lost[TRIBO_CHARGE_MAX_MODELS];
+    tribo_compensated band_charge[TRIBO_CHARGE_MAX_MODELS], band_lost[TRIBO_CHARGE_MAX_MODELS];
+    tribo_band_geometry geometry;              /* owned; NULLs without bands */
+    tribo_compensated area;
     const unsigned char *integrator;           /* into the bytes */
 } loaded;
 
 static void loaded_free(loaded *l)
 {
-    for (int i = 0; i < TRIBO_CHARGE_MAX_MODELS; i++)
+    for (int i = 0; i < TRIBO_CHARGE_MAX_MODELS; i++) {
         free(l->segments[i]);
+        free(l->bands[i]);
+    }
+    free(l->geometry.width);
+    free(l->geometry.lo);
+    free(l->geometry.hi);
 }
 
 static int all_finite(const double *v, int n)
@@ -260,28 +297,93 @@ static const char *end_problem(const loaded *l)
     return NULL;
 }
 
+static int finite_sums(const tribo_compensated *a, const tribo_compensated *b)
+{
+    return isfinite(a->sum) && isfinite(a->c) && isfinite(b->sum) && isfinite(b->c);
+}
+
+/* The bound the breakdown limit sets on a model's values (docs/model.md §8b; INF: none). */
+static double cap_of(const tribo_charge_slot *slot, const tribo_scene *scene)
+{
+    return slot->model->density_unit ? scene->Sigma_bd / slot->model->density_unit(scene) : INFINITY;
+}
+
 /* The committed charges of one model: finite, ones the model can produce, and their running
    sum that of the values up to its rounding. */
 static const char *charges_problem(const tribo_model *m, const tribo_charge_slot *slot,
-                                   const double *values, double sum, double sum_c,
-                                   double lost, double lost_c, const double *globals)
+                                   const tribo_scene *scene, const double *values,
+                                   const tribo_compensated *sum, const tribo_compensated *lost,
+                                   const double *globals)
 {
     const int n = m->charging.n;
-    if (!all_finite(values, n) || !isfinite(sum) || !isfinite(sum_c) || !isfinite(lost) ||
-        !isfinite(lost_c))
+    if (!all_finite(values, n) || !finite_sums(sum, lost))
         return "values that are not numbers";
-    if (slot->model->valid && !slot->model->valid(&m->scene, globals + slot->globals_at, values, n))
+    if (slot->model->valid && !slot->model->valid(scene, globals + slot->globals_at, values, n))
         return "values the model cannot produce";
     /* the breakdown limit holds every value (docs/model.md §8b) */
-    const double cap = slot->model->cap ? slot->model->cap(&m->scene) : INFINITY;
+    const double cap = cap_of(slot, scene);
     for (int i = 0; i < n; i++)
         if (fabs(values[i]) > cap)
             return "values above the breakdown limit";
     double magnitude = 0.0;
     for (int i = 0; i < n; i++)
         magnitude += fabs(values[i]);
-    if (!(fabs(sum + sum_c - tribo_sum(values, n)) <= 1e-6 * magnitude + 1e-300))
+    if (!(fabs(tribo_compensated_value(sum) - tribo_sum(values, n)) <= 1e-6 * magnitude + 1e-300))
         return "a sum that is not the sum of its values";
+    return NULL;
+}
+
+/* The area (a^2) of a band, from its geometry (empty: lo = 1, hi = 0). */
+static double band_area(const tribo_band_geometry *g, int i, double segment_length)
+{
+    return g->hi[i] > g->lo[i] ? g->width[i] * (g->hi[i] - g->lo[i]) * segment_length : 0.0;
+}
+
+/* The bands' geometry (docs/model.md §8c): each empty, or a width >= 0 over a hull within
+   its segment; the charged area their sum, up to its rounding. */
+static const char *geometry_problem(const tribo_model *m, const tribo_band_geometry *g,
+                                    const tribo_compensated *area)
+{
+    const int n = m->charging.n;
+    const double seg = m->charging.segment_length;
+    if (!all_finite(g->width, n) || !all_finite(g->lo, n) || !all_finite(g->hi, n) ||
+        !isfinite(area->sum) || !isfinite(area->c))
+        return "values that are not numbers";
+    double total = 0.0;
+    for (int i = 0; i < n; i++) {
+        const int empty = g->lo[i] == 1.0 && g->hi[i] == 0.0 && g->width[i] == 0.0;
+        if (!empty && !(g->lo[i] >= 0.0 && g->lo[i] <= g->hi[i] && g->hi[i] <= 1.0 &&
+                        g->width[i] >= 0.0))
+            return "a band that is not one";
+        total += band_area(g, i, seg);
+    }
+    if (!(fabs(tribo_compensated_value(area) - total) <= 1e-6 * total + 1e-300))
+        return "a charged area that is not the sum of its bands";
+    return NULL;
+}
+
+/* A model's band densities: finite, within the breakdown limit where it holds the initial
+   density too, their charge the sum of density times area up to its rounding. */
+static const char *bands_problem(const tribo_model *m, const tribo_charge_slot *slot,
+                                 const tribo_scene *scene, const double *bands,
+                                 const tribo_band_geometry *g, const tribo_compensated *charge,
+                                 const tribo_compensated *lost)
+{
+    const int n = m->charging.n;
+    if (!all_finite(bands, n) || !finite_sums(charge, lost))
+        return "bands that are not numbers";
+    const double cap = cap_of(slot, scene);
+    const double init = tribo_charging_initial_value(slot->model, scene);
+    double total = 0.0, magnitude = 0.0;
+    for (int i = 0; i < n; i++) {
+        if (fabs(bands[i]) > fmax(cap, fabs(init)))
+            return "bands above the breakdown limit";
+        const double a = band_area(g, i, m->charging.segment_length);
+        total += bands[i] * a;
+        magnitude += fabs(bands[i]) * a;
+    }
+    if (!(fabs(tribo_compensated_value(charge) - total) <= 1e-6 * magnitude + 1e-300))
+        return "a band charge that is not the sum of its bands";
     return NULL;
 }
 
@@ -347,24 +449,50 @@ static tribo_status read_state(tribo_model *m, const void *buffer, size_t size, 
         problem = end_problem(l);
     if (problem)
         return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt (%s of the committed point)", problem);
-    for (int i = 0; i < m->charging.n_models; i++) {
-        const tribo_charge_slot *slot = &m->charging.slot[i];
+    const tribo_charging *c = &m->charging;
+    const size_t bytes = (size_t)c->n * sizeof(double);
+    for (int i = 0; i < c->n_models; i++) {
+        const tribo_charge_slot *slot = &c->slot[i];
         if (!slot->segments)
             continue;
-        const size_t bytes = (size_t)m->charging.n * sizeof(double);
-        if (!(l->segments[i] = malloc(bytes)))
+        if (!(l->segments[i] = malloc(bytes)) || (slot->bands && !(l->bands[i] = malloc(bytes))))
             return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
         tribo_read_bytes(&r, l->segments[i], bytes);
-        l->sum[i] = tribo_read_double(&r);
-        l->sum_c[i] = tribo_read_double(&r);
-        l->lost[i] = tribo_read_double(&r);
-        l->lost_c[i] = tribo_read_double(&r);
-        problem = check ? charges_problem(m, slot, l->segments[i], l->sum[i], l->sum_c[i],
-                                          l->lost[i], l->lost_c[i], l->committed.charge_globals)
+        l->sum[i] = read_compensated(&r);
+        l->lost[i] = read_compensated(&r);
+        problem = check ? charges_problem(m, slot, &l->scene, l->segments[i], &l->sum[i],
+                                          &l->lost[i], l->committed.charge_globals)
                         : NULL;
         if (problem)
             return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: the %s charges hold %s",
                               slot->model->name, problem);
+        if (!slot->bands)
+            continue;
+        tribo_read_bytes(&r, l->bands[i], bytes);
+        l->band_charge[i] = read_compensated(&r);
+        l->band_lost[i] = read_compensated(&r);
+    }
+    if (c->any_selected && c->keep_bands) {
+        tribo_band_geometry *g = &l->geometry;
+        if (!(g->width = malloc(bytes)) || !(g->lo = malloc(bytes)) || !(g->hi = malloc(bytes)))
+            return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
+        tribo_read_bytes(&r, g->width, bytes);
+        tribo_read_bytes(&r, g->lo, bytes);
+        tribo_read_bytes(&r, g->hi, bytes);
+        l->area = read_compensated(&r);
+        problem = check && !r.overrun ? geometry_problem(m, g, &l->area) : NULL;
+        if (problem)
+            return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: the grain's bands hold %s",
+                              problem);
+        for (int i = 0; i < c->n_models && check && !r.overrun; i++) {
+            if (!l->bands[i])
+                continue;
+            problem = bands_problem(m, &c->slot[i], &l->scene, l->bands[i], g, &l->band_charge[i],
+                                    &l->band_lost[i]);
+            if (problem)
+                return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: the %s charges hold %s",
+                                  c->slot[i].model->name, problem);
+        }
     }
     l->integrator = r.p;
     return r.overrun ? tribo_fail(m, TRIBO_ERR_STATE, "state is truncated") : TRIBO_OK;
@@ -380,15 +508,26 @@ static tribo_status apply_state(tribo_model *m, const loaded *l)
     m->stats = l->stats;
     m->ended = l->ended;
     m->committed = l->committed;
-    for (int i = 0; i < m->charging.n_models; i++) {
-        tribo_charge_slot *slot = &m->charging.slot[i];
+    tribo_charging *c = &m->charging;
+    const size_t bytes = (size_t)c->n * sizeof(double);
+    for (int i = 0; i < c->n_models; i++) {
+        tribo_charge_slot *slot = &c->slot[i];
         if (!slot->segments)
             continue;
-        memcpy(slot->segments, l->segments[i], (size_t)m->charging.n * sizeof(double));
-        slot->sum = l->sum[i];
-        slot->sum_c = l->sum_c[i];
-        slot->lost = l->lost[i];
-        slot->lost_c = l->lost_c[i];
+        memcpy(slot->segments, l->segments[i], bytes);
+        c->sum[i] = l->sum[i];
+        c->lost[i] = l->lost[i];
+        if (!slot->bands)
+            continue;
+        memcpy(slot->bands, l->bands[i], bytes);
+        c->band_charge[i] = l->band_charge[i];
+        c->band_lost[i] = l->band_lost[i];
+    }
+    if (c->any_selected && c->keep_bands) {
+        memcpy(c->bands.width, l->geometry.width, bytes);
+        memcpy(c->bands.lo, l->geometry.lo, bytes);
+        memcpy(c->bands.hi, l->geometry.hi, bytes);
+        c->area = l->area;
     }
     m->out = m->committed;
     m->n_pending = 0;

@@ -79,6 +79,12 @@ typedef enum tribo_stick_model {
                                   vs = 0: the rigid-body limit of the spring */
 } tribo_stick_model;
 
+/* The grain whose charge the outputs report (parameter grain_geometry, docs/model.md §8c). */
+typedef enum tribo_grain_geometry {
+    TRIBO_GRAIN_CYLINDER = 0, /* the model's cylinder (the paper's grain)                 */
+    TRIBO_GRAIN_SPHEROID = 1  /* the prolate spheroid a, b, b, charged in bands           */
+} tribo_grain_geometry;
+
 #define TRIBO_CTYPE_REAL double
 #define TRIBO_CTYPE_INTEGER int
 #define TRIBO_CTYPE_COUNT int

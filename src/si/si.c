@@ -38,6 +38,7 @@ enum unread_slot {
 #define RANGE_SLOT_DENSITY(si_name, model) UNREAD_SLOT_##model
 #define RANGE_SLOT_FORCE(si_name, model) UNREAD_SLOT_##model
 #define RANGE_SLOT_LIMIT(si_name, model) UNREAD_SLOT_##model
+#define RANGE_SLOT_POLARISED(si_name, model) UNREAD_SLOT_##model
 enum range_slot {
 #define TRIBO_MAPS(name, model, how) RANGE_SLOT_OF_##model = RANGE_SLOT_##how(name, model),
 #define TRIBO_DERIVES(model, description) RANGE_SLOT_OF_##model = UNREAD_SLOT_##model,
@@ -102,7 +103,8 @@ typedef enum conversion {
     RATE,    /* * t_star                                       */
     DENSITY, /* |sigma| / sqrt(kappa k' a): the sign is the polarity */
     FORCE,   /* / (k' a): a force per unit length              */
-    LIMIT    /* a DENSITY where 0 means none: INF              */
+    LIMIT,   /* a DENSITY where 0 means none: INF              */
+    POLARISED /* sigma / sqrt(kappa k' a) times sign(sigma0)    */
 } conversion;
 
 static double convert(const tribo_si_derived *d, conversion how, double v)
@@ -116,6 +118,7 @@ static double convert(const tribo_si_derived *d, conversion how, double v)
     case DENSITY: return fabs(v) / d->sigma_scale;
     case FORCE: return v / d->force;
     case LIMIT: return v > 0.0 ? v / d->sigma_scale : INFINITY; /* model.md §8b */
+    case POLARISED: return d->sigma0 < 0.0 ? -v / d->sigma_scale : v / d->sigma_scale; /* §8c */
     }
     return v;
 }
@@ -166,7 +169,7 @@ static void describe_inputs(char *buf, size_t n, const tribo_si_scene *si, const
     if (own)
         append_value(buf, n, si, own, "");
     const int time_scale = how == TIME || how == SPEED || how == RATE || how == FORCE;
-    if (how == LIMIT)
+    if (how == LIMIT || how == POLARISED)
         how = DENSITY;
     if (how == LENGTH || time_scale || how == DENSITY)
         append_value(buf, n, si, "semi_major_axis", own ? ", " : "");
@@ -234,6 +237,30 @@ static tribo_status charge_to_mass_model_included(const tribo_si_scene *si, trib
     return TRIBO_ERR_INVALID_ARGUMENT;
 }
 
+/* A grain that arrives charged (model.md §8c): the spheroid's surface, of a pair that
+   charges (its polarity gives the density's sign in the model; above what air holds, the
+   model keeps what it holds). */
+static tribo_status check_initial_charge(const tribo_si_scene *si, char *msg, size_t msg_size)
+{
+    const double q = si->initial_charge_density;
+    if (q == 0.0)
+        return TRIBO_OK;
+    const char *why = NULL;
+    if (si->grain_geometry != TRIBO_GRAIN_SPHEROID)
+        why = "the initial surface charge is the spheroid's: set grain_geometry = 1 (spheroid)";
+    else if (si->sigma0 == 0.0)
+        why = "a neutral pair (sigma0 = 0) charges nothing and the model cannot carry a charge "
+              "without a pair's polarity: give the pair's sigma0";
+    if (!why)
+        return TRIBO_OK;
+    if (msg && msg_size)
+        snprintf(msg, msg_size,
+                 "initial_charge_density = %.6g C/m2 is invalid with grain_geometry = %d, sigma0 = "
+                 "%.6g C/m2: %s",
+                 q, si->grain_geometry, si->sigma0, why);
+    return TRIBO_ERR_INVALID_ARGUMENT;
+}
+
 tribo_status tribo_si_derive(const tribo_si_scene *si, tribo_si_derived *d, char *msg,
                              size_t msg_size)
 {
@@ -253,6 +280,8 @@ tribo_status tribo_si_derive(const tribo_si_scene *si, tribo_si_derived *d, char
                      si->x0, si->chute_length);
         return TRIBO_ERR_INVALID_ARGUMENT;
     }
+    if ((st = check_initial_charge(si, msg, msg_size)) != TRIBO_OK)
+        return st;
     const double a = si->semi_major_axis;
     memset(d, 0, sizeof *d);
     d->a = a;

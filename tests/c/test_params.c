@@ -91,7 +91,7 @@ Test(params, the_ranges_of_model_section_1)
     } cases[] = {
         {"epsilon", 1.0, 0.0},   {"epsilon", 1e-3, 1.0 + 1e-12}, {"mu", 0.0, -1e-12},
         {"nu", 0.0, -1e-12},     {"Gamma", 1e-9, 0.0},           {"beta", 0.0, M_PI / 2},
-        {"beta", nextafter(M_PI / 2, 0.0), -1e-9}, {"tau0", 1e-9, 0.0},            {"Sigma0", 1e-9, 0.0},
+        {"beta", nextafter(M_PI / 2, 0.0), -1e-9}, {"tau0", 0.0, -1e-12},            {"Sigma0", 1e-9, 0.0},
         {"eta", 0.0, -1e-12},    {"tau_r", 1e-9, 0.0},           {"n_segments", 16, 15},
         {"v_reg", 1e-12, 0.0},   {"charge_model_static", 1, 2},  {"integrator", 2, 3},
         {"dt", 1e-3, 0.0},       {"gap0", 0.0, -1e-9},           {"drop_speed", 0.0, -1e-9},

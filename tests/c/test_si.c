@@ -40,8 +40,10 @@ Test(si, the_reference_case_maps_as_model_md_section_8_says)
     cr_expect(close_to(d.mass_per_length, 4.4767695313654553e-4, 1e-13), "m' %.17g", d.mass_per_length);
     cr_expect(close_to(d.t_star, 6.723081994145245e-07, 1e-13), "t* %.17g", d.t_star);
     cr_expect(close_to(d.scene.Gamma, 8.8682069403e-09, 1e-10), "Gamma %.17g", d.scene.Gamma);
-    cr_expect(close_to(d.scene.tau0, 1487.4130657202218, 1e-13), "tau0 %.17g", d.scene.tau0);
-    cr_expect_eq(d.scene.tau_r, d.scene.tau0);
+    /* instantaneous transfer (model.md §5c); the back-flow keeps its 1 ms */
+    cr_expect_eq(d.scene.tau0, 0.0);
+    cr_expect(close_to(d.scene.tau_r, 1487.4130657202218, 1e-13), "tau_r %.17g", d.scene.tau_r);
+    cr_expect_eq(d.scene.grain_geometry, TRIBO_GRAIN_SPHEROID);
     cr_expect_eq(d.scene.gap0, 0.01 / 5e-4);
     cr_expect_eq(d.scene.beta, s.tilt);
     cr_expect_eq(d.scene.chute_length, INFINITY);

@@ -30,6 +30,8 @@ typedef struct tribo_contact_kinematics {
     double delta_y; /* indentation                                         */
     double vs;      /* slip velocity of the contact point, U + h Omega     */
     double rho_c;   /* radius of curvature of the boundary at the contact  */
+    double h;       /* depth of the contact point below the centre: the patch's half-width
+                       across the plane of motion is h Sc (model.md §8c)  */
 } tribo_contact_kinematics;
 
 /* ---- exponentials for exact updates over an interval --------------------------------- */
@@ -106,11 +108,18 @@ typedef struct tribo_charge_model {
        model can produce, for a state being loaded; NULL: any finite values are. */
     int (*valid)(const tribo_scene *s, const double *globals, const double *segments, int n);
 
-    /* The bound on |value| of the model's own per-segment values that the air-breakdown
-       density Sigma_bd sets (docs/model.md §8b), a function of the scene's Sigma_bd and
-       Sigma0 alone (it is taken again only when either changes); NULL: its values are no
-       densities, the limit does not apply. INF: no limit. */
-    double (*cap)(const tribo_scene *s);
+    /* The value a segment in contact holds at once with instantaneous transfer (tau0 = 0,
+       docs/model.md §5c): the model's saturation at these globals (static: 1; sliding:
+       Sigma_s). The generic code sets it; `charge` is called only with tau0 > 0. */
+    double (*saturation)(const tribo_scene *s, const double *globals);
+
+    /* The charge density Sigma (docs/model.md §8: in units of sqrt(kappa k' a), positive in
+       the pair's polarity) that one unit of the model's own values stands for, a function
+       of the scene's Sigma0 alone (static: Sigma0; sliding: 1). From it come the bound the
+       air-breakdown density Sigma_bd sets on its values (§8b: Sigma_bd / unit, taken again
+       only when Sigma_bd or Sigma0 changes) and the grain's initial density in its units
+       (§8c: Sigma_init / unit). NULL: its values are no densities; neither applies. */
+    double (*density_unit)(const tribo_scene *s);
 
     /* The unit of its reported values in the SI front end. */
     tribo_charge_si_unit si_unit;
@@ -125,6 +134,9 @@ typedef struct tribo_charge_view {
     int n;
     double sum;                /* of its n values, pending updates included (NaN: out of memory) */
     double lost;               /* the sum of what the breakdown limit took, pending included */
+    double band_charge;        /* the grain's bands (§8c): their charge, sum of value times
+                                  area (a^2), and what the limit took, the same way */
+    double band_lost;
     const double *globals;     /* its global states */
     const double *quadratures; /* its quadratures   */
 } tribo_charge_view;

@@ -136,10 +136,18 @@ static int valid(const tribo_scene *s, const double *globals, const double *sigm
     return globals[SIGMA_S] > 0.0 && globals[SIGMA0_REF] > 0.0;
 }
 
-/* Sigma_i is the density itself: |Sigma_i| <= Sigma_bd (§8b). */
-static double cap(const tribo_scene *s)
+/* §5c: a segment in contact is at Sigma_i = Sigma_s at once */
+static double saturation(const tribo_scene *s, const double *g)
 {
-    return s->Sigma_bd;
+    (void)s;
+    return g[SIGMA_S];
+}
+
+/* Sigma_i is the density itself: |Sigma_i| <= Sigma_bd (§8b). */
+static double density_unit(const tribo_scene *s)
+{
+    (void)s;
+    return 1.0;
 }
 
 const tribo_charge_model tribo_charge_sliding = {
@@ -154,7 +162,8 @@ const tribo_charge_model tribo_charge_sliding = {
     .charge = charge,
     .segment_values = segment_values,
     .valid = valid,
-    .cap = cap,
+    .saturation = saturation,
+    .density_unit = density_unit,
     /* Sigma_i / Sigma0,ref with Sigma0,ref = |sigma0| / sqrt(kappa k' a) (sigma0 is fixed in
        the SI front end): sigma_i = sigma0 times the value (§8) */
     .si_unit = TRIBO_CHARGE_PER_SIGMA0,

@@ -37,11 +37,18 @@ static int valid(const tribo_scene *s, const double *globals, const double *q, i
     return 1;
 }
 
-/* The density of a segment is Sigma0 q_i (model.md §8: sigma_i = sigma0 q_i), so the
-   breakdown limit |Sigma_i| <= Sigma_bd is q_i <= Sigma_bd / Sigma0 (§8b). */
-static double cap(const tribo_scene *s)
+/* §5c: a segment in contact is at q_i = 1 at once */
+static double saturation(const tribo_scene *s, const double *globals)
 {
-    return s->Sigma_bd / s->Sigma0;
+    (void)s, (void)globals;
+    return 1.0;
+}
+
+/* The density of a segment is Sigma0 q_i (model.md §8: sigma_i = sigma0 q_i): the breakdown
+   limit |Sigma_i| <= Sigma_bd is q_i <= Sigma_bd / Sigma0 (§8b). */
+static double density_unit(const tribo_scene *s)
+{
+    return s->Sigma0;
 }
 
 const tribo_charge_model tribo_charge_static = {
@@ -49,7 +56,8 @@ const tribo_charge_model tribo_charge_static = {
     .charge = charge,
     .segment_values = segment_values,
     .valid = valid,
-    .cap = cap,
+    .saturation = saturation,
+    .density_unit = density_unit,
     .si_unit = TRIBO_CHARGE_PER_SIGMA0,
 };
 

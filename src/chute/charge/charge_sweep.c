@@ -10,6 +10,7 @@
    the edges move continuously across the start of the numbering. */
 typedef struct probe_point {
     double t, lo, hi, speed;
+    double depth; /* h: the patch's half-width is h Sc (model.md §8c) */
     double rates[TRIBO_CHARGE_MAX_QUADRATURES];
     double quadratures[TRIBO_CHARGE_MAX_QUADRATURES]; /* known at the ends of accepted pieces */
 } probe_point;
@@ -20,6 +21,8 @@ typedef struct sweep {
     const tribo_contact_probe *probe;
     double perimeter, seg; /* perimeter, segment length */
     double rtol;
+    int instant;   /* instantaneous transfer (tau0 = 0, model.md §5c) */
+    int reach;     /* the most segments an edge may cross within one piece */
     tribo_sample_sink sink;
     void *sink_ctx;
     int status;
@@ -34,7 +37,7 @@ static probe_point probe_at(sweep *w, double t, const probe_point *near)
     w->cost += 1.0;
     if (near)
         s_c -= w->perimeter * floor((s_c - 0.5 * (near->lo + near->hi)) / w->perimeter + 0.5);
-    probe_point pt = {t, s_c - half, s_c + half, speed, {0}, {0}};
+    probe_point pt = {t, s_c - half, s_c + half, speed, k.h, {0}, {0}};
     tribo_charging_quadrature_rates(w->c, &k, pt.rates);
     return pt;
 }
@@ -169,8 +172,12 @@ static double crossing(sweep *w, const probe_point *pts, const edge_fit *f, doub
 }
 
 /* How many segment boundaries an edge may cross within one piece: each crossing is
-   located on its own, so a piece may span several; fewer pieces, fewer probes. */
+   located on its own, so a piece may span several; fewer pieces, fewer probes. With
+   instantaneous transfer (model.md §5c) a piece whose globals hold still is charged whole,
+   without locating its crossings, and may span more. */
 #define SEGMENTS_PER_PIECE 8
+#define SEGMENTS_PER_INSTANT_PIECE 64
+#define MAX_CUTS (2 * SEGMENTS_PER_INSTANT_PIECE + 2)
 
 /* A boundary crossing inside a piece: when, and which edge's segment index moves how. */
 typedef struct cut {
@@ -198,15 +205,117 @@ static int inside(double e0, double em, double e1)
     return em >= fmin(e0, e1) - slack && em <= fmax(e0, e1) + slack;
 }
 
-/* A piece in which each edge moves monotonically by at most SEGMENTS_PER_PIECE segments
-   and the globals are quadratic to the tolerances: locate the boundary crossings, and
-   charge the parts between them, each with its fixed set of segments (§5a, §5b). pts: the
-   piece's points (PIECE_POINTS); S0, S1, S2: the globals at its start, middle and end. */
+/* The patch (model.md §8c) within a piece, for the grain's bands: the edges and the depth
+   at any time, interpolated through the piece's points (barycentric, equispaced nodes) and
+   held within their range over the points. */
+typedef struct patch_fit {
+    const probe_point *pts;
+    double lo_range[2], hi_range[2], depth_range[2];
+} patch_fit;
+
+static void fit_patch(patch_fit *f, const probe_point *pts)
+{
+    f->pts = pts;
+    f->lo_range[0] = f->hi_range[0] = f->depth_range[0] = INFINITY;
+    f->lo_range[1] = f->hi_range[1] = f->depth_range[1] = -INFINITY;
+    for (int i = 0; i < PIECE_POINTS; i++) {
+        f->lo_range[0] = fmin(f->lo_range[0], pts[i].lo);
+        f->lo_range[1] = fmax(f->lo_range[1], pts[i].lo);
+        f->hi_range[0] = fmin(f->hi_range[0], pts[i].hi);
+        f->hi_range[1] = fmax(f->hi_range[1], pts[i].hi);
+        f->depth_range[0] = fmin(f->depth_range[0], pts[i].depth);
+        f->depth_range[1] = fmax(f->depth_range[1], pts[i].depth);
+    }
+}
+
+/* The edges and depth at time t: out[0] lo, out[1] hi, out[2] depth. */
+static void patch_at(const patch_fit *f, double t, double *out)
+{
+    /* barycentric weights of five equispaced nodes: (-1)^i C(4, i) */
+    static const double W[PIECE_POINTS] = {1.0, -4.0, 6.0, -4.0, 1.0};
+    const probe_point *p = f->pts;
+    double num[3] = {0.0, 0.0, 0.0}, den = 0.0;
+    for (int i = 0; i < PIECE_POINTS; i++) {
+        if (t == p[i].t) {
+            out[0] = p[i].lo;
+            out[1] = p[i].hi;
+            out[2] = p[i].depth;
+            return;
+        }
+        const double c = W[i] / (t - p[i].t);
+        num[0] += c * p[i].lo;
+        num[1] += c * p[i].hi;
+        num[2] += c * p[i].depth;
+        den += c;
+    }
+    out[0] = fmin(fmax(num[0] / den, f->lo_range[0]), f->lo_range[1]);
+    out[1] = fmin(fmax(num[1] / den, f->hi_range[0]), f->hi_range[1]);
+    out[2] = fmin(fmax(num[2] / den, f->depth_range[0]), f->depth_range[1]);
+}
+
+/* A patch point from edges and depth, in segments from the segment `origin`. */
+static tribo_patch_point patch_point(const sweep *w, const double *e, double origin)
+{
+    const double lo = e[0] / w->seg, hi = e[1] / w->seg;
+    return (tribo_patch_point){0.5 * (lo + hi) - origin, 0.5 * (hi - lo), e[2]};
+}
+
+/* Whether the globals hold still over a piece (each the same at its start, middle and end). */
+static int still(int n, const double *S0, const double *S1, const double *S2)
+{
+    for (int g = 0; g < n; g++)
+        if (!(S0[g] == S1[g] && S1[g] == S2[g]))
+            return 0;
+    return 1;
+}
+
+/* Instantaneous transfer over a piece whose globals hold still (model.md §5c): every
+   segment the contact covers within it is at its saturation at once, whenever it was
+   covered, so the piece is one sample over the union of the contact's positions (the edges'
+   extremes over its points; a piece's edges move monotonically), with the patch at its five
+   points. */
+static void charge_whole_piece(sweep *w, const probe_point *pts, const double *S)
+{
+    const probe_point *a = &pts[0], *b = &pts[PIECE_POINTS - 1];
+    double lo = INFINITY, hi = -INFINITY;
+    for (int i = 0; i < PIECE_POINTS; i++) {
+        lo = fmin(lo, pts[i].lo);
+        hi = fmax(hi, pts[i].hi);
+    }
+    tribo_contact_sample s;
+    s.duration = b->t - a->t;
+    const double first = floor(lo / w->seg);
+    tribo_charging_run(w->c, first, floor(hi / w->seg), &s);
+    s.n_patch = 0;
+    if (w->c->keep_bands) {
+        s.n_patch = PIECE_POINTS;
+        for (int i = 0; i < PIECE_POINTS; i++) {
+            const double e[3] = {pts[i].lo, pts[i].hi, pts[i].depth};
+            s.patch[i] = patch_point(w, e, first);
+        }
+    }
+    const int n_globals = w->c->n_globals;
+    memcpy(s.globals_begin, S, (size_t)n_globals * sizeof *S);
+    memcpy(s.globals_mid, S, (size_t)n_globals * sizeof *S);
+    memcpy(s.globals_end, S, (size_t)n_globals * sizeof *S);
+    w->status = w->sink(w->sink_ctx, &s);
+    w->cost += TRIBO_SWEEP_CELL_COST * fmin((double)s.count, w->c->n);
+}
+
+/* A piece in which each edge moves monotonically by at most w->reach segments and the
+   globals are quadratic to the tolerances: locate the boundary crossings, and charge the
+   parts between them, each with its fixed set of segments (§5a, §5b). pts: the piece's
+   points (PIECE_POINTS); S0, S1, S2: the globals at its start, middle and end. */
 static void charge_piece(sweep *w, const probe_point *pts, const double *S0, const double *S1,
                          const double *S2)
 {
+    const int n_globals = w->c->n_globals;
+    if (w->instant && still(n_globals, S0, S1, S2)) {
+        charge_whole_piece(w, pts, S0);
+        return;
+    }
     const probe_point *a = &pts[0], *b = &pts[PIECE_POINTS - 1];
-    cut cuts[2 * SEGMENTS_PER_PIECE + 2];
+    cut cuts[MAX_CUTS];
     int n = 0;
     double cell[2] = {floor(a->lo / w->seg), floor(a->hi / w->seg)};
     for (int edge = 0; edge < 2; edge++) {
@@ -216,7 +325,7 @@ static void charge_piece(sweep *w, const probe_point *pts, const double *S0, con
         edge_fit fit;
         fit_edge(&fit, pts, edge);
         const int from = n;
-        for (double k = floor(lo / w->seg) + 1; k * w->seg < hi && n < 2 * SEGMENTS_PER_PIECE + 2; k++) {
+        for (double k = floor(lo / w->seg) + 1; k * w->seg < hi && n < MAX_CUTS; k++) {
             const cut c = {crossing(w, pts, &fit, k * w->seg), edge, step};
             cuts[n++] = c;
         }
@@ -231,12 +340,11 @@ static void charge_piece(sweep *w, const probe_point *pts, const double *S0, con
     /* each global within the piece: the quadratic through its start, middle and end (one
        that holds still, as Sigma_s without work, exactly still: its coefficients would be
        rounding) */
-    const int n_globals = w->c->n_globals;
     double c1[TRIBO_CHARGE_MAX_GLOBALS], c2[TRIBO_CHARGE_MAX_GLOBALS];
     for (int g = 0; g < n_globals; g++) {
-        const int still = S0[g] == S1[g] && S1[g] == S2[g];
-        c1[g] = still ? 0.0 : -3.0 * S0[g] + 4.0 * S1[g] - S2[g];
-        c2[g] = still ? 0.0 : 2.0 * (S0[g] - 2.0 * S1[g] + S2[g]);
+        const int flat = S0[g] == S1[g] && S1[g] == S2[g];
+        c1[g] = flat ? 0.0 : -3.0 * S0[g] + 4.0 * S1[g] - S2[g];
+        c2[g] = flat ? 0.0 : 2.0 * (S0[g] - 2.0 * S1[g] + S2[g]);
     }
     /* The segments from the lower edge's to the upper edge's, as the cuts so far have
        moved them: the run is located once (a division and a floor), then each cut steps it
@@ -247,6 +355,13 @@ static void charge_piece(sweep *w, const probe_point *pts, const double *S0, con
     tribo_charging_run(w->c, cell[0], cell[1], &s);
     const int stepped = s.count < ring && fabs(cell[0]) < 0x1p52;
     long first = s.first, span = s.count;
+    /* the patch at each sample's ends, for the grain's bands */
+    const int bands = w->c->keep_bands;
+    patch_fit patch = {0};
+    double at_start[3] = {a->lo, a->hi, a->depth}, at_end[3];
+    if (bands)
+        fit_patch(&patch, pts);
+    s.n_patch = bands ? 2 : 0;
 
     const double T = b->t - a->t;
     double t0 = a->t;
@@ -269,6 +384,12 @@ static void charge_piece(sweep *w, const probe_point *pts, const double *S0, con
                 s.globals_begin[g] = S0[g] + u0 * (c1[g] + u0 * c2[g]);
                 s.globals_mid[g] = S0[g] + um * (c1[g] + um * c2[g]);
                 s.globals_end[g] = S0[g] + u1 * (c1[g] + u1 * c2[g]);
+            }
+            if (bands) {
+                patch_at(&patch, t1, at_end);
+                s.patch[0] = patch_point(w, at_start, cell[0]);
+                s.patch[1] = patch_point(w, at_end, cell[0]);
+                memcpy(at_start, at_end, sizeof at_end);
             }
             w->status = w->sink(w->sink_ctx, &s);
             w->cost += TRIBO_SWEEP_CELL_COST * fmin(cell[1] - cell[0] + 1.0, w->c->n);
@@ -343,7 +464,13 @@ int tribo_charging_sweep(tribo_charging *c, const tribo_scene *s, const tribo_co
         *reached = b;
     if (!(b > a))
         return 0;
-    sweep w = {c, s, probe, c->arc.perimeter, c->arc.perimeter / c->n, rtol, sink, sink_ctx, 0, 0.0};
+    const int instant = s->tau0 == 0.0;
+    sweep w = {c,        s,
+               probe,    c->arc.perimeter,
+               c->arc.perimeter / c->n, rtol,
+               instant,  instant ? SEGMENTS_PER_INSTANT_PIECE : SEGMENTS_PER_PIECE,
+               sink,     sink_ctx,
+               0,        0.0};
     const size_t q_bytes = (size_t)c->n_quadratures * sizeof(double);
     const size_t g_bytes = (size_t)c->n_globals * sizeof(double);
     const int with_states = has_states(c);
@@ -357,7 +484,7 @@ int tribo_charging_sweep(tribo_charging *c, const tribo_scene *s, const tribo_co
     double trial = b - a;
     while (cur.t < b && !w.status) {
         if (cur.speed > 0.0)
-            trial = fmin(trial, (SEGMENTS_PER_PIECE - 1) * w.seg / cur.speed);
+            trial = fmin(trial, (w.reach - 1) * w.seg / cur.speed);
         /* within min_piece of b, go to b: the piece then is at most trial + min_piece */
         const double t1 = cur.t + trial >= b - min_piece ? b : cur.t + trial;
         const double h = t1 - cur.t;
@@ -366,7 +493,7 @@ int tribo_charging_sweep(tribo_charging *c, const tribo_scene *s, const tribo_co
         pts[2] = probe_at(&w, cur.t + 0.5 * h, &cur);
         pts[4] = probe_at(&w, t1, &pts[2]);
         const probe_point *m = &pts[2], *next = &pts[4];
-        const double reach = SEGMENTS_PER_PIECE * w.seg;
+        const double reach = w.reach * w.seg;
         int ok = fabs(next->lo - cur.lo) <= reach && fabs(next->hi - cur.hi) <= reach &&
                  inside(cur.lo, m->lo, next->lo) && inside(cur.hi, m->hi, next->hi);
         double q_end[TRIBO_CHARGE_MAX_QUADRATURES], g_mid[TRIBO_CHARGE_MAX_GLOBALS],

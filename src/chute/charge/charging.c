@@ -1,12 +1,30 @@
-/* charging.c: an instance's charge models over the boundary segments (docs/model.md §5). */
+/* charging.c: an instance's charge models over the boundary segments (docs/model.md §5), and
+   the grain's bands under the contact patch (§8c). */
 #include "charging.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+static void free_geometry(tribo_band_geometry *g)
+{
+    free(g->width);
+    free(g->lo);
+    free(g->hi);
+    g->width = g->lo = g->hi = NULL;
+}
+
+static int alloc_geometry(tribo_band_geometry *g, int n)
+{
+    const size_t bytes = (size_t)n * sizeof(double);
+    g->width = malloc(bytes);
+    g->lo = malloc(bytes);
+    g->hi = malloc(bytes);
+    return g->width && g->lo && g->hi ? 0 : -1;
+}
+
 int tribo_charging_init(tribo_charging *c, const tribo_charge_model *const *models, int n_models,
-                        unsigned selection, double eps, int n)
+                        unsigned selection, double eps, int n, int keep_bands)
 {
     memset(c, 0, sizeof *c);
     if (n_models > TRIBO_CHARGE_MAX_MODELS)
@@ -28,19 +46,25 @@ int tribo_charging_init(tribo_charging *c, const tribo_charge_model *const *mode
     /* Without a selected model no segment table is built, and no segment is touched. */
     if (!c->any_selected)
         return 0;
+    c->keep_bands = keep_bands;
     if (tribo_arclength_init(&c->arc, eps) != 0)
         goto fail;
     c->segments_per_length = (double)n / c->arc.perimeter;
+    c->segment_length = c->arc.perimeter / (double)n;
+    const size_t bytes = (size_t)n * sizeof(double);
     for (int i = 0; i < n_models; i++) {
         tribo_charge_slot *slot = &c->slot[i];
         if (!slot->selected)
             continue;
-        if (!(slot->segments = malloc((size_t)n * sizeof *slot->segments)))
+        if (!(slot->segments = malloc(bytes)))
+            goto fail;
+        if (keep_bands && !(slot->bands = malloc(bytes)))
             goto fail;
         if (slot->model->cache_size && !(slot->cache = malloc(slot->model->cache_size)))
             goto fail;
     }
-    tribo_charging_reset(c);
+    if (keep_bands && (alloc_geometry(&c->bands, n) != 0 || !(c->scratch = malloc(2 * bytes))))
+        goto fail;
     return 0;
 fail:
     tribo_charging_free(c);
@@ -51,27 +75,63 @@ void tribo_charging_free(tribo_charging *c)
 {
     tribo_arclength_free(&c->arc);
     for (int i = 0; i < c->n_models; i++) {
-        free(c->slot[i].segments);
-        free(c->slot[i].segments_out);
-        free(c->slot[i].cache);
-        free(c->slot[i].window);
-        c->slot[i].segments = c->slot[i].segments_out = c->slot[i].window = NULL;
-        c->slot[i].window_cap = 0;
-        c->slot[i].cache = NULL;
+        tribo_charge_slot *slot = &c->slot[i];
+        free(slot->segments);
+        free(slot->segments_out);
+        free(slot->bands);
+        free(slot->bands_out);
+        free(slot->cache);
+        slot->segments = slot->segments_out = slot->bands = slot->bands_out = NULL;
+        slot->cache = NULL;
+    }
+    free_geometry(&c->bands);
+    free_geometry(&c->bands_out);
+    free(c->window);
+    free(c->scratch);
+    c->window = c->scratch = NULL;
+    c->window_cap = 0;
+}
+
+double tribo_charging_initial_value(const tribo_charge_model *model, const tribo_scene *s)
+{
+    if (!model->density_unit || s->Sigma_init == 0.0)
+        return 0.0;
+    /* a surface arriving above what air holds keeps what it holds (§8b) */
+    const double unit = model->density_unit(s), cap = s->Sigma_bd / unit;
+    return fmin(fmax(s->Sigma_init / unit, -cap), cap);
+}
+
+/* The bands empty: no width, no length, the initial density (§8c). */
+static void empty_bands(tribo_charging *c, const tribo_scene *s)
+{
+    for (int i = 0; i < c->n; i++) {
+        c->bands.width[i] = 0.0;
+        c->bands.lo[i] = 1.0;
+        c->bands.hi[i] = 0.0;
+    }
+    for (int k = 0; k < c->n_models; k++) {
+        tribo_charge_slot *slot = &c->slot[k];
+        if (!slot->bands)
+            continue;
+        const double init = tribo_charging_initial_value(slot->model, s);
+        for (int i = 0; i < c->n; i++)
+            slot->bands[i] = init;
     }
 }
 
-void tribo_charging_reset(tribo_charging *c)
+void tribo_charging_reset(tribo_charging *c, const tribo_scene *s)
 {
     for (int i = 0; i < c->n_models; i++) {
         tribo_charge_slot *slot = &c->slot[i];
         if (slot->segments)
             memset(slot->segments, 0, (size_t)c->n * sizeof *slot->segments);
-        slot->sum = slot->sum_c = 0.0;
-        slot->lost = slot->lost_c = 0.0;
         if (slot->cache)
             memset(slot->cache, 0, slot->model->cache_size);
+        c->sum[i] = c->lost[i] = c->band_charge[i] = c->band_lost[i] = (tribo_compensated){0};
     }
+    c->area = (tribo_compensated){0};
+    if (c->keep_bands && c->bands.width)
+        empty_bands(c, s);
     memset(&c->decay, 0, sizeof c->decay);
 }
 
@@ -98,12 +158,21 @@ void tribo_charging_step(tribo_charging *c, const tribo_scene *s, const tribo_po
                          const double *g0, double *g1, tribo_contact_sample *sample)
 {
     sample->duration = h;
+    sample->n_patch = 0;
     const int in_contact = delta_y > 0.0;
     if (in_contact) {
         const double eps = c->arc.eps;
         const double rho_c = tribo_contact_curvature_radius(eps * eps, pose->h);
-        tribo_charging_locate(c, tribo_arclength_at(&c->arc, tribo_contact_parameter(eps, pose)),
-                              sqrt(rho_c * delta_y) /* Sc, §5 (paper eq. 4) */, sample);
+        const double s_c = tribo_arclength_at(&c->arc, tribo_contact_parameter(eps, pose));
+        const double half = sqrt(rho_c * delta_y); /* Sc, §5 (paper eq. 4) */
+        tribo_charging_locate(c, s_c, half, sample);
+        if (c->keep_bands) {
+            /* the step is charged at its end point's contact: one point of the patch */
+            const double lo = (s_c - half) * c->segments_per_length;
+            sample->n_patch = 1;
+            sample->patch[0] = (tribo_patch_point){
+                s_c * c->segments_per_length - floor(lo), half * c->segments_per_length, pose->h};
+        }
     } else {
         sample->first = sample->count = 0;
     }
@@ -123,11 +192,11 @@ void tribo_charging_step(tribo_charging *c, const tribo_scene *s, const tribo_po
     }
 }
 
-void tribo_compensated_add(double *sum, double *c, double x)
+void tribo_compensated_add(tribo_compensated *x, double v)
 {
-    const double t = *sum + x;
-    *c += fabs(*sum) >= fabs(x) ? (*sum - t) + x : (x - t) + *sum;
-    *sum = t;
+    const double t = x->sum + v;
+    x->c += fabs(x->sum) >= fabs(v) ? (x->sum - t) + v : (v - t) + x->sum;
+    x->sum = t;
 }
 
 void tribo_charging_run(const tribo_charging *c, double lo_segment, double hi_segment,
@@ -169,6 +238,17 @@ static long segment_run(const tribo_contact_sample *sample, long *first)
     return sample->count;
 }
 
+/* ---- one sample on a ring of arrays ------------------------------------------------------ */
+
+/* Everything a sample changes, over a ring of len segments: the instance's arrays, their
+   output copies, or a window of them. */
+typedef struct ring {
+    long len;
+    double *values[TRIBO_CHARGE_MAX_MODELS];
+    double *bands[TRIBO_CHARGE_MAX_MODELS]; /* NULL without bands */
+    tribo_band_geometry geometry;
+} ring;
+
 /* Hold values[0..count) within +-cap (§8b: charging that would raise a segment above the
    limit leaves it there); returns the charge so taken. The rate laws approach their
    saturation monotonically over a sample, so a value above the cap at its end reached it
@@ -191,7 +271,7 @@ static double hold_at_cap(double *values, long count, double cap)
 /* The bound on a slot's values (INF: none). */
 static double cap_of(const tribo_charge_slot *slot, const tribo_scene *s)
 {
-    return slot->model->cap ? slot->model->cap(s) : INFINITY;
+    return slot->model->density_unit ? s->Sigma_bd / slot->model->density_unit(s) : INFINITY;
 }
 
 /* The same, kept in the slot: a sample takes it without a call (or the division a model's
@@ -207,29 +287,244 @@ static double slot_cap(tribo_charge_slot *slot, const tribo_scene *s)
     return slot->cap;
 }
 
-/* Charge values[first .. first + count) of one model under a sample, in at most two
-   contiguous slices of a ring of n values, held within its breakdown limit; returns the
-   change of their sum, and adds the charge the limit took to *lost. */
-static double charge_run(tribo_charging *c, tribo_charge_slot *slot, const tribo_scene *s,
-                         const tribo_contact_sample *sample, double *values, long n, long first,
-                         long count, double *lost)
+/* Instantaneous transfer (§5c) on values[0..count): each at its saturation at once, held
+   within the cap. A value that reaches the cap loses the excess once, where it reaches it
+   (a segment already there is at its transfer's end and loses nothing more); weights (NULL:
+   1 each) weigh each value's change and loss. Returns the weighted change of the values, and
+   adds what the cap took to *lost. */
+static double saturate(double *values, const double *weights, long count, double target, double cap,
+                       double *lost)
 {
-    const tribo_charge_forcing f = {sample->duration, sample->globals_begin + slot->globals_at,
-                                    sample->globals_mid + slot->globals_at,
-                                    sample->globals_end + slot->globals_at, &c->decay};
-    const long head = count < n - first ? count : n - first;
-    double delta = slot->model->charge(slot->cache, s, &f, values + first, head);
-    if (count > head)
-        delta += slot->model->charge(slot->cache, s, &f, values, count - head);
-    const double cap = slot_cap(slot, s);
+    const double held = fmin(fmax(target, -cap), cap);
+    const double excess = target - held;
+    double change = 0.0;
+    for (long i = 0; i < count; i++) {
+        if (values[i] != held) {
+            const double w = weights ? weights[i] : 1.0;
+            change += (held - values[i]) * w;
+            values[i] = held;
+            *lost += excess * w;
+        }
+    }
+    return change;
+}
+
+/* hold_at_cap with each value's excess weighted. */
+static double hold_at_cap_weighted(double *values, const double *weights, long count, double cap)
+{
+    double taken = 0.0;
+    for (long i = 0; i < count; i++) {
+        if (values[i] > cap) {
+            taken += (values[i] - cap) * weights[i];
+            values[i] = cap;
+        } else if (values[i] < -cap) {
+            taken += (values[i] + cap) * weights[i];
+            values[i] = -cap;
+        }
+    }
+    return taken;
+}
+
+/* The distance of a centre (in segments) from segment k's arc [k, k + 1]. */
+static double distance_to(double centre, double k)
+{
+    return centre < k ? k - centre : centre > k + 1.0 ? centre - (k + 1.0) : 0.0;
+}
+
+/* The patch's half-width (in segments) across the plane of motion over segment k, h sqrt(Sc^2
+   - d^2), the largest at the points of the patch and where its centre's path enters the
+   segment (§8c: the largest seen; the path between the points taken linear). */
+static double half_width_over(const tribo_contact_sample *sample, double k)
+{
+    const tribo_patch_point *p = sample->patch;
+    double w2 = 0.0;
+    for (int i = 0; i < sample->n_patch; i++) {
+        const double d = distance_to(p[i].centre, k);
+        const double x = p[i].half * p[i].half - d * d;
+        if (x > 0.0)
+            w2 = fmax(w2, p[i].depth * p[i].depth * x);
+        if (i + 1 == sample->n_patch)
+            break;
+        const double c0 = p[i].centre, c1 = p[i + 1].centre;
+        const double lo = fmin(c0, c1), hi = fmax(c0, c1);
+        if (!(hi > lo) || hi <= k || lo >= k + 1.0)
+            continue;
+        /* the path meets the arc between the points: where it enters it and leaves it, d = 0 */
+        const double ends[2] = {fmax(k, lo), fmin(k + 1.0, hi)};
+        for (int e = 0; e < 2; e++) {
+            const double u = (ends[e] - c0) / (c1 - c0);
+            const double half = p[i].half + u * (p[i + 1].half - p[i].half);
+            const double depth = p[i].depth + u * (p[i + 1].depth - p[i].depth);
+            w2 = fmax(w2, depth * depth * half * half);
+        }
+    }
+    return sqrt(w2);
+}
+
+/* The bands of segments at[0..count) of the ring, offsets k0.. from the sample's first: each
+   widened and lengthened by the patch (§8c), each model's band density diluted where its area
+   grew (the new part at the initial density). The areas (a^2) before and after go to
+   before[] and after[]; the growth of the total to *area. */
+static void widen_bands(tribo_charging *c, const tribo_scene *s, const tribo_contact_sample *sample,
+                        const ring *r, long at, long count, long k0, double *before, double *after,
+                        double *area)
+{
+    const tribo_patch_point *p = sample->patch;
+    const int whole_ring = sample->count >= c->n; /* a patch wider than the boundary */
+    double lo_all = INFINITY, hi_all = -INFINITY, bound = 0.0;
+    for (int i = 0; i < sample->n_patch; i++) {
+        lo_all = fmin(lo_all, p[i].centre - p[i].half);
+        hi_all = fmax(hi_all, p[i].centre + p[i].half);
+        bound = fmax(bound, 2.0 * p[i].depth * p[i].half);
+    }
+    const double seg = c->segment_length;
+    double init[TRIBO_CHARGE_MAX_MODELS];
+    for (int m = 0; m < c->n_models; m++)
+        init[m] = r->bands[m] ? tribo_charging_initial_value(c->slot[m].model, s) : 0.0;
+    for (long j = 0; j < count; j++) {
+        const long i = at + j;
+        const double k = (double)(k0 + j);
+        double *W = &r->geometry.width[i], *lo = &r->geometry.lo[i], *hi = &r->geometry.hi[i];
+        const double old_area = *hi > *lo ? *W * (*hi - *lo) * seg : 0.0;
+        before[j] = old_area;
+        /* a band already as wide as the patch can make it, over its whole segment, stays */
+        if (!(*lo == 0.0 && *hi == 1.0 && *W >= bound * seg)) {
+            const double a = whole_ring ? 0.0 : fmin(fmax(lo_all - k, 0.0), 1.0);
+            const double b = whole_ring ? 1.0 : fmin(fmax(hi_all - k, 0.0), 1.0);
+            if (b > a) { /* (a run's end segment may be touched only to rounding) */
+                *lo = fmin(*lo, a);
+                *hi = fmax(*hi, b);
+                const double w = whole_ring ? bound : 2.0 * half_width_over(sample, k);
+                *W = fmax(*W, w * seg);
+            }
+        }
+        const double new_area = *hi > *lo ? *W * (*hi - *lo) * seg : 0.0;
+        after[j] = new_area;
+        if (new_area > old_area) {
+            *area += new_area - old_area;
+            const double kept = old_area / new_area;
+            for (int m = 0; m < c->n_models; m++)
+                if (r->bands[m])
+                    r->bands[m][i] = init[m] + (r->bands[m][i] - init[m]) * kept;
+        }
+    }
+}
+
+/* The slices of a run on a ring: [first, first + head) and [0, count - head). */
+typedef struct slices {
+    long at[2], count[2], k0[2];
+    int n;
+} slices;
+
+static slices slices_of(const ring *r, long first, long count)
+{
+    const long head = count < r->len - first ? count : r->len - first;
+    slices sl = {{first, 0}, {head, count - head}, {0, head}, count > head ? 2 : 1};
+    return sl;
+}
+
+/* A model's cylinder values under a sample: the rate law (tau0 > 0) or instantaneous
+   transfer (tau0 = 0, §5c), held within the cap (§8b). */
+static void charge_values(tribo_charging *c, tribo_charge_slot *slot, const tribo_scene *s,
+                          const tribo_charge_forcing *f, double *values, const slices *sl,
+                          double cap, double *sum, double *lost)
+{
+    (void)c;
+    if (s->tau0 == 0.0) {
+        const double target = slot->model->saturation(s, f->end);
+        for (int i = 0; i < sl->n; i++)
+            *sum += saturate(values + sl->at[i], NULL, sl->count[i], target, cap, lost);
+        return;
+    }
+    double delta = 0.0;
+    for (int i = 0; i < sl->n; i++)
+        delta += slot->model->charge(slot->cache, s, f, values + sl->at[i], sl->count[i]);
     if (isfinite(cap)) { /* (without a limit, nothing more: the paper's model, bit for bit) */
-        double taken = hold_at_cap(values + first, head, cap);
-        if (count > head)
-            taken += hold_at_cap(values, count - head, cap);
+        double taken = 0.0;
+        for (int i = 0; i < sl->n; i++)
+            taken += hold_at_cap(values + sl->at[i], sl->count[i], cap);
         delta -= taken;
         *lost += taken;
     }
-    return delta;
+    *sum += delta;
+}
+
+/* A model's bands under a sample (§8c), weighted by their areas after[] (before[]: before
+   the patch widened them). */
+static void charge_bands(tribo_charge_slot *slot, const tribo_scene *s, const tribo_charge_forcing *f,
+                         double *bands, const slices *sl, const double *before, const double *after,
+                         double cap, double *charge, double *lost)
+{
+    const double init = tribo_charging_initial_value(slot->model, s);
+    for (int i = 0; i < sl->n; i++) {
+        double *b = bands + sl->at[i];
+        const long count = sl->count[i];
+        const double *w0 = before + sl->k0[i], *w1 = after + sl->k0[i];
+        /* the widening kept each band's charge, the new part at the initial density */
+        for (long j = 0; j < count; j++)
+            *charge += init * (w1[j] - w0[j]);
+        if (s->tau0 == 0.0) {
+            *charge += saturate(b, w1, count, slot->model->saturation(s, f->end), cap, lost);
+            continue;
+        }
+        double old = 0.0;
+        for (long j = 0; j < count; j++)
+            old += b[j] * w1[j];
+        slot->model->charge(slot->cache, s, f, b, count);
+        if (isfinite(cap))
+            *lost += hold_at_cap_weighted(b, w1, count, cap);
+        double now = 0.0;
+        for (long j = 0; j < count; j++)
+            now += b[j] * w1[j];
+        *charge += now - old;
+    }
+}
+
+/* Charge a sample's run of count segments from ring index first; adds what it changed to t.
+   Returns the number of segment values updated. */
+static long charge_run(tribo_charging *c, const tribo_scene *s, const tribo_contact_sample *sample,
+                       const ring *r, long first, long count, tribo_charge_totals *t)
+{
+    const slices sl = slices_of(r, first, count);
+    double *before = NULL, *after = NULL;
+    if (r->geometry.width) {
+        before = c->scratch;
+        after = c->scratch + count;
+        for (int i = 0; i < sl.n; i++)
+            widen_bands(c, s, sample, r, sl.at[i], sl.count[i], sl.k0[i], before + sl.k0[i],
+                        after + sl.k0[i], &t->area);
+    }
+    long updates = 0;
+    for (int m = 0; m < c->n_models; m++) {
+        tribo_charge_slot *slot = &c->slot[m];
+        if (!r->values[m])
+            continue;
+        const tribo_charge_forcing f = {sample->duration, sample->globals_begin + slot->globals_at,
+                                        sample->globals_mid + slot->globals_at,
+                                        sample->globals_end + slot->globals_at, &c->decay};
+        const double cap = slot_cap(slot, s);
+        charge_values(c, slot, s, &f, r->values[m], &sl, cap, &t->sum[m], &t->lost[m]);
+        if (r->bands[m])
+            charge_bands(slot, s, &f, r->bands[m], &sl, before, after, cap, &t->band_charge[m],
+                         &t->band_lost[m]);
+        updates += count;
+    }
+    return updates;
+}
+
+/* The instance's arrays (committed, or their output copies) as a ring. */
+static ring ring_of(tribo_charging *c, tribo_charge_destination where)
+{
+    ring r = {.len = c->n};
+    for (int m = 0; m < c->n_models; m++) {
+        const tribo_charge_slot *slot = &c->slot[m];
+        if (!slot->selected)
+            continue;
+        r.values[m] = where == TRIBO_CHARGE_COMMIT ? slot->segments : slot->segments_out;
+        r.bands[m] = where == TRIBO_CHARGE_COMMIT ? slot->bands : slot->bands_out;
+    }
+    r.geometry = where == TRIBO_CHARGE_COMMIT ? c->bands : c->bands_out;
+    return r;
 }
 
 long tribo_charging_capped(const tribo_charge_slot *slot, const tribo_scene *s, const double *values,
@@ -243,34 +538,83 @@ long tribo_charging_capped(const tribo_charge_slot *slot, const tribo_scene *s, 
     return capped;
 }
 
+double tribo_charging_capped_area(const tribo_charging *c, const tribo_charge_slot *slot,
+                                  const tribo_scene *s, const double *bands,
+                                  const tribo_band_geometry *g)
+{
+    const double cap = cap_of(slot, s);
+    double area = 0.0;
+    if (isfinite(cap))
+        for (long i = 0; i < c->n; i++)
+            if (fabs(bands[i]) >= cap && g->hi[i] > g->lo[i])
+                area += g->width[i] * (g->hi[i] - g->lo[i]) * c->segment_length;
+    return area;
+}
+
+static void commit_totals(tribo_charging *c, const tribo_charge_totals *t)
+{
+    for (int m = 0; m < c->n_models; m++) {
+        if (!c->slot[m].selected)
+            continue;
+        tribo_compensated_add(&c->sum[m], t->sum[m]);
+        if (t->lost[m] != 0.0)
+            tribo_compensated_add(&c->lost[m], t->lost[m]);
+        if (c->keep_bands) {
+            tribo_compensated_add(&c->band_charge[m], t->band_charge[m]);
+            if (t->band_lost[m] != 0.0)
+                tribo_compensated_add(&c->band_lost[m], t->band_lost[m]);
+        }
+    }
+    if (c->keep_bands && t->area != 0.0)
+        tribo_compensated_add(&c->area, t->area);
+}
+
 long tribo_charging_apply(tribo_charging *c, const tribo_scene *s, const tribo_contact_sample *sample,
                           tribo_charge_destination where)
 {
     long first;
     const long count = segment_run(sample, &first);
-    long updates = 0;
-    for (int k = 0; count > 0 && k < c->n_models; k++) {
-        tribo_charge_slot *slot = &c->slot[k];
-        double *values = where == TRIBO_CHARGE_COMMIT ? slot->segments : slot->segments_out;
-        if (!slot->selected || !values)
-            continue;
-        double lost = 0.0;
-        const double delta = charge_run(c, slot, s, sample, values, c->n, first, count, &lost);
-        if (where == TRIBO_CHARGE_COMMIT) {
-            tribo_compensated_add(&slot->sum, &slot->sum_c, delta);
-            if (lost != 0.0)
-                tribo_compensated_add(&slot->lost, &slot->lost_c, lost);
-        }
-        updates += count;
-    }
+    if (count <= 0)
+        return 0;
+    const ring r = ring_of(c, where);
+    tribo_charge_totals t = {0};
+    const long updates = charge_run(c, s, sample, &r, first, count, &t);
+    if (where == TRIBO_CHARGE_COMMIT)
+        commit_totals(c, &t);
     return updates;
 }
 
+static int copy_array(double **out, const double *in, int n)
+{
+    if (!in)
+        return 0;
+    if (!*out && !(*out = malloc((size_t)n * sizeof(double))))
+        return -1;
+    memcpy(*out, in, (size_t)n * sizeof(double));
+    return 0;
+}
+
+int tribo_charging_copy_out(tribo_charging *c)
+{
+    for (int m = 0; m < c->n_models; m++) {
+        tribo_charge_slot *slot = &c->slot[m];
+        if (copy_array(&slot->segments_out, slot->segments, c->n) ||
+            copy_array(&slot->bands_out, slot->bands, c->n))
+            return -1;
+    }
+    if (copy_array(&c->bands_out.width, c->bands.width, c->n) ||
+        copy_array(&c->bands_out.lo, c->bands.lo, c->n) ||
+        copy_array(&c->bands_out.hi, c->bands.hi, c->n))
+        return -1;
+    return 0;
+}
+
 /* The pending samples' runs lie in one window of the ring (the contact moves
-   continuously): the window is copied once and charged in place of the ring. */
-int tribo_charging_pending_sums(tribo_charging *c, const tribo_scene *s,
-                                const tribo_contact_sample *samples, size_t n_samples,
-                                double *deltas, double *lost)
+   continuously): the window of every array is copied once and charged in place of the
+   ring. */
+int tribo_charging_pending_totals(tribo_charging *c, const tribo_scene *s,
+                                  const tribo_contact_sample *samples, size_t n_samples,
+                                  tribo_charge_totals *totals)
 {
     const long n = c->n;
     long anchor = -1, lo = 0, hi = 0; /* the window [anchor + lo, anchor + hi), unwrapped */
@@ -292,40 +636,58 @@ int tribo_charging_pending_sums(tribo_charging *c, const tribo_scene *s,
         lo = offset < lo ? offset : lo;
         hi = offset + count > hi ? offset + count : hi;
     }
-    for (int k = 0; k < c->n_models; k++)
-        deltas[k] = lost[k] = 0.0;
+    memset(totals, 0, sizeof *totals);
     if (anchor < 0)
         return 0;
     const long len = hi - lo < n ? hi - lo : n;
     long start = len < n ? (anchor + lo) % n : 0;
     if (start < 0)
         start += n;
-    for (int k = 0; k < c->n_models; k++) {
-        tribo_charge_slot *slot = &c->slot[k];
-        if (!slot->selected || !slot->segments)
+    /* the arrays of the window, side by side in one allocation */
+    size_t arrays = 0;
+    for (int m = 0; m < c->n_models; m++)
+        arrays += (c->slot[m].segments != NULL) + (c->slot[m].bands != NULL);
+    if (c->keep_bands)
+        arrays += 3;
+    if (c->window_cap < arrays * (size_t)len) {
+        double *w = realloc(c->window, arrays * (size_t)len * sizeof *w);
+        if (!w)
+            return -1;
+        c->window = w;
+        c->window_cap = arrays * (size_t)len;
+    }
+    ring r = {.len = len};
+    double *next = c->window;
+    const long head = len < n - start ? len : n - start;
+#define WINDOW_OF(dst, src)                                                                      \
+    do {                                                                                         \
+        if (src) {                                                                               \
+            memcpy(next, (src) + start, (size_t)head * sizeof(double));                          \
+            memcpy(next + head, (src), (size_t)(len - head) * sizeof(double));                   \
+            (dst) = next;                                                                        \
+            next += len;                                                                         \
+        }                                                                                        \
+    } while (0)
+    for (int m = 0; m < c->n_models; m++) {
+        WINDOW_OF(r.values[m], c->slot[m].segments);
+        WINDOW_OF(r.bands[m], c->slot[m].bands);
+    }
+    if (c->keep_bands) {
+        WINDOW_OF(r.geometry.width, c->bands.width);
+        WINDOW_OF(r.geometry.lo, c->bands.lo);
+        WINDOW_OF(r.geometry.hi, c->bands.hi);
+    }
+#undef WINDOW_OF
+    for (size_t i = 0; i < n_samples; i++) {
+        long first;
+        const long count = segment_run(&samples[i], &first);
+        if (!count)
             continue;
-        if (slot->window_cap < (size_t)len) {
-            double *w = realloc(slot->window, (size_t)len * sizeof *w);
-            if (!w)
-                return -1;
-            slot->window = w;
-            slot->window_cap = (size_t)len;
-        }
-        const long head = len < n - start ? len : n - start;
-        memcpy(slot->window, slot->segments + start, (size_t)head * sizeof(double));
-        memcpy(slot->window + head, slot->segments, (size_t)(len - head) * sizeof(double));
-        for (size_t i = 0; i < n_samples; i++) {
-            long first;
-            const long count = segment_run(&samples[i], &first);
-            if (!count)
-                continue;
-            long offset = (first - start) % n;
-            if (offset < 0)
-                offset += n;
-            /* in a window shorter than the ring a run never wraps: it lies inside */
-            deltas[k] += charge_run(c, slot, s, &samples[i], slot->window, len, offset, count,
-                                    &lost[k]);
-        }
+        long offset = (first - start) % n;
+        if (offset < 0)
+            offset += n;
+        /* in a window shorter than the ring a run never wraps: it lies inside */
+        charge_run(c, s, &samples[i], &r, offset, count, totals);
     }
     return 0;
 }

@@ -7,6 +7,14 @@
 #include "charge_interface.h"
 #include "geometry.h"
 
+/* A point of the contact patch (docs/model.md §8c), in segments from a sample's first: the
+   contact centre, the half-length Sc along the boundary, and the depth h of the contact point
+   below the centre (the patch's half-width across the plane of motion is h Sc). */
+typedef struct tribo_patch_point {
+    double centre, half, depth;
+} tribo_patch_point;
+#define TRIBO_PATCH_POINTS 5
+
 /* The contact held over an interval of the motion: which segments touch the plate and
    for how long, and what drives the charge there (the global states of every model at the
    interval's start, middle and end, at the models' offsets). */
@@ -15,10 +23,31 @@ typedef struct tribo_contact_sample {
     /* the run of segments in contact: count of them from first, around the ring of n
        (first in [0, n), count in [0, n]; 0: no contact) */
     long first, count;
+    /* the patch along the interval, at n_patch times in order (the path between them taken
+       linear), for the grain's bands (§8c); set only where the instance keeps them */
+    int n_patch;
+    tribo_patch_point patch[TRIBO_PATCH_POINTS];
     double globals_begin[TRIBO_CHARGE_MAX_GLOBALS];
     double globals_mid[TRIBO_CHARGE_MAX_GLOBALS];
     double globals_end[TRIBO_CHARGE_MAX_GLOBALS];
 } tribo_contact_sample;
+
+/* A compensated sum (Neumaier): the sum, and what the additions rounded off. */
+typedef struct tribo_compensated {
+    double sum, c;
+} tribo_compensated;
+static inline double tribo_compensated_value(const tribo_compensated *x) { return x->sum + x->c; }
+/* Add v to a compensated sum. */
+void tribo_compensated_add(tribo_compensated *x, double v);
+
+/* What samples changed: per model the sum of its values and the charge its breakdown limit
+   took (its own units), the same for its bands weighted by their areas (own units times
+   a^2), and the grain's charged area (a^2). */
+typedef struct tribo_charge_totals {
+    double sum[TRIBO_CHARGE_MAX_MODELS], lost[TRIBO_CHARGE_MAX_MODELS];
+    double band_charge[TRIBO_CHARGE_MAX_MODELS], band_lost[TRIBO_CHARGE_MAX_MODELS];
+    double area;
+} tribo_charge_totals;
 
 /* One model of an instance's set. */
 typedef struct tribo_charge_slot {
@@ -28,19 +57,20 @@ typedef struct tribo_charge_slot {
     int quadratures_at; /* its quadratures after the motion in a point's y */
     double *segments;   /* committed values (NULL when not selected) */
     double *segments_out; /* a copy with the pending updates applied, made when read */
-    /* the sum of the committed values, kept up to date with each charge (compensated:
-       sum_c holds what the additions rounded off), so that a mean costs nothing to read */
-    double sum, sum_c;
-    /* the charge the air-breakdown limit took from the committed values (§8b), in the
-       model's own units, compensated like the sum */
-    double lost, lost_c;
+    /* the band densities of the grain (§8c; NULL without bands), and their copy */
+    double *bands, *bands_out;
     /* its breakdown limit, for the scene's Sigma_bd and Sigma0 it was taken at */
     int cap_taken;
     double cap, cap_Sigma_bd, cap_Sigma0;
-    double *window;       /* scratch for the pending updates' effect on the sum */
-    size_t window_cap;
     void *cache;
 } tribo_charge_slot;
+
+/* The grain's bands (model.md §8c): per segment the width W_i across the plane of motion
+   (units of a) and the hull of the overlaps seen along it, as fractions [lo, hi] of the
+   segment (empty: lo = 1, hi = 0). */
+typedef struct tribo_band_geometry {
+    double *width, *lo, *hi;
+} tribo_band_geometry;
 
 typedef struct tribo_charging {
     int n_models;
@@ -50,8 +80,21 @@ typedef struct tribo_charging {
     /* the boundary cut into n segments of equal arc length (only with a model selected) */
     int n;
     double segments_per_length; /* n / perimeter */
+    double segment_length;      /* perimeter / n */
     tribo_arclength arc;
     tribo_decay_cache decay; /* the models' shared one (tribo_charge_forcing) */
+    /* the committed totals: each model's sums (compensated, kept up to date with each
+       sample, so that a mean costs nothing to read) and the grain's charged area */
+    tribo_compensated sum[TRIBO_CHARGE_MAX_MODELS], lost[TRIBO_CHARGE_MAX_MODELS];
+    tribo_compensated band_charge[TRIBO_CHARGE_MAX_MODELS], band_lost[TRIBO_CHARGE_MAX_MODELS];
+    tribo_compensated area;
+    /* the grain's bands (grain_geometry = spheroid, model.md §8c; NULLs otherwise), their
+       copy with the pending updates applied, and the scratch of a window of the ring */
+    int keep_bands;
+    tribo_band_geometry bands, bands_out;
+    double *window;
+    size_t window_cap;
+    double *scratch; /* per-segment areas of a sample's run */
 } tribo_charging;
 
 /* Where a sample's charge goes: into the committed charges (and their sums), or queued for
@@ -59,13 +102,14 @@ typedef struct tribo_charging {
 typedef enum { TRIBO_CHARGE_COMMIT, TRIBO_CHARGE_PENDING } tribo_charge_destination;
 
 /* Set up the models[0..n_models) (selected by bit i of `selection`) over n segments of
-   the ellipse of roundness eps. Returns 0, -1 if out of memory, or -2 if the set does not
-   fit a point (TRIBO_CHARGE_MAX_*). */
+   the ellipse of roundness eps, with the grain's bands where keep_bands (§8c). Returns 0, -1
+   if out of memory, or -2 if the set does not fit a point (TRIBO_CHARGE_MAX_*). */
 int tribo_charging_init(tribo_charging *c, const tribo_charge_model *const *models, int n_models,
-                        unsigned selection, double eps, int n);
+                        unsigned selection, double eps, int n, int keep_bands);
 void tribo_charging_free(tribo_charging *c);
-/* All segment charges to 0 (§7) and the caches emptied. */
-void tribo_charging_reset(tribo_charging *c);
+/* All segment charges to 0 (§7), the bands empty at the scene's initial density (§8c), and
+   the caches emptied. */
+void tribo_charging_reset(tribo_charging *c, const tribo_scene *s);
 /* Every model's global states at the start of a run. */
 void tribo_charging_start(const tribo_charging *c, const tribo_scene *s, double *globals);
 
@@ -91,27 +135,37 @@ void tribo_charging_step(tribo_charging *c, const tribo_scene *s, const tribo_po
                          const double *g0, double *g1, tribo_contact_sample *sample);
 
 /* Charge the segments under a sample (the overlap of [s_c - Sc, s_c + Sc], §5) with each
-   selected model, each value then held within the model's breakdown limit (§8b), in the
-   committed arrays (with their sums and the charge lost) or, for a pending sample, in the
-   output copies. Returns the number of segment values updated. */
+   selected model, each value then held within the model's breakdown limit (§8b), and, where
+   the instance keeps them, the grain's bands under the patch (§8c), in the committed arrays
+   (with their totals) or, for a pending sample, in the output copies. Returns the number of
+   segment values updated. */
 long tribo_charging_apply(tribo_charging *c, const tribo_scene *s, const tribo_contact_sample *sample,
                           tribo_charge_destination where);
 
-/* The committed sum of a slot's values, and of the charge the breakdown limit took. */
-static inline double tribo_charging_sum(const tribo_charge_slot *slot) { return slot->sum + slot->sum_c; }
-static inline double tribo_charging_lost(const tribo_charge_slot *slot) { return slot->lost + slot->lost_c; }
+/* The committed totals. */
+static inline double tribo_charging_sum(const tribo_charging *c, int k) { return tribo_compensated_value(&c->sum[k]); }
+static inline double tribo_charging_lost(const tribo_charging *c, int k) { return tribo_compensated_value(&c->lost[k]); }
 /* How many of values[0..n) stand at a slot's breakdown limit (0 without one). */
 long tribo_charging_capped(const tribo_charge_slot *slot, const tribo_scene *s, const double *values,
                            long n);
-/* Add x to a compensated sum (Neumaier). */
-void tribo_compensated_add(double *sum, double *c, double x);
+/* The area (a^2) of the bands whose density stands at a slot's breakdown limit (§8c, §8b). */
+double tribo_charging_capped_area(const tribo_charging *c, const tribo_charge_slot *slot,
+                                  const tribo_scene *s, const double *bands,
+                                  const tribo_band_geometry *g);
+/* The grain's initial density (scene Sigma_init, §8c) in a model's own units (0 for a model
+   whose values are no densities). */
+double tribo_charging_initial_value(const tribo_charge_model *model, const tribo_scene *s);
 
-/* What the samples (in order, not committed) would add to each slot's sum, deltas[k] for
-   slot k, and to the charge its breakdown limit took, lost[k] (0 for slots not selected).
-   Costs the segments they touch, not n. Returns 0, or -1 if out of memory. */
-int tribo_charging_pending_sums(tribo_charging *c, const tribo_scene *s,
-                                const tribo_contact_sample *samples, size_t n_samples,
-                                double *deltas, double *lost);
+/* What the samples (in order, not committed) would add to the committed totals (0 for slots
+   not selected). Costs the segments they touch, not n. Returns 0, or -1 if out of memory. */
+int tribo_charging_pending_totals(tribo_charging *c, const tribo_scene *s,
+                                  const tribo_contact_sample *samples, size_t n_samples,
+                                  tribo_charge_totals *totals);
+
+/* The output copies of every array (values, bands, band geometry) made equal to the
+   committed ones, before the pending samples are applied to them. Returns 0, or -1 if out of
+   memory. */
+int tribo_charging_copy_out(tribo_charging *c);
 
 /* The contact along an interval of the motion, as an integrator with dense output sees it
    at time t: the arc-length coordinate of the contact centre, the half-width Sc, the speed
