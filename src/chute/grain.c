@@ -47,3 +47,18 @@ double tribo_grain_capped_area(tribo_model *m, int index)
         return NAN;
     return tribo_charging_capped_area(&m->charging, &m->charging.slot[index], &m->scene, bands, g);
 }
+
+double tribo_get_grain_charge(tribo_model *m, tribo_segment_charge which)
+{
+    return (unsigned)which < (unsigned)m->charging.n_models ? tribo_grain_charge(m, which) : 0.0;
+}
+
+double tribo_get_grain_charge_lost(tribo_model *m, tribo_segment_charge which)
+{
+    return (unsigned)which < (unsigned)m->charging.n_models ? tribo_grain_charge_lost(m, which) : 0.0;
+}
+
+double tribo_get_grain_capped_area(tribo_model *m, tribo_segment_charge which)
+{
+    return (unsigned)which < (unsigned)m->charging.n_models ? tribo_grain_capped_area(m, which) : 0.0;
+}

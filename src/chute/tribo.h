@@ -255,6 +255,14 @@ typedef enum tribo_segment_charge {
    charge_model_<name>). */
 int tribo_includes_charge_model(const tribo_model *model, tribo_segment_charge which);
 
+/* The spheroid's (grain_geometry = spheroid, model.md §8c) charge by the model of that array,
+   in the units of the array times a^2; the charge its bands lost at the air-breakdown limit,
+   the same way; the area of its bands at that limit (a^2). 0 for the cylinder or for a
+   model the scene leaves out. */
+double tribo_get_grain_charge(tribo_model *model, tribo_segment_charge which);
+double tribo_get_grain_charge_lost(tribo_model *model, tribo_segment_charge which);
+double tribo_get_grain_capped_area(tribo_model *model, tribo_segment_charge which);
+
 /* Copy the per-segment charge densities (n = n_segments values) at the current time.
    Fails if the scene does not include that model. */
 tribo_status tribo_get_segment_charges(tribo_model *model, tribo_segment_charge which,

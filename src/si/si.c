@@ -300,6 +300,11 @@ tribo_status tribo_si_derive(const tribo_si_scene *si, tribo_si_derived *d, char
     d->energy = d->k_prime * a * a;
     d->sigma_scale = sqrt(si->interface_capacitance * d->k_prime * a);
     d->perimeter = a * tribo_ellipse_perimeter(si->epsilon);
+    d->spheroid = si->grain_geometry == TRIBO_GRAIN_SPHEROID;
+    const double b = si->epsilon * a;
+    d->grain_mass = d->spheroid ? (4.0 / 3.0) * M_PI * si->density * a * b * b
+                                : d->mass_per_length * d->depth;
+    d->grain_area = d->spheroid ? a * a * tribo_spheroid_area(si->epsilon) : d->perimeter * d->depth;
 
     tribo_scene_defaults(&d->scene);
     char made_of[400];
@@ -419,4 +424,42 @@ double tribo_si_segment_factor(const tribo_si_derived *d, tribo_segment_charge w
     case TRIBO_CHARGE_PER_SIGMA_SCALE: return tribo_si_sliding_density(d, 1.0);
     }
     return NAN;
+}
+
+/* ---- the grain (model.md §8c) ---------------------------------------------------------- */
+
+/* The grain's quantities are the model's times a^2 (its bands' areas) and the model's SI
+   factor: the same rule as segment_sigma_<name>. */
+double tribo_si_grain_charge(const tribo_si_derived *d, tribo_model *m, tribo_segment_charge which)
+{
+    if ((unsigned)which >= (unsigned)TRIBO_SEGMENTS_COUNT)
+        return 0.0; /* no model included: charge_to_mass reads 0 */
+    if (!d->spheroid)
+        return d->depth * tribo_si_charge_per_length(d, tribo_si_sigma_mean(d, m, which));
+    return d->a * d->a * tribo_si_segment_factor(d, which) * tribo_get_grain_charge(m, which);
+}
+
+double tribo_si_grain_charge_to_mass(const tribo_si_derived *d, tribo_model *m,
+                                     tribo_segment_charge which)
+{
+    if (!d->spheroid && (unsigned)which < (unsigned)TRIBO_SEGMENTS_COUNT)
+        return tribo_si_charge_per_length(d, tribo_si_sigma_mean(d, m, which)) / d->mass_per_length;
+    return tribo_si_grain_charge(d, m, which) / d->grain_mass;
+}
+
+double tribo_si_grain_charge_lost(const tribo_si_derived *d, tribo_model *m, tribo_segment_charge which,
+                                  double cylinder_lost)
+{
+    const double factor = tribo_si_segment_factor(d, which);
+    if (!d->spheroid)
+        return d->depth * tribo_si_charge_per_length(d, factor * cylinder_lost);
+    return d->a * d->a * factor * tribo_get_grain_charge_lost(m, which);
+}
+
+double tribo_si_grain_capped_fraction(const tribo_si_derived *d, tribo_model *m,
+                                      tribo_segment_charge which, double cylinder_fraction)
+{
+    if (!d->spheroid)
+        return cylinder_fraction;
+    return d->a * d->a * tribo_get_grain_capped_area(m, which) / d->grain_area;
 }

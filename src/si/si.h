@@ -74,6 +74,10 @@ typedef struct tribo_si_derived {
     double perimeter;       /* a P(epsilon), m: the boundary of the section          */
     double depth;           /* the cylinder's depth l, m                             */
     double sigma0;          /* C/m^2, its sign the polarity                          */
+    int spheroid;           /* the grain is the spheroid (model.md §8c), else the
+                               cylinder of depth `depth`                             */
+    double grain_mass;      /* kg: (4/3) pi rho a b^2, or m' l                       */
+    double grain_area;      /* m^2: the spheroid's surface, or the cylinder's a P l  */
     int charge_to_mass_model; /* the registry's row (from 1) whose ratio charge_to_mass is:
                                  the parameter's, or with 0 the first row included */
     tribo_scene scene;      /* the model's scene                                     */
@@ -118,6 +122,18 @@ double tribo_si_segment_factor(const tribo_si_derived *d, tribo_segment_charge w
 /* The mean charge density of a charge model over the boundary, C/m^2: the mean of its
    per-segment values (tribo_get_mean_charge) times its factor above (0 without the model). */
 double tribo_si_sigma_mean(const tribo_si_derived *d, tribo_model *m, tribo_segment_charge which);
+
+/* The grain's outputs by the model `which` (model.md §8c: the spheroid from its bands, or
+   the cylinder from its segments, whose own value the caller passes; 0 for a model the scene
+   leaves out): its charge (C), the charge the breakdown limit took from it (C), the fraction
+   of its surface at that limit. */
+double tribo_si_grain_charge(const tribo_si_derived *d, tribo_model *m, tribo_segment_charge which);
+double tribo_si_grain_charge_to_mass(const tribo_si_derived *d, tribo_model *m,
+                                     tribo_segment_charge which);
+double tribo_si_grain_charge_lost(const tribo_si_derived *d, tribo_model *m, tribo_segment_charge which,
+                                  double cylinder_lost);
+double tribo_si_grain_capped_fraction(const tribo_si_derived *d, tribo_model *m,
+                                      tribo_segment_charge which, double cylinder_fraction);
 
 /* The charge per unit length of the cylinder, C/m, of a mean charge density over its
    boundary (model.md §8: Q' = (a P(epsilon) / N) sum sigma_i). */

@@ -164,15 +164,9 @@ void tribo_charging_step(tribo_charging *c, const tribo_scene *s, const tribo_po
         const double eps = c->arc.eps;
         const double rho_c = tribo_contact_curvature_radius(eps * eps, pose->h);
         const double s_c = tribo_arclength_at(&c->arc, tribo_contact_parameter(eps, pose));
-        const double half = sqrt(rho_c * delta_y); /* Sc, §5 (paper eq. 4) */
-        tribo_charging_locate(c, s_c, half, sample);
-        if (c->keep_bands) {
-            /* the step is charged at its end point's contact: one point of the patch */
-            const double lo = (s_c - half) * c->segments_per_length;
-            sample->n_patch = 1;
-            sample->patch[0] = (tribo_patch_point){
-                s_c * c->segments_per_length - floor(lo), half * c->segments_per_length, pose->h};
-        }
+        /* the step is charged at its end point's contact: Sc (§5, paper eq. 4), one point of
+           the patch */
+        tribo_charging_patch(c, s_c, sqrt(rho_c * delta_y), pose->h, sample);
     } else {
         sample->first = sample->count = 0;
     }
@@ -227,6 +221,19 @@ void tribo_charging_locate(const tribo_charging *c, double s_centre, double half
         return;
     }
     tribo_charging_run(c, floor(lo), floor(hi), sample);
+}
+
+void tribo_charging_patch(const tribo_charging *c, double s_centre, double half_width, double depth,
+                          tribo_contact_sample *sample)
+{
+    tribo_charging_locate(c, s_centre, half_width, sample);
+    sample->n_patch = 0;
+    if (c->keep_bands) {
+        const double lo = (s_centre - half_width) * c->segments_per_length;
+        sample->n_patch = 1;
+        sample->patch[0] = (tribo_patch_point){s_centre * c->segments_per_length - floor(lo),
+                                               half_width * c->segments_per_length, depth};
+    }
 }
 
 /* The run of segments a sample charges: none for an empty interval. */

@@ -118,6 +118,10 @@ void tribo_charging_start(const tribo_charging *c, const tribo_scene *s, double 
    than the boundary (or not a number) covers all of it. */
 void tribo_charging_locate(const tribo_charging *c, double s_centre, double half_width,
                            tribo_contact_sample *sample);
+/* The same, and where the instance keeps the grain's bands, the patch there as the sample's
+   one point (§8c): its half-width across the plane of motion is depth times half_width. */
+void tribo_charging_patch(const tribo_charging *c, double s_centre, double half_width, double depth,
+                          tribo_contact_sample *sample);
 /* The same from the segments (floor values, unwrapped: any integers) holding the contact's
    lower and upper edges. */
 void tribo_charging_run(const tribo_charging *c, double lo_segment, double hi_segment,
