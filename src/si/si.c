@@ -315,16 +315,20 @@ tribo_status tribo_si_derive(const tribo_si_scene *si, tribo_si_derived *d, char
         const double v = convert(d, MAP[i].how, tribo_param_read(si, tribo_si_param_find(MAP[i].si)));
         if (MAP[i].how == DENSITY && v == 0.0)
             continue; /* a neutral pair: the model's default, every charge output times 0 */
-        describe_inputs(made_of, sizeof made_of, si, d, MAP[i].si, MAP[i].how);
-        if ((st = check_derived(model, v, made_of, msg, msg_size)) != TRIBO_OK)
-            return st;
+        /* what made a value is written out only for a message (each derive would pay for it) */
+        if (tribo_param_check(model, v, NULL, 0) != TRIBO_OK) {
+            describe_inputs(made_of, sizeof made_of, si, d, MAP[i].si, MAP[i].how);
+            return check_derived(model, v, made_of, msg, msg_size);
+        }
         tribo_param_write(&d->scene, model, v);
     }
     /* model.md §8: Gamma = m' g / (k' a) */
     d->scene.Gamma = d->mass_per_length * si->gravity / d->force;
-    describe_inputs(made_of, sizeof made_of, si, d, "gravity", SPEED);
-    if ((st = check_derived(tribo_param_find("Gamma"), d->scene.Gamma, made_of, msg, msg_size)) != TRIBO_OK)
-        return st;
+    const tribo_param_info *gamma = tribo_param_find("Gamma");
+    if (tribo_param_check(gamma, d->scene.Gamma, NULL, 0) != TRIBO_OK) {
+        describe_inputs(made_of, sizeof made_of, si, d, "gravity", SPEED);
+        return check_derived(gamma, d->scene.Gamma, made_of, msg, msg_size);
+    }
     if ((st = tribo_scene_validate(&d->scene, msg, msg_size)) != TRIBO_OK)
         return st;
     return charge_to_mass_model_included(si, d, msg, msg_size);

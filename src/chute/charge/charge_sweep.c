@@ -202,7 +202,7 @@ static void sort_cuts(cut *cuts, int n)
 static int inside(double e0, double em, double e1)
 {
     const double slack = 1e-12 * (fabs(e0) + fabs(e1) + 1.0);
-    return em >= fmin(e0, e1) - slack && em <= fmax(e0, e1) + slack;
+    return em >= tribo_min(e0, e1) - slack && em <= tribo_max(e0, e1) + slack;
 }
 
 /* The patch (model.md §8c) within a piece, for the grain's bands: the edges and the depth
@@ -219,12 +219,12 @@ static void fit_patch(patch_fit *f, const probe_point *pts)
     f->lo_range[0] = f->hi_range[0] = f->depth_range[0] = INFINITY;
     f->lo_range[1] = f->hi_range[1] = f->depth_range[1] = -INFINITY;
     for (int i = 0; i < PIECE_POINTS; i++) {
-        f->lo_range[0] = fmin(f->lo_range[0], pts[i].lo);
-        f->lo_range[1] = fmax(f->lo_range[1], pts[i].lo);
-        f->hi_range[0] = fmin(f->hi_range[0], pts[i].hi);
-        f->hi_range[1] = fmax(f->hi_range[1], pts[i].hi);
-        f->depth_range[0] = fmin(f->depth_range[0], pts[i].depth);
-        f->depth_range[1] = fmax(f->depth_range[1], pts[i].depth);
+        f->lo_range[0] = tribo_min(f->lo_range[0], pts[i].lo);
+        f->lo_range[1] = tribo_max(f->lo_range[1], pts[i].lo);
+        f->hi_range[0] = tribo_min(f->hi_range[0], pts[i].hi);
+        f->hi_range[1] = tribo_max(f->hi_range[1], pts[i].hi);
+        f->depth_range[0] = tribo_min(f->depth_range[0], pts[i].depth);
+        f->depth_range[1] = tribo_max(f->depth_range[1], pts[i].depth);
     }
 }
 
@@ -248,9 +248,9 @@ static void patch_at(const patch_fit *f, double t, double *out)
         num[2] += c * p[i].depth;
         den += c;
     }
-    out[0] = fmin(fmax(num[0] / den, f->lo_range[0]), f->lo_range[1]);
-    out[1] = fmin(fmax(num[1] / den, f->hi_range[0]), f->hi_range[1]);
-    out[2] = fmin(fmax(num[2] / den, f->depth_range[0]), f->depth_range[1]);
+    out[0] = tribo_min(tribo_max(num[0] / den, f->lo_range[0]), f->lo_range[1]);
+    out[1] = tribo_min(tribo_max(num[1] / den, f->hi_range[0]), f->hi_range[1]);
+    out[2] = tribo_min(tribo_max(num[2] / den, f->depth_range[0]), f->depth_range[1]);
 }
 
 /* A patch point from edges and depth, in segments from the segment `origin`. */
@@ -279,8 +279,8 @@ static void charge_whole_piece(sweep *w, const probe_point *pts, const double *S
     const probe_point *a = &pts[0], *b = &pts[PIECE_POINTS - 1];
     double lo = INFINITY, hi = -INFINITY;
     for (int i = 0; i < PIECE_POINTS; i++) {
-        lo = fmin(lo, pts[i].lo);
-        hi = fmax(hi, pts[i].hi);
+        lo = tribo_min(lo, pts[i].lo);
+        hi = tribo_max(hi, pts[i].hi);
     }
     tribo_contact_sample s;
     s.duration = b->t - a->t;
@@ -299,7 +299,7 @@ static void charge_whole_piece(sweep *w, const probe_point *pts, const double *S
     memcpy(s.globals_mid, S, (size_t)n_globals * sizeof *S);
     memcpy(s.globals_end, S, (size_t)n_globals * sizeof *S);
     w->status = w->sink(w->sink_ctx, &s);
-    w->cost += TRIBO_SWEEP_CELL_COST * fmin((double)s.count, w->c->n);
+    w->cost += TRIBO_SWEEP_CELL_COST * tribo_min((double)s.count, w->c->n);
 }
 
 /* A piece in which each edge moves monotonically by at most w->reach segments and the
@@ -321,7 +321,7 @@ static void charge_piece(sweep *w, const probe_point *pts, const double *S0, con
     for (int edge = 0; edge < 2; edge++) {
         const double e0 = edge_of(a, edge), e1 = edge_of(b, edge);
         const int step = e1 > e0 ? 1 : -1;
-        const double lo = fmin(e0, e1), hi = fmax(e0, e1);
+        const double lo = tribo_min(e0, e1), hi = tribo_max(e0, e1);
         edge_fit fit;
         fit_edge(&fit, pts, edge);
         const int from = n;
@@ -392,7 +392,7 @@ static void charge_piece(sweep *w, const probe_point *pts, const double *S0, con
                 memcpy(at_start, at_end, sizeof at_end);
             }
             w->status = w->sink(w->sink_ctx, &s);
-            w->cost += TRIBO_SWEEP_CELL_COST * fmin(cell[1] - cell[0] + 1.0, w->c->n);
+            w->cost += TRIBO_SWEEP_CELL_COST * tribo_min(cell[1] - cell[0] + 1.0, w->c->n);
             t0 = t1;
         }
         if (i < n) {
@@ -484,7 +484,7 @@ int tribo_charging_sweep(tribo_charging *c, const tribo_scene *s, const tribo_co
     double trial = b - a;
     while (cur.t < b && !w.status) {
         if (cur.speed > 0.0)
-            trial = fmin(trial, (w.reach - 1) * w.seg / cur.speed);
+            trial = tribo_min(trial, (w.reach - 1) * w.seg / cur.speed);
         /* within min_piece of b, go to b: the piece then is at most trial + min_piece */
         const double t1 = cur.t + trial >= b - min_piece ? b : cur.t + trial;
         const double h = t1 - cur.t;

@@ -98,7 +98,7 @@ double tribo_charging_initial_value(const tribo_charge_model *model, const tribo
         return 0.0;
     /* a surface arriving above what air holds keeps what it holds (§8b) */
     const double unit = model->density_unit(s), cap = s->Sigma_bd / unit;
-    return fmin(fmax(s->Sigma_init / unit, -cap), cap);
+    return tribo_min(tribo_max(s->Sigma_init / unit, -cap), cap);
 }
 
 /* The bands empty: no width, no length, the initial density (§8c). */
@@ -302,7 +302,7 @@ static double slot_cap(tribo_charge_slot *slot, const tribo_scene *s)
 static double saturate(double *values, const double *weights, long count, double target, double cap,
                        double *lost)
 {
-    const double held = fmin(fmax(target, -cap), cap);
+    const double held = tribo_min(tribo_max(target, -cap), cap);
     const double excess = target - held;
     double change = 0.0;
     for (long i = 0; i < count; i++) {
@@ -349,20 +349,20 @@ static double half_width_over(const tribo_contact_sample *sample, double k)
         const double d = distance_to(p[i].centre, k);
         const double x = p[i].half * p[i].half - d * d;
         if (x > 0.0)
-            w2 = fmax(w2, p[i].depth * p[i].depth * x);
+            w2 = tribo_max(w2, p[i].depth * p[i].depth * x);
         if (i + 1 == sample->n_patch)
             break;
         const double c0 = p[i].centre, c1 = p[i + 1].centre;
-        const double lo = fmin(c0, c1), hi = fmax(c0, c1);
+        const double lo = tribo_min(c0, c1), hi = tribo_max(c0, c1);
         if (!(hi > lo) || hi <= k || lo >= k + 1.0)
             continue;
         /* the path meets the arc between the points: where it enters it and leaves it, d = 0 */
-        const double ends[2] = {fmax(k, lo), fmin(k + 1.0, hi)};
+        const double ends[2] = {tribo_max(k, lo), tribo_min(k + 1.0, hi)};
         for (int e = 0; e < 2; e++) {
             const double u = (ends[e] - c0) / (c1 - c0);
             const double half = p[i].half + u * (p[i + 1].half - p[i].half);
             const double depth = p[i].depth + u * (p[i + 1].depth - p[i].depth);
-            w2 = fmax(w2, depth * depth * half * half);
+            w2 = tribo_max(w2, depth * depth * half * half);
         }
     }
     return sqrt(w2);
@@ -380,9 +380,9 @@ static void widen_bands(tribo_charging *c, const tribo_scene *s, const tribo_con
     const int whole_ring = sample->count >= c->n; /* a patch wider than the boundary */
     double lo_all = INFINITY, hi_all = -INFINITY, bound = 0.0;
     for (int i = 0; i < sample->n_patch; i++) {
-        lo_all = fmin(lo_all, p[i].centre - p[i].half);
-        hi_all = fmax(hi_all, p[i].centre + p[i].half);
-        bound = fmax(bound, 2.0 * p[i].depth * p[i].half);
+        lo_all = tribo_min(lo_all, p[i].centre - p[i].half);
+        hi_all = tribo_max(hi_all, p[i].centre + p[i].half);
+        bound = tribo_max(bound, 2.0 * p[i].depth * p[i].half);
     }
     const double seg = c->segment_length;
     double init[TRIBO_CHARGE_MAX_MODELS];
@@ -396,13 +396,13 @@ static void widen_bands(tribo_charging *c, const tribo_scene *s, const tribo_con
         before[j] = old_area;
         /* a band already as wide as the patch can make it, over its whole segment, stays */
         if (!(*lo == 0.0 && *hi == 1.0 && *W >= bound * seg)) {
-            const double a = whole_ring ? 0.0 : fmin(fmax(lo_all - k, 0.0), 1.0);
-            const double b = whole_ring ? 1.0 : fmin(fmax(hi_all - k, 0.0), 1.0);
+            const double a = whole_ring ? 0.0 : tribo_min(tribo_max(lo_all - k, 0.0), 1.0);
+            const double b = whole_ring ? 1.0 : tribo_min(tribo_max(hi_all - k, 0.0), 1.0);
             if (b > a) { /* (a run's end segment may be touched only to rounding) */
-                *lo = fmin(*lo, a);
-                *hi = fmax(*hi, b);
+                *lo = tribo_min(*lo, a);
+                *hi = tribo_max(*hi, b);
                 const double w = whole_ring ? bound : 2.0 * half_width_over(sample, k);
-                *W = fmax(*W, w * seg);
+                *W = tribo_max(*W, w * seg);
             }
         }
         const double new_area = *hi > *lo ? *W * (*hi - *lo) * seg : 0.0;

@@ -7,6 +7,11 @@
 #include "charge_interface.h"
 #include "geometry.h"
 
+/* The smaller and the larger of two numbers that are not NaN (fmin and fmax are calls where
+   the hot loops need a compare). */
+static inline double tribo_min(double a, double b) { return a < b ? a : b; }
+static inline double tribo_max(double a, double b) { return a > b ? a : b; }
+
 /* A point of the contact patch (docs/model.md §8c), in segments from a sample's first: the
    contact centre, the half-length Sc along the boundary, and the depth h of the contact point
    below the centre (the patch's half-width across the plane of motion is h Sc). */
