@@ -22,8 +22,8 @@ from tribo_fmu import Slave
 
 PYTHON = sys.executable
 ENV = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p))
-# a 5 cm chute: fast, and (sliding model) charged to microcoulombs per kilogram
-SHORT = {"chute_length": 0.05}
+# the reference chute: the grain (the spheroid, sliding model) leaves it at a few 1e-7 C/kg
+SHORT = {"chute_length": 0.3}
 
 
 def direct_two_step(fmu_dir, particle, wall, voltage, size=1e-3, epsilon=0.6, t_end=5.0):

@@ -230,9 +230,10 @@ def coupled_run(fmu_dir, version, sigma0, h=STEP, t_end=3.0):
     released at the exit exactly). Returns (the chute's exit time, the chute, the
     separator)."""
     chute = Slave(fmu_dir(version, "tribo_si"), version, name="chute")
-    # the sliding model alone: the charge models are alternative laws (docs/model.md §5), and
-    # the sliding one charges a 1 mm grain on a 5 cm chute to microcoulombs per kilogram
-    chute.init(chute_length=0.05, charge_model_static=0, charge_to_mass_model=2, sigma0=sigma0)
+    # the sliding model alone: the charge models are alternative laws (docs/model.md §5); a
+    # 1 mm grain (the spheroid, §8c) leaves the 0.3 m chute at a few 1e-7 C/kg, after eight
+    # impacts
+    chute.init(chute_length=0.3, charge_model_static=0, charge_to_mass_model=2, sigma0=sigma0)
     sep = Slave(fmu_dir(version, SEPARATOR), version, name="separator")
     # the chute's tilt and grain, bound to one value; 10 kV keeps the grain off the plates
     sep.init(tilt=chute.get("tilt"), semi_major_axis=chute.get("semi_major_axis"),

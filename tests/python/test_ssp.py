@@ -253,8 +253,9 @@ def ecos_run(path, step):
 # delays the whole flight and moves the landing position not at all. What is left is CVODE's
 # restart at every communication step (docs/separator.md, "Communication steps and
 # accuracy"), which grows with the number of steps. Tolerances: 3x the error measured at the
-# package's step, 1e-3 s.
-X_END_TOL, FLIGHT_TOL = 3.5e-11, 1.3e-6
+# package's step, 1e-3 s (x_end 1.65e-10 m in both tools; the flight time 3.7e-7 s, held to
+# the 1.3e-6 s of an earlier measurement, the larger).
+X_END_TOL, FLIGHT_TOL = 5e-10, 1.3e-6
 
 
 def assert_lands_as_the_direct_run(got, ref):
