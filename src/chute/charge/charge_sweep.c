@@ -269,12 +269,15 @@ static int still(int n, const double *S0, const double *S1, const double *S2)
     return 1;
 }
 
-/* Instantaneous transfer over a piece whose globals hold still (model.md §5c): every
-   segment the contact covers within it is at its saturation at once, whenever it was
-   covered, so the piece is one sample over the union of the contact's positions (the edges'
-   extremes over its points; a piece's edges move monotonically), with the patch at its five
-   points. */
-static void charge_whole_piece(sweep *w, const probe_point *pts, const double *S)
+/* Instantaneous transfer over a piece (model.md §5c): every segment the contact covers
+   within it is at its saturation at once, whenever it was covered, and keeps the
+   saturation of the time it left, so the piece is one sample over the union of the
+   contact's positions (the edges' extremes over its points; a piece's edges move
+   monotonically), with the patch at its five points, from which the charging finds when
+   each segment left (leave_by_edges) where the globals move. S0, S1, S2: the globals at the
+   piece's start, middle and end. */
+static void charge_whole_piece(sweep *w, const probe_point *pts, const double *S0, const double *S1,
+                               const double *S2)
 {
     const probe_point *a = &pts[0], *b = &pts[PIECE_POINTS - 1];
     double lo = INFINITY, hi = -INFINITY;
@@ -286,18 +289,19 @@ static void charge_whole_piece(sweep *w, const probe_point *pts, const double *S
     s.duration = b->t - a->t;
     const double first = floor(lo / w->seg);
     tribo_charging_run(w->c, first, floor(hi / w->seg), &s);
+    const int n_globals = w->c->n_globals;
+    s.leave_by_edges = !still(n_globals, S0, S1, S2);
     s.n_patch = 0;
-    if (w->c->keep_bands) {
+    if (w->c->keep_bands || s.leave_by_edges) {
         s.n_patch = PIECE_POINTS;
         for (int i = 0; i < PIECE_POINTS; i++) {
             const double e[3] = {pts[i].lo, pts[i].hi, pts[i].depth};
             s.patch[i] = patch_point(w, e, first);
         }
     }
-    const int n_globals = w->c->n_globals;
-    memcpy(s.globals_begin, S, (size_t)n_globals * sizeof *S);
-    memcpy(s.globals_mid, S, (size_t)n_globals * sizeof *S);
-    memcpy(s.globals_end, S, (size_t)n_globals * sizeof *S);
+    memcpy(s.globals_begin, S0, (size_t)n_globals * sizeof *S0);
+    memcpy(s.globals_mid, S1, (size_t)n_globals * sizeof *S1);
+    memcpy(s.globals_end, S2, (size_t)n_globals * sizeof *S2);
     w->status = w->sink(w->sink_ctx, &s);
     w->cost += TRIBO_SWEEP_CELL_COST * tribo_min((double)s.count, w->c->n);
 }
@@ -310,8 +314,8 @@ static void charge_piece(sweep *w, const probe_point *pts, const double *S0, con
                          const double *S2)
 {
     const int n_globals = w->c->n_globals;
-    if (w->instant && still(n_globals, S0, S1, S2)) {
-        charge_whole_piece(w, pts, S0);
+    if (w->instant) {
+        charge_whole_piece(w, pts, S0, S1, S2);
         return;
     }
     const probe_point *a = &pts[0], *b = &pts[PIECE_POINTS - 1];
@@ -352,6 +356,7 @@ static void charge_piece(sweep *w, const probe_point *pts, const double *S0, con
        numbering, is located afresh for each sample. */
     const long ring = w->c->n;
     tribo_contact_sample s;
+    s.leave_by_edges = 0;
     tribo_charging_run(w->c, cell[0], cell[1], &s);
     const int stepped = s.count < ring && fabs(cell[0]) < 0x1p52;
     long first = s.first, span = s.count;

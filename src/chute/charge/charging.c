@@ -65,6 +65,8 @@ int tribo_charging_init(tribo_charging *c, const tribo_charge_model *const *mode
     }
     if (keep_bands && (alloc_geometry(&c->bands, n) != 0 || !(c->scratch = malloc(2 * bytes))))
         goto fail;
+    if (!(c->targets = malloc((size_t)n_models * bytes)))
+        goto fail;
     return 0;
 fail:
     tribo_charging_free(c);
@@ -88,7 +90,8 @@ void tribo_charging_free(tribo_charging *c)
     free_geometry(&c->bands_out);
     free(c->window);
     free(c->scratch);
-    c->window = c->scratch = NULL;
+    free(c->targets);
+    c->window = c->scratch = c->targets = NULL;
     c->window_cap = 0;
 }
 
@@ -159,6 +162,7 @@ void tribo_charging_step(tribo_charging *c, const tribo_scene *s, const tribo_po
 {
     sample->duration = h;
     sample->n_patch = 0;
+    sample->leave_by_edges = 0;
     const int in_contact = delta_y > 0.0;
     if (in_contact) {
         const double eps = c->arc.eps;
@@ -228,6 +232,7 @@ void tribo_charging_patch(const tribo_charging *c, double s_centre, double half_
 {
     tribo_charging_locate(c, s_centre, half_width, sample);
     sample->n_patch = 0;
+    sample->leave_by_edges = 0;
     if (c->keep_bands) {
         const double lo = (s_centre - half_width) * c->segments_per_length;
         sample->n_patch = 1;
@@ -314,6 +319,106 @@ static double saturate(double *values, const double *weights, long count, double
         }
     }
     return change;
+}
+
+/* The same with a target per value. */
+static double saturate_each(double *values, const double *weights, long count, const double *targets,
+                            double cap, double *lost)
+{
+    double change = 0.0;
+    for (long i = 0; i < count; i++) {
+        const double held = tribo_min(tribo_max(targets[i], -cap), cap);
+        if (values[i] != held) {
+            const double w = weights ? weights[i] : 1.0;
+            change += (held - values[i]) * w;
+            values[i] = held;
+            *lost += (targets[i] - held) * w;
+        }
+    }
+    return change;
+}
+
+/* ---- when a segment left the contact, for a whole instantaneous piece (§5c) ----------------- */
+
+/* One edge of the patch over a sample's points (at u = 0, 1/4, .., 1): its values and the
+   weights of its inverse interpolating quartic u(e) (Lagrange), where it moves strictly
+   one way. */
+typedef struct edge_inverse {
+    int direction; /* +1 up, -1 down, 0 neither strictly */
+    double e[TRIBO_PATCH_POINTS], w[TRIBO_PATCH_POINTS];
+} edge_inverse;
+
+static void invert_edge(edge_inverse *f, const tribo_contact_sample *s, int hi_edge)
+{
+    const int n = TRIBO_PATCH_POINTS;
+    for (int i = 0; i < n; i++)
+        f->e[i] = s->patch[i].centre + (hi_edge ? s->patch[i].half : -s->patch[i].half);
+    const int up = f->e[n - 1] > f->e[0];
+    f->direction = up ? 1 : f->e[n - 1] < f->e[0] ? -1 : 0;
+    for (int i = 1; i < n && f->direction; i++)
+        if ((f->e[i] - f->e[i - 1]) * f->direction <= 0.0)
+            f->direction = 0;
+    for (int i = 0; i < n && f->direction; i++) {
+        double d = 1.0;
+        for (int j = 0; j < n; j++)
+            if (j != i)
+                d *= f->e[i] - f->e[j];
+        f->w[i] = ((double)i / (n - 1)) / d;
+    }
+}
+
+/* u at which the edge is at x (within its range), by the inverse quartic, held in [0, 1]. */
+static double inverse_at_edge(const edge_inverse *f, double x)
+{
+    const int n = TRIBO_PATCH_POINTS;
+    double u = 0.0;
+    for (int i = 0; i < n; i++) {
+        double p = f->w[i];
+        for (int j = 0; j < n; j++)
+            if (j != i)
+                p *= x - f->e[j];
+        u += p;
+    }
+    return tribo_min(tribo_max(u, 0.0), 1.0);
+}
+
+/* The fraction of the sample at which segment k (from its first) left the contact: where the
+   lower edge, moving up, passed its upper end, or the upper edge, moving down, its lower end;
+   1 where it is in contact at the end (or the edges do not move one way). */
+static double leave_fraction(const edge_inverse *lo, const edge_inverse *hi, double k)
+{
+    const int n = TRIBO_PATCH_POINTS;
+    double u = 1.0;
+    if (lo->direction > 0 && lo->e[n - 1] >= k + 1.0)
+        u = inverse_at_edge(lo, k + 1.0);
+    if (hi->direction < 0 && hi->e[n - 1] <= k)
+        u = tribo_min(u, inverse_at_edge(hi, k));
+    return u;
+}
+
+/* Each model's saturation at the time each segment at[0..count) (offsets k0.. from the
+   sample's first) left the contact, the globals quadratic over the sample, into targets[m]. */
+static void leave_targets(const tribo_charging *c, const tribo_scene *s, const tribo_contact_sample *sample,
+                          long count, long k0, double *const *targets)
+{
+    edge_inverse lo, hi;
+    invert_edge(&lo, sample, 0);
+    invert_edge(&hi, sample, 1);
+    double c1[TRIBO_CHARGE_MAX_GLOBALS], c2[TRIBO_CHARGE_MAX_GLOBALS];
+    const double *S0 = sample->globals_begin, *S1 = sample->globals_mid, *S2 = sample->globals_end;
+    for (int g = 0; g < c->n_globals; g++) {
+        c1[g] = -3.0 * S0[g] + 4.0 * S1[g] - S2[g];
+        c2[g] = 2.0 * (S0[g] - 2.0 * S1[g] + S2[g]);
+    }
+    double g[TRIBO_CHARGE_MAX_GLOBALS];
+    for (long j = 0; j < count; j++) {
+        const double u = leave_fraction(&lo, &hi, (double)(k0 + j));
+        for (int q = 0; q < c->n_globals; q++)
+            g[q] = u == 1.0 ? S2[q] : S0[q] + u * (c1[q] + u * c2[q]);
+        for (int m = 0; m < c->n_models; m++)
+            if (targets[m])
+                targets[m][j] = c->slot[m].model->saturation(s, g + c->slot[m].globals_at);
+    }
 }
 
 /* hold_at_cap with each value's excess weighted. */
@@ -432,15 +537,16 @@ static slices slices_of(const ring *r, long first, long count)
 
 /* A model's cylinder values under a sample: the rate law (tau0 > 0) or instantaneous
    transfer (tau0 = 0, §5c), held within the cap (§8b). */
-static void charge_values(tribo_charging *c, tribo_charge_slot *slot, const tribo_scene *s,
-                          const tribo_charge_forcing *f, double *values, const slices *sl,
-                          double cap, double *sum, double *lost)
+static void charge_values(tribo_charge_slot *slot, const tribo_scene *s, const tribo_charge_forcing *f,
+                          double *values, const slices *sl, const double *targets, double cap,
+                          double *sum, double *lost)
 {
-    (void)c;
     if (s->tau0 == 0.0) {
         const double target = slot->model->saturation(s, f->end);
         for (int i = 0; i < sl->n; i++)
-            *sum += saturate(values + sl->at[i], NULL, sl->count[i], target, cap, lost);
+            *sum += targets ? saturate_each(values + sl->at[i], NULL, sl->count[i],
+                                            targets + sl->k0[i], cap, lost)
+                            : saturate(values + sl->at[i], NULL, sl->count[i], target, cap, lost);
         return;
     }
     double delta = 0.0;
@@ -460,7 +566,7 @@ static void charge_values(tribo_charging *c, tribo_charge_slot *slot, const trib
    the patch widened them). */
 static void charge_bands(tribo_charge_slot *slot, const tribo_scene *s, const tribo_charge_forcing *f,
                          double *bands, const slices *sl, const double *before, const double *after,
-                         double cap, double *charge, double *lost)
+                         const double *targets, double cap, double *charge, double *lost)
 {
     const double init = tribo_charging_initial_value(slot->model, s);
     for (int i = 0; i < sl->n; i++) {
@@ -471,7 +577,8 @@ static void charge_bands(tribo_charge_slot *slot, const tribo_scene *s, const tr
         for (long j = 0; j < count; j++)
             *charge += init * (w1[j] - w0[j]);
         if (s->tau0 == 0.0) {
-            *charge += saturate(b, w1, count, slot->model->saturation(s, f->end), cap, lost);
+            *charge += targets ? saturate_each(b, w1, count, targets + sl->k0[i], cap, lost)
+                               : saturate(b, w1, count, slot->model->saturation(s, f->end), cap, lost);
             continue;
         }
         double old = 0.0;
@@ -501,6 +608,13 @@ static long charge_run(tribo_charging *c, const tribo_scene *s, const tribo_cont
             widen_bands(c, s, sample, r, sl.at[i], sl.count[i], sl.k0[i], before + sl.k0[i],
                         after + sl.k0[i], &t->area);
     }
+    /* instantaneous transfer where the globals move: each segment's own saturation */
+    double *targets[TRIBO_CHARGE_MAX_MODELS] = {0};
+    if (s->tau0 == 0.0 && sample->leave_by_edges) {
+        for (int m = 0; m < c->n_models; m++)
+            targets[m] = r->values[m] ? c->targets + (size_t)m * (size_t)c->n : NULL;
+        leave_targets(c, s, sample, count, 0, targets);
+    }
     long updates = 0;
     for (int m = 0; m < c->n_models; m++) {
         tribo_charge_slot *slot = &c->slot[m];
@@ -510,10 +624,10 @@ static long charge_run(tribo_charging *c, const tribo_scene *s, const tribo_cont
                                         sample->globals_mid + slot->globals_at,
                                         sample->globals_end + slot->globals_at, &c->decay};
         const double cap = slot_cap(slot, s);
-        charge_values(c, slot, s, &f, r->values[m], &sl, cap, &t->sum[m], &t->lost[m]);
+        charge_values(slot, s, &f, r->values[m], &sl, targets[m], cap, &t->sum[m], &t->lost[m]);
         if (r->bands[m])
-            charge_bands(slot, s, &f, r->bands[m], &sl, before, after, cap, &t->band_charge[m],
-                         &t->band_lost[m]);
+            charge_bands(slot, s, &f, r->bands[m], &sl, before, after, targets[m], cap,
+                         &t->band_charge[m], &t->band_lost[m]);
         updates += count;
     }
     return updates;

@@ -29,9 +29,15 @@ typedef struct tribo_contact_sample {
        (first in [0, n), count in [0, n]; 0: no contact) */
     long first, count;
     /* the patch along the interval, at n_patch times in order (the path between them taken
-       linear), for the grain's bands (§8c); set only where the instance keeps them */
+       linear), for the grain's bands (§8c); set only where the instance keeps them, or where
+       leave_by_edges needs them */
     int n_patch;
     tribo_patch_point patch[TRIBO_PATCH_POINTS];
+    /* instantaneous transfer over a whole piece whose globals move (§5c): the patch holds its
+       TRIBO_PATCH_POINTS points at equal steps of time, and each segment takes the
+       saturation at the globals of the time it left the contact (where an edge crossed its
+       far boundary), or of the end */
+    int leave_by_edges;
     double globals_begin[TRIBO_CHARGE_MAX_GLOBALS];
     double globals_mid[TRIBO_CHARGE_MAX_GLOBALS];
     double globals_end[TRIBO_CHARGE_MAX_GLOBALS];
@@ -100,6 +106,7 @@ typedef struct tribo_charging {
     double *window;
     size_t window_cap;
     double *scratch; /* per-segment areas of a sample's run */
+    double *targets; /* per model, each segment's saturation (n_models x n) */
 } tribo_charging;
 
 /* Where a sample's charge goes: into the committed charges (and their sums), or queued for
