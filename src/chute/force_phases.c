@@ -488,171 +488,236 @@ static int approaching(const tribo_dyn_params *p, const tribo_pose *g, const dou
     return vn < -rounding || (vn <= rounding && pressed_in(p, y));
 }
 
-/* The phase after an event (fired: the roots found) or, with fired = NULL, the phase a
-   state is in when the integration (re)starts there. Adjusts y to put the switched
-   boundary exactly on it (Y = h, damped velocity 0, delta_x = +-limit), so that CVODE's root
-   functions start at 0 and look at the direction the motion takes. */
-static tribo_force_law next_phase(const tribo_dyn_params *p, const tribo_force_law *old, double *y,
-                                 const int *fired)
-{
-    tribo_force_law ph = *old;
-    tribo_pose g;
-    tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
-    const double dy = -y[TRIBO_IGAP];
+/* ---- the phase after an event: contact, normal rule, tangential rule -------------------- */
 
+/* Whether the contact is made or lost at this event (or, with fired = NULL, whether the state
+   is in contact): sets law->contact. Returns 0 where nothing happens at all: a contact "made"
+   by rounding while the contact point moves away (model.md §3b). */
+static int contact_after(const tribo_dyn_params *p, const tribo_force_law *old, const tribo_pose *g,
+                         const double *y, const int *fired, tribo_force_law *law)
+{
+    const double dy = -y[TRIBO_IGAP];
     if (fired && fired[TRIBO_SWITCH_CONTACT]) {
-        if (!tribo_touching(old) && !approaching(p, &g, y))
-            return *old;
-        ph.contact = tribo_touching(old) ? TRIBO_CONTACT_OFF : TRIBO_CONTACT_ON;
+        if (!tribo_touching(old) && !approaching(p, g, y))
+            return 0;
+        law->contact = tribo_touching(old) ? TRIBO_CONTACT_OFF : TRIBO_CONTACT_ON;
     } else if (fired && tribo_touching(old) && dy < 0.0) {
         /* another switch where the lowest point is already above the plate: the contact
            was lost within the root finding's resolution of this switch, and its root,
            negative from the restart on, would never be seen (the phase would stay in
            contact with no force, its tangent switch firing at every stretch rounding) */
-        ph.contact = TRIBO_CONTACT_OFF;
+        law->contact = TRIBO_CONTACT_OFF;
     } else if (!fired) {
-        ph.contact = dy > 0.0 || (dy == 0.0 && approaching(p, &g, y)) ? TRIBO_CONTACT_ON
-                                                                     : TRIBO_CONTACT_OFF;
+        law->contact = dy > 0.0 || (dy == 0.0 && approaching(p, g, y)) ? TRIBO_CONTACT_ON
+                                                                      : TRIBO_CONTACT_OFF;
     }
+    return 1;
+}
+
+/* The stretch at an event in contact (model.md §3): 0 on a new contact made at a switch; a
+   slip's on its limit (CVODE's integrated stretch follows it only to the tolerances, and what
+   the slip does next is decided against it). */
+static void stretch_at_event(const tribo_dyn_params *p, const tribo_force_law *old, double *y,
+                             const int *fired, int onset)
+{
+    if (onset && fired)
+        y[TRIBO_IDX] = 0.0;
+    if (!onset && old->tangent == TRIBO_TANGENT_SLIP) {
+        tribo_contact_eval ev;
+        tribo_contact_at(p, old, y, &ev);
+        y[TRIBO_IDX] = old->slip_sign * ev.limit;
+    }
+}
+
+/* The damped velocity, found past 0 by its rounding, put exactly at 0: the contact point's by
+   a normal impulse there (which takes out -vn^2 / (2 W_NN) of the energy), the centre's by
+   setting V (model.md §3, "Phases and switches"). */
+static void stop_damped_velocity(const tribo_dyn_params *p, const tribo_pose *g, double *y)
+{
+    if (p->damping_point == TRIBO_DAMPING_CENTRE) {
+        y[TRIBO_IV] = 0.0;
+        return;
+    }
+    double w[3];
+    tribo_contact_inverse_mass(p, g, w);
+    const double P_n = -(y[TRIBO_IV] + g->cx * y[TRIBO_IOMEGA]) / w[0];
+    y[TRIBO_IV] += P_n;
+    y[TRIBO_IOMEGA] += p->inv_inertia * g->cx * P_n;
+}
+
+/* The normal rule after a switch of the normal law itself (fired: NORMAL_A, NORMAL_B or
+   LOCK_FACTOR; model.md §3, §3b): out of a lock or a creep, or the damped velocity reaching 0. */
+static void normal_after_switch(const tribo_dyn_params *p, const tribo_force_law *old,
+                                const tribo_pose *g, double *y, const int *fired, tribo_force_law *law)
+{
+    const double edge = fired[TRIBO_SWITCH_NORMAL_A] ? +1.0 : -1.0;
+    if (fired[TRIBO_SWITCH_LOCK_FACTOR] && tribo_locked(old)) {
+        /* a slipping lock or creep whose A reaches 0 (model.md §3) */
+        law->normal = TRIBO_NORMAL_SIGN;
+        law->normal_sign = leaving_sign(p, y, law);
+    } else if (old->normal == TRIBO_NORMAL_CREEP) {
+        /* the load turns back into the band: the lock holds the indentation the creep
+           reached, a hair inside the band (1e-12 of it, far above the edge's rounding
+           and far below anything the motion sees), so that the lock's own switch
+           starts on the right side of its edge */
+        law->normal = TRIBO_NORMAL_LOCK;
+        law->normal_sign = 0.0;
+        y[TRIBO_IGAP] *= 1.0 - 1e-12 * old->normal_sign; /* G < 0: s = +1 less deep */
+        y[TRIBO_IY] = g->h + y[TRIBO_IGAP];
+    } else if (old->normal == TRIBO_NORMAL_LOCK && p->rigid_stick && contact_point_lock(p, old) &&
+               1.0 - p->nu * edge > 0.0) {
+        /* with the rigid stick a load that goes on past the band's edge makes the lock
+           creep along it (the lower edge only where nu < 1, where it is not 0) */
+        law->normal = TRIBO_NORMAL_CREEP;
+        law->normal_sign = edge;
+    } else if (old->normal == TRIBO_NORMAL_LOCK) {
+        /* out of the lock at its band's edge: the normal force is continuous there, and
+           the damped velocity leaves 0 from rest (at the edge d(vn)/dtau = 0 too: it
+           creeps, and its switch waits for it to pass 0 decisively, started_at_rest) */
+        law->normal = TRIBO_NORMAL_SIGN;
+        law->normal_sign = edge;
+    } else {
+        stop_damped_velocity(p, g, y);
+        normal_at_rest(p, y, -y[TRIBO_IGAP], law, old);
+    }
+}
+
+/* The normal rule of the new phase (model.md §3): any sign where there is no dashpot; on a new
+   contact the sign of the damped velocity, or, at rest, the rule at rest; after a normal
+   switch, normal_after_switch; else the rule goes on. */
+static void normal_after(const tribo_dyn_params *p, const tribo_force_law *old, const tribo_pose *g,
+                         double *y, const int *fired, int onset, int normal_event,
+                         tribo_force_law *law)
+{
+    if (p->nu == 0.0) {
+        law->normal = TRIBO_NORMAL_SIGN; /* the sign does not matter */
+        law->normal_sign = -1.0;
+    } else if (onset) {
+        const double vn = tribo_damped_velocity(p, g, y);
+        if (vn != 0.0) {
+            law->normal = TRIBO_NORMAL_SIGN;
+            law->normal_sign = vn < 0.0 ? -1.0 : 1.0;
+        } else {
+            normal_at_rest(p, y, -y[TRIBO_IGAP], law, old);
+        }
+    } else if (normal_event) {
+        normal_after_switch(p, old, g, y, fired, law);
+    }
+}
+
+/* A stick -> slip switch (fired TANGENT_A: the stretch reaches +limit, TANGENT_B: -limit;
+   model.md §3): a slip in that direction, where the stretch leaves the limit; a lock that
+   cannot slip that way is left. */
+static void stick_to_slip(const tribo_dyn_params *p, const tribo_force_law *old, const tribo_pose *g,
+                          double *y, const int *fired, tribo_force_law *law)
+{
+    law->tangent = TRIBO_TANGENT_SLIP;
+    law->slip_sign = fired[TRIBO_SWITCH_TANGENT_A] ? +1.0 : -1.0;
+    double A;
+    if (contact_point_lock(p, law) && (tribo_lock_force(p, law, g, y, &A), !(A > 0.0))) {
+        /* a lock that cannot slip this way is no lock (model.md §3): the contact
+           leaves it, and the stretch is checked against the new normal phase's limit */
+        law->normal = TRIBO_NORMAL_SIGN;
+        law->normal_sign = leaving_sign(p, y, law);
+        tangent_from_state(p, y, law);
+        return;
+    }
+    tribo_contact_eval ev;
+    tribo_contact_at(p, law, y, &ev);
+    y[TRIBO_IDX] = law->slip_sign * ev.limit;
+    /* slip only where the stretch leaves the limit: at a grazing crossing the first
+       order can show the opposite by rounding, and a slip that starts with
+       sigma vs < d(limit)/dtau never sees its slip -> stick switch, and does
+       positive work. (The rigid stick's constraint force has passed the limit: its
+       slip starts from rest at second order, sigma dvs/dtau >= 0, stick_rigidly.) */
+    if (old->tangent == TRIBO_TANGENT_STICK &&
+        !stretch_leaves_limit(law->slip_sign, ev.vs, ev.limit_rate)) {
+        /* The switch was crossed by integration error alone: on the limit, the stick
+           would see it crossed again at once. It starts that error's size inside
+           (the spring energy this takes out is booked as dissipated). */
+        y[TRIBO_IDX] = law->slip_sign * (ev.limit - 10.0 * (p->rtol * ev.limit + p->atol));
+        law->tangent = TRIBO_TANGENT_STICK;
+        law->slip_sign = 0.0;
+    }
+}
+
+/* A slip -> stick switch (model.md §3): it sticks only where the stretch comes off the limit;
+   with the rigid stick a slip in a contact-point lock ends where the contact point comes to
+   rest (§3b), and sticks rigidly. */
+static void slip_to_stick(const tribo_dyn_params *p, const tribo_force_law *old, double *y,
+                          tribo_force_law *law)
+{
+    tribo_contact_eval ev;
+    tribo_contact_at(p, law, y, &ev);
+    y[TRIBO_IDX] = law->slip_sign * ev.limit;
+    if (slip_ends_at_rest(p, old) || !stretch_leaves_limit(law->slip_sign, ev.vs, ev.limit_rate)) {
+        law->tangent = TRIBO_TANGENT_STICK;
+        law->slip_sign = 0.0;
+        if (p->rigid_stick && contact_point_lock(p, law))
+            stick_rigidly(p, y, law);
+    }
+}
+
+/* The tangential rule of the new phase: after a tangential switch (and nothing else at the
+   event), the other rule where the stretch goes that way; else settled afresh. */
+static void tangent_after(const tribo_dyn_params *p, const tribo_force_law *old, const tribo_pose *g,
+                          double *y, const int *fired, int onset, int normal_event,
+                          tribo_force_law *law)
+{
+    const int tangent_event = fired && !onset && !normal_event &&
+                              (fired[TRIBO_SWITCH_TANGENT_A] || fired[TRIBO_SWITCH_TANGENT_B]);
+    if (tangent_event && old->tangent != TRIBO_TANGENT_SLIP)
+        stick_to_slip(p, old, g, y, fired, law);
+    else if (tangent_event)
+        slip_to_stick(p, old, y, law);
+    else
+        settle_tangent(p, y, law, old);
+}
+
+/* Whether the new phase starts at rest (creeps), and, with the rigid stick, a contact at rest
+   whose load lies on an edge of the band and moves past it: it creeps along that edge (the
+   sign phase it would start rings; model.md §3b). */
+static void mark_start_at_rest(const tribo_dyn_params *p, const double *y, tribo_force_law *law)
+{
+    law->started_at_rest = tribo_touching(law) && law->normal == TRIBO_NORMAL_SIGN && p->nu > 0.0 &&
+                           creeps(p, law, y);
+    if (law->started_at_rest && p->rigid_stick && p->damping_point == TRIBO_DAMPING_CONTACT_POINT &&
+        1.0 - p->nu * law->normal_sign > 0.0) {
+        law->normal = TRIBO_NORMAL_CREEP;
+        law->started_at_rest = 0;
+    }
+}
+
+/* The phase after an event (fired: the roots found) or, with fired = NULL, the phase a
+   state is in when the integration (re)starts there. Adjusts y to put the switched
+   boundary exactly on it (Y = h, damped velocity 0, delta_x = +-limit), so that CVODE's root
+   functions start at 0 and look at the direction the motion takes. */
+static tribo_force_law next_phase(const tribo_dyn_params *p, const tribo_force_law *old, double *y,
+                                  const int *fired)
+{
+    tribo_force_law ph = *old;
+    tribo_pose g;
+    tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
+    if (!contact_after(p, old, &g, y, fired, &ph))
+        return *old;
     const int onset = tribo_touching(&ph) && (!tribo_touching(old) || !fired);
     if (fired && fired[TRIBO_SWITCH_CONTACT]) {
         y[TRIBO_IGAP] = 0.0;
         y[TRIBO_IY] = g.h;
     }
-
     if (!tribo_touching(&ph)) {
-        ph = TRIBO_PHASE_FLIGHT;
         /* model.md §3: the stretch is 0 when contact is regained; at lift-off it is already
            within a vanishing limit */
         y[TRIBO_IDX] = 0.0;
-        return ph;
+        return TRIBO_PHASE_FLIGHT;
     }
-    if (onset && fired)
-        y[TRIBO_IDX] = 0.0;
-    if (!onset && old->tangent == TRIBO_TANGENT_SLIP) {
-        /* a slip's stretch is on its limit (model.md §3); CVODE's integrated stretch follows
-           it only to the tolerances, and what the slip does next is decided against it */
-        tribo_contact_eval ev;
-        tribo_contact_at(p, old, y, &ev);
-        y[TRIBO_IDX] = old->slip_sign * ev.limit;
-    }
-
-    /* normal */
-    const double dy_now = -y[TRIBO_IGAP];
+    stretch_at_event(p, old, y, fired, onset);
     const int normal_event = fired && (fired[TRIBO_SWITCH_NORMAL_A] || fired[TRIBO_SWITCH_NORMAL_B] ||
                                        fired[TRIBO_SWITCH_LOCK_FACTOR]);
-    if (p->nu == 0.0) {
-        ph.normal = TRIBO_NORMAL_SIGN; /* the sign does not matter */
-        ph.normal_sign = -1.0;
-    } else if (onset) {
-        const double vn = tribo_damped_velocity(p, &g, y);
-        if (vn != 0.0) {
-            ph.normal = TRIBO_NORMAL_SIGN;
-            ph.normal_sign = vn < 0.0 ? -1.0 : 1.0;
-        } else {
-            normal_at_rest(p, y, dy_now, &ph, old);
-        }
-    } else if (normal_event) {
-        const double edge = fired[TRIBO_SWITCH_NORMAL_A] ? +1.0 : -1.0;
-        if (fired[TRIBO_SWITCH_LOCK_FACTOR] && tribo_locked(old)) {
-            /* a slipping lock or creep whose A reaches 0 (model.md §3) */
-            ph.normal = TRIBO_NORMAL_SIGN;
-            ph.normal_sign = leaving_sign(p, y, &ph);
-        } else if (old->normal == TRIBO_NORMAL_CREEP) {
-            /* the load turns back into the band: the lock holds the indentation the creep
-               reached, a hair inside the band (1e-12 of it, far above the edge's rounding
-               and far below anything the motion sees), so that the lock's own switch
-               starts on the right side of its edge */
-            ph.normal = TRIBO_NORMAL_LOCK;
-            ph.normal_sign = 0.0;
-            y[TRIBO_IGAP] *= 1.0 - 1e-12 * old->normal_sign; /* G < 0: s = +1 less deep */
-            y[TRIBO_IY] = g.h + y[TRIBO_IGAP];
-        } else if (old->normal == TRIBO_NORMAL_LOCK && p->rigid_stick && contact_point_lock(p, old) &&
-                   1.0 - p->nu * edge > 0.0) {
-            /* with the rigid stick a load that goes on past the band's edge makes the lock
-               creep along it (the lower edge only where nu < 1, where it is not 0) */
-            ph.normal = TRIBO_NORMAL_CREEP;
-            ph.normal_sign = edge;
-        } else if (old->normal == TRIBO_NORMAL_LOCK) {
-            /* out of the lock at its band's edge: the normal force is continuous there, and
-               the damped velocity leaves 0 from rest (at the edge d(vn)/dtau = 0 too: it
-               creeps, and its switch waits for it to pass 0 decisively, started_at_rest) */
-            ph.normal = TRIBO_NORMAL_SIGN;
-            ph.normal_sign = edge;
-        } else {
-            /* the damped velocity, found past 0 by its rounding, exactly 0: the contact point's
-               by a normal impulse there (which takes out -vn^2 / (2 W_NN) of the energy), the
-               centre's by setting V */
-            if (p->damping_point == TRIBO_DAMPING_CENTRE) {
-                y[TRIBO_IV] = 0.0;
-            } else {
-                double w[3];
-                tribo_contact_inverse_mass(p, &g, w);
-                const double P_n = -(y[TRIBO_IV] + g.cx * y[TRIBO_IOMEGA]) / w[0];
-                y[TRIBO_IV] += P_n;
-                y[TRIBO_IOMEGA] += p->inv_inertia * g.cx * P_n;
-            }
-            normal_at_rest(p, y, dy_now, &ph, old);
-        }
-    }
-
-    /* tangential */
-    const int tangent_event = fired && !onset && !normal_event &&
-                              (fired[TRIBO_SWITCH_TANGENT_A] || fired[TRIBO_SWITCH_TANGENT_B]);
-    if (tangent_event && old->tangent != TRIBO_TANGENT_SLIP) {
-        tribo_contact_eval ev;
-        ph.tangent = TRIBO_TANGENT_SLIP;
-        ph.slip_sign = fired[TRIBO_SWITCH_TANGENT_A] ? +1.0 : -1.0;
-        double A;
-        if (contact_point_lock(p, &ph) && (tribo_lock_force(p, &ph, &g, y, &A), !(A > 0.0))) {
-            /* a lock that cannot slip this way is no lock (model.md §3): the contact
-               leaves it, and the stretch is checked against the new normal phase's limit */
-            ph.normal = TRIBO_NORMAL_SIGN;
-            ph.normal_sign = leaving_sign(p, y, &ph);
-            tangent_from_state(p, y, &ph);
-        } else {
-            tribo_contact_at(p, &ph, y, &ev);
-            y[TRIBO_IDX] = ph.slip_sign * ev.limit;
-            /* slip only where the stretch leaves the limit: at a grazing crossing the first
-               order can show the opposite by rounding, and a slip that starts with
-               sigma vs < d(limit)/dtau never sees its slip -> stick switch, and does
-               positive work. (The rigid stick's constraint force has passed the limit: its
-               slip starts from rest at second order, sigma dvs/dtau >= 0, stick_rigidly.) */
-            if (old->tangent == TRIBO_TANGENT_STICK &&
-                !stretch_leaves_limit(ph.slip_sign, ev.vs, ev.limit_rate)) {
-                /* The switch was crossed by integration error alone: on the limit, the stick
-                   would see it crossed again at once. It starts that error's size inside
-                   (the spring energy this takes out is booked as dissipated). */
-                y[TRIBO_IDX] = ph.slip_sign * (ev.limit - 10.0 * (p->rtol * ev.limit + p->atol));
-                ph.tangent = TRIBO_TANGENT_STICK;
-                ph.slip_sign = 0.0;
-            }
-        }
-    } else if (tangent_event) {
-        tribo_contact_eval ev;
-        tribo_contact_at(p, &ph, y, &ev);
-        y[TRIBO_IDX] = ph.slip_sign * ev.limit;
-        /* likewise, it sticks only where the stretch comes off the limit; with the rigid
-           stick a slip in a contact-point lock ends where the contact point comes to rest */
-        if (slip_ends_at_rest(p, old) || !stretch_leaves_limit(ph.slip_sign, ev.vs, ev.limit_rate)) {
-            ph.tangent = TRIBO_TANGENT_STICK;
-            ph.slip_sign = 0.0;
-            if (p->rigid_stick && contact_point_lock(p, &ph))
-                stick_rigidly(p, y, &ph);
-        }
-    } else {
-        settle_tangent(p, y, &ph, old);
-    }
+    normal_after(p, old, &g, y, fired, onset, normal_event, &ph);
+    tangent_after(p, old, &g, y, fired, onset, normal_event, &ph);
     confirm_lock(p, y, &ph, old);
-    ph.started_at_rest = tribo_touching(&ph) && ph.normal == TRIBO_NORMAL_SIGN && p->nu > 0.0 &&
-                         creeps(p, &ph, y);
-    if (ph.started_at_rest && p->rigid_stick && p->damping_point == TRIBO_DAMPING_CONTACT_POINT &&
-        1.0 - p->nu * ph.normal_sign > 0.0) {
-        /* with the rigid stick, a contact at rest whose load lies on an edge of the band and
-           moves past it creeps along that edge (the sign phase it would start rings) */
-        ph.normal = TRIBO_NORMAL_CREEP;
-        ph.started_at_rest = 0;
-    }
+    mark_start_at_rest(p, y, &ph);
     return ph;
 }
 
