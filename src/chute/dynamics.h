@@ -106,6 +106,11 @@ typedef struct tribo_force_law {
                              velocity at 0 within its rounding (out of a lock at its band's
                              edge, or a reversal decided at 0), from where it creeps: its switch
                              waits for the velocity to pass 0 by more than that rounding */
+    int compliant_slip;   /* for TRIBO_TANGENT_SLIP in a contact-point lock with the rigid stick:
+                             a slip that went on where the rigid stick could not hold the lock
+                             (its force outside the band) ends as the compliant stick's does,
+                             where the stretch comes off the limit, not where the contact point
+                             comes to rest (model.md §3b) */
 } tribo_force_law;
 
 /* Whether a rule holds the damped velocity at 0 with the lock's force: a lock or a creep. */

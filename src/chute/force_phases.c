@@ -5,8 +5,10 @@
 #include <math.h>
 #include <string.h>
 
-const tribo_force_law TRIBO_PHASE_FLIGHT = {TRIBO_CONTACT_OFF, TRIBO_NORMAL_SIGN, -1.0, TRIBO_TANGENT_STICK,
-                                     0.0, 0};
+const tribo_force_law TRIBO_PHASE_FLIGHT = {.contact = TRIBO_CONTACT_OFF,
+                                            .normal = TRIBO_NORMAL_SIGN,
+                                            .normal_sign = -1.0,
+                                            .tangent = TRIBO_TANGENT_STICK};
 
 /* The normal lock holds while Psi_N* (tribo_lock_force) lies in the band of normal forces
    the set-valued sign allows (model.md §3), max(0, dy(1 - nu)) <= Psi_N* <= dy(1 + nu), and,
@@ -35,7 +37,8 @@ static double damped_velocity_rounding(const tribo_dyn_params *p, const tribo_po
    not a spring that has to come off the limit first. */
 static int slip_ends_at_rest(const tribo_dyn_params *p, const tribo_force_law *law)
 {
-    return p->rigid_stick && contact_point_lock(p, law) && law->tangent == TRIBO_TANGENT_SLIP;
+    return p->rigid_stick && contact_point_lock(p, law) && law->tangent == TRIBO_TANGENT_SLIP &&
+           !law->compliant_slip;
 }
 
 void tribo_switch_functions(const tribo_dyn_params *p, const tribo_force_law *law, const double *y,
@@ -85,8 +88,14 @@ void tribo_switch_functions(const tribo_dyn_params *p, const tribo_force_law *la
         g[TRIBO_SWITCH_TANGENT_B] = ev.limit - ev.psi_t;
         break;
     default:
+        /* a slip of the rigid stick ends where the contact point comes to rest, past 0 by more
+           than the rounding of vs: one the rigid stick starts from rest (its constraint force
+           at the limit) creeps away from 0, and rounding would see it cross back at once */
         g[TRIBO_SWITCH_TANGENT_A] =
-            law->slip_sign * ev.vs - (slip_ends_at_rest(p, law) ? 0.0 : ev.limit_rate);
+            slip_ends_at_rest(p, law)
+                ? law->slip_sign * ev.vs +
+                      tribo_velocity_rounding(p, y[TRIBO_IU], ev.pose.h * y[TRIBO_IOMEGA])
+                : law->slip_sign * ev.vs - ev.limit_rate;
         break;
     }
 }
@@ -121,21 +130,31 @@ static void tangent_from_state(const tribo_dyn_params *p, double *y, tribo_force
 static void settle_tangent(const tribo_dyn_params *p, double *y, tribo_force_law *law,
                            const tribo_force_law *old);
 
+/* The rate of the damped velocity (dvn/dtau, or the centre's dV/dtau) at y under the law. */
+static double damped_velocity_rate(const tribo_dyn_params *p, const tribo_force_law *law,
+                                   const double *y)
+{
+    double f[TRIBO_NMOTION];
+    tribo_contact_eval ev;
+    tribo_dynamics_rhs(p, law, y, f, &ev);
+    if (p->damping_point == TRIBO_DAMPING_CENTRE)
+        return f[TRIBO_IV];
+    const double Om = y[TRIBO_IOMEGA];
+    return f[TRIBO_IV] + tribo_pose_kappa(p->eps2, &ev.pose) * Om * Om + ev.pose.cx * f[TRIBO_IOMEGA];
+}
+
 /* dvn/dtau at y in the normal phase of sign s (s = 0: the spring force alone, Psi_N =
    delta_y), with the tangential rule that phase gives the stretch. */
 static double normal_acceleration(const tribo_dyn_params *p, const double *y,
                                   const tribo_force_law *law, double s)
 {
-    double z[TRIBO_NSTATE_MAX], f[TRIBO_NMOTION];
+    double z[TRIBO_NSTATE_MAX];
     memcpy(z, y, sizeof z);
     tribo_force_law trial = *law;
     trial.normal = TRIBO_NORMAL_SIGN;
     trial.normal_sign = s;
     tangent_from_state(p, z, &trial);
-    tribo_contact_eval ev;
-    tribo_dynamics_rhs(p, &trial, z, f, &ev);
-    const double Om = z[TRIBO_IOMEGA];
-    return f[TRIBO_IV] + tribo_pose_kappa(p->eps2, &ev.pose) * Om * Om + ev.pose.cx * f[TRIBO_IOMEGA];
+    return damped_velocity_rate(p, &trial, z);
 }
 
 /* Where no lock can hold the contact point (A <= 0, a Painleve-type configuration, model.md
@@ -152,40 +171,111 @@ static double leaving_sign(const tribo_dyn_params *p, const double *y, const tri
     return normal_acceleration(p, y, law, 0.0) > 0.0 ? +1.0 : -1.0;
 }
 
-/* The normal rule of a contact whose damped velocity is exactly 0 (model.md §3): normal lock
-   if the force that holds it (in the law's tangential rule) is within the band, otherwise
-   the sign the net normal force gives the velocity: below the band the contact lifts
-   (s = +1), above it presses in (s = -1); where A <= 0 there is no lock (leaving_sign). A
-   lock holds the indentation dy. y does not change. */
-static void normal_at_rest(const tribo_dyn_params *p, const double *y, double dy, tribo_force_law *law,
-                           const tribo_force_law *old)
+static int in_band(const tribo_dyn_params *p, double dy, double psi_star)
 {
-    tribo_pose g;
-    tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
-    /* A contact-point lock's force depends on the tangential rule the lock itself would have
-       (the rule before may be a slip at a zero limit, the contact having been unloaded; with
-       the rigid stick, a stick would stop the contact point): that rule decides, on a copy of
-       the state. */
-    tribo_force_law as_locked = *law;
+    return p->nu > 0.0 && psi_star >= lock_lower(p, dy) && psi_star <= dy * (1.0 + p->nu);
+}
+
+/* Whether a sign phase of sign s, with the tangential rule it would have (settled as after a
+   switch), takes the damped velocity away from 0 that way: s dvn/dtau > 0 (model.md §3). */
+static int sign_leaves(const tribo_dyn_params *p, const double *y, const tribo_force_law *law,
+                       const tribo_force_law *old, double s)
+{
     double z[TRIBO_NSTATE_MAX];
     memcpy(z, y, sizeof z);
-    if (p->damping_point == TRIBO_DAMPING_CONTACT_POINT) {
-        as_locked.normal = TRIBO_NORMAL_LOCK;
-        as_locked.normal_sign = 0.0;
-        settle_tangent(p, z, &as_locked, old);
-    }
+    tribo_force_law trial = *law;
+    trial.normal = TRIBO_NORMAL_SIGN;
+    trial.normal_sign = s;
+    settle_tangent(p, z, &trial, old);
+    return s * damped_velocity_rate(p, &trial, z) > 0.0;
+}
+
+/* A lock with the compliant stick (Psi_T = -dx) where its force lies in the band and the
+   stretch within its limit: law set to it, 1; else 0 and law unchanged. */
+static int compliant_stick_lock(const tribo_dyn_params *p, const double *y, double dy,
+                                tribo_force_law *law)
+{
+    tribo_force_law stick = *law;
+    stick.normal = TRIBO_NORMAL_LOCK;
+    stick.normal_sign = 0.0;
+    stick.tangent = TRIBO_TANGENT_STICK;
+    stick.slip_sign = 0.0;
+    tribo_pose g;
+    tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
     double A;
-    const double psi_star = tribo_lock_force(p, &as_locked, &g, z, &A);
+    const double psi_star = tribo_lock_force(p, &stick, &g, y, &A);
+    if (!(A > 0.0 && in_band(p, dy, psi_star) && fabs(y[TRIBO_IDX]) <= p->mu * psi_star))
+        return 0;
+    *law = stick;
+    return 1;
+}
+
+/* A lock of the contact at y (a copy z of it) under the tangential rule the lock itself would
+   have, settled as after a switch (settle_tangent: with the rigid stick a stick is the rigid
+   one, which stops the contact point). Returns its Psi_N*, and A. */
+static double lock_candidate(const tribo_dyn_params *p, const double *y, const tribo_force_law *old,
+                             tribo_force_law *law, double *z, double *A)
+{
+    memcpy(z, y, TRIBO_NSTATE_MAX * sizeof *z);
+    law->normal = TRIBO_NORMAL_LOCK;
+    law->normal_sign = 0.0;
+    settle_tangent(p, z, law, old);
+    tribo_pose g;
+    tribo_pose_at(p->eps2, z[TRIBO_IPHI], &g);
+    return tribo_lock_force(p, law, &g, z, A);
+}
+
+/* The rule of a contact whose damped velocity is exactly 0 (model.md §3, §3b): a normal lock
+   if the force that holds it, under the tangential rule the lock itself has, is within the
+   band: that rule and the state it gives (a rigid stick stops the contact point) are the
+   lock's, so that the rule that entered the lock is the rule that holds it (never re-derived
+   later under another: the contact would leave the lock it entered at once, and vn return
+   through 0 again and again). The rule before may be a slip at a zero limit, the contact
+   having been unloaded. Otherwise the sign the net normal force gives the velocity under that
+   rule: below the band the contact lifts (s = +1), above it presses in (s = -1), where the
+   sign phase then leaves 0 that way under its own tangential rule (sign_leaves); where A <= 0
+   there is no lock (leaving_sign). A lock holds the indentation dy. Returns 1 where it set
+   law's tangential rule (and y) too. */
+static int normal_at_rest(const tribo_dyn_params *p, double *y, double dy, tribo_force_law *law,
+                          const tribo_force_law *old)
+{
+    if (p->damping_point == TRIBO_DAMPING_CENTRE) {
+        /* the centre's lock does not depend on the tangential rule: V held at 0 */
+        double A;
+        tribo_pose g;
+        tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
+        const double psi_star = tribo_lock_force(p, law, &g, y, &A);
+        law->normal = in_band(p, dy, psi_star) ? TRIBO_NORMAL_LOCK : TRIBO_NORMAL_SIGN;
+        law->normal_sign = law->normal == TRIBO_NORMAL_LOCK ? 0.0 : psi_star < lock_lower(p, dy) ? +1.0 : -1.0;
+        return 0;
+    }
+    tribo_force_law as_locked = *law;
+    double z[TRIBO_NSTATE_MAX], A;
+    const double psi_star = lock_candidate(p, y, old, &as_locked, z, &A);
     if (!(A > 0.0)) {
         law->normal = TRIBO_NORMAL_SIGN;
         law->normal_sign = leaving_sign(p, y, law);
-    } else if (p->nu > 0.0 && psi_star >= lock_lower(p, dy) && psi_star <= dy * (1.0 + p->nu)) {
-        law->normal = TRIBO_NORMAL_LOCK;
-        law->normal_sign = 0.0;
-    } else {
-        law->normal = TRIBO_NORMAL_SIGN;
-        law->normal_sign = psi_star < lock_lower(p, dy) ? +1.0 : -1.0;
+        return 0;
     }
+    if (in_band(p, dy, psi_star)) {
+        *law = as_locked;
+        memcpy(y, z, sizeof z);
+        return 1;
+    }
+    /* no lock under its own rule: the sign its force points to, where the sign phase leaves 0
+       that way under its own tangential rule (which may differ from the lock's: a stick where
+       the lock would slip, a limit of its own); else the other sign, where that one does; else
+       the lock with the compliant stick, where that holds */
+    const double s0 = psi_star < lock_lower(p, dy) ? +1.0 : -1.0;
+    law->normal = TRIBO_NORMAL_SIGN;
+    law->normal_sign = s0;
+    if (sign_leaves(p, y, law, old, s0))
+        return 0;
+    if (sign_leaves(p, y, law, old, -s0)) {
+        law->normal_sign = -s0;
+        return 0;
+    }
+    return compliant_stick_lock(p, y, dy, law);
 }
 
 /* d2h/dphi2 at phi: -kappa (model.md §3), exactly as flight.c has it, so that a contact the
@@ -348,7 +438,10 @@ static int slip_goes_on_forced(const tribo_dyn_params *p, double *y, tribo_force
    quasi-static value -Psi_T*. Beyond the limit the contact slips, from rest, the way the
    constraint force cannot hold it (sigma = -sgn Psi_T*, under which sigma dvs/dtau >= 0), the
    stretch on the limit. Where that slip has no lock (A <= 0, model.md §3) the compliant stick
-   stays, as in the compliant model. */
+   stays, as in the compliant model; so it does where the constraint's normal force lies outside
+   the lock's band (a lock, not a creep, which follows its edge): the rigid lock would end at
+   once, into a sign phase with the compliant stick, under which the net normal force points
+   back into the lock (the lock under the compliant stick holds; model.md §3b). */
 static void stick_rigidly(const tribo_dyn_params *p, double *y, tribo_force_law *law)
 {
     tribo_pose g;
@@ -359,6 +452,8 @@ static void stick_rigidly(const tribo_dyn_params *p, double *y, tribo_force_law 
     double psi_n, psi_t;
     tribo_rigid_forces(p, &g, z[TRIBO_IOMEGA], &psi_n, &psi_t);
     tribo_force_law next = *law;
+    if (law->normal == TRIBO_NORMAL_LOCK && !in_band(p, -y[TRIBO_IGAP], psi_n))
+        return;
     if (fabs(psi_t) < p->mu * psi_n) {
         next.tangent = TRIBO_TANGENT_RIGID;
         next.slip_sign = 0.0;
@@ -417,20 +512,22 @@ static void settle_tangent(const tribo_dyn_params *p, double *y, tribo_force_law
     }
 }
 
-/* A contact-point lock decided before its tangential rule was: Psi_N* and A change with the
-   rule, so the lock is checked again under the final one; if it no longer holds, the
-   contact leaves it and the tangential rule follows the new normal phase. */
+/* A contact-point lock whose tangential rule was decided after its normal rule (a lock through
+   a tangential switch, or a creep's load turning back into the band): Psi_N* and A change with
+   the rule, so the lock is checked under the rule it has now, never under another (model.md
+   §3b); where it does not hold there, the contact leaves it as a contact at rest does
+   (normal_at_rest), and the tangential rule follows the new normal phase. */
 static void confirm_lock(const tribo_dyn_params *p, double *y, tribo_force_law *law,
                          const tribo_force_law *old)
 {
     if (!contact_point_lock(p, law))
         return;
+    tribo_pose g;
+    tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
+    double A;
+    const double psi_star = tribo_lock_force(p, law, &g, y, &A);
     if (law->normal == TRIBO_NORMAL_CREEP) {
         /* a creep sits on its band's edge by construction; only a slip's A can end it */
-        tribo_pose g;
-        tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
-        double A;
-        tribo_lock_force(p, law, &g, y, &A);
         if (!(A > 0.0)) {
             law->normal = TRIBO_NORMAL_SIGN;
             law->normal_sign = leaving_sign(p, y, law);
@@ -438,8 +535,9 @@ static void confirm_lock(const tribo_dyn_params *p, double *y, tribo_force_law *
         }
         return;
     }
-    normal_at_rest(p, y, -y[TRIBO_IGAP], law, old);
-    if (law->normal != TRIBO_NORMAL_LOCK)
+    if (A > 0.0 && in_band(p, -y[TRIBO_IGAP], psi_star))
+        return;
+    if (!normal_at_rest(p, y, -y[TRIBO_IGAP], law, old))
         settle_tangent(p, y, law, old);
 }
 
@@ -463,18 +561,12 @@ static int pressed_in(const tribo_dyn_params *p, const double *y)
    of its own, where a lock can end an oscillation that is left.) */
 static int creeps(const tribo_dyn_params *p, const tribo_force_law *ph, const double *y)
 {
-    double f[TRIBO_NMOTION];
-    tribo_contact_eval ev;
-    tribo_dynamics_rhs(p, ph, y, f, &ev);
-    const double rounding = damped_velocity_rounding(p, &ev.pose, y);
-    if (fabs(tribo_damped_velocity(p, &ev.pose, y)) > rounding)
+    tribo_pose g;
+    tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
+    const double rounding = damped_velocity_rounding(p, &g, y);
+    if (fabs(tribo_damped_velocity(p, &g, y)) > rounding)
         return 0;
-    const double Om = y[TRIBO_IOMEGA];
-    const double rate =
-        p->damping_point == TRIBO_DAMPING_CENTRE
-            ? f[TRIBO_IV]
-            : f[TRIBO_IV] + tribo_pose_kappa(p->eps2, &ev.pose) * Om * Om + ev.pose.cx * f[TRIBO_IOMEGA];
-    return fabs(rate) <= rounding;
+    return fabs(damped_velocity_rate(p, ph, y)) <= rounding;
 }
 
 /* Whether a contact made at y (delta_y = 0) is made: the contact point approaches the plate,
@@ -546,8 +638,9 @@ static void stop_damped_velocity(const tribo_dyn_params *p, const tribo_pose *g,
 }
 
 /* The normal rule after a switch of the normal law itself (fired: NORMAL_A, NORMAL_B or
-   LOCK_FACTOR; model.md §3, §3b): out of a lock or a creep, or the damped velocity reaching 0. */
-static void normal_after_switch(const tribo_dyn_params *p, const tribo_force_law *old,
+   LOCK_FACTOR; model.md §3, §3b): out of a lock or a creep, or the damped velocity reaching 0.
+   Returns 1 where it set the tangential rule too (normal_at_rest). */
+static int normal_after_switch(const tribo_dyn_params *p, const tribo_force_law *old,
                                 const tribo_pose *g, double *y, const int *fired, tribo_force_law *law)
 {
     const double edge = fired[TRIBO_SWITCH_NORMAL_A] ? +1.0 : -1.0;
@@ -578,14 +671,16 @@ static void normal_after_switch(const tribo_dyn_params *p, const tribo_force_law
         law->normal_sign = edge;
     } else {
         stop_damped_velocity(p, g, y);
-        normal_at_rest(p, y, -y[TRIBO_IGAP], law, old);
+        return normal_at_rest(p, y, -y[TRIBO_IGAP], law, old);
     }
+    return 0;
 }
 
 /* The normal rule of the new phase (model.md §3): any sign where there is no dashpot; on a new
    contact the sign of the damped velocity, or, at rest, the rule at rest; after a normal
-   switch, normal_after_switch; else the rule goes on. */
-static void normal_after(const tribo_dyn_params *p, const tribo_force_law *old, const tribo_pose *g,
+   switch, normal_after_switch; else the rule goes on. Returns 1 where it set the tangential rule
+   too (a lock entered at rest keeps the rule it was entered under: normal_at_rest). */
+static int normal_after(const tribo_dyn_params *p, const tribo_force_law *old, const tribo_pose *g,
                          double *y, const int *fired, int onset, int normal_event,
                          tribo_force_law *law)
 {
@@ -598,11 +693,12 @@ static void normal_after(const tribo_dyn_params *p, const tribo_force_law *old, 
             law->normal = TRIBO_NORMAL_SIGN;
             law->normal_sign = vn < 0.0 ? -1.0 : 1.0;
         } else {
-            normal_at_rest(p, y, -y[TRIBO_IGAP], law, old);
+            return normal_at_rest(p, y, -y[TRIBO_IGAP], law, old);
         }
     } else if (normal_event) {
-        normal_after_switch(p, old, g, y, fired, law);
+        return normal_after_switch(p, old, g, y, fired, law);
     }
+    return 0;
 }
 
 /* A stick -> slip switch (fired TANGENT_A: the stretch reaches +limit, TANGENT_B: -limit;
@@ -643,18 +739,27 @@ static void stick_to_slip(const tribo_dyn_params *p, const tribo_force_law *old,
 
 /* A slip -> stick switch (model.md §3): it sticks only where the stretch comes off the limit;
    with the rigid stick a slip in a contact-point lock ends where the contact point comes to
-   rest (§3b), and sticks rigidly. */
+   rest (§3b), and sticks rigidly, or, where the rigid stick cannot hold the lock
+   (stick_rigidly), as the compliant stick does: where the stretch comes off the limit; else the
+   slip goes on and ends as the compliant one does (compliant_slip: a stick on the limit that
+   the stretch would leave would slip again at once, and that slip stop again at once). */
 static void slip_to_stick(const tribo_dyn_params *p, const tribo_force_law *old, double *y,
                           tribo_force_law *law)
 {
     tribo_contact_eval ev;
     tribo_contact_at(p, law, y, &ev);
     y[TRIBO_IDX] = law->slip_sign * ev.limit;
-    if (slip_ends_at_rest(p, old) || !stretch_leaves_limit(law->slip_sign, ev.vs, ev.limit_rate)) {
-        law->tangent = TRIBO_TANGENT_STICK;
-        law->slip_sign = 0.0;
-        if (p->rigid_stick && contact_point_lock(p, law))
-            stick_rigidly(p, y, law);
+    const int comes_off = !stretch_leaves_limit(law->slip_sign, ev.vs, ev.limit_rate);
+    if (!slip_ends_at_rest(p, old) && !comes_off)
+        return;
+    const tribo_force_law slip = *law;
+    law->tangent = TRIBO_TANGENT_STICK;
+    law->slip_sign = 0.0;
+    if (p->rigid_stick && contact_point_lock(p, law))
+        stick_rigidly(p, y, law);
+    if (law->tangent == TRIBO_TANGENT_STICK && !comes_off) {
+        *law = slip;
+        law->compliant_slip = 1;
     }
 }
 
@@ -714,10 +819,12 @@ static tribo_force_law next_phase(const tribo_dyn_params *p, const tribo_force_l
     stretch_at_event(p, old, y, fired, onset);
     const int normal_event = fired && (fired[TRIBO_SWITCH_NORMAL_A] || fired[TRIBO_SWITCH_NORMAL_B] ||
                                        fired[TRIBO_SWITCH_LOCK_FACTOR]);
-    normal_after(p, old, &g, y, fired, onset, normal_event, &ph);
-    tangent_after(p, old, &g, y, fired, onset, normal_event, &ph);
+    if (!normal_after(p, old, &g, y, fired, onset, normal_event, &ph))
+        tangent_after(p, old, &g, y, fired, onset, normal_event, &ph);
     confirm_lock(p, y, &ph, old);
     mark_start_at_rest(p, y, &ph);
+    if (ph.tangent != TRIBO_TANGENT_SLIP || !contact_point_lock(p, &ph))
+        ph.compliant_slip = 0;
     return ph;
 }
 

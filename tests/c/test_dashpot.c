@@ -293,7 +293,8 @@ Test(dashpot, no_lock_where_slip_makes_A_non_positive)
 {
     tribo_scene s = scene_of("epsilon=0.3 mu=3 nu=1");
     tribo_dyn_params p = params_of(&s);
-    const tribo_force_law slip_in = {TRIBO_CONTACT_ON, TRIBO_NORMAL_SIGN, -1.0, TRIBO_TANGENT_SLIP, 1.0, 0};
+    const tribo_force_law slip_in = {.contact = TRIBO_CONTACT_ON, .normal = TRIBO_NORMAL_SIGN, .normal_sign = -1.0,
+                                       .tangent = TRIBO_TANGENT_SLIP, .slip_sign = 1.0};
     const int fired[TRIBO_N_SWITCHES] = {[TRIBO_SWITCH_NORMAL_A] = 1};
     int found = 0;
     for (int j = -150; j <= 150 && !found; j++) {
@@ -353,8 +354,10 @@ Test(dashpot, runs_visit_A_non_positive_without_a_lock_there, .timeout = 60)
                 if (tribo_get(m, TRIBO_QUANTITY_SLIPPING) == 0.0)
                     continue;
                 const double dx = tribo_get(m, TRIBO_QUANTITY_DELTA_X);
-                const tribo_force_law slip = {TRIBO_CONTACT_ON, TRIBO_NORMAL_LOCK, 0.0,
-                                              TRIBO_TANGENT_SLIP, dx > 0.0 ? 1.0 : -1.0, 0};
+                const tribo_force_law slip = {.contact = TRIBO_CONTACT_ON,
+                                              .normal = TRIBO_NORMAL_LOCK,
+                                              .tangent = TRIBO_TANGENT_SLIP,
+                                              .slip_sign = dx > 0.0 ? 1.0 : -1.0};
                 double y[TRIBO_NSTATE_MAX] = {0}, A, g[TRIBO_N_SWITCHES];
                 y[TRIBO_IPHI] = tribo_get(m, TRIBO_QUANTITY_PHI);
                 tribo_pose pose;

@@ -7,7 +7,9 @@
 #include "support.h"
 #include "tribo.h"
 
-static const tribo_force_law LAW = {TRIBO_CONTACT_BY_GEOMETRY, TRIBO_NORMAL_REGULARISED, 0.0, TRIBO_TANGENT_CLAMP, 0.0, 0};
+static const tribo_force_law LAW = {.contact = TRIBO_CONTACT_BY_GEOMETRY,
+                                    .normal = TRIBO_NORMAL_REGULARISED,
+                                    .tangent = TRIBO_TANGENT_CLAMP};
 
 static tribo_dyn_params params(double eps, double mu, double nu)
 {

@@ -78,7 +78,8 @@ Test(switching, a_lock_left_at_its_bands_edge_leaves_from_rest)
 {
     const tribo_scene s = switching_scene(TRIBO_STICK_COMPLIANT);
     const tribo_dyn_params p = params_of(&s);
-    const tribo_force_law lock = {TRIBO_CONTACT_ON, TRIBO_NORMAL_LOCK, 0.0, TRIBO_TANGENT_STICK, 0.0, 0};
+    const tribo_force_law lock = {.contact = TRIBO_CONTACT_ON, .normal = TRIBO_NORMAL_LOCK,
+                                  .tangent = TRIBO_TANGENT_STICK};
     double y[TRIBO_NSTATE_MAX];
     lock_on_its_upper_edge(&p, &lock, y);
     const tribo_force_law after = leave_at_the_upper_edge(&p, &lock, y);
@@ -95,7 +96,8 @@ Test(switching, a_slip_goes_on_through_a_normal_switch)
 {
     const tribo_scene s = switching_scene(TRIBO_STICK_COMPLIANT);
     const tribo_dyn_params p = params_of(&s);
-    const tribo_force_law lock = {TRIBO_CONTACT_ON, TRIBO_NORMAL_LOCK, 0.0, TRIBO_TANGENT_SLIP, 1.0, 0};
+    const tribo_force_law lock = {.contact = TRIBO_CONTACT_ON, .normal = TRIBO_NORMAL_LOCK,
+                                  .tangent = TRIBO_TANGENT_SLIP, .slip_sign = 1.0};
     double y[TRIBO_NSTATE_MAX];
     lock_on_its_upper_edge(&p, &lock, y);
     const tribo_force_law after = leave_at_the_upper_edge(&p, &lock, y);
@@ -152,7 +154,8 @@ Test(switching, with_the_rigid_stick_a_lock_creeps_along_its_bands_edge)
 {
     const tribo_scene s = switching_scene(TRIBO_STICK_RIGID);
     const tribo_dyn_params p = params_of(&s);
-    const tribo_force_law lock = {TRIBO_CONTACT_ON, TRIBO_NORMAL_LOCK, 0.0, TRIBO_TANGENT_RIGID, 0.0, 0};
+    const tribo_force_law lock = {.contact = TRIBO_CONTACT_ON, .normal = TRIBO_NORMAL_LOCK,
+                                  .tangent = TRIBO_TANGENT_RIGID};
     double y[TRIBO_NSTATE_MAX];
     lock_on_its_upper_edge(&p, &lock, y);
     tribo_pose g;

@@ -757,7 +757,7 @@ typedef struct saved {
     double y_restart[TRIBO_NSTATE_MAX];
     long long steps_since_restart;
     long long open;
-    long long contact, normal, tangent, started_at_rest;
+    long long contact, normal, tangent, started_at_rest, compliant_slip;
     double normal_sign, slip_sign;
     double last_event_t;
     long long events_at_instant, events_in_a_row;
@@ -784,6 +784,7 @@ static void state_save(const void *data, unsigned char *b)
     s.normal_sign = c->phase.normal_sign;
     s.slip_sign = c->phase.slip_sign;
     s.started_at_rest = c->phase.started_at_rest;
+    s.compliant_slip = c->phase.compliant_slip;
     s.last_event_t = c->last_event_t;
     s.events_at_instant = c->events_at_instant;
     s.events_in_a_row = c->events_in_a_row;
@@ -807,6 +808,11 @@ static int saved_valid(const cvode_integrator *c, const saved *s)
              (s->normal_sign == 1.0 || s->normal_sign == -1.0 || s->normal_sign == 0.0) &&
              (s->started_at_rest == 0 ||
               (s->started_at_rest == 1 && s->contact == 1 && s->normal == TRIBO_NORMAL_SIGN)) &&
+             (s->compliant_slip == 0 ||
+              (s->compliant_slip == 1 && c->dyn->rigid_stick && s->contact == 1 &&
+               s->tangent == TRIBO_TANGENT_SLIP &&
+               (s->normal == TRIBO_NORMAL_LOCK || s->normal == TRIBO_NORMAL_CREEP) &&
+               c->dyn->damping_point == TRIBO_DAMPING_CONTACT_POINT)) &&
              (s->slip_sign == 1.0 || s->slip_sign == -1.0 || s->slip_sign == 0.0) &&
              (isfinite(s->last_event_t) || s->last_event_t == -INFINITY) &&
              s->events_at_instant >= 0 && s->events_at_instant <= MAX_EVENTS_AT_ONE_INSTANT &&
@@ -835,6 +841,7 @@ static tribo_status state_load(tribo_model *m, void *data, const unsigned char *
     ph.normal_sign = s.normal_sign;
     ph.slip_sign = s.slip_sign;
     ph.started_at_rest = (int)s.started_at_rest;
+    ph.compliant_slip = (int)s.compliant_slip;
     /* CVODE is deterministic: the same restart and steps give the same open step. They must
        reach the committed point, time and motion (but for the stretch, which a slip holds at
        its limit there): the steps before the open one end there, and the open one holds the

@@ -38,7 +38,9 @@ typedef struct fixed_step {
     long long k;    /* steps taken on the grid */
 } fixed_step;
 
-static const tribo_force_law LAW = {TRIBO_CONTACT_BY_GEOMETRY, TRIBO_NORMAL_REGULARISED, 0.0, TRIBO_TANGENT_CLAMP, 0.0, 0};
+static const tribo_force_law LAW = {.contact = TRIBO_CONTACT_BY_GEOMETRY,
+                                    .normal = TRIBO_NORMAL_REGULARISED,
+                                    .tangent = TRIBO_TANGENT_CLAMP};
 
 /* Within this margin of RK4's real stability limit 2.79 */
 #define STABLE_LAMBDA_H 2.0
