@@ -11,7 +11,7 @@ static const tribo_model *const_model_of(const fmu_core *core) { return (const t
 
 const char fmu_front_exited_state_name[] =
     "Exited (the run is over: the particle left the chute, or lifted off where run_end = "
-    "first_liftoff; terminate, reset or restore a state)";
+    "first_liftoff, or came to rest on the chute; terminate, reset or restore a state)";
 
 int fmu_front_input_count(void) { return TRIBO_INPUT_COUNT; }
 
@@ -73,16 +73,16 @@ tribo_status fmu_front_set_param(fmu_core *core, fmu_derived *d, const char *mod
 
 int fmu_front_run_over(fmu_core *core)
 {
-    return tribo_get(model_of(core), TRIBO_QUANTITY_EXITED) != 0.0 ||
-           tribo_get(model_of(core), TRIBO_QUANTITY_LIFTED_OFF) != 0.0;
+    return tribo_get(model_of(core), TRIBO_QUANTITY_END_REASON) != 0.0;
 }
 
 void fmu_front_over_reason(fmu_core *core, char *reason, size_t reason_size)
 {
+    const double why = tribo_get(model_of(core), TRIBO_QUANTITY_END_REASON);
     snprintf(reason, reason_size, "the particle %s",
-             tribo_get(model_of(core), TRIBO_QUANTITY_LIFTED_OFF) != 0.0
-                 ? "lifted off the plate, run_end = first_liftoff"
-                 : "left the chute");
+             why == TRIBO_END_LIFTOFF ? "lifted off the plate, run_end = first_liftoff"
+             : why == TRIBO_END_REST  ? "came to rest on the chute"
+                                      : "left the chute");
 }
 
 tribo_status fmu_front_segments(const fmu_derived *d, fmu_core *core, int which, double *out,

@@ -21,25 +21,47 @@ void tribo_contact_inverse_mass(const tribo_dyn_params *p, const tribo_pose *g, 
 }
 
 /* model.md §3b: with (model.md §4) dU/dtau = Gamma sin(beta) + F_T + Psi_T,
-   dV/dtau = -Gamma cos(beta) + F_N + Psi_N, I dOmega/dtau = h Psi_T + cx Psi_N, and
-   dh/dphi = -cx, dcx/dphi = kappa:
-     d(vn)/dtau = W_NN Psi_N + W_NT Psi_T - (Gamma cos(beta) - F_N) + kappa Omega^2 = 0
-     d(vs)/dtau = W_NT Psi_N + W_TT Psi_T + (Gamma sin(beta) + F_T) - cx Omega^2 = 0 */
-void tribo_rigid_forces(const tribo_dyn_params *p, const tribo_pose *g, double Omega,
-                        double *psi_n, double *psi_t)
+   dV/dtau = -Gamma cos(beta) + F_N + Psi_N, I dOmega/dtau = h Psi_T + c Psi_N (c the normal
+   force's lever arm with the rolling torque, tribo_normal_arm, §3c), and dh/dphi = -cx,
+   dcx/dphi = kappa:
+     d(vn)/dtau = (1 + cx c/I) Psi_N + W_NT Psi_T - (Gamma cos(beta) - F_N) + kappa Omega^2 = 0
+     d(vs)/dtau = (h c/I) Psi_N + W_TT Psi_T + (Gamma sin(beta) + F_T) - cx Omega^2 = 0
+   Returns the system's determinant (with mu_roll <= 1 it stays positive: docs/model.md §3c). In
+   the rolling lock the grain is at rest: dU/dtau = dV/dtau = 0. */
+static double rigid_system(const tribo_dyn_params *p, const tribo_force_law *law, const tribo_pose *g,
+                           double Omega, double *psi_n, double *psi_t)
 {
+    if (law->roll == TRIBO_ROLL_LOCK) {
+        *psi_n = p->g_n - p->F_N;
+        *psi_t = -(p->g_t + p->F_T);
+        return 1.0;
+    }
     double w[3];
     tribo_contact_inverse_mass(p, g, w);
+    const double arm = tribo_normal_arm(p, law, g);
+    const double w_nn = 1.0 + g->cx * arm * p->inv_inertia, w_tn = arm * g->h * p->inv_inertia;
     const double spin2 = Omega * Omega;
     const double b_n = p->g_n - p->F_N - tribo_pose_kappa(p->eps2, g) * spin2;
     const double b_t = g->cx * spin2 - (p->g_t + p->F_T);
-    const double det = w[0] * w[2] - w[1] * w[1];
+    const double det = w_nn * w[2] - w[1] * w_tn;
     *psi_n = (w[2] * b_n - w[1] * b_t) / det;
-    *psi_t = (w[0] * b_t - w[1] * b_n) / det;
+    *psi_t = (w_nn * b_t - w_tn * b_n) / det;
+    return det;
 }
 
-void tribo_stop_contact_point(const tribo_dyn_params *p, const tribo_pose *g, double *y)
+void tribo_rigid_forces(const tribo_dyn_params *p, const tribo_force_law *law, const tribo_pose *g,
+                        double Omega, double *psi_n, double *psi_t)
 {
+    rigid_system(p, law, g, Omega, psi_n, psi_t);
+}
+
+void tribo_stop_contact_point(const tribo_dyn_params *p, const tribo_force_law *law,
+                              const tribo_pose *g, double *y)
+{
+    if (law->roll == TRIBO_ROLL_LOCK) {
+        y[TRIBO_IU] = y[TRIBO_IV] = 0.0;
+        return;
+    }
     double w[3];
     tribo_contact_inverse_mass(p, g, w);
     const double vn = y[TRIBO_IV] + g->cx * y[TRIBO_IOMEGA];
@@ -57,22 +79,24 @@ double tribo_lock_force(const tribo_dyn_params *p, const tribo_force_law *law, c
                         const double *y, double *A)
 {
     if (law->tangent == TRIBO_TANGENT_RIGID) {
-        double psi_t, w[3];
-        tribo_contact_inverse_mass(p, g, w);
-        *A = w[0] * w[2] - w[1] * w[1];
-        double psi_n;
-        tribo_rigid_forces(p, g, y[TRIBO_IOMEGA], &psi_n, &psi_t);
+        double psi_n, psi_t;
+        *A = rigid_system(p, law, g, y[TRIBO_IOMEGA], &psi_n, &psi_t);
         return psi_n;
     }
     if (p->damping_point == TRIBO_DAMPING_CENTRE) {
         *A = 1.0;
         return p->g_n - p->F_N; /* V held at 0: the normal force balances the normal load */
     }
-    /* model.md §3: dvn/dtau = Psi_N (1 + cx^2/I) + (cx h / I) Psi_T - (Gamma cos(beta) - F_N)
-       + kappa Omega^2 = 0 */
+    if (law->roll == TRIBO_ROLL_LOCK) {
+        /* Omega and dOmega/dtau held at 0 (model.md §3c): vn = V, and dV/dtau = 0 */
+        *A = 1.0;
+        return p->g_n - p->F_N;
+    }
+    /* model.md §3: dvn/dtau = Psi_N (1 + cx c/I) + (cx h / I) Psi_T - (Gamma cos(beta) - F_N)
+       + kappa Omega^2 = 0, c the normal force's lever arm (§3c) */
     const double Om = y[TRIBO_IOMEGA];
     const double load = p->g_n - p->F_N - tribo_pose_kappa(p->eps2, g) * Om * Om;
-    const double stick_factor = 1.0 + g->cx * g->cx * p->inv_inertia;
+    const double stick_factor = 1.0 + g->cx * tribo_normal_arm(p, law, g) * p->inv_inertia;
     const double coupling = g->cx * g->h * p->inv_inertia;
     if (law->tangent == TRIBO_TANGENT_SLIP) {
         *A = stick_factor - p->mu * law->slip_sign * coupling;
@@ -83,22 +107,38 @@ double tribo_lock_force(const tribo_dyn_params *p, const tribo_force_law *law, c
 }
 
 /* mu d(Psi_N*)/dtau in a normal lock that slips (the stretch is held at the limit and moves
-   with it): Psi_N* = load / A along the motion, with dOmega/dtau = Psi_N* (cx - mu sigma h) / I,
+   with it): Psi_N* = load / A along the motion, with dOmega/dtau = Psi_N* (c - mu sigma h) / I,
    d(kappa Omega^2)/dtau = kappa' Omega^3 + 2 kappa Omega dOmega/dtau and
-   dA/dtau = (2 cx kappa - mu sigma (kappa h - cx^2)) Omega / I (dh/dphi = -cx, dcx/dphi = kappa). */
-static double lock_limit_rate(const tribo_dyn_params *p, const tribo_pose *g, const double *y,
-                              double sigma, double psi_star, double A)
+   dA/dtau = (kappa (cx + c) - mu sigma (kappa h - cx^2)) Omega / I (dh/dphi = -cx,
+   dcx/dphi = kappa; c = cx - mu_r sigma_r the normal force's lever arm, §3c). In the rolling
+   lock Psi_N* does not move. */
+static double lock_limit_rate(const tribo_dyn_params *p, const tribo_force_law *law,
+                              const tribo_pose *g, const double *y, double psi_star, double A)
 {
-    if (p->damping_point == TRIBO_DAMPING_CENTRE)
+    if (p->damping_point == TRIBO_DAMPING_CENTRE || law->roll == TRIBO_ROLL_LOCK)
         return 0.0;
-    const double Om = y[TRIBO_IOMEGA];
+    const double Om = y[TRIBO_IOMEGA], sigma = law->slip_sign, arm = tribo_normal_arm(p, law, g);
     const double kappa = tribo_pose_kappa(p->eps2, g);
-    const double spin_rate = p->inv_inertia * psi_star * (g->cx - p->mu * sigma * g->h);
+    const double spin_rate = p->inv_inertia * psi_star * (arm - p->mu * sigma * g->h);
     const double load_rate = -(tribo_pose_kappa_slope(g, kappa) * Om * Om * Om +
                                2.0 * kappa * Om * spin_rate);
     const double A_rate = p->inv_inertia *
-                          (2.0 * g->cx * kappa - p->mu * sigma * (kappa * g->h - g->cx * g->cx)) * Om;
+                          ((g->cx + arm) * kappa - p->mu * sigma * (kappa * g->h - g->cx * g->cx)) * Om;
     return p->mu * (load_rate - psi_star * A_rate) / A;
+}
+
+/* The rolling torque Mr of the law (model.md §3c), with the contact's forces set. */
+static double roll_torque(const tribo_dyn_params *p, const tribo_force_law *law,
+                          const tribo_contact_eval *ev, double Omega)
+{
+    switch (law->roll) {
+    case TRIBO_ROLL_FREE: break;
+    case TRIBO_ROLL_REGULARISED:
+        return p->mu_roll > 0.0 ? -p->mu_roll * ev->psi_n * tanh(Omega / p->v_reg) : 0.0;
+    case TRIBO_ROLL_TURNING: return -p->mu_roll * ev->psi_n * law->roll_sign;
+    case TRIBO_ROLL_LOCK: return -(ev->pose.h * ev->psi_t + ev->pose.cx * ev->psi_n);
+    }
+    return 0.0;
 }
 
 void tribo_contact_at(const tribo_dyn_params *p, const tribo_force_law *law, const double *y,
@@ -111,7 +151,7 @@ void tribo_contact_at(const tribo_dyn_params *p, const tribo_force_law *law, con
     ev->vs = y[TRIBO_IU] + ev->pose.h * y[TRIBO_IOMEGA]; /* model.md §2 */
     if (!ev->in_contact) {
         ev->sign_v = 0.0;
-        ev->psi_n = ev->psi_t = ev->limit = ev->limit_rate = 0.0;
+        ev->psi_n = ev->psi_t = ev->limit = ev->limit_rate = ev->roll_torque = 0.0;
         return;
     }
     /* d(delta_y)/dtau = (dh/dphi) Omega - V = -cx Omega - V (model.md §2) */
@@ -134,7 +174,7 @@ void tribo_contact_at(const tribo_dyn_params *p, const tribo_force_law *law, con
         /* the damped velocity held at 0: the normal force is whatever holds it (model.md §3) */
         double A;
         if (law->tangent == TRIBO_TANGENT_RIGID)
-            tribo_rigid_forces(p, &ev->pose, y[TRIBO_IOMEGA], &ev->psi_n, &ev->psi_t);
+            tribo_rigid_forces(p, law, &ev->pose, y[TRIBO_IOMEGA], &ev->psi_n, &ev->psi_t);
         else
             ev->psi_n = tribo_lock_force(p, law, &ev->pose, y, &A);
         if (law->normal == TRIBO_NORMAL_CREEP) {
@@ -146,7 +186,7 @@ void tribo_contact_at(const tribo_dyn_params *p, const tribo_force_law *law, con
                                                            : 0.0;
         }
         ev->limit_rate = law->tangent == TRIBO_TANGENT_SLIP
-                             ? lock_limit_rate(p, &ev->pose, y, law->slip_sign, ev->psi_n, A)
+                             ? lock_limit_rate(p, law, &ev->pose, y, ev->psi_n, A)
                              : 0.0;
         break;
     }
@@ -165,6 +205,7 @@ void tribo_contact_at(const tribo_dyn_params *p, const tribo_force_law *law, con
     case TRIBO_TANGENT_RIGID: /* the constraint's, with the normal force */
         break;
     }
+    ev->roll_torque = roll_torque(p, law, ev, y[TRIBO_IOMEGA]);
 }
 
 void tribo_dynamics_rhs(const tribo_dyn_params *p, const tribo_force_law *law, const double *y,
@@ -194,14 +235,26 @@ void tribo_dynamics_rhs(const tribo_dyn_params *p, const tribo_force_law *law, c
     dydt[TRIBO_IU] = p->g_t + p->F_T + ev->psi_t;
     dydt[TRIBO_IV] = lock && centre ? 0.0 : -p->g_n + p->F_N + ev->psi_n;
     dydt[TRIBO_IOMEGA] = p->inv_inertia * (ev->pose.h * ev->psi_t + ev->pose.cx * ev->psi_n);
+    /* model.md §3c: the rolling torque, and its power -mu_r Psi_N |Omega| <= 0 lost from E (in
+       the rolling lock Omega is held at 0, and it does no work) */
+    const int rolls = ev->in_contact && law->roll != TRIBO_ROLL_FREE;
+    if (rolls)
+        dydt[TRIBO_IOMEGA] = law->roll == TRIBO_ROLL_LOCK
+                                 ? 0.0
+                                 : p->inv_inertia * (ev->pose.h * ev->psi_t + ev->pose.cx * ev->psi_n +
+                                                     ev->roll_torque);
+    const double roll_power = rolls ? -ev->roll_torque * Om : 0.0;
     dydt[TRIBO_IWEXT] = p->F_T * U + p->F_N * V;
 
     if (!ev->in_contact || law->tangent == TRIBO_TANGENT_RIGID) {
         /* a rigid stick's stretch is its quasi-static value and the energy it stores is
            booked with it, both set along the phase by the integrator (model.md §3b): the
-           constraint forces themselves do no work; a creep's dashpot does */
+           constraint forces themselves do no work; a creep's dashpot does, and so does the
+           rolling torque */
         dydt[TRIBO_IDX] = 0.0;
         dydt[TRIBO_IWDISS] = ev->in_contact ? (ev->delta_y - ev->psi_n) * -creep_rate : 0.0;
+        if (rolls)
+            dydt[TRIBO_IWDISS] += roll_power;
         return;
     }
     /* model.md §3: the stretch follows the slip velocity of the contact point; in slip it
@@ -216,6 +269,8 @@ void tribo_dynamics_rhs(const tribo_dyn_params *p, const tribo_force_law *law, c
        d(delta_y)/dtau, against the dashpot: (dy - Psi_N) vn = -nu s dy d(delta_y)/dtau >= 0. */
     const double vn = lock && !centre ? -creep_rate : V + ev->pose.cx * Om;
     dydt[TRIBO_IWDISS] = -ev->psi_t * ev->vs - y[TRIBO_IDX] * ddx + (ev->delta_y - ev->psi_n) * vn;
+    if (rolls)
+        dydt[TRIBO_IWDISS] += roll_power;
 }
 
 double tribo_lock_force_rate(const tribo_dyn_params *p, const tribo_force_law *law, const double *y)

@@ -46,6 +46,7 @@ typedef struct tribo_dyn_params {
     int end_at_liftoff;  /* the run ends at the first lift-off (run_end = first_liftoff) */
     int rigid_stick;     /* stick_model = rigid: a stick in a contact-point lock is a
                             constraint (model.md §3b) */
+    double mu_roll;      /* rolling resistance (model.md §3c) */
 } tribo_dyn_params;
 
 /* The rounding of a velocity a + b (V + cx Omega, say) in a state an event-driven integrator
@@ -95,6 +96,17 @@ typedef enum {
     TRIBO_TANGENT_RIGID
 } tribo_tangent_rule;
 
+/* The rolling torque Mr = -mu_r Psi_N sgn(Omega) (model.md §3c). FREE: none (mu_roll = 0, the
+   paper's model; flight); REGULARISED: the fixed step's tanh(Omega / v_reg) for the sign;
+   TURNING: the sign roll_sign, which Omega has; LOCK: the rolling lock, Omega held at 0 by the
+   torque that holds it, Mr* = -(h Psi_T + cx Psi_N), while that lies within mu_r Psi_N. */
+typedef enum {
+    TRIBO_ROLL_FREE,
+    TRIBO_ROLL_REGULARISED,
+    TRIBO_ROLL_TURNING,
+    TRIBO_ROLL_LOCK
+} tribo_roll_rule;
+
 typedef struct tribo_force_law {
     tribo_contact_rule contact;
     tribo_normal_rule normal;
@@ -111,6 +123,11 @@ typedef struct tribo_force_law {
                              (its force outside the band) ends as the compliant stick's does,
                              where the stretch comes off the limit, not where the contact point
                              comes to rest (model.md §3b) */
+    tribo_roll_rule roll;
+    double roll_sign;     /* for TRIBO_ROLL_TURNING: the sign of Omega (+1 / -1) */
+    int roll_from_rest;   /* for TRIBO_ROLL_TURNING: the phase began with Omega at 0 (out of the
+                             rolling lock at its band's edge, or set down turning from rest): its
+                             switch waits for Omega to pass 0 by more than its rounding */
 } tribo_force_law;
 
 /* Whether a rule holds the damped velocity at 0 with the lock's force: a lock or a creep. */
@@ -133,21 +150,35 @@ static inline int tribo_contact_point_lock(const tribo_dyn_params *p, const trib
    w[1] = W_NT = cx h / I, w[2] = W_TT = 1 + h^2/I; det W = 1 + (cx^2 + h^2)/I >= 1. */
 void tribo_contact_inverse_mass(const tribo_dyn_params *p, const tribo_pose *g, double w[3]);
 
+/* The lever arm about the centre of the normal force with the rolling torque of a phase that
+   turns (model.md §3c: Mr = -mu_r sigma_r Psi_N acts as the normal force moved by -mu_r sigma_r
+   along the plate): cx - mu_r roll_sign, and cx in every other rule (in the rolling lock the
+   torque is the one that holds the grain). */
+static inline double tribo_normal_arm(const tribo_dyn_params *p, const tribo_force_law *law,
+                                      const tribo_pose *g)
+{
+    return law->roll == TRIBO_ROLL_TURNING ? g->cx - p->mu_roll * law->roll_sign : g->cx;
+}
+
 /* The forces of the rigid stick (model.md §3b): Psi_N* and Psi_T* that keep the contact point
-   at rest, d(vn)/dtau = 0 and d(vs)/dtau = 0, at the pose g and spin Omega. */
-void tribo_rigid_forces(const tribo_dyn_params *p, const tribo_pose *g, double Omega,
-                        double *psi_n, double *psi_t);
+   at rest, d(vn)/dtau = 0 and d(vs)/dtau = 0, at the pose g and spin Omega, with the law's
+   rolling torque (§3c; in the rolling lock the whole grain is at rest, Omega = 0). */
+void tribo_rigid_forces(const tribo_dyn_params *p, const tribo_force_law *law, const tribo_pose *g,
+                        double Omega, double *psi_n, double *psi_t);
 
 /* Bring the contact point of y to rest (vn = vs = 0) by an impulse at the contact point: the
    velocities of the rigid stick nearest to y's in the particle's kinetic energy. The
-   particle's angular momentum about the contact point does not change. */
-void tribo_stop_contact_point(const tribo_dyn_params *p, const tribo_pose *g, double *y);
+   particle's angular momentum about the contact point does not change. In the rolling lock
+   (Omega held at 0, model.md §3c) the whole grain is brought to rest: U = V = 0. */
+void tribo_stop_contact_point(const tribo_dyn_params *p, const tribo_force_law *law,
+                              const tribo_pose *g, double *y);
 
 /* The normal force Psi_N* of the normal lock (model.md §3): the force that keeps the damped
    velocity at 0 (dvn/dtau = 0; for the centre dashpot dV/dtau = 0), in the law's tangential
-   rule (stick: Psi_T = -delta_x; slip: Psi_T = -mu slip_sign Psi_N). *A is the factor of
-   Psi_N in dvn/dtau: 1 + cx^2/I in stick, A = 1 + cx^2/I - mu sigma cx h / I in slip (1 for
-   the centre dashpot); the lock exists only while A > 0. */
+   rule (stick: Psi_T = -delta_x; slip: Psi_T = -mu slip_sign Psi_N) and rolling rule (§3c).
+   *A is the factor of Psi_N in dvn/dtau: 1 + cx c/I in stick, A = 1 + cx c/I - mu sigma cx h / I
+   in slip, with c the normal force's lever arm (tribo_normal_arm); 1 for the centre dashpot and
+   in the rolling lock; the lock exists only while A > 0. */
 double tribo_lock_force(const tribo_dyn_params *p, const tribo_force_law *law, const tribo_pose *g,
                         const double *y, double *A);
 
@@ -166,6 +197,7 @@ typedef struct tribo_contact_eval {
     double limit;     /* Coulomb limit mu Psi_N */
     double limit_rate; /* d(mu Psi_N)/dtau within the current normal and tangential rule
                           (in a normal lock: in slip, else 0) */
+    double roll_torque; /* the rolling torque Mr (model.md §3c; 0 without it) */
 } tribo_contact_eval;
 
 /* dy/dtau of the motion (the first TRIBO_NMOTION components) at state y under the force

@@ -41,6 +41,24 @@ static int slip_ends_at_rest(const tribo_dyn_params *p, const tribo_force_law *l
            !law->compliant_slip;
 }
 
+/* The rolling rule's switch functions (model.md §3c): turning, the spin reaching 0 (past 0 by
+   more than its rounding where the phase started from rest: Omega creeps away from 0 there, and
+   rounding would see it cross back again and again); in the rolling lock, the torque that holds
+   it, Mr* = ev->roll_torque, reaching either edge of its band, -mu_r Psi_N or +mu_r Psi_N. */
+static void roll_switch_functions(const tribo_dyn_params *p, const tribo_force_law *law,
+                                  const tribo_contact_eval *ev, const double *y, double *g)
+{
+    if (law->roll == TRIBO_ROLL_TURNING) {
+        g[TRIBO_SWITCH_ROLL_A] = law->roll_sign * y[TRIBO_IOMEGA];
+        if (law->roll_from_rest)
+            g[TRIBO_SWITCH_ROLL_A] += tribo_velocity_rounding(p, y[TRIBO_IOMEGA], 0.0);
+    } else if (law->roll == TRIBO_ROLL_LOCK) {
+        const double band = p->mu_roll * ev->psi_n;
+        g[TRIBO_SWITCH_ROLL_A] = band + ev->roll_torque;
+        g[TRIBO_SWITCH_ROLL_B] = band - ev->roll_torque;
+    }
+}
+
 void tribo_switch_functions(const tribo_dyn_params *p, const tribo_force_law *law, const double *y,
                             double *g)
 {
@@ -98,6 +116,7 @@ void tribo_switch_functions(const tribo_dyn_params *p, const tribo_force_law *la
                 : law->slip_sign * ev.vs - ev.limit_rate;
         break;
     }
+    roll_switch_functions(p, law, &ev, y, g);
 }
 
 /* Crossing directions that mean a switch in each phase (others are not switches). */
@@ -124,6 +143,10 @@ void tribo_switch_directions(const tribo_dyn_params *p, const tribo_force_law *p
     dir[TRIBO_SWITCH_TANGENT_A] = -1;
     if (ph->tangent != TRIBO_TANGENT_SLIP)
         dir[TRIBO_SWITCH_TANGENT_B] = -1;
+    if (ph->roll == TRIBO_ROLL_TURNING || ph->roll == TRIBO_ROLL_LOCK)
+        dir[TRIBO_SWITCH_ROLL_A] = -1;
+    if (ph->roll == TRIBO_ROLL_LOCK)
+        dir[TRIBO_SWITCH_ROLL_B] = -1;
 }
 
 static void tangent_from_state(const tribo_dyn_params *p, double *y, tribo_force_law *law);
@@ -448,9 +471,9 @@ static void stick_rigidly(const tribo_dyn_params *p, double *y, tribo_force_law 
     tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
     double z[TRIBO_NSTATE_MAX];
     memcpy(z, y, sizeof z);
-    tribo_stop_contact_point(p, &g, z);
+    tribo_stop_contact_point(p, law, &g, z);
     double psi_n, psi_t;
-    tribo_rigid_forces(p, &g, z[TRIBO_IOMEGA], &psi_n, &psi_t);
+    tribo_rigid_forces(p, law, &g, z[TRIBO_IOMEGA], &psi_n, &psi_t);
     tribo_force_law next = *law;
     if (law->normal == TRIBO_NORMAL_LOCK && !in_band(p, -y[TRIBO_IGAP], psi_n))
         return;
@@ -623,10 +646,12 @@ static void stretch_at_event(const tribo_dyn_params *p, const tribo_force_law *o
 
 /* The damped velocity, found past 0 by its rounding, put exactly at 0: the contact point's by
    a normal impulse there (which takes out -vn^2 / (2 W_NN) of the energy), the centre's by
-   setting V (model.md §3, "Phases and switches"). */
-static void stop_damped_velocity(const tribo_dyn_params *p, const tribo_pose *g, double *y)
+   setting V (model.md §3, "Phases and switches"); in the rolling lock, which holds Omega at 0,
+   the contact point's is V too (§3c). */
+static void stop_damped_velocity(const tribo_dyn_params *p, const tribo_force_law *law,
+                                 const tribo_pose *g, double *y)
 {
-    if (p->damping_point == TRIBO_DAMPING_CENTRE) {
+    if (p->damping_point == TRIBO_DAMPING_CENTRE || law->roll == TRIBO_ROLL_LOCK) {
         y[TRIBO_IV] = 0.0;
         return;
     }
@@ -670,7 +695,7 @@ static int normal_after_switch(const tribo_dyn_params *p, const tribo_force_law 
         law->normal = TRIBO_NORMAL_SIGN;
         law->normal_sign = edge;
     } else {
-        stop_damped_velocity(p, g, y);
+        stop_damped_velocity(p, law, g, y);
         return normal_at_rest(p, y, -y[TRIBO_IGAP], law, old);
     }
     return 0;
@@ -793,10 +818,123 @@ static void mark_start_at_rest(const tribo_dyn_params *p, const double *y, tribo
     }
 }
 
+/* The normal and tangential rules of a contact phase after an event, its rolling rule set:
+   the normal rule, then (unless that set it too) the tangential rule, the lock confirmed under
+   both, and whether the phase starts at rest. */
+static void contact_rules(const tribo_dyn_params *p, const tribo_force_law *old, const tribo_pose *g,
+                          double *y, const int *fired, int onset, int normal_event,
+                          tribo_force_law *law)
+{
+    if (!normal_after(p, old, g, y, fired, onset, normal_event, law))
+        tangent_after(p, old, g, y, fired, onset, normal_event, law);
+    confirm_lock(p, y, law, old);
+    mark_start_at_rest(p, y, law);
+    if (law->tangent != TRIBO_TANGENT_SLIP || !contact_point_lock(p, law))
+        law->compliant_slip = 0;
+}
+
+/* ---- the rolling rule (model.md §3c) ------------------------------------------------------- */
+
+/* Whether the rolling rule is decided at zero spin at this event: where Omega reached 0 (a
+   turning phase's roll switch), where the rolling lock holds it there (at any event but the
+   lock's own edge), or at a contact that starts without spin. */
+static int spin_at_zero(const tribo_force_law *old, const double *y, const int *fired, int onset)
+{
+    const int roll_switch = fired && (fired[TRIBO_SWITCH_ROLL_A] || fired[TRIBO_SWITCH_ROLL_B]);
+    if (onset)
+        return y[TRIBO_IOMEGA] == 0.0;
+    if (old->roll == TRIBO_ROLL_LOCK)
+        return !roll_switch;
+    return old->roll == TRIBO_ROLL_TURNING && roll_switch;
+}
+
+/* The rolling rule where the spin does not start at 0: none without rolling resistance; turning
+   the way Omega does on a new contact; out of the rolling lock at an edge of its band, turning
+   from rest the way the torque that reached it drives the grain (edge A: the holding torque at
+   -mu_r Psi_N, resisting a positive drive); else the rule goes on. */
+static void roll_goes_on(const tribo_dyn_params *p, const tribo_force_law *old, const double *y,
+                         const int *fired, int onset, tribo_force_law *law)
+{
+    if (p->mu_roll == 0.0) {
+        law->roll = TRIBO_ROLL_FREE;
+        law->roll_sign = 0.0;
+        law->roll_from_rest = 0;
+    } else if (onset) {
+        law->roll = TRIBO_ROLL_TURNING;
+        law->roll_sign = y[TRIBO_IOMEGA] > 0.0 ? 1.0 : -1.0;
+        law->roll_from_rest = 0;
+    } else if (old->roll == TRIBO_ROLL_LOCK) {
+        law->roll = TRIBO_ROLL_TURNING;
+        law->roll_sign = fired[TRIBO_SWITCH_ROLL_A] ? 1.0 : -1.0;
+        law->roll_from_rest = 1;
+    }
+}
+
+/* Omega, found past 0 by its rounding at a roll switch, put exactly at 0, with the constraints of
+   the phase kept (the contact point's normal velocity in a contact-point lock, its slip velocity
+   in the rigid stick); the energy this takes out is booked by tribo_phase_after. */
+static void stop_spin(const tribo_dyn_params *p, const tribo_force_law *law, const tribo_pose *g,
+                      double *y)
+{
+    const double Om = y[TRIBO_IOMEGA];
+    if (contact_point_lock(p, law))
+        y[TRIBO_IV] += g->cx * Om;
+    if (law->tangent == TRIBO_TANGENT_RIGID)
+        y[TRIBO_IU] += g->h * Om;
+    y[TRIBO_IOMEGA] = 0.0;
+}
+
+/* Whether the rolling lock holds the grain at y under the law (its rolling rule the lock, its
+   normal and tangential rules set): the torque that holds it, Mr* = -(h Psi_T + cx Psi_N),
+   within mu_r Psi_N (model.md §3c); at Psi_N = 0 (a contact just made) judged per unit normal
+   force, as the load grows from 0 (the stretch of a new contact is 0; a slip's force is
+   mu Psi_N). *turn: the sign the grain turns with where it does not hold, that of the torque
+   that drives it, -Mr*. */
+static int roll_lock_holds(const tribo_dyn_params *p, const tribo_force_law *law, const double *y,
+                           double *turn)
+{
+    tribo_contact_eval ev;
+    tribo_contact_at(p, law, y, &ev);
+    double drive = -ev.roll_torque, band = p->mu_roll * ev.psi_n;
+    if (!(ev.psi_n > 0.0)) {
+        drive = ev.pose.cx - (law->tangent == TRIBO_TANGENT_SLIP ? p->mu * law->slip_sign * ev.pose.h : 0.0);
+        band = p->mu_roll;
+    }
+    *turn = drive >= 0.0 ? 1.0 : -1.0;
+    return fabs(drive) <= band;
+}
+
+/* The phase of a contact whose spin is 0 at an event (spin_at_zero): the rolling lock, with the
+   normal and tangential rules decided under it, where its holding torque lies within its band
+   under them; else turning from rest, the way that torque drives the grain, the rules decided
+   under that (model.md §3c). The rule that enters the rolling lock is the one that holds it. */
+static tribo_force_law phase_at_zero_spin(const tribo_dyn_params *p, const tribo_force_law *old,
+                                          const tribo_pose *g, double *y, const int *fired,
+                                          int onset, int normal_event, tribo_force_law law)
+{
+    stop_spin(p, old, g, y);
+    tribo_force_law locked = law;
+    locked.roll = TRIBO_ROLL_LOCK;
+    locked.roll_sign = 0.0;
+    locked.roll_from_rest = 0;
+    double z[TRIBO_NSTATE_MAX], turn;
+    memcpy(z, y, sizeof z);
+    contact_rules(p, old, g, z, fired, onset, normal_event, &locked);
+    if (!tribo_touching(&locked) || roll_lock_holds(p, &locked, z, &turn)) {
+        memcpy(y, z, sizeof z);
+        return locked;
+    }
+    law.roll = TRIBO_ROLL_TURNING;
+    law.roll_sign = turn;
+    law.roll_from_rest = 1;
+    contact_rules(p, old, g, y, fired, onset, normal_event, &law);
+    return law;
+}
+
 /* The phase after an event (fired: the roots found) or, with fired = NULL, the phase a
    state is in when the integration (re)starts there. Adjusts y to put the switched
-   boundary exactly on it (Y = h, damped velocity 0, delta_x = +-limit), so that CVODE's root
-   functions start at 0 and look at the direction the motion takes. */
+   boundary exactly on it (Y = h, damped velocity 0, delta_x = +-limit, Omega = 0), so that
+   CVODE's root functions start at 0 and look at the direction the motion takes. */
 static tribo_force_law next_phase(const tribo_dyn_params *p, const tribo_force_law *old, double *y,
                                   const int *fired)
 {
@@ -819,12 +957,10 @@ static tribo_force_law next_phase(const tribo_dyn_params *p, const tribo_force_l
     stretch_at_event(p, old, y, fired, onset);
     const int normal_event = fired && (fired[TRIBO_SWITCH_NORMAL_A] || fired[TRIBO_SWITCH_NORMAL_B] ||
                                        fired[TRIBO_SWITCH_LOCK_FACTOR]);
-    if (!normal_after(p, old, &g, y, fired, onset, normal_event, &ph))
-        tangent_after(p, old, &g, y, fired, onset, normal_event, &ph);
-    confirm_lock(p, y, &ph, old);
-    mark_start_at_rest(p, y, &ph);
-    if (ph.tangent != TRIBO_TANGENT_SLIP || !contact_point_lock(p, &ph))
-        ph.compliant_slip = 0;
+    if (p->mu_roll > 0.0 && spin_at_zero(old, y, fired, onset))
+        return phase_at_zero_spin(p, old, &g, y, fired, onset, normal_event, ph);
+    roll_goes_on(p, old, y, fired, onset, &ph);
+    contact_rules(p, old, &g, y, fired, onset, normal_event, &ph);
     return ph;
 }
 

@@ -40,6 +40,7 @@ void tribo_derive_params(tribo_model *m)
     d->chute_length = s->chute_length;
     d->end_at_liftoff = s->run_end == TRIBO_RUN_END_FIRST_LIFTOFF;
     d->rigid_stick = s->stick_model == TRIBO_STICK_RIGID;
+    d->mu_roll = s->mu_roll;
 }
 
 /* The initial point of the scene (model.md §7 by default); its contact is evaluated by the
@@ -94,9 +95,15 @@ void tribo_count(tribo_model *m, tribo_counter which, long long n)
     }
 }
 
-/* The run is over: the particle left the chute, or lifted off (model.md §9). */
+/* The run is over: the particle left the chute, or lifted off (model.md §9), or came to rest
+   (§3c). */
 static tribo_status ended(tribo_model *m)
 {
+    if (m->ended == TRIBO_END_REST)
+        return tribo_fail(m, TRIBO_ENDED,
+                          "the grain came to rest on the chute at t = %.17g (%s = %.17g; "
+                          "docs/model.md §3c): the run is over there; reset to run again",
+                          m->out.t, tribo_quantity_name(TRIBO_QUANTITY_X), m->out.y[TRIBO_IX]);
     if (m->ended == TRIBO_END_LIFTOFF)
         return tribo_fail(m, TRIBO_ENDED,
                           "the particle lifted off the plate at t = %.17g (%s = %s: the run "
@@ -111,14 +118,52 @@ static tribo_status ended(tribo_model *m)
                       m->scene.chute_length);
 }
 
+/* The charges of a grain at rest are their limits for t -> infinity (model.md §3c): only the
+   segments under its contact still charge. Each model's global states go to their limits at
+   rest (tribo_charge_model.rest_limits: the sliding model's Sigma_s relaxes to Sigma0, no work
+   being done; without it they hold still), and the segments under the contact (and the
+   grain's bands there, §8c) take one sample of infinite duration at those limits, whose exact
+   update (e^-inf = 0) leaves each at its saturation there. */
+static tribo_status charge_at_rest(tribo_model *m)
+{
+    tribo_point *p = &m->committed;
+    for (int i = 0; i < m->charging.n_models; i++) {
+        const tribo_charge_slot *slot = &m->charging.slot[i];
+        if (slot->selected && slot->model->rest_limits)
+            slot->model->rest_limits(&m->scene, p->charge_globals + slot->globals_at);
+    }
+    if (!m->charging.any_selected)
+        return TRIBO_OK;
+    tribo_contact_sample sample = {.duration = INFINITY};
+    double s_centre, half_width, speed;
+    tribo_contact_kinematics k;
+    tribo_probe_contact(m, p->y, &s_centre, &half_width, &speed, &k);
+    tribo_pose g;
+    tribo_pose_at(m->dyn.eps2, p->y[TRIBO_IPHI], &g);
+    tribo_charging_patch(&m->charging, s_centre, half_width, g.h, &sample);
+    const size_t bytes = (size_t)m->charging.n_globals * sizeof(double);
+    memcpy(sample.globals_begin, p->charge_globals, bytes);
+    memcpy(sample.globals_mid, p->charge_globals, bytes);
+    memcpy(sample.globals_end, p->charge_globals, bytes);
+    return tribo_charge_sample(m, &sample, TRIBO_CHARGE_COMMIT);
+}
+
 void tribo_work(tribo_model *m, double units) { m->work += units; }
 
 int tribo_work_spent(const tribo_model *m) { return m->work >= (double)m->scene.work_limit; }
 
 tribo_status tribo_stop_early(tribo_model *m, tribo_stop_reason why)
 {
+    if (why == TRIBO_STOP_REST) {
+        m->ended = TRIBO_END_REST;
+        const tribo_status st = charge_at_rest(m);
+        if (st != TRIBO_OK)
+            return st;
+    }
     tribo_output_begin(m);
     tribo_output_set(m, &m->committed);
+    if (why == TRIBO_STOP_REST)
+        return ended(m);
     if (why == TRIBO_STOP_EXIT || why == TRIBO_STOP_LIFTOFF) {
         /* a lift-off found at or past the end of the chute (both within one step, or within
            the root finding's tolerance of each other) is the exit: the particle has left */

@@ -10,9 +10,6 @@
 #include "motion.h"
 #include "tribo.h"
 
-/* Why a run is over (tribo_model.ended). */
-enum { TRIBO_END_EXIT = 1, TRIBO_END_LIFTOFF = 2 };
-
 struct tribo_model {
     tribo_scene scene;           /* validated; tunables hold their current values */
     tribo_dyn_params dyn;        /* derived from the scene and the inputs */
@@ -35,8 +32,8 @@ struct tribo_model {
     /* the work done by the advance under way (integrator.h: the units of work_limit) */
     double work;
     /* why the run is over (model.md §9), for good: 0 it is not, TRIBO_END_EXIT the particle
-       left the chute, TRIBO_END_LIFTOFF it lifted off (run_end = first_liftoff); the output
-       point is where */
+       left the chute, TRIBO_END_LIFTOFF it lifted off (run_end = first_liftoff),
+       TRIBO_END_REST it came to rest on the chute (§3c); the output point is where */
     int ended;
 
     const tribo_integrator_ops *integrator;

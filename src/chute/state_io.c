@@ -4,7 +4,7 @@
  *   magic "TRIBOST1", version, total size,
  *   every scene parameter (in the order of the parameter table),
  *   the external force, the output time, the work counters, how the run has ended (not,
- *   at the chute's exit, or at the first lift-off),
+ *   at the chute's exit, at the first lift-off, or at rest: tribo_end_reason),
  *   the committed point (with the charge models' quadratures and global states), for each
  *   selected charge model its committed per-segment charges, their running sum and the
  *   charge its breakdown limit took (each value and compensation) and, where the grain keeps
@@ -279,16 +279,21 @@ static const char *point_problem(const tribo_model *m, const tribo_point *p, dou
     return NULL;
 }
 
-/* Whether the run has ended where the state says (model.md §9): an ended run's committed
+/* Whether the run has ended where the state says (model.md §9, §3c): an ended run's committed
    point is its output point, and the exit, at or past the end of the chute, or a lift-off of
-   a scene that ends there (before the end); a run that goes on has its committed point
-   before the end. */
+   a scene that ends there, or a rest of a scene that rests (before the end); a run that goes on
+   has its committed point before the end. */
 static const char *end_problem(const loaded *l)
 {
     const double L = l->scene.chute_length, X = l->committed.y[TRIBO_IX];
-    if (l->ended != 0 && l->ended != TRIBO_END_EXIT && l->ended != TRIBO_END_LIFTOFF)
+    if (l->ended != TRIBO_END_RUNNING && l->ended != TRIBO_END_EXIT && l->ended != TRIBO_END_LIFTOFF &&
+        l->ended != TRIBO_END_REST)
         return "whether the run has ended";
     if (l->ended == TRIBO_END_LIFTOFF && l->scene.run_end != TRIBO_RUN_END_FIRST_LIFTOFF)
+        return "whether the run has ended";
+    /* at rest only with the rigid stick (and so CVODE) and rolling resistance (model.md §3c) */
+    if (l->ended == TRIBO_END_REST &&
+        (l->scene.stick_model != TRIBO_STICK_RIGID || !(l->scene.mu_roll > 0.0)))
         return "whether the run has ended";
     if (l->ended && l->t_out != l->committed.t)
         return "the end of the run";

@@ -47,7 +47,9 @@ typedef enum tribo_status {
                                    (run_end, model.md §9): the particle left the chute (at
                                    tribo_get(model, TRIBO_QUANTITY_EXIT_TIME)) or, with run_end =
                                    first_liftoff, its first contact was lost again (output
-                                   lifted_off); every output stays there, and any later
+                                   lifted_off), or it came to rest on the chute (§3c, output
+                                   at_rest; output end_reason says which); every output stays
+                                   there, and any later
                                    advance past it returns this again and changes nothing
                                    (reset to run again) */
 } tribo_status;
@@ -71,6 +73,14 @@ typedef enum tribo_damping_point {
     TRIBO_DAMPING_CONTACT_POINT = 0, /* vn = V + cx Omega, the indentation rate (default)  */
     TRIBO_DAMPING_CENTRE = 1         /* the centre's V: the paper's text read literally    */
 } tribo_damping_point;
+
+/* Why a run is over: the values of the output end_reason (docs/model.md §9, §3c). */
+typedef enum tribo_end_reason {
+    TRIBO_END_RUNNING = 0, /* it is not                                             */
+    TRIBO_END_EXIT = 1,    /* the particle left the chute                           */
+    TRIBO_END_LIFTOFF = 2, /* the first contact was lost again (run_end = first_liftoff) */
+    TRIBO_END_REST = 3     /* the grain came to rest on the chute                   */
+} tribo_end_reason;
 
 /* How a contact at rest sticks (parameter stick_model, docs/model.md §3b). */
 typedef enum tribo_stick_model {

@@ -88,6 +88,29 @@ static inline int same_outputs(tribo_model *a, tribo_model *b)
     return 1;
 }
 
+/* ---- the energy bound (model.md §6) -------------------------------------------------------
+   Along a run without external force E + work_dissipated never increases: a test samples it
+   and holds its largest rise above its lowest value so far to a fraction of E's scale. */
+
+typedef struct energy_watch {
+    double lowest, rise, scale; /* the lowest E + W so far, the largest rise above it, max |E| */
+} energy_watch;
+
+static inline energy_watch energy_watch_start(void)
+{
+    const energy_watch w = {INFINITY, 0.0, 0.0};
+    return w;
+}
+
+static inline void energy_watch_sample(energy_watch *w, tribo_model *m)
+{
+    const double E = tribo_get(m, TRIBO_QUANTITY_ENERGY);
+    const double budget = E + tribo_get(m, TRIBO_QUANTITY_WORK_DISSIPATED);
+    w->scale = fmax(w->scale, fabs(E));
+    w->rise = fmax(w->rise, budget - w->lowest);
+    w->lowest = fmin(w->lowest, budget);
+}
+
 /* ---- saved states ----------------------------------------------------------------------
    The state tests save, corrupt and reload instances, so they need the bytes and where a
    field lies in them. */

@@ -160,7 +160,7 @@ Test(switching, with_the_rigid_stick_a_lock_creeps_along_its_bands_edge)
     lock_on_its_upper_edge(&p, &lock, y);
     tribo_pose g;
     tribo_pose_at(p.eps2, y[TRIBO_IPHI], &g);
-    tribo_stop_contact_point(&p, &g, y); /* the rigid stick's contact point at rest */
+    tribo_stop_contact_point(&p, &lock, &g, y); /* the rigid stick's contact point at rest */
     const tribo_force_law after = leave_at_the_upper_edge(&p, &lock, y);
     cr_expect_eq(after.normal, TRIBO_NORMAL_CREEP);
     cr_expect_eq(after.normal_sign, -1.0);

@@ -66,11 +66,16 @@ class Chute:
 
     @staticmethod
     def base_scenes():
-        """Set-ups worth mutating the states of: each integrator, the rigid stick, a
-        discarded step, the lifecycle states before Step Mode, a run past the chute's end."""
+        """Set-ups worth mutating the states of: each integrator, the rigid stick, rolling
+        resistance (a grain that turns, and one that comes to rest and ends its run there,
+        docs/model.md section 3c), a discarded step, the lifecycle states before Step Mode, a
+        run past the chute's end."""
         compliant = {"integrator": 0, "stick_model": 0}  # the fixed step has no rigid stick
         return [compliant, {"integrator": 1}, {"integrator": 2},
                 {"integrator": 1, "stick_model": 1, "mu": 1.0, "epsilon": 0.5},
+                {"integrator": 1, "stick_model": 1, "mu": 0.5, "epsilon": 1.0, "mu_roll": 0.2},
+                {"integrator": 1, "stick_model": 1, "mu": 1.5, "epsilon": 0.5, "mu_roll": 1.0},
+                {**compliant, "mu_roll": 0.3},
                 {"integrator": 1, "mu": 1.0, "nu": 1.0},
                 {**compliant, "work_limit": 50, "discard": True},
                 {"lifecycle": "Initialization Mode"}, {"lifecycle": "Instantiated"}, {"integrator": 1, "chute_length": 0.01},

@@ -32,7 +32,7 @@ def project_version():
 @pytest.mark.parametrize("version", VERSIONS)
 def test_flags_are_booleans_and_counts_integers(fmu_dir, version):
     v = variables(fmu_dir, version)
-    for flag in ("in_contact", "slipping", "exited", "lifted_off"):
+    for flag in ("in_contact", "slipping", "exited", "lifted_off", "at_rest"):
         assert (v[flag].type, v[flag].variability) == ("Boolean", "discrete"), flag
     for count in ("assumption_warnings", "impacts"):
         assert v[count].type == ("Integer" if version == 2 else "Int32"), count
@@ -40,7 +40,8 @@ def test_flags_are_booleans_and_counts_integers(fmu_dir, version):
     assert v["n_segments"].type == ("Integer" if version == 2 else "UInt64")
     # everything else an output is, is a real
     others = {n for n, x in v.items() if x.causality == "output"} - \
-        {"in_contact", "slipping", "exited", "lifted_off", "assumption_warnings", "impacts", "motion_class"}
+        {"in_contact", "slipping", "exited", "lifted_off", "at_rest", "assumption_warnings", "impacts",
+         "motion_class", "end_reason"}
     assert {v[n].type for n in others} == {"Real" if version == 2 else "Float64"}
 
 
@@ -49,6 +50,7 @@ ENUMERATIONS = {  # variable: (type, items by value)
     "integrator": ("tribo.Integrator", ["fixed_step", "cvode_adams", "cvode_bdf"]),
     "motion_class": ("tribo.MotionClass", ["flight", "rocking", "rolling", "tumbling", "bouncing"]),
     "run_end": ("tribo.RunEnd", ["chute_exit", "first_liftoff"]),
+    "end_reason": ("tribo.EndReason", ["running", "chute_exit", "first_liftoff", "at_rest"]),
 }
 
 

@@ -36,15 +36,17 @@ void random_setup_make(unsigned long long seed, int index, int stick_model, rand
     const double mu = uniform(&state, 0.0, 1.0) < 0.1 ? uniform(&state, 10.0, 100.0)
                                                       : uniform(&state, 0.0, 1.5);
     const double nu = uniform(&state, 0.05, 1.0);
+    const double mu_roll = uniform(&state, 0.0, 1.0) < 0.1 ? uniform(&state, 0.05, 1.0)
+                                                           : uniform(&state, 0.0, 0.05);
     const double tilt = uniform(&state, 0.0, M_PI / 3.0);
     const double drop = uniform(&state, 0.0, 0.02);
     r->F_N = uniform(&state, -1e4, 1e4);
     r->F_T = 0.0;
     snprintf(r->settings, sizeof r->settings,
              "chute_length=0.3 semi_major_axis=%.17g epsilon=%.17g phi0=%.17g "
-             "youngs_modulus_particle=%.17g density=%.17g mu=%.17g nu=%.17g "
+             "youngs_modulus_particle=%.17g density=%.17g mu=%.17g nu=%.17g mu_roll=%.17g "
              "tilt=%.17g drop_height=%.17g stick_model=%d",
-             a, epsilon, phi0, modulus, density, mu, nu, tilt, drop, stick_model);
+             a, epsilon, phi0, modulus, density, mu, nu, mu_roll, tilt, drop, stick_model);
 }
 
 random_outcome random_setup_run(const random_setup *r, double horizon_s, double work_cap, char *why,

@@ -1,5 +1,5 @@
 /* random_setups.h: random physical set-ups (the SI front end, docs/model.md §8) with external
-   normal forces, run to the chute's exit or to a horizon, each with a bounded
+   normal forces, run to the chute's exit, to rest (§3c) or to a horizon, each with a bounded
    amount of work: whatever the set-up, a run ends without an integrator failure. Shared by the
    command tribo_random_setups (scripts/random_setups.sh) and the test test_random_setups, and
    the set-ups that once failed, kept as named cases. */
@@ -19,14 +19,15 @@ typedef struct random_setup {
 /* Set-up `index` of the random sequence `seed` with the stick model (0 compliant, 1 rigid):
    the grain's size (a from 25 um to 2.5 mm, log-uniform), roundness (0.15 .. 1), orientation,
    Young's modulus (1e7 .. 1e10 Pa, log-uniform), density (500 .. 3000 kg/m3), friction
-   (mu 0 .. 1.5, and one set-up in ten at 10 .. 100), dashpot (nu 0.05 .. 1), tilt
-   (0 .. 60 degrees), drop (0 .. 20 mm) and an external normal
+   (mu 0 .. 1.5, and one set-up in ten at 10 .. 100), dashpot (nu 0.05 .. 1), rolling
+   resistance (mu_roll 0 .. 0.05, and one in ten at 0.05 .. 1), tilt (0 .. 60 degrees), drop
+   (0 .. 20 mm) and an external normal
    force uniform in -1e4 .. 1e4 N/m, on a 0.3 m chute. The same for every run of the program. */
 void random_setup_make(unsigned long long seed, int index, int stick_model, random_setup *r);
 
 /* How a run ended. */
 typedef enum random_outcome {
-    RANDOM_EXITED,   /* at the chute's exit (or another end of the run) */
+    RANDOM_EXITED,   /* at the chute's exit, or at rest (§3c) */
     RANDOM_HORIZON,  /* at the horizon */
     RANDOM_WORK_CAP, /* still going when its work was spent: not a failure, but not shown to end */
     RANDOM_REFUSED,  /* the set-up was refused with a message (a derived parameter out of range) */

@@ -123,6 +123,12 @@ typedef struct tribo_charge_model {
 
     /* The unit of its reported values in the SI front end. */
     tribo_charge_si_unit si_unit;
+
+    /* The global states' limits for t -> infinity with the grain at rest in contact (docs/model.md
+       §3c: no work done, the contact held), written over globals; NULL: they hold still. The
+       segments under the contact are then charged at these limits for an infinite duration:
+       `charge` must take duration = INFINITY (decay e^-inf = 0) to the saturation exactly. */
+    void (*rest_limits)(const tribo_scene *s, double *globals);
 } tribo_charge_model;
 
 /* A model's state at the output point of an instance, as the outputs of its own

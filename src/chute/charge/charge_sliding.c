@@ -150,6 +150,13 @@ static double density_unit(const tribo_scene *s)
     return 1.0;
 }
 
+/* At rest no work is done and the contact holds: Sigma_s relaxes to Sigma0 (§5b, §3c); the
+   normalisation stays. */
+static void rest_limits(const tribo_scene *s, double *g)
+{
+    g[SIGMA_S] = s->Sigma0;
+}
+
 const tribo_charge_model tribo_charge_sliding = {
     .name = "sliding",
     .n_globals = 2,
@@ -167,6 +174,7 @@ const tribo_charge_model tribo_charge_sliding = {
     /* Sigma_i / Sigma0,ref with Sigma0,ref = |sigma0| / sqrt(kappa k' a) (sigma0 is fixed in
        the SI front end): sigma_i = sigma0 times the value (§8) */
     .si_unit = TRIBO_CHARGE_PER_SIGMA0,
+    .rest_limits = rest_limits,
 };
 
 double tribo_sliding_charge(tribo_charge_view v)

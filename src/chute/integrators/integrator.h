@@ -13,7 +13,8 @@
  * An advance may end early, and only between steps: when tribo_work_spent says the work
  * limit of the advance is spent, or when the step just committed ends the run (model.md §9:
  * where the particle leaves the chute, the exit switch of force_phases.h, or with run_end =
- * first_liftoff where the first contact is lost again, each located exactly), it returns
+ * first_liftoff where the first contact is lost again, each located exactly; §3c: where the
+ * grain has come to rest, the event that enters that phase), it returns
  * tribo_stop_early() with the reason (the output point at the committed one). Every early
  * stop goes through it: after the work limit the next advance goes on from there as if
  * nothing had stopped; after the exit or the lift-off the run is over.
@@ -115,8 +116,11 @@ int tribo_work_spent(const tribo_model *m);
 typedef enum tribo_stop_reason {
     TRIBO_STOP_WORK_LIMIT, /* the advance spent its work limit: TRIBO_INCOMPLETE */
     TRIBO_STOP_EXIT,       /* the committed point is the exit from the chute: TRIBO_ENDED */
-    TRIBO_STOP_LIFTOFF     /* the committed point is the first lift-off (run_end =
+    TRIBO_STOP_LIFTOFF,    /* the committed point is the first lift-off (run_end =
                               first_liftoff): TRIBO_ENDED */
+    TRIBO_STOP_REST        /* the committed point holds the grain at rest (model.md §3c): the
+                              normal lock, the rigid stick and the rolling lock at once, with
+                              constant inputs, for ever: TRIBO_ENDED */
 } tribo_stop_reason;
 /* End the advance under way at the committed point: it becomes the output point; returns
    the status of the reason, with a message. */

@@ -34,7 +34,10 @@
  * On a chute of finite length (model.md §9) the centre passing its end is one more root
  * (TRIBO_SWITCH_EXIT): the step that reaches it is committed, CVODE is restarted there (so
  * that the saved state is the exit point) and the run ends. With run_end = first_liftoff the
- * first switch from contact to flight ends the run the same way, at the located switch.
+ * first switch from contact to flight ends the run the same way, at the located switch; so
+ * does the event after which the grain is at rest (model.md §3c: the normal lock, the rigid
+ * stick and the rolling lock at once, whose switch functions are then constant), or a
+ * (re)start there.
  */
 #include "integrator.h"
 
@@ -168,7 +171,7 @@ static void hold_phase(const cvode_integrator *c, double *y)
     }
     const int rigid = c->phase.tangent == TRIBO_TANGENT_RIGID;
     if (rigid)
-        tribo_stop_contact_point(c->dyn, &g, y);
+        tribo_stop_contact_point(c->dyn, &c->phase, &g, y);
     else
         y[TRIBO_IV] = -(g.cx * y[TRIBO_IOMEGA]);
     if (!rigid && c->phase.normal == TRIBO_NORMAL_LOCK) {
@@ -340,7 +343,7 @@ static void describe_state(const cvode_integrator *c, const double *y, char *buf
     snprintf(buf, n,
              "X = %.9g, Y = %.9g, clearance of the lowest point G = %.9g, phi = %.9g, U = %.9g, "
              "V = %.9g, Omega = %.9g, delta_x = %.9g; "
-             "phase: %s%s%s",
+             "phase: %s%s%s%s",
              y[TRIBO_IX], y[TRIBO_IY], y[TRIBO_IGAP], y[TRIBO_IPHI], y[TRIBO_IU], y[TRIBO_IV],
              y[TRIBO_IOMEGA],
              y[TRIBO_IDX], tribo_touching(ph) ? "contact, " : "flight",
@@ -352,7 +355,11 @@ static void describe_state(const cvode_integrator *c, const double *y, char *buf
              !tribo_touching(ph)                    ? ""
              : ph->tangent == TRIBO_TANGENT_STICK ? "stick"
              : ph->tangent == TRIBO_TANGENT_RIGID ? "rigid stick"
-                                                  : "slip");
+                                                  : "slip",
+             !tribo_touching(ph) || ph->roll == TRIBO_ROLL_FREE ? ""
+             : ph->roll == TRIBO_ROLL_LOCK                      ? ", rolling lock"
+             : ph->roll_sign > 0                                ? ", turning anticlockwise"
+                                                                : ", turning clockwise");
 }
 
 static tribo_status fail_at(cvode_integrator *c, double t, const double *y, const char *why)
@@ -677,6 +684,10 @@ static tribo_status close_step(cvode_integrator *c)
         c->ending = TRIBO_STOP_LIFTOFF;
         return TRIBO_ENDED;
     }
+    if (tribo_at_rest(&ph)) { /* for ever, under constant inputs (model.md §3c) */
+        c->ending = TRIBO_STOP_REST;
+        return TRIBO_ENDED;
+    }
     return TRIBO_OK;
 }
 
@@ -712,6 +723,9 @@ next_step:
             return st == TRIBO_ENDED ? tribo_stop_early(m, c->ending) : st;
         if (t <= tribo_committed(m)->t)
             break;
+        /* (re)started at rest: the run ends there (model.md §3c) */
+        if (!c->open && tribo_at_rest(&c->phase))
+            return tribo_stop_early(m, TRIBO_STOP_REST);
         if (tribo_work_spent(m))
             return tribo_stop_early(m, TRIBO_STOP_WORK_LIMIT);
         if (++steps > max_steps)
@@ -757,8 +771,8 @@ typedef struct saved {
     double y_restart[TRIBO_NSTATE_MAX];
     long long steps_since_restart;
     long long open;
-    long long contact, normal, tangent, started_at_rest, compliant_slip;
-    double normal_sign, slip_sign;
+    long long contact, normal, tangent, started_at_rest, compliant_slip, roll, roll_from_rest;
+    double normal_sign, slip_sign, roll_sign;
     double last_event_t;
     long long events_at_instant, events_in_a_row;
 } saved;
@@ -785,10 +799,25 @@ static void state_save(const void *data, unsigned char *b)
     s.slip_sign = c->phase.slip_sign;
     s.started_at_rest = c->phase.started_at_rest;
     s.compliant_slip = c->phase.compliant_slip;
+    s.roll = c->phase.roll;
+    s.roll_sign = c->phase.roll_sign;
+    s.roll_from_rest = c->phase.roll_from_rest;
     s.last_event_t = c->last_event_t;
     s.events_at_instant = c->events_at_instant;
     s.events_in_a_row = c->events_in_a_row;
     memcpy(b, &s, sizeof s);
+}
+
+/* Whether a saved rolling rule is one this integrator can produce (model.md §3c): none in flight
+   or without rolling resistance; else turning one way (from rest or not) or the rolling lock. */
+static int saved_roll_valid(const cvode_integrator *c, const saved *s)
+{
+    if (s->contact == 0 || c->dyn->mu_roll == 0.0)
+        return s->roll == TRIBO_ROLL_FREE && s->roll_sign == 0.0 && s->roll_from_rest == 0;
+    if (s->roll == TRIBO_ROLL_TURNING)
+        return (s->roll_sign == 1.0 || s->roll_sign == -1.0) &&
+               (s->roll_from_rest == 0 || s->roll_from_rest == 1);
+    return s->roll == TRIBO_ROLL_LOCK && s->roll_sign == 0.0 && s->roll_from_rest == 0;
 }
 
 /* Whether saved bytes hold values this integrator can produce. */
@@ -814,7 +843,7 @@ static int saved_valid(const cvode_integrator *c, const saved *s)
                (s->normal == TRIBO_NORMAL_LOCK || s->normal == TRIBO_NORMAL_CREEP) &&
                c->dyn->damping_point == TRIBO_DAMPING_CONTACT_POINT)) &&
              (s->slip_sign == 1.0 || s->slip_sign == -1.0 || s->slip_sign == 0.0) &&
-             (isfinite(s->last_event_t) || s->last_event_t == -INFINITY) &&
+             saved_roll_valid(c, s) && (isfinite(s->last_event_t) || s->last_event_t == -INFINITY) &&
              s->events_at_instant >= 0 && s->events_at_instant <= MAX_EVENTS_AT_ONE_INSTANT &&
              s->events_in_a_row >= 0 && s->events_in_a_row <= MAX_EVENTS_IN_A_ROW;
     for (int i = 0; ok && i < c->n; i++)
@@ -842,6 +871,9 @@ static tribo_status state_load(tribo_model *m, void *data, const unsigned char *
     ph.slip_sign = s.slip_sign;
     ph.started_at_rest = (int)s.started_at_rest;
     ph.compliant_slip = (int)s.compliant_slip;
+    ph.roll = (tribo_roll_rule)s.roll;
+    ph.roll_sign = s.roll_sign;
+    ph.roll_from_rest = (int)s.roll_from_rest;
     /* CVODE is deterministic: the same restart and steps give the same open step. They must
        reach the committed point, time and motion (but for the stretch, which a slip holds at
        its limit there): the steps before the open one end there, and the open one holds the

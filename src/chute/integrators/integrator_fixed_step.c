@@ -40,23 +40,39 @@ typedef struct fixed_step {
 
 static const tribo_force_law LAW = {.contact = TRIBO_CONTACT_BY_GEOMETRY,
                                     .normal = TRIBO_NORMAL_REGULARISED,
-                                    .tangent = TRIBO_TANGENT_CLAMP};
+                                    .tangent = TRIBO_TANGENT_CLAMP,
+                                    .roll = TRIBO_ROLL_REGULARISED};
 
 /* Within this margin of RK4's real stability limit 2.79 */
 #define STABLE_LAMBDA_H 2.0
 
-/* How many RK4 sub-steps a step of size h from p needs to stay stable: the largest rate
-   the regularised sign can have during the step, for |vn| as small as the step allows.
-   Uses the contact already evaluated at p (the end of the last step). */
-static int substeps_needed(const tribo_dyn_params *dp, const tribo_point *p, double h)
+/* The largest indentation a step of size h from p can reach: over the step delta_y and vn
+   move by at most their rates times h (<= 0: the step cannot touch). */
+static double largest_indentation(const tribo_point *p, double h)
+{
+    const double *y = p->y;
+    return -y[TRIBO_IGAP] + h * (fabs(y[TRIBO_IV]) + fabs(p->contact.pose.cx * y[TRIBO_IOMEGA]));
+}
+
+/* The RK4 sub-steps a regularised sign needs where its rate is scale sech^2(w) / v_reg times
+   gain, at w = w_min, the smallest |velocity| / v_reg the step allows. */
+static int sign_substeps(const tribo_dyn_params *dp, double scale, double gain, double w_min, double h)
+{
+    if (w_min >= 20.0) /* sech^2 < 2e-17 */
+        return 1;
+    const double sech = 1.0 / cosh(w_min);
+    const double n = ceil(scale * sech * sech / dp->v_reg * h / STABLE_LAMBDA_H * gain);
+    return n > 1.0 ? (n < 1e6 ? (int)n : 1000000) : 1;
+}
+
+/* The sub-steps the normal dashpot's regularised sign needs (substeps_needed). */
+static int normal_substeps(const tribo_dyn_params *dp, const tribo_point *p, double h)
 {
     if (dp->nu == 0.0)
         return 1;
     const double *y = p->y;
     const tribo_contact_eval *c = &p->contact;
-    /* over the step delta_y and vn move by at most their rates times h */
-    const double dy_max =
-        -y[TRIBO_IGAP] + h * (fabs(y[TRIBO_IV]) + fabs(c->pose.cx * y[TRIBO_IOMEGA]));
+    const double dy_max = largest_indentation(p, h);
     if (dy_max <= 0.0)
         return 1;
     const double force_max = dy_max * (1.0 + dp->nu);
@@ -75,13 +91,34 @@ static int substeps_needed(const tribo_dyn_params *dp, const tribo_point *p, dou
         vn = tribo_damped_velocity(dp, &c->pose, y);
     }
     const double v_min = fmax(0.0, fabs(vn) - accel * h) / dp->v_reg;
-    if (v_min >= 20.0) /* sech^2 < 2e-17 */
-        return 1;
-    const double sech = 1.0 / cosh(v_min);
-    const double n = ceil(dp->nu * dy_max * sech * sech / dp->v_reg * h / STABLE_LAMBDA_H * gain);
-    return n > 1.0 ? (n < 1e6 ? (int)n : 1000000) : 1;
+    return sign_substeps(dp, dp->nu * dy_max, gain, v_min, h);
 }
 
+/* How many RK4 sub-steps a step of size h from p needs for the rolling torque's regularised
+   sign (model.md §3c): dOmega/dtau has the rate mu_r Psi_N sech^2(Omega / v_reg) / (I v_reg)
+   there, for |Omega| as small as the step allows (the torques' arms are at most 1, the
+   rolling torque's mu_r <= 1). */
+static int roll_substeps(const tribo_dyn_params *dp, const tribo_point *p, double h)
+{
+    const double dy_max = largest_indentation(p, h);
+    if (dy_max <= 0.0)
+        return 1;
+    const double force_max = dy_max * (1.0 + dp->nu);
+    const double spin_rate_max = dp->inv_inertia * force_max * (1.0 + dp->mu + dp->mu_roll);
+    const double w_min = fmax(0.0, fabs(p->y[TRIBO_IOMEGA]) - spin_rate_max * h) / dp->v_reg;
+    return sign_substeps(dp, dp->inv_inertia * dp->mu_roll * force_max, 1.0, w_min, h);
+}
+
+/* How many RK4 sub-steps a step of size h from p needs to stay stable: the largest rate
+   the regularised sign can have during the step, for |vn| as small as the step allows
+   (and the rolling torque's, roll_substeps). Uses the contact already evaluated at p (the
+   end of the last step). */
+static int substeps_needed(const tribo_dyn_params *dp, const tribo_point *p, double h)
+{
+    const int roll = dp->mu_roll > 0.0 ? roll_substeps(dp, p, h) : 1;
+    const int normal = normal_substeps(dp, p, h);
+    return roll > normal ? roll : normal;
+}
 /* dy/dtau: the motion, and the charge models' quadratures integrated with it. */
 static void rhs(const tribo_model *m, const double *y, double *dydt)
 {
