@@ -25,7 +25,7 @@
 #include <string.h>
 
 static const char MAGIC[8] = {'T', 'R', 'I', 'B', 'O', 'S', 'T', '1'};
-enum { STATE_VERSION = 7 };
+enum { STATE_VERSION = 8 };
 
 /* Fields of a point, in order; the contact evaluation is stored with it because some
    integrators (phases of the force law) cannot recompute it from y alone. */
