@@ -5,13 +5,13 @@
  *
  * Usage:
  *   tribo_si_scene si;
- *   tribo_si_scene_defaults(&si);            // the reference case (si_quantities.def)
- *   si.chute_length = 0.3;
+ *   tribo_si_scene_defaults(&si);            // the reference case (si_quantities.def): 0.3 m
+ *   si.epsilon = 0.8;
  *   tribo_si_derived d;
  *   char err[512];
  *   if (tribo_si_derive(&si, &d, err, sizeof err) != TRIBO_OK) { puts(err); ... }
  *   tribo_model *m = tribo_create(&d.scene, err, sizeof err);
- *   tribo_advance_fully(m, 1e9);              // to the exit: TRIBO_ENDED
+ *   tribo_advance_fully(m, 1e9);              // to the exit (or rest): TRIBO_ENDED
  *   double q_per_m = tribo_si_get(&d, m, TRIBO_SI_QUANTITY_Q_PER_M_STATIC);
  *
  * The model is two-dimensional: the particle is a cylinder of elliptical section; totals

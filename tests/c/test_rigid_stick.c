@@ -96,7 +96,9 @@ Test(rigid_stick, exit_times_are_rigid_body_mechanics_in_si)
         tribo_si_scene_defaults(&si);
         cr_assert_eq(si.stick_model, TRIBO_STICK_RIGID);
         char err[512];
-        cr_assert_eq(tribo_si_scene_apply(&si, "drop_height=0 chute_length=0.3", err, sizeof err), TRIBO_OK);
+        /* (without rolling resistance: test_rolling.c has it) */
+        cr_assert_eq(tribo_si_scene_apply(&si, "drop_height=0 chute_length=0.3 mu_roll=0", err, sizeof err),
+                     TRIBO_OK);
         cr_assert_eq(tribo_si_scene_apply(&si, RIGID_BODY[i].settings, err, sizeof err), TRIBO_OK);
         tribo_si_derived d;
         cr_assert_eq(tribo_si_derive(&si, &d, err, sizeof err), TRIBO_OK, "%s", err);
@@ -216,6 +218,8 @@ Test(rigid_stick, a_state_saved_after_a_long_rigid_stretch_loads_again, .timeout
     tribo_si_scene si;
     tribo_si_scene_defaults(&si);
     si.epsilon = 0.22511708985426643;
+    si.mu_roll = 0.0; /* it rolls and rocks in the rigid stick: with rolling resistance it rests */
+    si.chute_length = INFINITY;
     char err[512];
     tribo_si_derived d;
     cr_assert_eq(tribo_si_derive(&si, &d, err, sizeof err), TRIBO_OK, "%s", err);

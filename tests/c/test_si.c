@@ -46,7 +46,8 @@ Test(si, the_reference_case_maps_as_model_md_section_8_says)
     cr_expect_eq(d.scene.grain_geometry, TRIBO_GRAIN_SPHEROID);
     cr_expect_eq(d.scene.gap0, 0.01 / 5e-4);
     cr_expect_eq(d.scene.beta, s.tilt);
-    cr_expect_eq(d.scene.chute_length, INFINITY);
+    cr_expect_eq(d.scene.chute_length, 0.3 / 5e-4);
+    cr_expect_eq(d.scene.mu_roll, 0.01);
     cr_expect(close_to(d.sigma_scale, sqrt(s.interface_capacitance * d.k_prime * 5e-4), 1e-15));
     cr_expect(close_to(d.scene.Sigma0, 1e-5 / d.sigma_scale, 1e-15));
     cr_expect_eq(d.perimeter, 5e-4 * tribo_ellipse_perimeter(0.6));
@@ -204,7 +205,7 @@ Test(si, a_derived_parameter_out_of_the_models_range_names_what_made_it)
                    (const char *const[]){"drop_speed = ", "drop_speed = 1000 m/s", "youngs_modulus_particle = 1e+06 Pa", NULL});
     /* a start beyond the chute's end */
     expect_refused("chute_length=0.3 x0=0.5", (const char *const[]){"x0 = 0.5 m", "chute_length = 0.3", NULL});
-    expect_refused("x0=99 semi_major_axis=1e-5", (const char *const[]){"X0 = ", "x0 = 99 m", NULL});
+    expect_refused("x0=99 semi_major_axis=1e-5 chute_length=inf", (const char *const[]){"X0 = ", "x0 = 99 m", NULL});
 }
 
 Test(si, tunables_and_inputs_convert_as_the_set_up_does)

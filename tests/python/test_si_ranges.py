@@ -19,8 +19,9 @@ STEP = 1e-6
 DISCARD = 2
 # conditions on several parameters, stated in the variable's description: the value at the
 # end of the range is set with these (the rigid stick needs CVODE and the contact point's
-# dashpot)
-WITH = {("integrator", 0): {"stick_model": 0}, ("damping_point", 1): {"stick_model": 0}}
+# dashpot; the drop lies before the chute's end, 0.3 m by default)
+WITH = {("integrator", 0): {"stick_model": 0}, ("damping_point", 1): {"stick_model": 0},
+        ("x0", 100.0): {"chute_length": math.inf}}
 
 
 def ends(described):

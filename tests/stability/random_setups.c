@@ -90,19 +90,23 @@ random_outcome random_setup_run(const random_setup *r, double horizon_s, double 
     }
 }
 
-/* The SI defaults on a 0.3 m chute with epsilon 0.2251..., pressed by -833.8 N/m (an event
-   cascade at t = 0.027 s), its neighbours in epsilon and force; mu = 100 alone (a cascade at
-   0.34 s); grain 482 of the 1000-grain polyethylene-on-steel population at mu = 0.5 (0.404 s). */
-#define PRESSED "chute_length=0.3 epsilon=0.22511708985426643"
+/* As they were filed, before rolling resistance (mu_roll = 0): the SI defaults on a 0.3 m chute
+   with epsilon 0.2251..., pressed by -833.8 N/m (an event cascade at t = 0.027 s), its
+   neighbours in epsilon and force; mu = 100 alone (a cascade at 0.34 s); grain 482 of the
+   1000-grain polyethylene-on-steel population at mu = 0.5 (0.404 s). And the pressed grain with
+   the default rolling resistance, which settles. */
+#define FILED "chute_length=0.3 mu_roll=0 "
+#define PRESSED FILED "epsilon=0.22511708985426643"
 #define GRAIN_482                                                                                  \
-    "chute_length=0.3 mu=0.5 semi_major_axis=0.00047066640954451073 "                             \
-    "epsilon=0.48543847235139137 phi0=1.6545354758427289 drop_height=0.01"
+    FILED "mu=0.5 semi_major_axis=0.00047066640954451073 epsilon=0.48543847235139137 "            \
+          "phi0=1.6545354758427289 drop_height=0.01"
 const named_setup NAMED_SETUPS[] = {
     {"pressed, eps 0.2251", {PRESSED, 0.0, -833.8}},
-    {"pressed, eps 0.2241", {"chute_length=0.3 epsilon=0.22411708985426643", 0.0, -833.8}},
-    {"pressed, eps 0.2261", {"chute_length=0.3 epsilon=0.22611708985426643", 0.0, -833.8}},
+    {"pressed, eps 0.2241", {FILED "epsilon=0.22411708985426643", 0.0, -833.8}},
+    {"pressed, eps 0.2261", {FILED "epsilon=0.22611708985426643", 0.0, -833.8}},
     {"pressed twice as hard", {PRESSED, 0.0, -1667.6}},
-    {"mu 100", {"chute_length=0.3 mu=100", 0.0, 0.0}},
+    {"mu 100", {FILED "mu=100", 0.0, 0.0}},
     {"grain 482", {GRAIN_482, 0.0, 0.0}},
+    {"pressed, rolling resistance", {"epsilon=0.22511708985426643", 0.0, -833.8}},
 };
 const int N_NAMED_SETUPS = sizeof NAMED_SETUPS / sizeof NAMED_SETUPS[0];
