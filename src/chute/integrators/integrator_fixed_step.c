@@ -4,8 +4,10 @@
  * paper's Runge-Kutta-Nystrom: the tangential spring stretch is a first-order state
  * and the forces depend on the velocities, so the Nystrom form gains nothing). The
  * set-valued sign of the damped normal velocity (the contact point's vn = V + cx Omega, or
- * the centre's V) is regularised as tanh(vn / v_reg) (model.md §3) and the stretch is
- * clamped to the Coulomb limit after each step.
+ * the centre's V) is regularised as tanh(vn / v_reg) (model.md §3), so is the rolling
+ * torque's sign, tanh(Omega / v_reg) (§3c: a grain it holds creeps at |Omega| ~ v_reg, and
+ * its run never ends at rest), and the stretch is clamped to the Coulomb limit after each
+ * step.
  *
  * Steps lie on the grid t_base + k dt whatever times are asked for; the state at an
  * asked time between grid points is a partial step from the last one, not committed.
@@ -14,8 +16,8 @@
  * lambda = nu delta_y sech^2(vn / v_reg) / v_reg times the factor of Psi_N in dvn/dtau
  * (1 for the centre's V; for the contact point's vn at most 1 + (cx^2 + mu |cx| h) / I,
  * model.md §3), and RK4 is unstable once lambda h passes 2.79. Where a step could reach
- * that, the motion is sub-stepped (charging still once per step); elsewhere a step is one
- * RK4 step.
+ * that, the motion is sub-stepped (charging still once per step), and likewise where the
+ * rolling torque's sign is stiff; elsewhere a step is one RK4 step.
  *
  * Charging follows the paper: a step is charged at its end point's contact. The frictional
  * work of a step that ends in flight is still booked into Sigma_s (model.md §5b).
