@@ -2,7 +2,7 @@
  * under both stick models and prints every run that failed, then a summary; exits 1 if one
  * did (scripts/random_setups.sh).
  *
- *   tribo_random_setups [count=1000] [seed=1] [horizon_s=0.5] [work=2e6] [verbose=0]
+ *   tribo_random_setups [count=1000] [seed=1] [horizon_s=0.5] [work=5e5] [verbose=0]
  *
  * work: the most work one run may do (units of integrator.h, about half a microsecond of CPU
  * each): a run still going then is counted apart, not as a failure.
@@ -51,7 +51,7 @@ int main(int argc, char **argv)
 {
     int count = 1000, verbose = 0;
     unsigned long long seed = 1;
-    double horizon_s = 0.5, work = 2e6;
+    double horizon_s = 0.5, work = 5e5;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (!strncmp(a, "count=", 6))
@@ -65,7 +65,7 @@ int main(int argc, char **argv)
         else if (!strncmp(a, "verbose=", 8))
             verbose = atoi(a + 8);
         else {
-            fprintf(stderr, "usage: %s [count=1000] [seed=1] [horizon_s=0.5] [work=2e6] [verbose=0]\n",
+            fprintf(stderr, "usage: %s [count=1000] [seed=1] [horizon_s=0.5] [work=5e5] [verbose=0]\n",
                     argv[0]);
             return 2;
         }
