@@ -55,12 +55,15 @@ def scene_of(scene: str | dict | None = None, **parameters) -> dict:
     return dict(scene or {}, **parameters)
 
 
-def run(scene: str | dict | None = None, *, t_end: float = 100.0, record_interval: float = 1.0,
-        outputs: list[str] | None = None, fmu: str | int | None = None,
-        variant: str = "dimensionless", **parameters) -> pd.DataFrame:
+def run(scene: str | dict | None = None, *, t_end: float = 100.0,
+        record_interval: float | None = 1.0, outputs: list[str] | None = None,
+        fmu: str | int | None = None, variant: str = "dimensionless",
+        **parameters) -> pd.DataFrame:
     """Run one particle and return its outputs as a DataFrame: a column "time" (tau for
     the dimensionless FMU), then one column per output, a row every `record_interval`
-    from 0 to t_end (fewer if the FMU ends the run early).
+    from 0 to t_end (fewer if the FMU ends the run early); record_interval=None: one row,
+    the end (t_end or where the FMU ended the run), which costs the model's run alone
+    (the same numbers as the last row of any record interval).
 
     scene: FMU parameters as a mapping or a text "epsilon=0.3 mu=1"; keyword arguments
     add to it. Parameters not given keep the FMU's start values (docs/model.md section 7
@@ -78,12 +81,15 @@ def run(scene: str | dict | None = None, *, t_end: float = 100.0, record_interva
 
 
 def run_si(particle: str | None = None, wall: str | None = None, *, t_end: float = 10.0,
-           record_interval: float = 1e-4, outputs: list[str] | None = None,
+           record_interval: float | None = 1e-4, outputs: list[str] | None = None,
            fmu: str | int | None = None, **parameters) -> pd.DataFrame:
     """Run one real particle through the SI FMU (docs/model.md section 8) and return its
     outputs in SI units as a DataFrame: "time" in s, then one column per output, a row
     every `record_interval` seconds until t_end or the chute's exit (the last row is the
-    exit: the FMU ends the run there).
+    exit: the FMU ends the run there). record_interval=None: one row, the end, at the
+    cost of the model's run alone (a calibration's or a sweep's way: the numbers of the
+    last row of any record interval); each recorded row costs the FMU a communication
+    point (docs/reference_case.md, "The package's cost").
 
     particle, wall: names of the materials table (tribo.materials), whose elastic
     constants, density and sigma0 become start values; keyword arguments are SI parameters

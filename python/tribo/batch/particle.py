@@ -1,11 +1,18 @@
 """One particle's run of the FMU: parameters in; the recorded time series, each segment's
 charge at the end (from an FMI 3.0 FMU, whose arrays hold them) and the summary row out.
 
-Each run unpacks the FMU's bytes into a private temporary directory and removes it
-afterwards: a few milliseconds against runs of a tenth of a second and more, no state
-kept between runs, and the same on any Dask worker. The FMU's log messages are kept per
-run, not printed: the summary counts the warnings (assumption_warnings) and a failed run
-quotes the errors.
+Each run is an instance of its own on the process's loaded copy of the FMU (unpacked and
+loaded once per process and FMU, fmu/library.py): no state is kept between runs but the
+loaded library, and two runs in threads of one Dask worker never share an instance. The
+FMU's log messages are kept per run, not printed: the summary counts the warnings
+(assumption_warnings) and a failed run quotes the errors.
+
+A run that needs only the end (record_interval None: a population's particle, a line's
+grain) is one doStep to the horizon (continued where the FMU's work limit cuts it, and
+ending where the FMU ends the run): the committed integration does not depend on the
+communication points (fmu/README.md, "Work limit"; the CVODE integrator's steps are its
+own, the state at an asked time comes from its dense output), so its end is the end of
+the same run recorded at any interval, bit for bit, without the cost of the points.
 """
 
 import time
@@ -15,7 +22,7 @@ import numpy as np
 import pandas as pd
 from fmpy.fmi1 import FMICallException
 
-from ..fmu import ERROR, FmuImage, Instance, record, unpacked
+from ..fmu import ERROR, FmuImage, Instance, Rows, record
 from ..fmu.charge_models import MEAN_CHARGE_PREFIX, mean_charges, segment_arrays
 from ..fmu.names import fmu_outputs, from_fmu_column, in_package_terms, to_fmu
 from .specs import RunSpec
@@ -32,6 +39,7 @@ def recorded(models) -> list[str]:
 
 # more recorded points than this is a mistake in the horizon or the interval, not a run
 MAX_POINTS = 10_000_000
+WORK_LIMIT = "work_limit"  # the FMUs' parameter bounding one doStep's work
 
 
 @dataclass
@@ -44,16 +52,22 @@ class Recording:
 @dataclass
 class RunResult:
     row: dict  # the summary (summary.summarize) plus cpu_s and wall_s
-    series: pd.DataFrame
+    series: pd.DataFrame | None  # None for a run that reads only its end
     segments: pd.DataFrame | None = None
+
+
+def check_horizon(t_end: float) -> None:
+    """ValueError, saying why, for a horizon that is not positive and finite."""
+    if not (np.isfinite(t_end) and t_end > 0):
+        raise ValueError(f"the horizon t_end must be a positive number, got {t_end:g}")
 
 
 def communication_points(t_end: float, interval: float) -> np.ndarray:
     """0, interval, 2 interval, ..., t_end. ValueError (saying why) for a horizon or an
     interval that is not positive and finite, or not a whole number of intervals."""
-    for name, value in (("the horizon t_end", t_end), ("the record interval", interval)):
-        if not (np.isfinite(value) and value > 0):
-            raise ValueError(f"{name} must be a positive number, got {value:g}")
+    check_horizon(t_end)
+    if not (np.isfinite(interval) and interval > 0):
+        raise ValueError(f"the record interval must be a positive number, got {interval:g}")
     n = int(round(t_end / interval))
     if n < 1 or abs(n * interval - t_end) > 1e-9 * max(1.0, t_end):
         raise ValueError(f"t_end = {t_end:g} is not a whole number of record intervals ({interval:g})")
@@ -65,41 +79,83 @@ def communication_points(t_end: float, interval: float) -> np.ndarray:
     return times
 
 
-def simulate(image: FmuImage, params: dict, t_end: float, record_interval: float = 1.0,
+def simulate(image: FmuImage, params: dict, t_end: float, record_interval: float | None = 1.0,
              outputs=None, segments: bool = False) -> Recording:
     """Run the FMU from 0 to t_end with `params`, recording `outputs` (default: the study's,
-    `recorded`) every record_interval (and, if `segments` and the FMU has the arrays, each
-    segment's charge at the end). Parameters and outputs by the package's names and in its
-    units (fmu/names.py: angles in degrees). A run the FMU ends early is recorded up to
-    where it ended."""
-    times = communication_points(t_end, record_interval)
+    `recorded`) every record_interval, or (record_interval None) only at the end: one
+    row (and, if `segments` and the FMU has the arrays, each segment's charge at the end).
+    Parameters and outputs by the package's names and in its units (fmu/names.py: angles
+    in degrees). A run the FMU ends early is recorded up to where it ended."""
+    times = None if record_interval is None else communication_points(t_end, record_interval)
     md = image.model_description()
     outputs = recorded(mean_charges(md)) if outputs is None else list(outputs)
-    fmu_params, fmu_names = to_fmu(md, params), fmu_outputs(md, outputs)
-    with unpacked(image) as fmu_dir:
-        instance = Instance(fmu_dir, name="tribo")
-        stage = "setting the parameters"
-        try:
-            instance.set_parameters(fmu_params)
-            stage = "initialization"
-            instance.init(0.0, t_end)
-            stage = "the run"
-            reached, data = record(instance, times, fmu_names)
-            arrays = {model: instance.get(name) for model, name in segment_arrays(md).items()
-                      if segments}
-            instance.terminate()
-        except FMICallException as e:
-            errors = [m for status, _, m in instance.messages if status >= ERROR]
-            where = stage if stage != "the run" else f"the step from time {instance.t:g}"
-            raise RuntimeError(f"the FMU failed in {where}: "
-                               f"{in_package_terms(md, errors[-1]) if errors else e}") from None
-        finally:
-            instance.free()
+    fmu_names = fmu_outputs(md, outputs)
+    reached, data, arrays, messages = _run(image, params, t_end, times, fmu_names, segments)
     series = pd.DataFrame({name: from_fmu_column(md, fmu_name, data[:, i])[1]
                            for i, (name, fmu_name) in enumerate(zip(outputs, fmu_names))},
                           columns=outputs)
     series.insert(0, "time", reached)
-    return Recording(series, pd.DataFrame(arrays) if arrays else None, instance.messages)
+    return Recording(series, pd.DataFrame(arrays) if arrays else None, messages)
+
+
+@dataclass
+class End:
+    time: float  # where the run ended: t_end, or where the FMU ended it
+    values: dict  # output (the package's name) -> its value there (a float, the package's unit)
+    messages: list  # (status, category, message) as the FMU logged them
+
+
+def run_to_end(image: FmuImage, params: dict, t_end: float, outputs) -> End:
+    """simulate(image, params, t_end, None, outputs)'s one row without a DataFrame: for runs
+    that read only the end (a population's particle, a line's grain)."""
+    md = image.model_description()
+    outputs = list(outputs)
+    fmu_names = fmu_outputs(md, outputs)
+    reached, data, _, messages = _run(image, params, t_end, None, fmu_names, False)
+    values = {name: float(from_fmu_column(md, fmu_name, data[0, i])[1])
+              for i, (name, fmu_name) in enumerate(zip(outputs, fmu_names))}
+    return End(float(reached[0]), values, messages)
+
+
+def _run(image: FmuImage, params: dict, t_end: float, times, fmu_names, segments: bool):
+    """One run on an instance of its own: (the times reached, a row of `fmu_names`' values
+    per time, the segment arrays if `segments`, the FMU's messages). `times` None: only
+    the end, one step to t_end."""
+    if times is None:
+        check_horizon(t_end)
+        t_end = float(t_end)  # the time reached is a float, as the recorded times are
+    md = image.model_description()
+    fmu_params = to_fmu(md, params)
+    instance = Instance(image, name="tribo")
+    if times is None and instance.version == 2 and WORK_LIMIT in instance.variables:
+        # an FMI 2.0 step cut by the work limit cannot go on (stepFailed), where FMI 3.0's
+        # does: the one step to the end gets the most work the FMU allows unless the
+        # caller set the limit (no result depends on it: fmu/README.md, "Work limit")
+        fmu_params.setdefault(WORK_LIMIT, int(instance.variables[WORK_LIMIT].max))
+    stage = "setting the parameters"
+    try:
+        instance.set_parameters(fmu_params)
+        stage = "initialization"
+        instance.init(0.0, t_end)
+        stage = "the run"
+        if times is None:
+            rows = Rows(instance, fmu_names, capacity=1)
+            instance.step_to(t_end)
+            rows.read()
+            reached, data = np.array([instance.t]), rows.table()
+        else:
+            reached, data = record(instance, times, fmu_names)
+        arrays = ({model: instance.get(name) for model, name in segment_arrays(md).items()}
+                  if segments else {})
+        instance.terminate()
+    except FMICallException as e:
+        errors = [m for status, _, m in instance.messages if status >= ERROR]
+        where = stage if stage != "the run" else f"the step from time {instance.t:g}"
+        raise RuntimeError(f"the FMU failed in {where}: "
+                           f"{in_package_terms(md, errors[-1]) if errors else e}") from None
+    finally:
+        instance.free()
+    return reached, data, arrays, instance.messages
 
 
 def run_fmu(image: FmuImage, spec: RunSpec) -> RunResult:

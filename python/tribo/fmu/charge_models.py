@@ -17,6 +17,8 @@ Models are selected by their switches only: the parameter `charge_model` (a bitm
 first two models) is refused in one line naming the switches (`REMOVED`, fmu/names.py).
 """
 
+from .image import per_description
+
 SWITCH_PREFIX = "charge_model_"
 SWITCH_TYPE = "tribo.Switch"
 ARRAY_PREFIXES = ("segment_charge_", "segment_sigma_")
@@ -26,6 +28,7 @@ REMOVED = {"charge_model": "charge_model was removed: each charge model has its 
                            "{switches} (1 on, 0 off)"}
 
 
+@per_description
 def charge_models(md) -> tuple[str, ...]:
     """The registered charge models, in the registry's order."""
     return tuple(v.name[len(SWITCH_PREFIX):] for v in md.modelVariables

@@ -4,10 +4,12 @@ private directory with it unpacked, removed afterwards. A file that is not an FM
 refused when it is loaded, in one line (`FmuError`)."""
 
 import contextlib
+import functools
 import hashlib
 import io
 import os
 import tempfile
+import weakref
 import zipfile
 from dataclasses import dataclass
 
@@ -73,3 +75,24 @@ def unpacked(image: FmuImage):
         with zipfile.ZipFile(io.BytesIO(image.data)) as z:
             z.extractall(tmp)
         yield tmp
+
+
+def per_description(function):
+    """`function(md)` computed once per model description: fmpy's descriptions are read
+    once per FMU and never changed, and a run asks for the tables made from them (names,
+    charge models) many times, each a walk over the FMU's hundreds of variables. Kept
+    while the description lives; a stand-in that cannot be a weak key (a test's
+    SimpleNamespace) is computed each time."""
+    cache = weakref.WeakKeyDictionary()
+
+    @functools.wraps(function)
+    def cached(md):
+        try:
+            return cache[md]
+        except KeyError:
+            value = cache[md] = function(md)
+            return value
+        except TypeError:
+            return function(md)
+
+    return cached

@@ -5,9 +5,15 @@ API: the driver the package and the tests share.
 values by name whatever their FMI type, and notices an FMU ending the run early (a doStep
 that returns Discard and asks to terminate, as a particle leaving the chute does):
 `step_to` then returns False and the instance's time is the last time the FMU reached.
+An instance is made from an FmuImage (the process's loaded copy of the FMU,
+fmu/library.py: the package's runs) or from an unpacked FMU's directory (its library
+loaded for the instance and released with it).
+
+`record` and `Instance.reader` read many outputs at many times: one FMI call per type of
+variable and time, straight into numpy arrays (`Rows`), no Python object per value.
 """
 
-import threading
+import ctypes
 from ctypes import byref, c_double, c_void_p
 from functools import lru_cache
 
@@ -19,6 +25,9 @@ from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFr
                        fmi2Terminated)
 from fmpy.fmi3 import FMU3Slave, fmi3Boolean, fmi3Float64
 from fmpy.logging import addLoggerProxy
+
+from .image import FmuImage
+from .library import LIBRARY_LOAD, loaded, raw_getters
 
 OK, WARNING, DISCARD, ERROR, FATAL = range(5)  # fmi2Status / fmi3Status
 PARAMETER_CAUSALITIES = ("parameter", "structuralParameter")
@@ -40,13 +49,6 @@ def _fmi2_dispatch(environment, instance_name, status, category, message):
 
 _FMI2_LOGGER = fmi2CallbackLoggerTYPE(_fmi2_dispatch)
 
-# fmpy loads an FMU's library with the working directory changed to the library's folder
-# and back: the working directory is the process's, so two threads loading at once (the
-# local Dask cluster's runs) would each restore the other's. One load at a time; and the
-# package's own file paths are absolute while runs go on (other threads' relative paths
-# would resolve in the library's folder for that moment).
-_LIBRARY_LOAD = threading.Lock()
-
 
 @lru_cache(maxsize=32)
 def model_description(path: str):
@@ -55,20 +57,35 @@ def model_description(path: str):
 
 
 class Instance:
-    """One co-simulation instance of a tribo FMU (fmu_dir: the unpacked .fmu)."""
+    """One co-simulation instance of a tribo FMU. fmu: an FmuImage (the process's loaded
+    copy of it, fmu/library.py, which outlives the instance) or the directory of an
+    unpacked .fmu (its library loaded for this instance, released by `free`)."""
 
-    def __init__(self, fmu_dir: str, name: str = "tribo", logging_on: bool = False,
+    def __init__(self, fmu: "FmuImage | str", name: str = "tribo", logging_on: bool = False,
                  early_return: bool = False):
-        self.md = model_description(fmu_dir)
         self.early_return = early_return  # FMI 3.0: earlyReturnAllowed
-        self.version = 2 if self.md.fmiVersion.startswith("2") else 3
-        self.variables = {v.name: v for v in self.md.modelVariables}
         self.messages = []  # (status, category, message) as the logger received them
         self.logged_instance_names = []  # FMI 2.0 passes the instance name to the logger
-        cls = FMU2Slave if self.version == 2 else FMU3Slave
-        with _LIBRARY_LOAD:
-            self.fmu = cls(guid=self.md.guid, unzipDirectory=fmu_dir,
-                           modelIdentifier=self.md.coSimulation.modelIdentifier, instanceName=name)
+        if isinstance(fmu, FmuImage):
+            library = loaded(fmu)
+            self.md, self.version, self.variables = library.md, library.version, library.variables
+            self.fmu = library.slave(name)
+            self.getters = library.getters
+            self._owns_library = False
+        else:
+            self.md = model_description(fmu)
+            self.version = 2 if self.md.fmiVersion.startswith("2") else 3
+            self.variables = {v.name: v for v in self.md.modelVariables}
+            cls = FMU2Slave if self.version == 2 else FMU3Slave
+            with LIBRARY_LOAD:
+                self.fmu = cls(guid=self.md.guid, unzipDirectory=fmu,
+                               modelIdentifier=self.md.coSimulation.modelIdentifier,
+                               instanceName=name)
+            self.getters = raw_getters(self.fmu.dll, self.version)
+            self._owns_library = True
+        # fmi3DoStep's output arguments, made once (_do_step3)
+        self._step_flags = (fmi3Boolean(), fmi3Boolean(), fmi3Boolean(), fmi3Float64())
+        self._step_refs = tuple(byref(x) for x in self._step_flags)
         self.instantiate(logging_on)
         self.t = 0.0
         self.ended = False  # the FMU ended the run before the time asked for (see step_to)
@@ -165,10 +182,11 @@ class Instance:
     def _do_step3(self, t, h):
         """fmi3DoStep called directly: fmpy raises on Discard and so loses the step's
         outputs (terminateSimulation, earlyReturn, lastSuccessfulTime), which tell why."""
-        event, terminate, early, reached = fmi3Boolean(), fmi3Boolean(), fmi3Boolean(), fmi3Float64()
-        status = self.fmu.dll.fmi3DoStep(self.fmu.component, t, h, fmi3Boolean(True), byref(event),
-                                         byref(terminate), byref(early), byref(reached))
-        return status, bool(terminate.value), bool(early.value), reached.value
+        _, terminate, early, reached = self._step_flags
+        event, terminate_ref, early_ref, reached_ref = self._step_refs
+        status = self.fmu.dll.fmi3DoStep(self.fmu.component, t, h, True, event, terminate_ref,
+                                         early_ref, reached_ref)
+        return status, terminate.value, early.value, reached.value
 
     def do_step(self, t, h):
         """doStep without raising, for callers that handle every status: (status, the last
@@ -208,7 +226,12 @@ class Instance:
         self.ended = False
 
     def free(self):
-        self.fmu.freeInstance()
+        if self._owns_library:
+            self.fmu.freeInstance()  # fmpy's: the instance, then the library
+        elif self.version == 2:
+            self.fmu.fmi2FreeInstance(self.fmu.component)  # the library stays for the process
+        else:
+            self.fmu.fmi3FreeInstance(self.fmu.component)
         _fmi2_listeners.pop(id(self), None)
 
     # ---- values --------------------------------------------------------------------
@@ -248,18 +271,12 @@ class Instance:
     def reader(self, names):
         """A function that reads the scalar variables `names` at once (one call per FMI
         type), as a numpy array in that order."""
-        groups = {}
-        for column, name in enumerate(names):
-            v, getter = self._accessor("get", name)
-            columns, refs, _ = groups.setdefault(v.type, ([], [], getter))
-            columns.append(column)
-            refs.append(v.valueReference)
+        rows = Rows(self, names, capacity=1)
 
         def read():
-            row = np.empty(len(names))
-            for columns, refs, getter in groups.values():
-                row[columns] = getter(refs)
-            return row
+            rows.clear()
+            rows.read()
+            return rows.table()[0]
 
         return read
 
@@ -297,12 +314,85 @@ def record(instance: Instance, times, names) -> tuple[np.ndarray, np.ndarray]:
     """Read `names` now (at times[0]) and after a step to each later time; stops where the
     FMU ends the run early, keeping the rows up to there. Returns (the times reached,
     one row of values per time)."""
-    read = instance.reader(names)
-    reached, rows = [instance.t], [read()]
+    # Python floats: the FMI calls take them as they are
+    times = times.tolist() if isinstance(times, np.ndarray) else [float(t) for t in times]
+    rows = Rows(instance, names, capacity=min(len(times), 4096))  # grown as the run goes on
+    rows.read()
+    reached = [instance.t]
+    step_to, read = instance.step_to, rows.read
     for t in times[1:]:
-        going = instance.step_to(t)
+        going = step_to(t)
         reached.append(instance.t)
-        rows.append(read())
+        read()
         if not going:
             break
-    return np.array(reached), np.array(rows).reshape(len(rows), len(names))
+    return np.array(reached), rows.table()
+
+
+class Rows:
+    """The scalar variables `names` of an instance read into a table, a row per `read`:
+    one FMI call per type of variable, writing straight into a numpy array (grown as
+    needed), so that a row costs a few calls whatever the number of names. `table()`:
+    the rows so far as floats, a column per name in that order (booleans 0 / 1)."""
+
+    def __init__(self, instance: Instance, names, capacity: int = 64):
+        self.instance, self.width = instance, len(names)
+        by_type = {}
+        for column, name in enumerate(names):
+            v = instance.variables.get(name)
+            if v is None:
+                raise KeyError(f"{name!r} is not a variable of the FMU")
+            if v.dimensions:
+                raise ValueError(f"{name!r} is an array: read it with get")
+            if v.type not in instance.getters:
+                raise ValueError(f"{name!r}: the FMU's type {v.type} is not one read in rows")
+            columns, refs = by_type.setdefault(v.type, ([], []))
+            columns.append(column)
+            refs.append(v.valueReference)
+        self.groups = []  # _Group per type
+        for kind, (columns, refs) in by_type.items():
+            function, c_function, dtype = instance.getters[kind]
+            self.groups.append(_Group(function, c_function, (ctypes.c_uint32 * len(refs))(*refs),
+                                      columns, np.empty((max(capacity, 1), len(refs)), dtype)))
+        self.capacity = max(capacity, 1)
+        self.n = 0
+
+    def clear(self):
+        self.n = 0
+
+    def read(self):
+        """Append the values now as a row."""
+        i = self.n
+        if i == self.capacity:
+            self.capacity *= 2
+            for g in self.groups:
+                g.hold(np.concatenate([g.block, np.empty_like(g.block)]))
+        component = self.instance.fmu.component
+        fmi3 = self.instance.version == 3
+        for g in self.groups:
+            address = g.address + i * g.row_bytes
+            status = (g.c_function(component, g.vrs, g.n, address, g.n) if fmi3
+                      else g.c_function(component, g.vrs, g.n, address))
+            if status > WARNING:  # as fmpy's own getters
+                raise FMICallException(g.function, status)
+        self.n = i + 1
+
+    def table(self) -> np.ndarray:
+        out = np.empty((self.n, self.width))
+        for g in self.groups:
+            out[:, g.columns] = g.block[:self.n]
+        return out
+
+
+class _Group:
+    """The variables of one FMI type that Rows reads in one call, and their block of rows
+    (with the address of its first row, taken once per block)."""
+
+    def __init__(self, function, c_function, vrs, columns, block):
+        self.function, self.c_function, self.vrs, self.columns = function, c_function, vrs, columns
+        self.n = len(columns)
+        self.hold(block)
+
+    def hold(self, block):
+        self.block, self.row_bytes = block, block.strides[0]
+        self.address = block.__array_interface__["data"][0]  # cheaper than block.ctypes

@@ -19,9 +19,11 @@ Values are echoed as they were given (`format_number`): -0.3, not -0.29999999999
 import math
 import re
 from dataclasses import dataclass
+from types import MappingProxyType
 from typing import Callable
 
 from .charge_models import removed_message
+from .image import per_description
 from .instance import PARAMETER_CAUSALITIES
 
 DEGREES = "_deg"
@@ -64,7 +66,9 @@ def _twice(x):
     return 2.0 * x
 
 
-def renamed(md) -> dict[str, Renamed]:
+# the tables below are made once per model description (image.per_description)
+@per_description
+def renamed(md) -> MappingProxyType:
     """The package name -> Renamed of each FMU variable the package names otherwise."""
     out = {}
     for v in md.modelVariables:
@@ -75,11 +79,12 @@ def renamed(md) -> dict[str, Renamed]:
         elif v.name == SEMI_MAJOR_AXIS:
             out[SIZE] = Renamed(SIZE, SEMI_MAJOR_AXIS, "m", _half, _twice,
                                 "the long diameter 2a in m; the FMU's semi_major_axis is a = size / 2")
-    return out
+    return MappingProxyType(out)
 
 
-def _by_fmu_name(md) -> dict[str, Renamed]:
-    return {r.fmu_name: r for r in renamed(md).values()}
+@per_description
+def _by_fmu_name(md) -> MappingProxyType:
+    return MappingProxyType({r.fmu_name: r for r in renamed(md).values()})
 
 
 def package_name(md, fmu_name: str) -> str:
@@ -90,8 +95,23 @@ def package_name(md, fmu_name: str) -> str:
 
 def parameter_names(md) -> list[str]:
     """The parameters a user gives the package, by the package's names, in the FMU's order."""
-    return [package_name(md, v.name) for v in md.modelVariables
-            if v.causality in PARAMETER_CAUSALITIES]
+    return list(_parameter_names(md))
+
+
+@per_description
+def _parameter_names(md) -> tuple[str, ...]:
+    return tuple(package_name(md, v.name) for v in md.modelVariables
+                 if v.causality in PARAMETER_CAUSALITIES)
+
+
+@per_description
+def _parameter_set(md) -> frozenset:
+    return frozenset(_parameter_names(md))
+
+
+@per_description
+def _variable_names(md) -> frozenset:
+    return frozenset(v.name for v in md.modelVariables)
 
 
 def output_names(md, scalar_only: bool = True) -> list[str]:
@@ -126,14 +146,14 @@ def check_parameter_names(md, names) -> None:
         message = removed_message(md, name)
         if message:
             raise ParameterError(message)
-    known = parameter_names(md)
+    known = _parameter_set(md)
     fmu_only = [n for n in names if n in _by_fmu_name(md)]
     if fmu_only:
         raise _refusal(md, fmu_only[0], "parameter")
     unknown = [n for n in names if n not in known]
     if unknown:
         raise ParameterError(f"not parameters of the FMU: {', '.join(unknown)} "
-                             f"(its parameters: {', '.join(known)})")
+                             f"(its parameters: {', '.join(_parameter_names(md))})")
 
 
 def to_fmu(md, params: dict) -> dict:
@@ -150,8 +170,7 @@ def to_fmu(md, params: dict) -> dict:
 def fmu_outputs(md, names) -> list[str]:
     """Output names (the package's) as the FMU's; ParameterError for an FMU name the
     package renames or an unknown output."""
-    by_fmu, table = _by_fmu_name(md), renamed(md)
-    variables = {v.name for v in md.modelVariables}
+    by_fmu, table, variables = _by_fmu_name(md), renamed(md), _variable_names(md)
     out = []
     for name in names:
         if name in by_fmu:

@@ -14,7 +14,7 @@ import numbers
 
 from fmpy.fmi1 import FMICallException
 
-from .image import FmuImage, unpacked
+from .image import FmuImage
 from .instance import PARAMETER_CAUSALITIES, REAL_TYPES, Instance
 from .names import ParameterError, check_parameter_names, format_number, refusal_message, to_fmu
 
@@ -49,20 +49,19 @@ def check_values(image: FmuImage, values: dict) -> None:
                 kind = parameter_variables(md)[name].type.lower()
                 raise ParameterError(f"{name} = {format_number(value)} is not a whole number "
                                      f"({name} is {kind}: it takes whole numbers only)")
-    with unpacked(image) as fmu_dir:
-        instance = Instance(fmu_dir, name="tribo_check")
-        try:
-            for name, options in values.items():
-                for value in dict.fromkeys(options):
-                    try:
-                        instance.set_parameters(to_fmu(md, {name: value}))
-                    except FMICallException:
-                        errors = instance.errors()
-                        raise ParameterError(refusal_message(md, name, value, _reason(errors[-1]))
-                                             if errors else f"{name} = {format_number(value)}: "
-                                                            f"refused by the FMU") from None
-        finally:
-            instance.free()
+    instance = Instance(image, name="tribo_check")
+    try:
+        for name, options in values.items():
+            for value in dict.fromkeys(options):
+                try:
+                    instance.set_parameters(to_fmu(md, {name: value}))
+                except FMICallException:
+                    errors = instance.errors()
+                    raise ParameterError(refusal_message(md, name, value, _reason(errors[-1]))
+                                         if errors else f"{name} = {format_number(value)}: "
+                                                        f"refused by the FMU") from None
+    finally:
+        instance.free()
 
 
 def _reason(message: str) -> str:

@@ -26,7 +26,7 @@ from fmpy.fmi1 import FMICallException
 
 from ..batch.particle import RunResult
 from ..batch.specs import RunSpec, check_count
-from ..fmu import ERROR, FmuImage, Instance, unpacked
+from ..fmu import ERROR, FmuImage, Instance
 from ..fmu.charge_models import charge_models, per_model
 from ..fmu.names import in_package_terms, to_fmu
 from ..materials import pair_values
@@ -117,22 +117,21 @@ def run_episode(image: FmuImage, spec: RunSpec) -> RunResult:
     wall0, cpu0 = time.perf_counter(), time.thread_time()
     md = image.model_description()
     charges = per_model(MODEL_PREFIXES, charge_models(md))
-    with unpacked(image) as fmu_dir:
-        instance = Instance(fmu_dir, name="tribo_impact")
-        try:
-            instance.set_parameters(to_fmu(md, spec.params))
-            instance.init(0.0)
-            t_star = instance.get("t_star")
-            instance.step_to(spec.t_end * t_star)
-            end = instance.get_many(charges + ["u", "v", "omega", "contact_time", "lifted_off"])
-            reached = instance.t
-            instance.terminate()
-        except FMICallException as e:
-            errors = [m for status, _, m in instance.messages if status >= ERROR]
-            raise RuntimeError(f"the impact episode failed: "
-                               f"{in_package_terms(md, errors[-1]) if errors else e}") from None
-        finally:
-            instance.free()
+    instance = Instance(image, name="tribo_impact")
+    try:
+        instance.set_parameters(to_fmu(md, spec.params))
+        instance.init(0.0)
+        t_star = instance.get("t_star")
+        instance.step_to(spec.t_end * t_star)
+        end = instance.get_many(charges + ["u", "v", "omega", "contact_time", "lifted_off"])
+        reached = instance.t
+        instance.terminate()
+    except FMICallException as e:
+        errors = [m for status, _, m in instance.messages if status >= ERROR]
+        raise RuntimeError(f"the impact episode failed: "
+                           f"{in_package_terms(md, errors[-1]) if errors else e}") from None
+    finally:
+        instance.free()
     row = {name: end[name] for name in charges}
     row.update({"rebound_u": end["u"], "rebound_v": end["v"],
                 "rebound_speed": math.hypot(end["u"], end["v"]),

@@ -3,7 +3,7 @@ then through the free-fall separator (tribo_separator_fmi<v>) from the chute's e
 at one or several electrode voltages (docs/line.md, docs/separator.md "Coupling").
 
 The chute runs as a population's particle does (populations.feed.run_particle: the same
-parameters, the same communication grid, so its row is a population's row); its run ends
+parameters, one step to the horizon, so its row is a population's row); its run ends
 at the exit exactly (the FMU ends the step there), at the time `time_end`. The separator is
 then initialised with the grain and the chute's tilt bound to the chute's values, stepped
 (holding the grain) to that exit time, given the chute's outputs there as its inputs
@@ -31,7 +31,7 @@ import pandas as pd
 
 from ..batch.particle import RunResult
 from ..batch.specs import RunSpec
-from ..fmu import FmuImage, Instance, unpacked
+from ..fmu import FmuImage, Instance
 from ..fmu.charge_models import charge_models, switches
 from ..fmu.locate import find_fmu
 from ..fmu.names import format_number, to_fmu
@@ -137,13 +137,13 @@ def separator_parameters(chute_params: dict, settings: dict, voltage: float) -> 
     return {**bound, **settings, "voltage": float(voltage)}
 
 
-def fly(fmu_dir: str, md, params: dict, t_exit: float, inputs: dict | None,
+def fly(separator: FmuImage, md, params: dict, t_exit: float, inputs: dict | None,
         horizon: float = SEPARATOR_HORIZON) -> dict:
     """One separator run: initialised with `params`, the grain held until t_exit, then
     released with `inputs` (u_entry, v_entry, charge_to_mass; None: never released) and
     stepped in one step to t_exit + horizon (the FMU ends the step where the run ends).
     Returns OUTPUTS and time_land (the time the run ended, NaN if it did not)."""
-    s = Instance(fmu_dir, name="separator")
+    s = Instance(separator, name="separator")
     try:
         s.init(0.0, None, **to_fmu(md, params))
         if t_exit > 0:
@@ -179,24 +179,22 @@ def run_line_grain(images: LineImages, spec: RunSpec) -> RunResult:
     wall0, cpu0 = time.perf_counter(), time.thread_time()
     chute_spec = RunSpec(chute_params_of(spec.params), spec.t_end, spec.record_interval)
     chute = run_particle(images.chute, chute_spec)
-    row = dict(chute.row)
-    end = chute.series.iloc[-1]
+    row = dict(chute.row)  # the chute's outputs at its end
     model = the_charge_model(spec.params, images.models)
-    q = float(end[f"charge_to_mass_{model}"])
+    q = float(row[f"charge_to_mass_{model}"])
     exited = bool(row["exited"])
     t_exit = float(row["time_end"])
-    inputs = {"u_entry": float(end["u"]), "v_entry": float(end["v"]),
+    inputs = {"u_entry": float(row["u"]), "v_entry": float(row["v"]),
               "charge_to_mass": q} if exited else None
     md = images.separator.model_description()
     chute_s = time.thread_time() - cpu0
     landings = []
-    with unpacked(images.separator) as fmu_dir:
-        for voltage in images.voltages:
-            params = separator_parameters(chute_spec.params, images.settings, voltage)
-            if "x_entry" in spec.params:
-                params["x_entry"] = float(spec.params["x_entry"])
-            flight = fly(fmu_dir, md, params, t_exit, inputs, images.horizon)
-            landings.append({"voltage": float(voltage), **{c: flight[c] for c in LANDING_COLUMNS}})
+    for voltage in images.voltages:
+        params = separator_parameters(chute_spec.params, images.settings, voltage)
+        if "x_entry" in spec.params:
+            params["x_entry"] = float(spec.params["x_entry"])
+        flight = fly(images.separator, md, params, t_exit, inputs, images.horizon)
+        landings.append({"voltage": float(voltage), **{c: flight[c] for c in LANDING_COLUMNS}})
     first = landings[0]
     row.update(charge_to_mass=q, q_per_m=flight["q_per_m"], mass=flight["mass"],
                equivalent_diameter=flight["equivalent_diameter"])

@@ -63,7 +63,7 @@ LANDINGS_DIR = "landings"
 DEFAULT_PAIR = ("PE", "nylon")  # on steel: sigma0 -1e-5 and +1e-5 C/m2 (materials.toml)
 DEFAULT_WALL = "steel"
 DEFAULT_FEED_WIDTH = 0.01  # m, the feed slot across the gap
-STEPS_PER_RUN = 100  # the chute's communication steps (as a population's)
+STEPS_PER_RUN = 100  # the chute's record_interval is t_end / 100 in its key (as a population's)
 WORK_LIMIT = 2**31 - 1
 
 

@@ -38,7 +38,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from ..batch.particle import RunResult, simulate
+from ..batch.particle import RunResult, run_to_end
 from ..batch.specs import RunSpec, check_count
 from ..batch.summary import MOTION_CLASSES
 from ..fmu import FmuImage
@@ -76,7 +76,9 @@ def result_columns(models) -> list[str]:
             + per_model(MODEL_PREFIXES, models) + ["contact_fraction", "impacts"]
             + [f"fraction_{c}" for c in MOTION_CLASSES] + ["assumption_warnings"])
 
-# communication steps per run
+# a particle's RunSpec carries record_interval = t_end / STEPS_PER_RUN: it is part of the
+# run's key and of its row in particles.csv (batch/specs.py), which stay as they were so
+# that a folder resumes; the run itself reads only the end (run_particle)
 STEPS_PER_RUN = 100
 # the FMU's work limit per step, raised to its maximum: a particle that rocks down the chute
 # takes many more steps than one that bounces, and the horizon bounds the work anyway
@@ -193,15 +195,16 @@ def specs_of(feed: Feed, n: int, seed: int, t_end: float, defaults: dict | None 
 
 def run_particle(image: FmuImage, spec: RunSpec) -> RunResult:
     """One particle down the chute: its results row (`result_columns` of the FMU's charge
-    models)."""
+    models), no series. The row needs only the end: one step to the horizon or the exit
+    (batch/particle.py, run_to_end)."""
     wall0, cpu0 = time.perf_counter(), time.thread_time()
     recorded = outputs(charge_models(image.model_description()))
-    recording = simulate(image, spec.params, spec.t_end, spec.record_interval, recorded)
-    end = recording.series.iloc[-1]
-    row = {"time_end": float(end["time"]), "exit_speed": math.hypot(end["u"], end["v"])}
-    row.update({name: float(end[name]) for name in recorded})
+    end = run_to_end(image, spec.params, spec.t_end, recorded)
+    values = end.values
+    row = {"time_end": end.time, "exit_speed": math.hypot(values["u"], values["v"])}
+    row.update(values)
     row["exited"] = int(row["exited"])
     row["impacts"] = int(row["impacts"])
     row["assumption_warnings"] = int(row["assumption_warnings"])
     row.update(cpu_s=time.thread_time() - cpu0, wall_s=time.perf_counter() - wall0)
-    return RunResult(row, recording.series)
+    return RunResult(row, None)
