@@ -23,8 +23,10 @@ charge_to_mass_<model> (C/kg), capped_fraction_<model> (of the boundary at the b
 limit),
 contact_fraction, impacts (contacts made while approaching the plate: bounces, the drop's
 first landing included), fraction_flight ... fraction_bouncing, cpu_s, wall_s), summary.csv (q/m in C/kg:
-n, mean, std, percentiles 5 25 50 75 95, overall and per shape and size class),
-population.png and population.json. Read the mean for what a stream carries (README.md,
+n, mean, std, percentiles 5 25 50 75 95, stream_mean and stream_std (q/m of the grains that
+left the chute, mass-weighted: what a Faraday cup at its end reads) and stayed (the mass
+fraction that did not leave), overall and per shape and size class),
+population.png and population.json. Read stream_mean for what a stream carries (README.md,
 docs/populations.md). An interrupted population (Ctrl-C) resumes when the same command
 is run again; another set-up needs another --out, or --fresh (the folder's earlier
 contents are kept in <out>/backup-<n>/). Dask: as tribo sweep (a local cluster in this
@@ -86,10 +88,12 @@ def told(job, report) -> list[str]:
     if report.summary is not None:
         table = report.summary.copy()
         for c in table.columns[5:]:
-            if c != "n":
+            if c not in ("n", "stayed"):
                 table[c] = table[c] * 1e6
-        lines += ["q/m (µC/kg; size classes in m; the mean is what the stream carries per kg, "
-                  "the median the typical grain: docs/populations.md):",
+        lines += ["q/m (µC/kg; size classes in m; stream_mean and stream_std: mass-weighted, "
+                  "of the grains that left the chute, what a Faraday cup there reads; stayed: "
+                  "the mass fraction that did not leave; the median is the typical grain: "
+                  "docs/populations.md):",
                   table.drop(columns=["low", "high"]).to_string(
                       index=False, float_format=lambda v: f"{v:.4g}"),
                   f"population: wrote {', '.join(report.files)}"]
