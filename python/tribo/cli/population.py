@@ -35,9 +35,10 @@ process, or --scheduler).
 
 import os
 
+from ..materials import with_pair
 from ..populations.feed import DEFAULT_CHUTE, FEED_UNITS, FEED_VARIABLES, Feed, read_measured
 from ..populations.runner import PopulationJob
-from .common import add_job_options, add_out_option, name_value, numbers, run_job
+from .common import add_si_job_options, name_value, numbers, run_job
 
 NAME = "population"
 HELP = "particles drawn from a feed, down the chute (SI FMU): q/m statistics and figure"
@@ -65,18 +66,15 @@ def add_arguments(p) -> None:
                    help="edges of the shape classes (default: 4 equal classes over the range)")
     p.add_argument("--size-classes", type=numbers, metavar="S0,S1,...",
                    help="edges of the size classes, m (default: 4 equal classes over the range)")
-    add_out_option(p, os.path.join("out", "population"))
-    p.add_argument("--fmu", help="the SI FMU (default: tribo_si_fmi3.fmu of the build)")
-    add_job_options(p, max_runs="particles")
-    p.add_argument("--no-plot", action="store_true", help="no figure")
+    add_si_job_options(p, os.path.join("out", "population"), max_runs="particles")
 
 
 def job_of(args) -> PopulationJob:
     measured = read_measured(args.measured) if args.measured else None
     distributions = {n: getattr(args, n) for n in FEED_VARIABLES if getattr(args, n) is not None}
     feed = Feed(args.particle, args.wall, distributions,
-                {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg}, dict(args.set),
-                measured)
+                {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg},
+                with_pair(args.particle, args.wall, dict(args.set), args.materials), measured)
     return PopulationJob(feed, args.particles, args.seed, args.t_end, args.fmu,
                          figure=not args.no_plot, shape_edges=args.shape_classes,
                          size_edges=args.size_classes)
