@@ -62,7 +62,8 @@ ALIASES = {"tribo-study": "study", "tribo-sweep": "sweep", "tribo-population": "
 # The names `import tribo` gives (README.md, docs/): changing them is a decision about the
 # API, never a side effect of moving modules.
 PUBLIC = ["run", "run_si", "sweep", "load_results", "find_fmu", "materials", "population",
-          "impact_map", "ImpactMap", "line_grain", "line_population", "line_mixture", "line_sweep"]
+          "impact_map", "ImpactMap", "line_grain", "line_population", "line_mixture", "line_sweep",
+          "single_impact", "repeated_impacts", "chute_stream"]
 
 
 def test_pyproject_declares_the_console_commands():
