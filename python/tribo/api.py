@@ -1,5 +1,5 @@
 """The package's functions for users: one particle as a DataFrame, a sweep, its results, a
-population, an impact map, the separation line.
+population, an impact map, the separation line, a calibration.
 
 Names and units are the package's (tribo/fmu/names.py): angles in degrees as <name>_deg
 (beta_deg, tilt_deg, phi0_deg, ...), the SI FMUs' size as `size` (the long diameter 2a,
@@ -28,6 +28,7 @@ from .fmu.parameters import check_values
 from .impact.episode import DEFAULT_LIMIT, Grid
 from .impact.map import EPISODES, ImpactMap, MapJob
 from .line.grain import check_separator, load_images, run_line_grain
+from .calibration.runner import CalibrationJob
 from .line.mixture import DEFAULT_PAIR, Line, LineJob, check_line, line_specs
 from .materials import pair_values, with_pair
 from .populations.feed import DEFAULT_CHUTE, Feed, check_measured, read_measured
@@ -288,3 +289,27 @@ def line_sweep(n: int, *, voltages=DEFAULT_VOLTAGES, out: str = "out/line-sweep"
     """tribo.line_mixture over `voltages` (default 5 to 40 kV, 8 values), with its figure."""
     return line_mixture(n, voltage=list(voltages), out=out, **options)
 
+
+# ---- calibration against measurements (docs/calibration.md) ----------------------------------
+
+def calibrate(particle: str = "PE", wall: str = "steel", *, impacts=None, chutes=None,
+              charge_model: str = "static", fit=None, settings: dict | None = None,
+              materials=None, limit: float = DEFAULT_LIMIT, out: str = "out/calibration",
+              fmu: str | int | None = None, scheduler: str | None = None,
+              workers: int | None = None, serial: bool = False, processes: bool = False,
+              fresh: bool = False, progress: bool = False, figure: bool = True):
+    """Fit the pair's charging parameters to measured data (tribo.calibration): `impacts`
+    and/or `chutes`, CSV paths or DataFrames of the columns of docs/calibration.md (single
+    impacts: speed, angle_deg, size, epsilon, charge, ...; chute runs: chute_length,
+    tilt_deg, q_per_m and the feed). Fits sigma0 and whichever of charging_time (and, with
+    the sliding model, eta) the data determine (`fit`: the names to fit, default all of
+    them); settings: other SI parameters (mu, nu, ...); materials: the table the pair's
+    constants come from. Into `out`: fit.csv, points.csv, materials.toml (the file that
+    `materials=` and `--materials` take), calibration.png, calibration.json. Returns
+    tribo.calibration.runner.CalibrationReport (.fit, .rms_log10, .warnings,
+    .materials_file)."""
+    job = CalibrationJob(particle, wall, impacts, chutes, charge_model=charge_model, fit=fit,
+                         settings=settings, materials=materials, limit=limit, fmu=fmu,
+                         figure=figure)
+    return execute(job, out, executor_for(serial, scheduler, workers, processes), fresh=fresh,
+                   progress=progress)
