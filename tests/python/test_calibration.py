@@ -311,6 +311,8 @@ def test_bad_impacts_are_one_line_and_nothing_is_written(tmp_path, capsys, impac
      ["sigma0 is set by the data or by the calibration"]),
     ("chute_length,tilt_deg,q_per_m\n0.3,30,-1e-7\n0.2,30,-1e-7\n", ["--fit", "sigma0,eta"],
      ["eta", "sliding"]),
+    ("chute_length,tilt_deg,q_per_m\n0.3,30,-1e-7\n0.2,30,-1e-7\n",
+     ["--set", "charging_time=0"], ["charging_time is fitted and set", "--fit sigma0"]),
     ("chute_length,tilt_deg,q_per_m\n0.3,30,-1e-7\n0.2,30,-1e-7\n", ["--particle", "steel"],
      ["unknown particle material 'steel'"]),
     ("chute_length,tilt_deg,q_per_m\n0.3,30,-1e-7\n0.2,30,-1e-7\n", ["--set", "mu=-1"],

@@ -7,6 +7,8 @@ import math
 
 import numpy as np
 
+from matplotlib.ticker import NullFormatter
+
 from ..plotting import legend, plt, save
 
 UNITS = {"impact": ("charge picked up, |Δq| (pC)", 1e12),
@@ -32,7 +34,9 @@ def calibration_figure(points, profile, fit, particle: str, wall: str, charge_mo
                           + (" (±1 std measured)" if has_err else ""))
         both = np.concatenate([x, y])
         both = both[both > 0]
-        lo, hi = both.min() / 3, both.max() * 3
+        # whole decades, at least two: labelled major ticks on a narrow range too
+        lo = 10.0 ** math.floor(math.log10(both.min() / 1.5))
+        hi = 10.0 ** math.ceil(math.log10(both.max() * 1.5))
         line = np.array([lo, hi])
         ax.plot(line, line, "k-", lw=1, label="model = measured")
         ax.plot(line, 2 * line, "k:", lw=1, label="factor 2")
@@ -41,6 +45,8 @@ def calibration_figure(points, profile, fit, particle: str, wall: str, charge_mo
         ax.set_yscale("log")
         ax.set_xlim(lo, hi)
         ax.set_ylim(lo, hi)
+        for axis in (ax.xaxis, ax.yaxis):
+            axis.set_minor_formatter(NullFormatter())
         polarity = "" if sign > 0 else " (negative)"
         ax.set_xlabel(f"measured {label}{polarity}")
         ax.set_ylabel(f"model {label}{polarity}")
@@ -63,11 +69,23 @@ def calibration_figure(points, profile, fit, particle: str, wall: str, charge_mo
         ax.set_ylabel("RMS of log10(model / measured)")
         ax.set_title("the fit against t0", fontsize=10)
         legend(ax, loc="upper left")
-    sigma0 = fit.values["sigma0"]
-    fig.suptitle(f"{particle} on {wall}, {charge_model} model: σ0 = {sigma0:.3g} C/m², "
-                 f"RMS error {fit.rms_log10:.3f} decades", fontsize=11)
+    fig.suptitle(f"{particle} on {wall}, {charge_model} model: "
+                 + "; ".join(_said(fit, n) for n in fit.values)
+                 + f"; RMS error {fit.rms_log10:.3f} decades", fontsize=11)
     fig.tight_layout()
     return fig
+
+
+SYMBOLS = {"sigma0": ("σ0", "C/m²"), "charging_time": ("t0", "s"), "eta": ("η", "")}
+
+
+def _said(fit, name: str) -> str:
+    """A parameter in the title: its value ± its standard deviation, or its status."""
+    symbol, unit = SYMBOLS.get(name, (name, ""))
+    value, std, status = fit.values[name], fit.stds.get(name, math.nan), fit.status[name]
+    text = f"{symbol} = {value:.3g}" + (f" ± {std:.2g}" if status == "fitted" and std == std else "")
+    text += f" {unit}" if unit else ""
+    return text if status == "fitted" else f"{text} ({status})"
 
 
 def write_calibration_figure(points, profile, fit, particle, wall, charge_model, path: str) -> str:

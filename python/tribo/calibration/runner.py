@@ -107,6 +107,10 @@ class CalibrationJob(Job):
         names = tuple(self.fit_names) if self.fit_names is not None else \
             DEFAULT_FIT.get(self.charge_model, ("sigma0", "charging_time"))
         self.fit_names = check_fit(names, self.charge_model)
+        both = [n for n in self.fit_names if n in self.settings and n != "sigma0"]
+        if both:
+            raise FitError(f"{both[0]} is fitted and set: fit it, or hold it at the value set "
+                           f"(fit without it: --fit {','.join(n for n in self.fit_names if n != both[0])})")
         bad = [k for k in self.settings if k in SET_BY_DATA or k in switches(models)]
         if bad:
             raise FitError(f"{bad[0]} is set by the data or by the calibration, not a setting "
