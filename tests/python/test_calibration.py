@@ -267,6 +267,24 @@ def test_a_capped_sliding_charge_is_said(image, tmp_path):
     assert any("air-breakdown limit" in w for w in report.warnings)
 
 
+def test_measured_deviations_weigh_the_points_where_every_point_gives_one(image, tmp_path):
+    data = synthetic_impacts(image, spread_points(4, seed=6), noise=0.02, seed=6, sigma0=SIGMA0)
+    weighed = data.assign(charge_std=0.05 * data["charge"].abs())
+    report = tribo.calibrate("PE", "steel", impacts=weighed, fit=["sigma0"], serial=True,
+                             figure=False, out=str(tmp_path / "all"))
+    assert report.warnings == []
+    # a standard deviation of 5 % is 0.0217 decades a point: sigma0's, of 4 points, half
+    # that, times the residuals' scatter in those units where it is above 1
+    per_point = 0.05 / math.log(10)
+    chi2 = float(np.sum((report.results["residual_log10"] / per_point) ** 2))
+    assert fitted(report).loc["sigma0", "decades"] == pytest.approx(
+        per_point / 2 * max(1.0, math.sqrt(chi2 / 3)), rel=1e-6)
+    some = weighed.assign(charge_std=[0.05e-14, np.nan, 0.05e-14, np.nan])
+    report = tribo.calibrate("PE", "steel", impacts=some, fit=["sigma0"], serial=True,
+                             figure=False, out=str(tmp_path / "some"))
+    assert any("only 2 of 4 points give a standard deviation" in w for w in report.warnings)
+
+
 # ---- bad input: one line, nothing written -----------------------------------------------------
 
 GOOD = "speed,angle_deg,size,epsilon,charge\n1,90,1e-3,1,-1e-14\n2,60,1e-3,0.8,-2e-14\n"

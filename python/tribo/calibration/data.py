@@ -93,8 +93,8 @@ def read(kind: str, data) -> Data:
     checked (the module's text)."""
     if kind not in ("impacts", "chutes"):
         raise DataError(f"kind {kind!r}: 'impacts' or 'chutes'")
-    if isinstance(data, pd.DataFrame):
-        frame, source = data.copy(), f"the {kind} given"
+    if isinstance(data, pd.DataFrame):  # a missing value (NaN, None) is an empty cell
+        frame, source = data.astype(object).where(data.notna(), ""), f"the {kind} given"
     else:
         source = os.fspath(data)
         if not os.path.isfile(source):

@@ -4,7 +4,8 @@ and whichever of charging_time (t0) and eta the data determine.
 
 **What is fitted.** The residual of a point is log10(model / measured) of its charge
 (impacts: Delta q; chutes: the stream's q/m), weighted by the measured standard deviation
-in decades, std / (|value| ln 10), where every point gives one (else all alike). The
+in decades, std / (|value| ln 10), where every point gives one (else all alike, said in
+a warning where only some do). The
 parameters are fitted in decades too, log10 |sigma0|, log10 t0, log10 eta, by scipy's
 least_squares within bounds: |sigma0| up to the breakdown limit (the materials table's,
 and the FMU's breakdown_density where lower), t0 over the range where it acts on these
@@ -19,9 +20,10 @@ sigma_init, so the charge an impact gives is exactly (sigma0 - sigma_init) F, F 
 t0 (and the mechanics) but not on sigma0 (docs/model.md sections 5a, 8c; with t0 = 0, F is
 the charged area); n impacts on fresh spots follow the recurrence q_(k+1) = q_k + (sigma0 -
 q_k/A_s) F; a chute's stream q/m is sigma0 G. So one run per point at each t0 gives every
-sigma0: the fit runs the points at t0 = 0 and on a grid of t0 (two per decade over the
-range) in one batch, interpolates log F in log t0 (monotone cubic), and fits sigma0 and t0
-on that, then runs the points once more at the fitted t0 for the exact residuals. Other
+sigma0: the fit runs the points at t0 = 0 and on a grid of t0 over the range (impacts
+two per decade, chute runs one) in one batch, interpolates log F in log t0 (monotone
+cubic), fits sigma0 and t0 on that, and runs the points at the fitted t0, adding those
+runs to the interpolation and fitting again where it was off there. Other
 charge models (sliding) are fitted on runs at every step (forward differences of 0.05
 decades for the Jacobian, all in one batch per step).
 
@@ -34,10 +36,10 @@ data do not determine: a single parameter (t0 with complete transfer; eta where 
 have little sliding) or a combination (t0 far above the contact time: sigma0 and t0 move
 together, only sigma0/t0 is determined). Where t0 = 0 fits as well as the best t0 (its
 sum of squares within COMPLETE_TRANSFER_CHI2 s^2 of the best: a test of t0 > 0 at three
-standard deviations), t0 = 0 is taken (complete transfer, the SI default) and sigma0 fitted alone; the
-largest t0 of the grid that fits as well is said.
-A parameter the data do not determine otherwise keeps its fitted value, with the
-uncertainty that says so and a warning naming the combination that is determined.
+standard deviations), t0 = 0 is taken (complete transfer, the SI default) and sigma0
+fitted alone; the largest t0 of the grid that fits as well is said. A parameter the data
+do not determine otherwise keeps its fitted value, with the uncertainty that says so and a
+warning naming the combination that is determined.
 
 Uncertainties: the covariance s^2 (J^T J)^-1 (a pseudo-inverse), in decades, given as the
 standard deviation of each value (value x ln 10 x its decades) and the range value / 10^d
@@ -214,6 +216,15 @@ def value_of(point: Point, rows: list) -> float:
     return stream["q_per_m"]
 
 
+def weighing(problem: Problem) -> list:
+    """The warning where only some points give a standard deviation."""
+    given = sum(math.isfinite(p.std) for p in problem.points)
+    if 0 < given < len(problem.points):
+        return [f"only {given} of {len(problem.points)} points give a standard deviation: "
+                f"the fit weighs every point alike"]
+    return []
+
+
 def residuals(model: np.ndarray, problem: Problem) -> np.ndarray:
     """log10(model / measured) per point, weighted; a model of the wrong sign (or 0) is
     taken as 1e-30 of the measured value's sign (30 decades off)."""
@@ -322,7 +333,7 @@ def fit_structured(problem: Problem, evaluator: Evaluator) -> Fit:
     run_on = Evaluator(runs_problem, evaluator.image, evaluator.executor)
     sigma_ref = problem.sign * min(1e-5, problem.sigma0_limit)
     fixed = {k: v for k, v in problem.fixed.items() if v is not None}
-    warnings = []
+    warnings = weighing(problem)
     t0_fixed = fixed.get("charging_time")
     if "charging_time" not in problem.fit:
         t0 = 0.0 if t0_fixed is None else t0_fixed
@@ -456,7 +467,7 @@ def fit_runs(problem: Problem, evaluator: Evaluator) -> Fit:
     fixed = {k: v for k, v in problem.fixed.items() if v is not None}
     s_low, s_high = sigma0_bounds(problem)
     names = list(problem.fit)
-    warnings = []
+    warnings = weighing(problem)
     # the first runs: at the fixed values and t0 = 0 (where t0 is fitted), for the range of t0
     first = dict(fixed, sigma0=problem.sign * min(1e-5, problem.sigma0_limit))
     if "charging_time" in names:
