@@ -21,6 +21,12 @@ The API (each function documented where it is defined, in tribo/api.py):
     g = tribo.line_grain("nylon", "steel", voltage=30e3)         # chute, then separator
     mix = tribo.line_sweep(200, seed=1, out="out/line-sweep")     # PE + nylon against U
     mix.table                                                     # grade, recovery per U
+    tribo.single_impact("PE", "steel", speed=1.0, size=2e-3)      # Delta q (C), A_max (m2)
+    tribo.repeated_impacts("PE", "steel", 10, speed=1.0)          # the charge after each
+    tribo.chute_stream("PE", "steel", 50, seed=1)                 # the exit stream's q/m
+    cal = tribo.calibrate("PE", "steel", impacts="impacts.csv", out="out/calibration")
+    cal.fit                                                       # sigma0, t0 ± std
+    tribo.population(100, materials="out/calibration/materials.toml", out="out/calibrated")
 
 Names and units (tribo/fmu/names.py): angles in degrees, named <name>_deg; the SI size as
 size, the long diameter 2a in m; the rest the FMU's names and SI units. Results go into an
@@ -28,7 +34,8 @@ output folder (out=) that holds one function's results of one set-up (tribo/batc
 
 The command: `tribo`, a subcommand per job, each with --help: tribo population (particle
 populations), tribo line (grains through the chute and the separator), tribo impact-map
-(charge-per-impact maps), tribo sweep (parameter sweeps), tribo study (the paper's study);
+(charge-per-impact maps), tribo calibrate (a pair's charging parameters from measured
+data), tribo sweep (parameter sweeps), tribo study (the paper's study);
 they and the functions above run one flow (batch/job.py). The FMUs are those of the build
 directory (build/, or $TRIBO_BUILD_DIR) or the one given by path (fmu=...).
 
@@ -36,7 +43,7 @@ Its subpackages, by concern (each module's docstring says what it does):
 
     api          the functions above
     materials    the materials table (data/materials.toml): a particle/wall pair as the SI
-                 FMU's start values
+                 FMU's start values; a materials file read over it (a calibration's)
     plotting     what every figure shares (axis labels, colours, legends; matplotlib)
     ssp          the separation line as an SSP 1.0 package (the SI chute's FMU feeding the
                  separator's) for SSP importers: libcosim, ecos (standard library only)
@@ -58,19 +65,24 @@ Its subpackages, by concern (each module's docstring says what it does):
     line/        the separation line (SI chute, then the separator FMU): grain (one grain,
                  the chute once and the separator per voltage), mixture (a population or a
                  binary mixture, grade and recovery), plot
+    calibration/ measurements and the model (docs/model.md section 8d): observables (a
+                 single impact, repeated impacts, a chute's exit stream), data (the CSV
+                 files), fit (sigma0, t0, eta and what the data determine), plot, runner
+                 (a calibration into a folder, the materials file it writes)
     cli/         the command `tribo` (main) and its subcommands, a module each
 
 Each imports only its own modules and the layers below it: plotting and fmu at the
-bottom, then materials and batch, then study, populations and impact (not each other), then line (on
-populations), then api and cli (CONTRIBUTING.md; tests/python/test_package_layout.py checks it).
+bottom, then materials and batch, then study, populations and impact (not each other), then
+line and calibration (on populations and impact; not each other), then api and cli (CONTRIBUTING.md; tests/python/test_package_layout.py checks it).
 """
 
 from . import fmu, materials
-from .api import (impact_map, line_grain, line_mixture, line_population, line_sweep, load_results,
-                  population, run, run_si, sweep)
+from .api import (calibrate, impact_map, line_grain, line_mixture, line_population, line_sweep,
+                  load_results, population, run, run_si, sweep)
+from .calibration.observables import chute_stream, repeated_impacts, single_impact
 from .fmu.locate import find_fmu
 from .impact.map import ImpactMap
 
 __all__ = ["run", "run_si", "sweep", "load_results", "find_fmu", "materials", "population",
            "impact_map", "ImpactMap", "line_grain", "line_population", "line_mixture",
-           "line_sweep"]
+           "line_sweep", "single_impact", "repeated_impacts", "chute_stream", "calibrate"]

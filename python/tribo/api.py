@@ -1,5 +1,5 @@
 """The package's functions for users: one particle as a DataFrame, a sweep, its results, a
-population, an impact map.
+population, an impact map, the separation line, a calibration.
 
 Names and units are the package's (tribo/fmu/names.py): angles in degrees as <name>_deg
 (beta_deg, tilt_deg, phi0_deg, ...), the SI FMUs' size as `size` (the long diameter 2a,
@@ -7,7 +7,8 @@ m), everything else the FMU's. Each function that writes results takes a folder 
 which holds one function's (or command's) results of one set-up (tribo/batch/folder.py):
 another's is refused in one line, a second process on it is locked out. They run the same
 flow as the `tribo` command's subcommands (tribo/batch/job.py: prepare, claim the folder,
-run, report), and raise on a failed run.
+run, report), and raise on a failed run. Those of a real particle take `materials`: a
+materials file (tribo.materials, e.g. a calibration's) read over the package's table.
 """
 
 import os
@@ -27,8 +28,9 @@ from .fmu.parameters import check_values
 from .impact.episode import DEFAULT_LIMIT, Grid
 from .impact.map import EPISODES, ImpactMap, MapJob
 from .line.grain import check_separator, load_images, run_line_grain
+from .calibration.runner import CalibrationJob
 from .line.mixture import DEFAULT_PAIR, Line, LineJob, check_line, line_specs
-from .materials import pair_values
+from .materials import pair_values, with_pair
 from .populations.feed import DEFAULT_CHUTE, Feed, check_measured, read_measured
 from .populations.runner import PARTICLES, PopulationJob
 
@@ -82,7 +84,7 @@ def run(scene: str | dict | None = None, *, t_end: float = 100.0,
 
 def run_si(particle: str | None = None, wall: str | None = None, *, t_end: float = 10.0,
            record_interval: float | None = 1e-4, outputs: list[str] | None = None,
-           fmu: str | int | None = None, **parameters) -> pd.DataFrame:
+           fmu: str | int | None = None, materials=None, **parameters) -> pd.DataFrame:
     """Run one real particle through the SI FMU (docs/model.md section 8) and return its
     outputs in SI units as a DataFrame: "time" in s, then one column per output, a row
     every `record_interval` seconds until t_end or the chute's exit (the last row is the
@@ -96,10 +98,12 @@ def run_si(particle: str | None = None, wall: str | None = None, *, t_end: float
     by the package's names (size=1e-3: the long diameter 2a in m; tilt_deg=30;
     chute_length=0.3, ...) and win. Without materials, parameters not given keep the SI
     FMU's start values (the reference case, on an endless chute). fmu: a path, or 2 / 3
-    for the build's SI FMU (default 3)."""
+    for the build's SI FMU (default 3); materials: a materials file the pair's values come
+    from (tribo.materials)."""
     if (particle is None) != (wall is None):
         raise ValueError("give both a particle and a wall material, or neither")
-    params = dict(pair_values(particle, wall, sigma0="sigma0" not in parameters), **parameters) \
+    params = dict(pair_values(particle, wall, sigma0="sigma0" not in parameters,
+                              materials=materials), **parameters) \
         if particle else dict(parameters)
     image = FmuImage.load(find_fmu(fmu, variant="si"))
     check_values(image, {name: [value] for name, value in params.items()})
@@ -150,7 +154,7 @@ def population(n: int, *, seed: int = 0, particle: str = "PE", wall: str = "stee
                out: str = "out/population", fmu: str | int | None = None,
                scheduler: str | None = None, workers: int | None = None, serial: bool = False,
                processes: bool = False, fresh: bool = False, progress: bool = False,
-               shape_edges=None, size_edges=None):
+               shape_edges=None, size_edges=None, materials=None):
     """Draw n particles from a feed with the seed and run each down the chute through the
     SI FMU (tribo.populations.feed: the feed variables epsilon, size (the long diameter 2a,
     m), phi0_deg, omega0, drop_height, drop_speed, drop_angle_deg, each a distribution
@@ -159,13 +163,15 @@ def population(n: int, *, seed: int = 0, particle: str = "PE", wall: str = "stee
     tilt_deg (default 30); settings: any other SI parameter. Results go into the folder
     `out` (particles.csv, summary.csv, population.png, population.json); an interrupted
     population resumes. Returns the report: .results (a row per particle), .summary (q/m
-    statistics overall, per shape and size class)."""
+    statistics overall, per shape and size class, the exit stream's mass-weighted q/m).
+    materials: a materials file the pair's values come from (they go into the settings)."""
+    settings = with_pair(particle, wall, dict(settings or {}), materials)
     if isinstance(measured, str):
         measured = read_measured(measured)
     elif measured is not None:
         measured = check_measured(measured)
     feed = Feed(particle, wall, dict(distributions or {}), dict(DEFAULT_CHUTE, **(chute or {})),
-                dict(settings or {}), measured)
+                settings, measured)
     job = PopulationJob(feed, n, seed, t_end, fmu, shape_edges=shape_edges, size_edges=size_edges)
     report = execute(job, out, executor_for(serial, scheduler, workers, processes), fresh=fresh,
                      progress=progress)
@@ -176,16 +182,18 @@ def impact_map(*, speed, angle_deg, phi0_deg, epsilon, particle: str = "PE",
                wall: str = "steel", settings: dict | None = None, limit: float | None = None,
                omega0: float = 0.0, out: str = "out/impact_map", fmu: str | int | None = None,
                scheduler: str | None = None, workers: int | None = None, serial: bool = False,
-               processes: bool = False, fresh: bool = False, progress: bool = False):
+               processes: bool = False, fresh: bool = False, progress: bool = False,
+               materials=None):
     """The charge-per-impact map of a materials pair over the grid of impact speeds (m/s),
     angles (angle_deg: degrees from the plate's surface, 90 head-on), orientations
     (phi0_deg, degrees) and roundness values (tribo.impact.episode): one SI FMU episode per
     point, from first contact to the lift-off or the time limit (`limit` in t*; default
     DEFAULT_LIMIT). settings: other SI parameters (size, cylinder_length, ...). Written
     into `out` (impact_map.csv, impact_map.json, impact_map.png, episodes.csv), resumable;
-    returns tribo.ImpactMap for lookups."""
+    returns tribo.ImpactMap for lookups. materials: a materials file the pair's values come
+    from (they go into the settings)."""
     grid = Grid.of(speed=speed, angle_deg=angle_deg, phi0_deg=phi0_deg, epsilon=epsilon)
-    job = MapJob(grid, particle, wall, dict(settings or {}),
+    job = MapJob(grid, particle, wall, with_pair(particle, wall, dict(settings or {}), materials),
                  DEFAULT_LIMIT if limit is None else limit, omega0, fmu)
     raise_on_failure(execute(job, out, executor_for(serial, scheduler, workers, processes),
                              fresh=fresh, progress=progress), "episode")
@@ -201,7 +209,8 @@ def line_grain(particle: str = "PE", wall: str = "steel", *, voltage: float = 30
                size: float = 1e-3, epsilon: float = 0.6, phi0_deg: float = 0.0,
                x_entry: float = 0.0, chute: dict | None = None, settings: dict | None = None,
                separator: dict | None = None, charge_model: str = "static", t_end: float = 5.0,
-               fmu: str | int | None = None, separator_fmu: str | int | None = None) -> dict:
+               fmu: str | int | None = None, separator_fmu: str | int | None = None,
+               materials=None) -> dict:
     """One grain through the line (tribo.line.grain): down the SI chute (the pair's
     materials, `size` the long diameter 2a in m, dropped at rest from 10 mm; chute:
     chute_length, tilt_deg; settings: any other SI chute parameter) to its exit, then through
@@ -209,11 +218,13 @@ def line_grain(particle: str = "PE", wall: str = "steel", *, voltage: float = 30
     x_entry the entry across the gap, m) from the chute's exit state. The chute with one
     charge model ("static" or "sliding"). Returns the chute's results (exited, exit_time,
     u, v, ...), charge_to_mass (C/kg), mass (kg), the landing (landed, electrode, bin,
-    x_end, z_end, flight_time, time_land) and the CPU times (chute_cpu_s, cpu_s)."""
+    x_end, z_end, flight_time, time_land) and the CPU times (chute_cpu_s, cpu_s).
+    materials: a materials file the pair's values come from (tribo.materials)."""
     line = Line((particle,), wall, distributions={"epsilon": epsilon, "size": size,
                                                   "phi0_deg": phi0_deg},
                 chute=dict(DEFAULT_CHUTE, **(chute or {})), settings=dict(settings or {}),
-                separator=dict(separator or {}), feed_width=0.0, charge_model=charge_model)
+                separator=dict(separator or {}), feed_width=0.0, charge_model=charge_model,
+                materials=materials)
     images = load_images(fmu, separator_fmu, line.separator, [voltage])
     specs = line_specs(line, 1, 0, t_end, images.models)
     specs[0].params["x_entry"] = float(x_entry)
@@ -241,14 +252,16 @@ def line_population(n: int, *, seed: int = 0, particle: str = "PE", wall: str = 
                     out: str = "out/line-population", fmu: str | int | None = None,
                     separator_fmu: str | int | None = None, scheduler: str | None = None,
                     workers: int | None = None, serial: bool = False, processes: bool = False,
-                    fresh: bool = False, progress: bool = False):
+                    fresh: bool = False, progress: bool = False, materials=None):
     """n grains of one material drawn from a feed (as tribo.population's) through the line
     at one voltage (V), each entering the separator at a point drawn across `feed_width`
     (m). Into `out` (particles.csv with the landing columns, landings.csv, line.csv: the
-    mass per region; resumable). Returns tribo.line.mixture.LineReport."""
+    mass per region; resumable). Returns tribo.line.mixture.LineReport. materials: a
+    materials file the pair's values come from (tribo.materials)."""
     line = Line((particle,), wall, distributions=dict(distributions or {}),
                 chute=dict(DEFAULT_CHUTE, **(chute or {})), settings=dict(settings or {}),
-                separator=dict(separator or {}), feed_width=feed_width, charge_model=charge_model)
+                separator=dict(separator or {}), feed_width=feed_width, charge_model=charge_model,
+                materials=materials)
     return _run_line("population", line, n, seed, t_end, voltage, out, fmu, separator_fmu,
                      scheduler, workers, serial, processes, fresh, progress)
 
@@ -261,17 +274,19 @@ def line_mixture(n: int, *, seed: int = 0, particles=DEFAULT_PAIR, fraction: flo
                  out: str = "out/line-mixture", fmu: str | int | None = None,
                  separator_fmu: str | int | None = None, scheduler: str | None = None,
                  workers: int | None = None, serial: bool = False, processes: bool = False,
-                 fresh: bool = False, progress: bool = False, figure: bool = True):
+                 fresh: bool = False, progress: bool = False, figure: bool = True,
+                 materials=None):
     """A binary mixture of two particle materials of opposite polarity on one wall (default
     PE and nylon on steel, 50:50 by mass: `fraction` of the first) through the line at one
     voltage or several (`voltage`: a number or a list, V; the chute once per grain, the
     separator per voltage). The products split at x = `splitter` (m; 0 the centre line).
     Into `out`: particles.csv, landings.csv, line.csv (per voltage: masses per material and
     region, grade and recovery of each product), bins.csv, line.png (several voltages).
-    Returns tribo.line.mixture.LineReport (.table is line.csv)."""
+    Returns tribo.line.mixture.LineReport (.table is line.csv). materials: a materials
+    file the particles' values come from (tribo.materials)."""
     line = Line(tuple(particles), wall, fraction, dict(distributions or {}),
                 dict(DEFAULT_CHUTE, **(chute or {})), dict(settings or {}), dict(separator or {}),
-                feed_width, charge_model, splitter)
+                feed_width, charge_model, splitter, materials)
     return _run_line("mixture", line, n, seed, t_end, voltage, out, fmu, separator_fmu,
                      scheduler, workers, serial, processes, fresh, progress, figure)
 
@@ -279,3 +294,28 @@ def line_mixture(n: int, *, seed: int = 0, particles=DEFAULT_PAIR, fraction: flo
 def line_sweep(n: int, *, voltages=DEFAULT_VOLTAGES, out: str = "out/line-sweep", **options):
     """tribo.line_mixture over `voltages` (default 5 to 40 kV, 8 values), with its figure."""
     return line_mixture(n, voltage=list(voltages), out=out, **options)
+
+
+# ---- calibration against measurements (docs/calibration.md) ----------------------------------
+
+def calibrate(particle: str = "PE", wall: str = "steel", *, impacts=None, chutes=None,
+              charge_model: str = "static", fit=None, settings: dict | None = None,
+              materials=None, limit: float = DEFAULT_LIMIT, out: str = "out/calibration",
+              fmu: str | int | None = None, scheduler: str | None = None,
+              workers: int | None = None, serial: bool = False, processes: bool = False,
+              fresh: bool = False, progress: bool = False, figure: bool = True):
+    """Fit the pair's charging parameters to measured data (tribo.calibration): `impacts`
+    and/or `chutes`, CSV paths or DataFrames of the columns of docs/calibration.md (single
+    impacts: speed, angle_deg, size, epsilon, charge, ...; chute runs: chute_length,
+    tilt_deg, q_per_m and the feed). Fits sigma0 and whichever of charging_time (and, with
+    the sliding model, eta) the data determine (`fit`: the names to fit, default all of
+    them); settings: other SI parameters (mu, nu, ...); materials: the table the pair's
+    constants come from. Into `out`: fit.csv, points.csv, materials.toml (the file that
+    `materials=` and `--materials` take), calibration.png, calibration.json. Returns
+    tribo.calibration.runner.CalibrationReport (.fit, .rms_log10, .warnings,
+    .materials_file)."""
+    job = CalibrationJob(particle, wall, impacts, chutes, charge_model=charge_model, fit=fit,
+                         settings=settings, materials=materials, limit=limit, fmu=fmu,
+                         figure=figure)
+    return execute(job, out, executor_for(serial, scheduler, workers, processes), fresh=fresh,
+                   progress=progress)

@@ -12,12 +12,25 @@ start_values gives a dict keyed by the SI FMU's parameter names (src/si/si_quant
 the particle's and the wall's elastic constants, the particle's density, the pair's sigma0
 and the interface capacitance kappa, and every override (any SI parameter by name, e.g. the
 size, shape, chute and drop). Given sigma0 as an override, a pair without an entry is fine.
+
+A materials file (`load(path)`, the `materials=` of the package's functions, `--materials
+FILE` of the commands) has the table's schema and is read over it: its entries replace the
+table's (a material's constants, a pair's sigma0, the interface) and add pairs, and its
+[charging.<wall>.<particle>] tables give a pair's other charging parameters by the SI FMU's
+names (charging_time, eta, backflow_time), which the pair's start values then carry.
+`tribo calibrate` writes one (docs/calibration.md); [calibration...] tables hold where its
+numbers came from and are not read as values. Every function here takes `materials` (None:
+the package's table; a path; or a `Materials`).
 """
 
 from __future__ import annotations
 
+import copy
+import hashlib
+import math
+import os
 import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cache
 from importlib import resources
 
@@ -41,6 +54,90 @@ class Material:
     roles: tuple[str, ...]  # "particle", "wall"
 
 
+# the sections of a materials file, and what each may hold
+SECTIONS = ("material", "sigma0", "charging", "interface", "calibration")
+MATERIAL_KEYS = ("name", "youngs_modulus", "poisson_ratio", "density", "roles")
+# a pair's charging parameters besides sigma0 (the SI FMU's names, docs/model.md sections 5, 8)
+CHARGING_KEYS = ("charging_time", "eta", "backflow_time")
+INTERFACE_KEYS = ("epsilon0", "gap")
+
+
+@dataclass(frozen=True)
+class Materials:
+    """A materials table: the package's (data/materials.toml), or a materials file read
+    over it (`load`). `source` says which; `sha256` is the file's (None for the
+    package's)."""
+
+    table: dict = field(hash=False, compare=False, repr=False)
+    source: str = "the package's table"
+    sha256: str | None = None
+
+    def _materials(self) -> dict[str, Material]:
+        return {key: Material(key, row["name"], float(row["youngs_modulus"]),
+                              float(row["poisson_ratio"]), float(row["density"]),
+                              tuple(row["roles"]))
+                for key, row in self.table["material"].items()}
+
+    def names(self, role: str) -> list[str]:
+        return [k for k, m in self._materials().items() if role in m.roles]
+
+    def material(self, name: str, role: str | None = None) -> Material:
+        if role not in (None, "particle", "wall"):
+            raise MaterialError(f"role {role!r}: not one of 'particle', 'wall'")
+        known = self.names(role) if role else list(self.table["material"])
+        for key in known:
+            if key.lower() == str(name).lower():
+                return self._materials()[key]
+        what = f"{role} material" if role else "material"
+        raise MaterialError(f"unknown {what} {name!r}; known: {', '.join(known)}")
+
+    def breakdown_limit(self) -> float:
+        return float(self.table["sigma0"]["breakdown_limit"])
+
+    def pairs(self) -> dict:
+        """wall -> {particle: sigma0}."""
+        return {k: v for k, v in self.table["sigma0"].items() if isinstance(v, dict)}
+
+    def pair_sigma0(self, particle: str, wall: str) -> float:
+        p = self.material(particle, "particle").key
+        w = self.material(wall, "wall").key
+        pairs = self.pairs()
+        if p in pairs.get(w, {}):
+            return float(pairs[w][p])
+        listed = ", ".join(f"{pk}/{wk}" for wk, row in pairs.items() for pk in row)
+        raise MaterialError(f"no sigma0 for particle {p} on wall {w} (give sigma0=...); "
+                            f"pairs with one: {listed}")
+
+    def pair_charging(self, particle: str, wall: str) -> dict[str, float]:
+        """The pair's charging parameters besides sigma0 that the table gives (CHARGING_KEYS),
+        by the SI FMU's names; {} where it gives none (the FMU's defaults hold)."""
+        p = self.material(particle, "particle").key
+        w = self.material(wall, "wall").key
+        row = self.table.get("charging", {}).get(w, {}).get(p, {})
+        return {k: float(row[k]) for k in CHARGING_KEYS if k in row}
+
+    def interface_capacitance(self) -> float:
+        row = self.table["interface"]
+        return float(row["epsilon0"]) / float(row["gap"])
+
+    def pair_values(self, particle: str, wall: str, sigma0: bool = True) -> dict[str, float]:
+        p = self.material(particle, "particle")
+        w = self.material(wall, "wall")
+        values = {
+            "youngs_modulus_particle": p.youngs_modulus,
+            "poisson_ratio_particle": p.poisson_ratio,
+            "density": p.density,
+            "youngs_modulus_wall": w.youngs_modulus,
+            "poisson_ratio_wall": w.poisson_ratio,
+            "interface_capacitance": self.interface_capacitance(),
+        }
+        if sigma0:
+            values["sigma0"] = self.pair_sigma0(p.key, w.key)
+            # the pair's other charging parameters go with its sigma0 (a calibration's)
+            values.update(self.pair_charging(p.key, w.key))
+        return values
+
+
 @cache
 def _table() -> dict:
     text = resources.files("tribo").joinpath("data/materials.toml").read_text(encoding="utf-8")
@@ -48,65 +145,174 @@ def _table() -> dict:
 
 
 @cache
-def _materials() -> dict[str, Material]:
-    out = {}
-    for key, row in _table()["material"].items():
-        out[key] = Material(key, row["name"], float(row["youngs_modulus"]),
-                            float(row["poisson_ratio"]), float(row["density"]),
-                            tuple(row["roles"]))
-    return out
+def builtin() -> Materials:
+    """The package's table (data/materials.toml)."""
+    return Materials(_table())
 
 
-def _names(role: str) -> list[str]:
-    return [k for k, m in _materials().items() if role in m.roles]
+def load(path: str) -> Materials:
+    """The materials file at `path` read over the package's table (see the module's
+    text). MaterialError, one line naming the file and the entry, for a file that cannot be
+    read, an unknown section or key, a material not in the package's table, a value that is
+    not a finite number in its range, or a |sigma0| above the breakdown limit."""
+    try:
+        with open(path, "rb") as f:
+            data = f.read()
+    except OSError as e:
+        raise MaterialError(f"cannot read the materials file {path}: {e.strerror or e}") from None
+    try:
+        given = tomllib.loads(data.decode("utf-8"))
+    except (UnicodeDecodeError, tomllib.TOMLDecodeError) as e:
+        raise MaterialError(f"materials file {path}: not TOML ({str(e).splitlines()[0]})") from None
+    table = _merged(copy.deepcopy(_table()), given, path)
+    return Materials(table, os.path.abspath(path), hashlib.sha256(data).hexdigest())
 
 
-def particles() -> list[str]:
+def table_of(materials=None) -> Materials:
+    """The table `materials` names: None the package's, a path a materials file (`load`),
+    a Materials itself."""
+    if materials is None:
+        return builtin()
+    if isinstance(materials, Materials):
+        return materials
+    if isinstance(materials, (str, os.PathLike)):
+        return load(os.fspath(materials))
+    raise MaterialError(f"materials = {materials!r}: a materials file's path, or None for the "
+                        f"package's table")
+
+
+def _number(value, where: str, low: float = -math.inf, high: float = math.inf,
+            open_low: bool = False) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
+            or value < low or (open_low and value == low) or value > high:
+        bound = f"{'(' if open_low else '['}{low:g}, {high:g}]"
+        raise MaterialError(f"{where} = {value!r}: a finite number in {bound}")
+    return float(value)
+
+
+def _merged(table: dict, given: dict, path: str) -> dict:
+    """The package's table with the file's entries over it, each checked."""
+    unknown = [k for k in given if k not in SECTIONS]
+    if unknown:
+        raise MaterialError(f"materials file {path}: unknown section [{unknown[0]}] (the "
+                            f"sections are {', '.join(SECTIONS)})")
+    for key, row in given.get("material", {}).items():
+        where = f"materials file {path}: [material.{key}]"
+        if key not in table["material"]:
+            raise MaterialError(f"{where}: not a material of the package's table (known: "
+                                f"{', '.join(table['material'])}); a file gives new values to "
+                                f"the table's materials")
+        if not isinstance(row, dict):
+            raise MaterialError(f"{where}: a table of {', '.join(MATERIAL_KEYS)}")
+        bad = [k for k in row if k not in MATERIAL_KEYS]
+        if bad:
+            raise MaterialError(f"{where}: unknown key {bad[0]} (known: {', '.join(MATERIAL_KEYS)})")
+        for k, limits in (("youngs_modulus", (0, math.inf, True)), ("poisson_ratio", (0, 0.5, False)),
+                          ("density", (0, math.inf, True))):
+            if k in row:
+                _number(row[k], f"{where} {k}", limits[0], limits[1], open_low=limits[2])
+        if "roles" in row and (not isinstance(row["roles"], list)
+                               or not set(row["roles"]) <= {"particle", "wall"} or not row["roles"]):
+            raise MaterialError(f"{where} roles = {row['roles']!r}: a list of 'particle', 'wall'")
+        table["material"][key].update(row)
+    sigma0 = given.get("sigma0", {})
+    if "breakdown_limit" in sigma0:
+        table["sigma0"]["breakdown_limit"] = _number(
+            sigma0["breakdown_limit"], f"materials file {path}: [sigma0] breakdown_limit", 0,
+            open_low=True)
+    limit = float(table["sigma0"]["breakdown_limit"])
+    for wall, row in sigma0.items():
+        if wall == "breakdown_limit":
+            continue
+        _pair_table(table, wall, row, path, "sigma0")
+        for particle, value in row.items():
+            _pair_names(table, particle, wall, path, "sigma0")
+            _number(value, f"materials file {path}: [sigma0.{wall}] {particle}", -limit, limit)
+            table["sigma0"].setdefault(wall, {})[particle] = float(value)
+    for wall, row in given.get("charging", {}).items():
+        _pair_table(table, wall, row, path, "charging")
+        for particle, values in row.items():
+            _pair_names(table, particle, wall, path, "charging")
+            where = f"materials file {path}: [charging.{wall}.{particle}]"
+            if not isinstance(values, dict):
+                raise MaterialError(f"{where}: a table of {', '.join(CHARGING_KEYS)}")
+            bad = [k for k in values if k not in CHARGING_KEYS]
+            if bad:
+                raise MaterialError(f"{where}: unknown key {bad[0]} (known: {', '.join(CHARGING_KEYS)})")
+            for k, v in values.items():
+                _number(v, f"{where} {k}", 0)
+            table.setdefault("charging", {}).setdefault(wall, {})[particle] = dict(values)
+    interface = given.get("interface", {})
+    bad = [k for k in interface if k not in INTERFACE_KEYS]
+    if bad:
+        raise MaterialError(f"materials file {path}: [interface] unknown key {bad[0]} (known: "
+                            f"{', '.join(INTERFACE_KEYS)})")
+    for k, v in interface.items():
+        table["interface"][k] = _number(v, f"materials file {path}: [interface] {k}", 0, open_low=True)
+    if "calibration" in given:
+        table["calibration"] = given["calibration"]
+    return table
+
+
+def _pair_table(table: dict, wall: str, row, path: str, section: str) -> None:
+    if not isinstance(row, dict):
+        raise MaterialError(f"materials file {path}: [{section}.{wall}]: a table by particle")
+    m = table["material"].get(wall)
+    if m is None or "wall" not in m["roles"]:
+        walls = [k for k, v in table["material"].items() if "wall" in v["roles"]]
+        raise MaterialError(f"materials file {path}: [{section}.{wall}]: unknown wall material "
+                            f"{wall!r}; known: {', '.join(walls)}")
+
+
+def _pair_names(table: dict, particle: str, wall: str, path: str, section: str) -> None:
+    m = table["material"].get(particle)
+    if m is None or "particle" not in m["roles"]:
+        known = [k for k, v in table["material"].items() if "particle" in v["roles"]]
+        raise MaterialError(f"materials file {path}: [{section}.{wall}] {particle}: unknown "
+                            f"particle material {particle!r}; known: {', '.join(known)}")
+
+
+def particles(materials=None) -> list[str]:
     """The materials a particle can be made of."""
-    return _names("particle")
+    return table_of(materials).names("particle")
 
 
-def walls() -> list[str]:
+def walls(materials=None) -> list[str]:
     """The materials a chute can be made of."""
-    return _names("wall")
+    return table_of(materials).names("wall")
 
 
-def material(name: str, role: str | None = None) -> Material:
+def material(name: str, role: str | None = None, materials=None) -> Material:
     """A material by name (case-insensitive); with role ("particle" or "wall"), one that
     has an entry for it."""
-    if role not in (None, "particle", "wall"):
-        raise MaterialError(f"role {role!r}: not one of 'particle', 'wall'")
-    known = _names(role) if role else list(_materials())
-    for key in known:
-        if key.lower() == str(name).lower():
-            return _materials()[key]
-    what = f"{role} material" if role else "material"
-    raise MaterialError(f"unknown {what} {name!r}; known: {', '.join(known)}")
+    return table_of(materials).material(name, role)
 
 
-def breakdown_limit() -> float:
+def breakdown_limit(materials=None) -> float:
     """The air-breakdown limit of a surface charge density, C/m^2 (the bound on |sigma0|)."""
-    return float(_table()["sigma0"]["breakdown_limit"])
+    return table_of(materials).breakdown_limit()
 
 
-def pair_sigma0(particle: str, wall: str) -> float:
+def pair_sigma0(particle: str, wall: str, materials=None) -> float:
     """The static saturation charge density of the particle on the wall, C/m^2; its sign is
     the polarity of the particle's charge."""
-    p = material(particle, "particle").key
-    w = material(wall, "wall").key
-    pairs = {k: v for k, v in _table()["sigma0"].items() if isinstance(v, dict)}
-    if p in pairs.get(w, {}):
-        return float(pairs[w][p])
-    listed = ", ".join(f"{pk}/{wk}" for wk, row in pairs.items() for pk in row)
-    raise MaterialError(f"no sigma0 for particle {p} on wall {w} (give sigma0=...); "
-                        f"pairs with one: {listed}")
+    return table_of(materials).pair_sigma0(particle, wall)
 
 
-def interface_capacitance() -> float:
+def interface_capacitance(materials=None) -> float:
     """kappa = epsilon0 / z0, F/m^2: the condenser model's capacitance per unit area of
     surfaces in contact across the gap z0 (docs/materials.md)."""
-    row = _table()["interface"]
-    return float(row["epsilon0"]) / float(row["gap"])
+    return table_of(materials).interface_capacitance()
+
+
+def with_pair(particle: str, wall: str, settings: dict, materials=None) -> dict:
+    """`settings` (SI parameters by name) with the pair's values from a materials file
+    under them: what the jobs that look their materials up in the package's table take,
+    so that a materials file drives them; the settings unchanged without one."""
+    if materials is None:
+        return dict(settings)
+    return dict(table_of(materials).pair_values(particle, wall, sigma0="sigma0" not in settings),
+                **settings)
 
 
 def si_parameters(fmu: str | int | None = None) -> tuple[str, ...]:
@@ -116,11 +322,12 @@ def si_parameters(fmu: str | int | None = None) -> tuple[str, ...]:
     return tuple(v.name for v in md.modelVariables if v.causality in PARAMETER_CAUSALITIES)
 
 
-def start_values(particle: str, wall: str, fmu: str | int | None = None,
+def start_values(particle: str, wall: str, fmu: str | int | None = None, materials=None,
                  **overrides) -> dict[str, float]:
     """The SI FMU's start values of a particle on a wall, for any importer: E, Poisson's
-    ratio and density of the particle, E and Poisson's ratio of the wall, the pair's sigma0,
-    kappa; then the overrides, which win. The FMU's own names and units (SI, angles in
+    ratio and density of the particle, E and Poisson's ratio of the wall, the pair's sigma0
+    (and its other charging parameters where a materials file gives them), kappa; then the
+    overrides, which win. The FMU's own names and units (SI, angles in
     radians: `tilt`, `phi0`; the size as `semi_major_axis` a), since these go to the FMU
     as they are; the package's functions take angles in degrees and the size as `size`.
     The overrides' names are checked against the SI FMU they are for (`fmu`: a path, or 2 /
@@ -129,24 +336,14 @@ def start_values(particle: str, wall: str, fmu: str | int | None = None,
     unknown = [k for k in overrides if k not in known]
     if unknown:
         raise MaterialError(f"unknown SI parameter {unknown[0]!r}; known: {', '.join(known)}")
-    values = pair_values(particle, wall, sigma0="sigma0" not in overrides)
+    values = pair_values(particle, wall, sigma0="sigma0" not in overrides, materials=materials)
     values.update(overrides)
     return values
 
 
-def pair_values(particle: str, wall: str, sigma0: bool = True) -> dict[str, float]:
+def pair_values(particle: str, wall: str, sigma0: bool = True, materials=None) -> dict[str, float]:
     """The SI FMU's values that the pair sets: E, Poisson's ratio and density of the
-    particle, E and Poisson's ratio of the wall, kappa and (if `sigma0`) the pair's sigma0."""
-    p = material(particle, "particle")
-    w = material(wall, "wall")
-    values = {
-        "youngs_modulus_particle": p.youngs_modulus,
-        "poisson_ratio_particle": p.poisson_ratio,
-        "density": p.density,
-        "youngs_modulus_wall": w.youngs_modulus,
-        "poisson_ratio_wall": w.poisson_ratio,
-        "interface_capacitance": interface_capacitance(),
-    }
-    if sigma0:
-        values["sigma0"] = pair_sigma0(p.key, w.key)
-    return values
+    particle, E and Poisson's ratio of the wall, kappa and (if `sigma0`) the pair's sigma0
+    with its other charging parameters where the table gives them (a materials file's
+    [charging] table)."""
+    return table_of(materials).pair_values(particle, wall, sigma0)

@@ -24,7 +24,7 @@ import pytest
 from study_support import PYTHON, command
 from tribo_fmu import ROOT
 
-SUBCOMMANDS = ["study", "sweep", "population", "impact-map", "line"]
+SUBCOMMANDS = ["study", "sweep", "population", "impact-map", "line", "calibrate"]
 ALIASES = ["tribo-study", "tribo-sweep", "tribo-population", "tribo-impact-map", "tribo-line"]
 
 
@@ -209,6 +209,18 @@ def run_example(tmp_path, scheduler, line):
     if "--measured" in argv:  # the example's sieve data: a column per feed variable measured
         (tmp_path / argv[argv.index("--measured") + 1]).write_text(
             "epsilon,size\n0.45,4e-4\n0.7,8e-4\n0.9,1.2e-3\n")
+    if "--impacts" in argv:  # a calibration's data: impacts and chute runs, small
+        (tmp_path / argv[argv.index("--impacts") + 1]).write_text(
+            "speed,angle_deg,size,epsilon,charge\n1,90,1e-3,1,-2e-14\n3,60,1e-3,0.8,-5e-14\n"
+            "2,30,2e-3,1,-4e-14\n")
+    if "--chutes" in argv:
+        (tmp_path / argv[argv.index("--chutes") + 1]).write_text(
+            "chute_length,tilt_deg,q_per_m,grains,t_end\n0.02,30,-3e-8,2,1\n")
+    if "--materials" in argv:  # a calibration's file, where it is not made before
+        path = tmp_path / argv[argv.index("--materials") + 1]
+        if not path.exists():
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_text("[sigma0.steel]\nPE = -1.5e-5\n")
     argv = shrink(sub, argv, scheduler)
     started = time.perf_counter()
     done = subprocess.run([command("tribo"), sub, *argv], cwd=tmp_path, capture_output=True,

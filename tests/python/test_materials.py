@@ -202,3 +202,59 @@ def test_every_pair_the_docs_and_help_use_has_sigma0():
     assert {("PE", "steel"), ("PP", "glass"), ("PP", "aluminium")} <= pairs
     for particle, wall in sorted(pairs):
         assert abs(materials.pair_sigma0(particle, wall)) <= materials.breakdown_limit(), (particle, wall)
+
+
+# ---- a materials file read over the table ----------------------------------------------------
+
+def write(tmp_path, text, name="materials.toml"):
+    path = tmp_path / name
+    path.write_text(text)
+    return str(path)
+
+
+def test_a_materials_file_replaces_and_adds_entries_and_the_table_stays(tmp_path):
+    path = write(tmp_path, "[sigma0.steel]\nPE = -2.2e-5\nPMMA = -4e-6\n\n"
+                           "[charging.steel.PE]\ncharging_time = 1e-6\n\n"
+                           "[material.PE]\ndensity = 960.0\n\n"
+                           "[calibration.steel.PE]\ndata = [\"impacts.csv\"]\n")
+    table = materials.load(path)
+    assert table.source == os.path.abspath(path) and len(table.sha256) == 64
+    values = materials.pair_values("PE", "steel", materials=path)
+    assert values["sigma0"] == -2.2e-5 and values["charging_time"] == 1e-6
+    assert values["density"] == 960.0 and values["youngs_modulus_particle"] == 1e9
+    assert materials.pair_sigma0("PMMA", "steel", materials=table) == -4e-6  # a pair added
+    assert materials.pair_sigma0("nylon", "steel", materials=table) == 1e-5  # the table's
+    # the package's table is untouched, and a pair without a [charging] table has none
+    assert materials.pair_values("PE", "steel")["sigma0"] == -1e-5
+    assert "charging_time" not in materials.pair_values("PE", "steel")
+    assert "charging_time" not in materials.pair_values("nylon", "steel", materials=table)
+    # start_values and with_pair carry the file's values; the settings win
+    assert materials.start_values("PE", "steel", materials=path)["sigma0"] == -2.2e-5
+    assert materials.with_pair("PE", "steel", {"sigma0": -1e-6}, path)["sigma0"] == -1e-6
+    assert materials.with_pair("PE", "steel", {"mu": 0.5}, None) == {"mu": 0.5}
+
+
+@pytest.mark.parametrize("text, words", [
+    ("[colour]\nPE = 1\n", ["[colour]", "sections"]),
+    ("[material.EC]\ndensity = 1000.0\n", ["[material.EC]", "not a material of the package"]),
+    ("[material.PE]\nhardness = 1.0\n", ["hardness", "density"]),
+    ("[material.PE]\npoisson_ratio = 0.7\n", ["poisson_ratio = 0.7", "[0, 0.5]"]),
+    ("[sigma0.steel]\nPE = -3e-5\n", ["PE = -3e-05", "2.7e-05"]),
+    ("[sigma0.steel]\nPE = nan\n", ["PE = nan", "finite"]),
+    ("[sigma0.wood]\nPE = -1e-5\n", ["wood", "steel"]),
+    ("[sigma0.steel]\nsteel = -1e-5\n", ["steel", "particle"]),
+    ("[charging.steel.PE]\ncharging_time = -1.0\n", ["charging_time = -1.0", "[0, inf]"]),
+    ("[charging.steel.PE]\nbackflow = 1.0\n", ["backflow", "charging_time"]),
+    ("[sigma0.steel\nPE = 1\n", ["not TOML"]),
+])
+def test_a_bad_materials_file_is_one_line_naming_the_file_and_the_entry(tmp_path, text, words):
+    path = write(tmp_path, text)
+    msg = one_line_error(lambda: materials.load(path))
+    assert path in msg, msg
+    for w in words:
+        assert w in msg, msg
+
+
+def test_a_missing_materials_file_is_one_line(tmp_path):
+    msg = one_line_error(lambda: materials.load(str(tmp_path / "none.toml")))
+    assert "none.toml" in msg

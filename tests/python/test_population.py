@@ -12,7 +12,7 @@ from tribo.fmu import FmuImage
 from tribo.populations import plot as population_plot
 from tribo.populations.feed import Feed, FeedError, draw, particle_parameters
 from tribo.populations.runner import run_population
-from tribo.populations.summary import statistics, summarize_population
+from tribo.populations.summary import statistics, stream_statistics, summarize_population
 from figure_checks import assert_legends_cover_no_data
 
 # a short chute: each particle a few impacts, ~0.05 s of CPU
@@ -218,8 +218,33 @@ def test_the_api_runs_a_population_and_the_command_says_how_it_went(tmp_path, ca
     # the air-breakdown limit's share of each grain's boundary (model.md section 8b)
     for model in ("static", "sliding"):
         assert rows[f"capped_fraction_{model}"].between(0.0, 1.0).all()
+    # the stream a Faraday cup at the chute's end reads: the grains' charge over their mass
+    # (the spheroid's, docs/model.md section 8c), of those that left
+    mass = np.pi / 6 * rows["density"] * rows["size"] ** 3 * rows["epsilon"] ** 2
+    left = rows["exited"] == 1
+    for model in ("static", "sliding"):
+        row = overall[overall.model == model].iloc[0]
+        assert row["stream_mean"] == pytest.approx(
+            rows.loc[left, f"charge_{model}"].sum() / mass[left].sum(), rel=1e-9)
+        assert row["stayed"] == pytest.approx(mass[~left].sum() / mass.sum(), abs=1e-15)
     # the command over the same folder: everything already there
     assert tribo_command(["population", "-n", "4", "--seed", "2", "--chute-length", "0.02",
                           "--t-end", "1", "--out", str(tmp_path / "api"), "--serial",
                           "--no-progress"]) == 0
     assert "0 run, 4 already in the file" in capsys.readouterr().out
+
+
+def test_the_streams_statistics_are_mass_weighted_over_the_grains_that_left():
+    q = pd.Series([-1.0, -3.0, -10.0, -7.0])
+    m = pd.Series([1.0, 3.0, 2.0, 4.0])
+    left = pd.Series([1, 1, 0, 1])
+    stats = stream_statistics(q, m, left)
+    mean = (-1 * 1 - 3 * 3 - 7 * 4) / 8
+    assert stats["stream_mean"] == pytest.approx(mean, rel=1e-15)
+    assert stats["stream_std"] == pytest.approx(
+        np.sqrt((1 * (-1 - mean) ** 2 + 3 * (-3 - mean) ** 2 + 4 * (-7 - mean) ** 2) / 8), rel=1e-15)
+    assert stats["stayed"] == pytest.approx(2 / 10, rel=1e-15)
+    # rows that do not say the masses or the exits, or a stream of nothing: NaN, said so
+    assert all(np.isnan(v) for v in stream_statistics(q, None, left).values())
+    nothing = stream_statistics(q, m, pd.Series([0, 0, 0, 0]))
+    assert np.isnan(nothing["stream_mean"]) and nothing["stayed"] == 1.0

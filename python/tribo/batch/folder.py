@@ -44,9 +44,12 @@ OWN_FILES = {
                    "impact_map.png"],
     "line": ["particles.csv", "particles.backup-*.csv", "landings", "landings.csv", "line.csv",
              "bins.csv", "line.png", "line.json"],
+    "calibration": ["fit.csv", "points.csv", "profile.csv", "materials.toml",
+                    "calibration.png", "calibration.json"],
 }
 COMMANDS = {"study": "tribo study", "sweep": "tribo sweep", "population": "tribo population",
-            "impact map": "tribo impact-map", "line": "tribo line"}
+            "impact map": "tribo impact-map", "line": "tribo line",
+            "calibration": "tribo calibrate"}
 
 
 class FolderError(ValueError):
@@ -66,7 +69,7 @@ class Claim:
 @contextlib.contextmanager
 def claim(out: str, kind: str, setup: dict, fmu_sha256: str, fresh: bool = False):
     """Claim the folder `out` for a command of `kind` ("study", "sweep", "population",
-    "impact map", "line") and its `setup` (plain JSON values), run with the FMU of that SHA-256
+    "impact map", "line", "calibration") and its `setup` (plain JSON values), run with the FMU of that SHA-256
     (see the module's text); yields a Claim, and holds the lock until the block ends."""
     if kind not in OWN_FILES:
         raise ValueError(f"kind {kind!r}: one of {', '.join(OWN_FILES)}")

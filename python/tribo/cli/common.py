@@ -93,6 +93,23 @@ def add_out_option(p: argparse.ArgumentParser, default: str | None) -> None:
                         f"kept in FOLDER/backup-<n>/)")
 
 
+def add_materials_option(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--materials", metavar="FILE",
+                   help="a materials file read over the package's table (tribo.materials: "
+                        "a pair's sigma0 and charging parameters, e.g. the materials.toml of "
+                        "tribo calibrate)")
+
+
+def add_si_job_options(p: argparse.ArgumentParser, out: str, *, max_runs: str | None = None) -> None:
+    """What a job of the SI FMU takes after its own options: --materials, --out (default
+    `out`), --fmu, the job options (add_job_options) and --no-plot."""
+    add_materials_option(p)
+    add_out_option(p, out)
+    p.add_argument("--fmu", help="the SI FMU (default: tribo_si_fmi3.fmu of the build)")
+    add_job_options(p, max_runs=max_runs)
+    p.add_argument("--no-plot", action="store_true", help="no figure")
+
+
 def add_job_options(p: argparse.ArgumentParser, *, max_runs: str | None = None,
                     fresh: bool = True) -> None:
     """--fresh, --max-runs (where the job takes it: `max_runs` says what it counts),

@@ -32,7 +32,8 @@ import os
 
 from ..impact.episode import DEFAULT_LIMIT, Grid
 from ..impact.map import MapJob
-from .common import add_job_options, add_out_option, name_value, run_job, value_list
+from ..materials import with_pair
+from .common import add_si_job_options, name_value, run_job, value_list
 
 NAME = "impact-map"
 HELP = "the charge one wall impact transfers, over speed, angle, orientation and roundness"
@@ -54,16 +55,15 @@ def add_arguments(p) -> None:
                         "cylinder_length=2e-3, mu=0.5, ...)")
     p.add_argument("--limit", type=float, default=DEFAULT_LIMIT,
                    help=f"time limit of an episode in t* (default {DEFAULT_LIMIT:g})")
-    add_out_option(p, os.path.join("out", "impact_map"))
-    p.add_argument("--fmu", help="the SI FMU (default: tribo_si_fmi3.fmu of the build)")
-    add_job_options(p, max_runs="episodes")
-    p.add_argument("--no-plot", action="store_true", help="no figure")
+    add_si_job_options(p, os.path.join("out", "impact_map"), max_runs="episodes")
 
 
 def job_of(args) -> MapJob:
     grid = Grid.of(speed=args.speed, angle_deg=args.angle_deg, phi0_deg=args.phi0_deg,
                    epsilon=args.epsilon)
-    return MapJob(grid, args.particle, args.wall, dict(args.set), args.limit, args.omega0,
+    return MapJob(grid, args.particle, args.wall,
+                  with_pair(args.particle, args.wall, dict(args.set), args.materials), args.limit,
+                  args.omega0,
                   args.fmu, figure=not args.no_plot)
 
 

@@ -33,8 +33,8 @@ from ..fmu.names import format_number
 from ..line.grain import LineError, check_separator, load_images, run_line_grain
 from ..line.mixture import DEFAULT_FEED_WIDTH, DEFAULT_PAIR, Line, LineJob, check_line, line_specs
 from ..populations.feed import DEFAULT_CHUTE
-from .common import (INPUT_ERRORS, add_job_options, add_out_option, fail, name_value, one_line,
-                     run_job)
+from .common import (INPUT_ERRORS, add_job_options, add_materials_option, add_out_option, fail,
+                     name_value, one_line, run_job)
 
 NAME = "line"
 HELP = "grains down the SI chute and through the separator: one grain, a mixture, a voltage sweep"
@@ -95,6 +95,7 @@ def add_arguments(p) -> None:
     p.add_argument("--separator", type=name_value, action="append", default=[],
                    metavar="NAME=VALUE", help="a separator setting (gap, height, n_bins, ...)")
     p.add_argument("--t-end", type=float, default=5.0, help="the chute's horizon, s (default 5)")
+    add_materials_option(p)
     add_out_option(p, os.path.join("out", "line"))
     p.add_argument("--fmu", help="the SI chute FMU (default: the build's tribo_si_fmi3.fmu)")
     p.add_argument("--separator-fmu", help="the separator FMU (default: the build's "
@@ -118,7 +119,7 @@ def run_grain(args) -> int:
     line = Line((args.particle,), args.wall, distributions={"epsilon": args.epsilon, "size": args.size,
                                                           "phi0_deg": args.phi0_deg},
                 chute=chute_of(args), settings=dict(args.set), separator=dict(args.separator),
-                feed_width=0.0, charge_model=args.charge_model)
+                feed_width=0.0, charge_model=args.charge_model, materials=args.materials)
     images = load_images(args.fmu, args.separator_fmu, line.separator, [args.voltage])
     specs = line_specs(line, 1, 0, args.t_end, images.models)
     specs[0].params["x_entry"] = args.x_entry
@@ -154,7 +155,7 @@ def job_of(args) -> LineJob:
     line = Line(tuple(p.strip() for p in args.particles.split(",")), args.wall, args.fraction,
                 chute=chute_of(args), settings=dict(args.set), separator=dict(args.separator),
                 feed_width=args.feed_width, charge_model=args.charge_model,
-                splitter=args.splitter)
+                splitter=args.splitter, materials=args.materials)
     line.check()
     if len(line.particles) != 2:
         raise LineError(f"--particles {args.particles}: two materials A,B")

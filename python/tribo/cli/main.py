@@ -20,6 +20,7 @@ SUBCOMMANDS = (
     "population",
     "line",
     "impact_map",
+    "calibrate",
     "sweep",
     "study",
 )

@@ -23,8 +23,10 @@ charge_to_mass_<model> (C/kg), capped_fraction_<model> (of the boundary at the b
 limit),
 contact_fraction, impacts (contacts made while approaching the plate: bounces, the drop's
 first landing included), fraction_flight ... fraction_bouncing, cpu_s, wall_s), summary.csv (q/m in C/kg:
-n, mean, std, percentiles 5 25 50 75 95, overall and per shape and size class),
-population.png and population.json. Read the mean for what a stream carries (README.md,
+n, mean, std, percentiles 5 25 50 75 95, stream_mean and stream_std (q/m of the grains that
+left the chute, mass-weighted: what a Faraday cup at its end reads) and stayed (the mass
+fraction that did not leave), overall and per shape and size class),
+population.png and population.json. Read stream_mean for what a stream carries (README.md,
 docs/populations.md). An interrupted population (Ctrl-C) resumes when the same command
 is run again; another set-up needs another --out, or --fresh (the folder's earlier
 contents are kept in <out>/backup-<n>/). Dask: as tribo sweep (a local cluster in this
@@ -33,9 +35,10 @@ process, or --scheduler).
 
 import os
 
+from ..materials import with_pair
 from ..populations.feed import DEFAULT_CHUTE, FEED_UNITS, FEED_VARIABLES, Feed, read_measured
 from ..populations.runner import PopulationJob
-from .common import add_job_options, add_out_option, name_value, numbers, run_job
+from .common import add_si_job_options, name_value, numbers, run_job
 
 NAME = "population"
 HELP = "particles drawn from a feed, down the chute (SI FMU): q/m statistics and figure"
@@ -63,18 +66,15 @@ def add_arguments(p) -> None:
                    help="edges of the shape classes (default: 4 equal classes over the range)")
     p.add_argument("--size-classes", type=numbers, metavar="S0,S1,...",
                    help="edges of the size classes, m (default: 4 equal classes over the range)")
-    add_out_option(p, os.path.join("out", "population"))
-    p.add_argument("--fmu", help="the SI FMU (default: tribo_si_fmi3.fmu of the build)")
-    add_job_options(p, max_runs="particles")
-    p.add_argument("--no-plot", action="store_true", help="no figure")
+    add_si_job_options(p, os.path.join("out", "population"), max_runs="particles")
 
 
 def job_of(args) -> PopulationJob:
     measured = read_measured(args.measured) if args.measured else None
     distributions = {n: getattr(args, n) for n in FEED_VARIABLES if getattr(args, n) is not None}
     feed = Feed(args.particle, args.wall, distributions,
-                {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg}, dict(args.set),
-                measured)
+                {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg},
+                with_pair(args.particle, args.wall, dict(args.set), args.materials), measured)
     return PopulationJob(feed, args.particles, args.seed, args.t_end, args.fmu,
                          figure=not args.no_plot, shape_edges=args.shape_classes,
                          size_edges=args.size_classes)
@@ -86,10 +86,12 @@ def told(job, report) -> list[str]:
     if report.summary is not None:
         table = report.summary.copy()
         for c in table.columns[5:]:
-            if c != "n":
+            if c not in ("n", "stayed"):
                 table[c] = table[c] * 1e6
-        lines += ["q/m (µC/kg; size classes in m; the mean is what the stream carries per kg, "
-                  "the median the typical grain: docs/populations.md):",
+        lines += ["q/m (µC/kg; size classes in m; stream_mean and stream_std: mass-weighted, "
+                  "of the grains that left the chute, what a Faraday cup there reads; stayed: "
+                  "the mass fraction that did not leave; the median is the typical grain: "
+                  "docs/populations.md):",
                   table.drop(columns=["low", "high"]).to_string(
                       index=False, float_format=lambda v: f"{v:.4g}"),
                   f"population: wrote {', '.join(report.files)}"]

@@ -24,7 +24,7 @@ from typing import Callable
 
 from .charge_models import removed_message
 from .image import per_description
-from .instance import PARAMETER_CAUSALITIES
+from .instance import ERROR, PARAMETER_CAUSALITIES
 
 DEGREES = "_deg"
 SIZE, SEMI_MAJOR_AXIS = "size", "semi_major_axis"
@@ -250,3 +250,10 @@ def in_package_terms(md, message: str) -> str:
         return f"{r.name} = {value:.6g}" + (f" {r.unit}" if m["unit"] else "")
 
     return _ASSIGNMENT.sub(swap, _FMU_CALL.sub("", message.strip()))
+
+
+def failure(md, messages, error) -> str:
+    """Why a run failed, in the package's terms: the last error the FMU logged (`messages`,
+    an Instance's), else the exception's own text."""
+    errors = [m for status, _, m in messages if status >= ERROR]
+    return in_package_terms(md, errors[-1]) if errors else str(error)

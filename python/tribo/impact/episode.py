@@ -26,9 +26,9 @@ from fmpy.fmi1 import FMICallException
 
 from ..batch.particle import RunResult
 from ..batch.specs import RunSpec, check_count
-from ..fmu import ERROR, FmuImage, Instance
+from ..fmu import FmuImage, Instance
 from ..fmu.charge_models import charge_models, per_model
-from ..fmu.names import in_package_terms, to_fmu
+from ..fmu.names import failure, to_fmu
 from ..materials import pair_values
 
 AXES = ("speed", "angle_deg", "phi0_deg", "epsilon")
@@ -127,9 +127,8 @@ def run_episode(image: FmuImage, spec: RunSpec) -> RunResult:
         reached = instance.t
         instance.terminate()
     except FMICallException as e:
-        errors = [m for status, _, m in instance.messages if status >= ERROR]
         raise RuntimeError(f"the impact episode failed: "
-                           f"{in_package_terms(md, errors[-1]) if errors else e}") from None
+                           f"{failure(md, instance.messages, e)}") from None
     finally:
         instance.free()
     row = {name: end[name] for name in charges}

@@ -51,8 +51,9 @@ from ..batch.job import Job, Report
 from ..batch.results import KEY
 from ..batch.specs import RunSpec, check_count
 from ..batch.sweep import keys_of, read_series, run_sweep
+from ..fmu.names import start_value
 from ..fmu.parameters import check_values
-from ..materials import material, pair_sigma0
+from ..materials import Materials, material, pair_sigma0, table_of, with_pair
 from ..populations.feed import DEFAULT_CHUTE, Feed, FeedError, draw, particle_parameters
 from .grain import (LineError, LineImages, charge_model_settings, check_separator,
                     chute_params_of, load_images, result_columns, run_line_grain)
@@ -81,6 +82,8 @@ class Line:
     feed_width: float = DEFAULT_FEED_WIDTH
     charge_model: str = "static"
     splitter: float = 0.0
+    # a materials file (tribo.materials) the particles' values come from; None: the package's
+    materials: Materials | str | None = None
 
     def check(self, models=None) -> None:
         """LineError, one line, for a value the line cannot run with; the charge model too
@@ -88,6 +91,8 @@ class Line:
         if isinstance(self.particles, str):
             self.particles = (self.particles,)
         self.particles = tuple(self.particles)
+        if self.materials is not None:
+            self.materials = table_of(self.materials)
         if len(self.particles) not in (1, 2):
             raise LineError(f"particles = {self.particles!r}: one material or two")
         keys = [material(p, "particle").key for p in self.particles]
@@ -106,16 +111,30 @@ class Line:
         if models is not None:
             charge_model_settings(self.charge_model, models)
         if len(keys) == 2:
-            signs = [math.copysign(1, pair_sigma0(k, self.wall)) for k in keys]
-            if signs[0] == signs[1]:
+            sigma0 = [self.sigma0(k) for k in keys]
+            if math.copysign(1, sigma0[0]) == math.copysign(1, sigma0[1]):
                 raise LineError(f"{keys[0]} and {keys[1]} charge with the same sign on "
-                                f"{self.wall} (sigma0 {pair_sigma0(keys[0], self.wall):g} and "
-                                f"{pair_sigma0(keys[1], self.wall):g} C/m2): a mixture needs "
-                                f"opposite polarities")
+                                f"{self.wall} (sigma0 {sigma0[0]:g} and {sigma0[1]:g} C/m2): a "
+                                f"mixture needs opposite polarities")
+
+    def sigma0(self, particle: str) -> float:
+        """The particle's sigma0 on the wall: the settings', else the materials'."""
+        if "sigma0" in self.settings:
+            return float(self.settings["sigma0"])
+        return pair_sigma0(particle, self.wall, materials=self.materials)
+
+    def settings_of(self, particle: str) -> dict:
+        """The chute's settings of a grain of `particle`: the line's, over the materials
+        file's values of the pair where one is given."""
+        return with_pair(particle, self.wall, self.settings, self.materials)
 
     def describe(self) -> dict:
         self.check()
-        return {"particles": [material(p, "particle").key for p in self.particles],
+        # a materials file by its digest (its values are in the particles' rows); no key
+        # without one, so that a folder of the package's table keeps its record
+        given = {} if self.materials is None else {
+            "materials": {"file": self.materials.source, "sha256": self.materials.sha256}}
+        return {**given, "particles": [material(p, "particle").key for p in self.particles],
                 "wall": material(self.wall, "wall").key, "fraction": self.fraction,
                 "distributions": dict(Feed(self.particles[0], self.wall, self.distributions)
                                       .describe()["distributions"]),
@@ -128,15 +147,17 @@ def counts(line: Line, n: int) -> list[int]:
     """How many of the n grains are of each material."""
     if len(line.particles) == 1:
         return [n]
-    rho = [material(p, "particle").density for p in line.particles]
+    rho = [material(p, "particle", materials=line.materials).density for p in line.particles]
     f = line.fraction
     n_a = int(round(n * (f / rho[0]) / (f / rho[0] + (1 - f) / rho[1])))
     return [n_a, n - n_a]
 
 
-def line_specs(line: Line, n: int, seed: int, t_end: float, models) -> list[RunSpec]:
+def line_specs(line: Line, n: int, seed: int, t_end: float, models, md=None) -> list[RunSpec]:
     """Each grain's run: its material, entry point and chute parameters (one of the chute's
-    charge models `models` on: the line's)."""
+    charge models `models` on: the line's). Where a materials file gives one material a
+    charging parameter it does not give the other, the other's is the chute FMU's start
+    value (its description `md`)."""
     line.check(models)
     if not (isinstance(t_end, (int, float)) and math.isfinite(t_end) and t_end > 0):
         raise FeedError(f"the horizon t_end must be a positive number of seconds, got {t_end!r}")
@@ -146,8 +167,17 @@ def line_specs(line: Line, n: int, seed: int, t_end: float, models) -> list[RunS
     rng = np.random.default_rng([seed, 1])  # the entry points: a stream of their own
     x_entry = (rng.random(n) - 0.5) * line.feed_width
     specs, start = [], 0
+    own = {name: line.settings_of(name) for name in line.particles}
+    for name, settings in own.items():  # the runs of one line set the same parameters
+        for key in set().union(*own.values()) - set(settings):
+            value = None if md is None else start_value(md, key)
+            if value is None:
+                raise LineError(f"{key} is set for {' and '.join(k for k in own if k != name)} "
+                                f"but not for {name}: set it for both")
+            settings[key] = value
     for name, count in zip(line.particles, counts(line, n)):
-        feed = Feed(name, line.wall, dict(line.distributions), dict(line.chute), settings)
+        feed = Feed(name, line.wall, dict(line.distributions), dict(line.chute),
+                    dict(own[name], **charge_model_settings(line.charge_model, models)))
         rows = drawn.iloc[start:start + count].reset_index(drop=True)
         for i, params in enumerate(particle_parameters(feed, rows)):
             params["work_limit"] = WORK_LIMIT
@@ -242,7 +272,8 @@ class LineJob(Job):
             check_count(self.n * len(self.voltages), f"separator runs of {self.n} grains at "
                                                      f"{len(self.voltages)} voltages")
         self.images = load_images(self.fmu, self.separator_fmu, self.line.separator, self.voltages)
-        self.specs = line_specs(self.line, self.n, self.seed, self.t_end, self.images.models)
+        self.specs = line_specs(self.line, self.n, self.seed, self.t_end, self.images.models,
+                                self.images.chute.model_description())
         check_line(self.line, self.specs, self.images)
         self.sha256 = self.images.sha256
         self.keys = keys_of(self.specs, self.images)
@@ -313,7 +344,7 @@ def tally(landings: pd.DataFrame, line: Line, n_bins: int) -> tuple[pd.DataFrame
                                  "mass": float(g.loc[(g["landed"] == 1) & (g["bin"] == b),
                                                      "mass"].sum())})
         if len(materials) == 2:
-            positive = [m for m in materials if pair_sigma0(m, line.wall) > 0][0]
+            positive = [m for m in materials if line.sigma0(m) > 0][0]
             for m in materials:
                 # U > 0: a positive grain drifts to -x, into the negative-x side's product
                 side = "neg_side" if (m == positive) == (voltage > 0) else "pos_side"
