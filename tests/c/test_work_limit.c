@@ -71,6 +71,104 @@ Test(work_limit, an_advance_is_bounded_at_the_tightest_tolerances, .timeout = 60
     each_advance_is_bounded("n_segments=64 Omega0=100 phi0=-1e6", 3);
 }
 
+/* ---- what the work counts: each kind of work at its weight (integrator.h, measured in
+   docs/work_limit.md), so that a unit is about the same CPU whatever the scene ---------- */
+
+/* The work one advance from the start books, and the counts it made. */
+static double work_of_one_advance(const char *settings, double t, tribo_stats *stats)
+{
+    tribo_scene s = scene_of(settings);
+    s.work_limit = 2000000000;
+    tribo_model *m = make(&s);
+    cr_assert_eq(tribo_advance(m, t), TRIBO_OK, "%s", tribo_last_error(m));
+    const double work = m->work;
+    tribo_get_stats(m, stats);
+    tribo_free(m);
+    return work;
+}
+
+/* BDF's Newton iteration costs a linear solve per right-hand side, and stiff contact takes
+   several per step: each one is booked, not a flat weight per step. */
+Test(work_limit, every_right_hand_side_cvode_evaluates_is_booked)
+{
+    static const char *const scenes[] = {
+        "integrator=2 charge_model_static=0 charge_model_sliding=0",
+        "integrator=1 charge_model_static=0 charge_model_sliding=0 epsilon=0.01 Gamma=10"};
+    static const double per_rhs[] = {TRIBO_WORK_RHS_BDF, TRIBO_WORK_RHS_ADAMS};
+    for (int i = 0; i < 2; i++) {
+        tribo_stats st;
+        const double work = work_of_one_advance(scenes[i], 200.0, &st);
+        cr_assert_gt(st.rhs_evals, st.steps, "%s: %lld right-hand sides in %lld steps", scenes[i],
+                     st.rhs_evals, st.steps);
+        cr_expect_geq(work, per_rhs[i] * (double)st.rhs_evals +
+                                TRIBO_WORK_CVODE_STEP * (double)st.steps,
+                      "%s: %.0f units for %lld right-hand sides in %lld steps", scenes[i], work,
+                      st.rhs_evals, st.steps);
+    }
+}
+
+/* The charge of one sample over every one of 1e5 segments, committed: its work. */
+static double work_of_a_wide_sample(const char *settings)
+{
+    tribo_scene s = scene_of(settings);
+    tribo_model *m = make(&s);
+    tribo_contact_sample sample = {.duration = 1e-3, .first = 0, .count = m->charging.n};
+    memcpy(sample.globals_begin, m->committed.charge_globals, sizeof sample.globals_begin);
+    memcpy(sample.globals_mid, m->committed.charge_globals, sizeof sample.globals_mid);
+    memcpy(sample.globals_end, m->committed.charge_globals, sizeof sample.globals_end);
+    const double before = m->work;
+    cr_assert_eq(tribo_charge_sample(m, &sample, TRIBO_CHARGE_COMMIT), TRIBO_OK);
+    const double work = m->work - before;
+    tribo_free(m);
+    return work;
+}
+
+/* Holding every value within the breakdown limit is a second pass over them, as costly as
+   the charge itself (model.md §8b): it is booked. */
+Test(work_limit, the_breakdown_limit_on_each_charged_value_is_booked)
+{
+    const double plain = work_of_a_wide_sample("n_segments=100000");
+    const double held = work_of_a_wide_sample("n_segments=100000 Sigma_bd=1e-6");
+    cr_assert_gt(plain, 0.0);
+    cr_expect_gt(held, 2.0 * plain, "%.1f units with the limit, %.1f without", held, plain);
+}
+
+/* A contact moving steadily along the boundary at one segment per unit of time, a
+   segment wide. */
+static void steady_probe(void *ctx, double t, double *s_centre, double *half_width,
+                         double *centre_speed, tribo_contact_kinematics *k)
+{
+    const double seg = *(const double *)ctx;
+    *s_centre = seg * (0.37 + t);
+    *half_width = 0.5 * seg;
+    *centre_speed = seg;
+    *k = (tribo_contact_kinematics){.mu = 0.1, .delta_y = 1e-3, .vs = 0.1, .rho_c = 1.0};
+}
+
+/* A sweep cuts a contact that runs along the boundary into samples, several per look at
+   the contact, each charged by every model: each is booked, queued for the output point as
+   well as committed (tribo_charge_sweep books per model; one model here). */
+Test(work_limit, every_sample_of_a_sweep_is_booked_per_charge_model)
+{
+    /* the static model alone: no states along the contact, so that the pieces are as long
+       as a contact may move in one (eight segments) and its samples outnumber the looks */
+    tribo_scene s = scene_of("n_segments=2000 charge_model_sliding=0");
+    tribo_model *m = make(&s);
+    double seg = m->charging.arc.perimeter / m->charging.n;
+    const tribo_contact_probe probe = {steady_probe, &seg};
+    tribo_point p = m->committed;
+    double reached;
+    const double before = m->work;
+    cr_assert_eq(tribo_charge_sweep(m, &probe, 0.0, 200.0, &p, TRIBO_CHARGE_PENDING, &reached),
+                 TRIBO_OK);
+    cr_assert_eq(reached, 200.0);
+    const double samples = (double)m->n_pending;
+    cr_assert_geq(samples, 200.0, "%.0f samples", samples);
+    cr_expect_geq(m->work - before, TRIBO_WORK_SAMPLE * samples, "%.1f units for %.0f samples",
+                  m->work - before, samples);
+    tribo_free(m);
+}
+
 /* Where a step's sweep spends its budget the step ends there, whatever the work limit and
    whichever times the output is asked at: the same run. */
 Test(work_limit, a_step_ended_by_its_sweep_is_the_same_at_any_limit_and_output_times,
