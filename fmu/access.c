@@ -24,12 +24,28 @@ static double load(fmu_c_type t, const void *values, size_t i)
     return NAN;
 }
 
-/* The value of v at values[i]: an FMI 2.0 Boolean is an int, any but 0 true (C's truth,
-   which importers pass: fmi2True is 1, but nothing else is false). */
+/* The value of v at values[i] (a Boolean as 0 or 1: check_value refuses an FMI 2.0
+   Boolean other than fmi2True and fmi2False). */
 static double load_value(const fmu_variable *v, fmu_c_type t, const void *values, size_t i)
 {
     const double value = load(t, values, i);
     return v->type == FMU_TYPE_BOOLEAN ? (double)(value != 0.0) : value;
+}
+
+/* An FMI 2.0 Boolean is an int that must be fmi2True (1) or fmi2False (0): 2 or -1 is an
+   importer's mistake (a C truth value passed as it is, or memory not written), refused
+   rather than taken as true. (An FMI 3.0 Boolean is a C bool: 0 or 1 by its type.) */
+static int boolean_valid(fmu_instance *inst, const char *fn, const fmu_variable *v,
+                         fmu_c_type t, const void *values, size_t i)
+{
+    if (v->type != FMU_TYPE_BOOLEAN || t != FMU_C_INT)
+        return 1;
+    const double raw = load(t, values, i);
+    if (raw == 0.0 || raw == 1.0)
+        return 1;
+    fmu_error(inst, "%s: %s = %.17g is not an fmi2Boolean: it must be fmi2True (1) or fmi2False (0)",
+              fn, v->name, raw);
+    return 0;
 }
 
 /* Values stored into integer arrays are integers: validated parameters, flags, classes
@@ -250,6 +266,8 @@ static int model_accepts(const fmu_instance *inst, const fmu_variable *v, double
 static int check_value(fmu_instance *inst, const char *fn, const fmu_variable *v, fmu_c_type c_type,
                        void *values, size_t k)
 {
+    if (!boolean_valid(inst, fn, v, c_type, values, k))
+        return 0;
     const double value = load_value(v, c_type, values, k);
     const tribo_param_info *p = fmu_variable_param(v);
     if (!p) {

@@ -73,6 +73,8 @@ class Variable:
         return self.causality in ("parameter", "structuralParameter", "input")
 
     def valid(self, value):
+        if self.type == "Boolean":  # fmi2True or fmi2False (FMI 3.0's C bool is one of them)
+            return value in (0.0, 1.0)
         if value == math.inf and self.takes_infinity:
             return True
         if not math.isfinite(value) or not (self.min <= value <= self.max):
@@ -179,8 +181,7 @@ class Model:
 
     def apply(self, assignments):
         for v, value in assignments:
-            # a Boolean is true for any non-zero value (FMI 2.0's is an int)
-            self.values[v.name] = float(value != 0) if v.type == "Boolean" else float(value)
+            self.values[v.name] = float(value)
             if v.name in ("rtol", "atol"):
                 self.explicit.add(v.name)
 

@@ -152,11 +152,16 @@ def test_bad_inputs_and_parameters_are_refused_naming_them(fmu_dir, version):
     assert "voltage" in s.errors()[-1] and "fixed parameter" in s.errors()[-1]
 
 
-def test_fmi2_boolean_takes_any_nonzero_as_true(fmu_dir):
+def test_fmi2_boolean_is_fmi2true_or_fmi2false(fmu_dir):
     s = separator(fmu_dir, 2)
     s.init(**VACUUM)
-    s.fmu.setBoolean([s.variables["released"].valueReference], [2])
-    assert s.get("released") == 1
+    vr = s.variables["released"].valueReference
+    for value in (2, -1, 15):
+        assert status_of(s.fmu.setBoolean, [vr], [value]) == ERROR
+        assert s.errors()[-1] == (f"fmi2SetBoolean: released = {value} is not an fmi2Boolean: "
+                                  "it must be fmi2True (1) or fmi2False (0)")
+        assert s.get("released") == 0
+    s.fmu.setBoolean([vr], [1])
     assert s.step_to(STEP) and s.get("has_released") == 1
 
 
