@@ -152,6 +152,18 @@ static int model_readable(fmu_instance *inst, const char *fn, const fmu_variable
     return fmu_ensure_model(inst, fn) == FMU_OK;
 }
 
+/* Refuse a value of v that is not a number (only a failed core holds one): what the core
+   said about its failure, if anything. */
+static int not_finite(fmu_instance *inst, const char *fn, const fmu_variable *v, const char *index,
+                      double value)
+{
+    const char *why = fmu_front_last_error(inst->core);
+    fmu_error(inst, "%s: %s%s = %g is not a finite number (%s%s)", fn, v->name, index, value,
+              why[0] ? "the core failed: " : "the core reported no failure",
+              why[0] ? why : "");
+    return 0;
+}
+
 /* Write the values of v at values[k...]. */
 static int read_variable(fmu_instance *inst, const char *fn, const fmu_variable *v,
                          fmu_c_type c_type, void *values, size_t k)
@@ -177,11 +189,8 @@ static int read_variable(fmu_instance *inst, const char *fn, const fmu_variable 
            calculated parameter of a parameter that may be INF may be INF: the chute's
            length with no end) */
         const int no_end = value == INFINITY && v->causality == FMU_CAUSALITY_CALCULATED_PARAMETER;
-        if (!isfinite(value) && !no_end) {
-            fmu_error(inst, "%s: %s = %g is not a finite number (the core failed: %s)", fn,
-                      v->name, value, fmu_front_last_error(inst->core));
-            return 0;
-        }
+        if (!isfinite(value) && !no_end)
+            return not_finite(inst, fn, v, "", value);
         store(c_type, values, k, value);
         return 1;
     }
@@ -197,9 +206,9 @@ static int read_variable(fmu_instance *inst, const char *fn, const fmu_variable 
         }
         for (size_t i = 0; i < n; i++)
             if (!isfinite(out[i])) {
-                fmu_error(inst, "%s: %s[%zu] = %g is not a finite number (the core failed: %s)",
-                          fn, v->name, i, out[i], fmu_front_last_error(inst->core));
-                return 0;
+                char index[32];
+                snprintf(index, sizeof index, "[%zu]", i);
+                return not_finite(inst, fn, v, index, out[i]);
             }
         return 1;
     }

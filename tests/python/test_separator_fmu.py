@@ -10,6 +10,7 @@ exit velocity and charge-to-mass ratio) collects the grain on the side its charg
 gives."""
 
 import math
+import sys
 
 import pytest
 from fmpy.validation import validate_fmu
@@ -163,6 +164,22 @@ def test_fmi2_boolean_is_fmi2true_or_fmi2false(fmu_dir):
         assert s.get("released") == 0
     s.fmu.setBoolean([vr], [1])
     assert s.step_to(STEP) and s.get("has_released") == 1
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_a_viscosity_at_its_smallest_gives_numbers_after_an_ok_step(fmu_dir, version):
+    """air_viscosity = 5e-324 Pa.s, inside its declared range: the relaxation time and the
+    Reynolds number overflow a double, and read as the largest one (the drag is Newton's)."""
+    s = separator(fmu_dir, version)
+    s.init(air_viscosity=5e-324)
+    assert s.get("relaxation_time") == sys.float_info.max
+    release(s, 0.0, u_entry=0.4, v_entry=-0.2)
+    status, _, _ = s.do_step(0.0, 0.01)
+    assert status == OK
+    assert s.get("reynolds") == sys.float_info.max
+    outputs = [v.name for v in s.md.modelVariables
+               if v.causality in ("output", "calculatedParameter")]
+    assert all(math.isfinite(x) for x in s.get_many(outputs).values())
 
 
 def flight(fmu_dir, version, q_per_m, voltage=VOLTAGE, name="separator"):
