@@ -85,9 +85,14 @@ fmu_instance *fmu_instantiate(int fmi_version, const char *fn, const char *name,
     if (logger)
         inst->logger = *logger;
     /* errors and warnings (e.g. a contact outside the model's assumptions) reach the
-       importer without debug logging; loggingOn adds the calls and the core's notes */
+       importer without debug logging; loggingOn adds the core's notes. The trace of every
+       call (logFmiCalls, a line per call and per value set) only where the importer asks for
+       it by name, or for every category, with SetDebugLogging: an importer that turns
+       loggingOn on for its own log level (libcosim through the FMI Library) would otherwise
+       print thousands of lines of a run */
     for (int c = 0; c < FMU_LOG_CATEGORY_COUNT; c++)
-        inst->log_enabled[c] = logging_on || c == FMU_LOG_ERROR || c == FMU_LOG_WARNING;
+        inst->log_enabled[c] = c == FMU_LOG_ERROR || c == FMU_LOG_WARNING ||
+                               (logging_on && c != FMU_LOG_CALLS);
     fmu_restore_start_values(inst);
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s(instanceName = \"%s\", loggingOn = %d)", fn, name,
             logging_on != 0);
