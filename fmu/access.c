@@ -347,6 +347,42 @@ static int apply_value(fmu_instance *inst, const char *fn, const fmu_variable *v
     return 1;
 }
 
+/* Whether the parameters after the call (each value checked alone already) go together
+   where the FMU can tell: the rigid stick chosen explicitly with the fixed step or the
+   centre's dashpot is refused here, at the set call that makes the conflict, whichever of
+   them comes last; a stick_model left unset follows them (fmu_follow_defaults). */
+static int call_fits(fmu_instance *inst, const char *fn, const fmu_vr vrs[], size_t nvr,
+                     fmu_c_type c_type, const void *values)
+{
+    fmu_scene trial = inst->scene;
+    int stick_model_set = inst->stick_model_set;
+    size_t k = 0;
+    for (size_t i = 0; i < nvr; i++) {
+        const fmu_variable *v = fmu_variable_find(vrs[i], inst->fmi_version);
+        if (v->maps_to == FMU_MAPS_TO_PARAMETER) {
+            const tribo_param_info *p = fmu_variable_param(v);
+            tribo_param_write(&trial, p, load_value(v, c_type, values, k));
+            stick_model_set |= strcmp(p->name, "stick_model") == 0;
+        }
+        k += value_count(inst, v);
+    }
+    fmu_follow_defaults(&trial, stick_model_set);
+    char msg[400];
+    if (fmu_stick_model_fits(&trial, msg, sizeof msg))
+        return 1;
+    fmu_error(inst, "%s: %s", fn, msg);
+    return 0;
+}
+
+/* After the call: a default that follows the parameters set follows them. */
+static void follow_defaults(fmu_instance *inst)
+{
+    const fmu_scene before = inst->scene;
+    fmu_follow_defaults(&inst->scene, inst->stick_model_set);
+    if (memcmp(&before, &inst->scene, sizeof before) != 0)
+        inst->model_outdated = 1;
+}
+
 fmu_status fmu_set(fmu_instance *inst, const char *fn, unsigned types, fmu_c_type c_type,
                    const fmu_vr vrs[], size_t nvr, const void *values, size_t nvalues)
 {
@@ -356,7 +392,9 @@ fmu_status fmu_set(fmu_instance *inst, const char *fn, unsigned types, fmu_c_typ
     void *in = (void *)values;
     if (!resolve_all(inst, fn, types, vrs, nvr, values, nvalues) ||
         !walk(inst, fn, vrs, nvr, c_type, in, check_value) ||
+        !call_fits(inst, fn, vrs, nvr, c_type, values) ||
         !walk(inst, fn, vrs, nvr, c_type, in, apply_value))
         return FMU_ERROR;
+    follow_defaults(inst);
     return FMU_OK;
 }

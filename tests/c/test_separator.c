@@ -277,13 +277,13 @@ Test(separator, refusals_name_the_variable_its_value_and_range)
     tribo_separator_scene sc;
     tribo_separator_scene_defaults(&sc);
     cr_expect_eq(tribo_separator_scene_set(&sc, "gap", 0, err, sizeof err), TRIBO_ERR_INVALID_ARGUMENT);
-    cr_expect(strstr(err, "gap = 0 is invalid") && strstr(err, "0.0001 <= gap <= 10"), "%s", err);
-    sc = scene_of("x_entry=0.0496");
+    cr_expect(strstr(err, "gap = 0 is invalid") && strstr(err, "0.002 <= gap <= 10"), "%s", err);
+    sc = scene_of("x_entry=0.0485 semi_major_axis=2e-3");
     cr_expect_null(tribo_separator_create(&sc, err, sizeof err));
-    cr_expect(strstr(err, "x_entry = 0.0496") && strstr(err, "< x_entry < 0.0495"), "%s", err);
-    sc = scene_of("gap=1e-3 semi_major_axis=5e-4");
+    cr_expect(strstr(err, "x_entry = 0.0485") && strstr(err, "< x_entry < 0.048"), "%s", err);
+    sc = scene_of("gap=2e-3 semi_major_axis=1e-3");
     cr_expect_null(tribo_separator_create(&sc, err, sizeof err));
-    cr_expect(strstr(err, "semi_major_axis = 0.0005") && strstr(err, "2 semi_major_axis < gap"), "%s", err);
+    cr_expect(strstr(err, "semi_major_axis = 0.001") && strstr(err, "2 semi_major_axis < gap"), "%s", err);
     sc = scene_of("");
     sc.air_density = NAN;
     cr_expect_null(tribo_separator_create(&sc, err, sizeof err));

@@ -150,8 +150,9 @@ class SI(Chute):
         return {"same": lambda: x, "length": lambda: x / u["a"], "time": lambda: x / u["t_star"],
                 "speed": lambda: x / u["velocity"], "rate": lambda: x * u["t_star"],
                 "density": lambda: abs(x) / u["sigma"], "force": lambda: x / u["force"],
-                # section 8b: a limit of 0 is none
-                "limit": lambda: x / u["sigma"] if x > 0.0 else math.inf}[how]()
+                # section 8b: a limit of 0 is none; one too small for a double in the
+                # model's units is the smallest double
+                "limit": lambda: max(x / u["sigma"], 5e-324) if x > 0.0 else math.inf}[how]()
 
     def in_range(self, model_name, x):
         lo, hi, bounded = self.ranges[model_name]

@@ -267,9 +267,10 @@ def test_a_refused_experiment_changes_nothing(fmu_dir, version, tolerance, expli
 
 @pytest.mark.parametrize("version", VERSIONS)
 def test_an_initialization_refused_for_its_inputs_changes_nothing(fmu_dir, version):
-    # the SI FMU's input is in its declared range, its model value (F / (k' a)) is not
+    # the SI FMU's input is in its declared range, its model value (F / (k' a)) is not: a
+    # grain of a = 0.1 mm takes at most 10 k' a = 9.9e5 N/m
     s = Slave(fmu_dir(version, "tribo_si"), version)
-    s.set(F_T_ext=1e12)
+    s.set(semi_major_axis=1e-4, F_T_ext=4e6)
     enter_initialization(s)
     before = serialized(s)
     assert status_of(s.fmu.exitInitializationMode) == ERROR

@@ -130,7 +130,7 @@ def test_bad_inputs_and_parameters_are_refused_naming_them(fmu_dir, version):
             ("u_entry", -1e4, "u_entry = -10000 is invalid: the valid range is -1000 <= u_entry "
                               "<= 1000"),
             ("v_entry", math.nan, "v_entry = nan is invalid"),
-            ("gap", 0.0, "gap = 0 is invalid: the valid range is 0.0001 <= gap <= 10"),
+            ("gap", 0.0, "gap = 0 is invalid: the valid range is 0.002 <= gap <= 10"),
             ("n_bins", 0, "n_bins = 0 is invalid: the valid range is an integer with 1 <= "
                           "n_bins <= 100000")]:
         assert status_of(s.set, **{name: value}) == ERROR, name
@@ -138,7 +138,7 @@ def test_bad_inputs_and_parameters_are_refused_naming_them(fmu_dir, version):
     # a refused value changes nothing
     assert s.get("charge_to_mass") == 0.0 and s.get("gap") == GAP
     # the combinations are checked when initialization ends: the grain must fit the gap
-    assert status_of(s.init, semi_major_axis=0.06) == ERROR
+    assert status_of(s.init, semi_major_axis=0.04, gap=0.05) == ERROR
     assert "semi_major_axis" in s.errors()[-1] and "gap" in s.errors()[-1]
     s.free()
     s = separator(fmu_dir, version)
