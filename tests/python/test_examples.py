@@ -13,7 +13,6 @@ import shlex
 import socket
 import subprocess
 import sys
-import time
 
 import pytest
 
@@ -158,9 +157,7 @@ def test_each_help_example_runs(tmp_path, scheduler, name, line):
         (tmp_path / argv[argv.index("--measured") + 1]).write_text(
             "epsilon,size\n0.45,4e-4\n0.7,8e-4\n0.9,1.2e-3\n")
     argv = shrink(name, argv, scheduler)
-    started = time.perf_counter()
     done = subprocess.run([command(name), *argv], cwd=tmp_path, capture_output=True, text=True,
                           timeout=300)
     assert done.returncode == 0, f"{name} {' '.join(argv)}:\n{done.stderr[-3000:]}"
     assert "Traceback" not in done.stderr
-    assert time.perf_counter() - started < 300
