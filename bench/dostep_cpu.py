@@ -13,8 +13,7 @@ import time
 
 from fmpy import extract
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
-from tribo.fmu import Instance  # noqa: E402
+from tribo.fmu import Instance
 
 # (what, FMU, settings, communication step in the FMU's unit of time)
 SETUPS = [
