@@ -89,6 +89,9 @@ class Dimensionless(Chute):
         {"epsilon": 1e-3}, {"epsilon": 1.0, "stick_model": 1}, {"Gamma": 10.0},
         {"Gamma": 1e-12}, {"mu": 100.0, "nu": 100.0}, {"rtol": 1e-14, "atol": 1e-20},
         {"integrator": 0, "dt": 1e-9, "Gamma": 10.0}, {"Omega0": 100.0, "epsilon": 1e-3}]
+    # each in one doStep of this many of the model's units of time (the fixed step resolves
+    # it at dt = 1e-9)
+    work_bound_step = 1e4
 
     def scene_valid(self, values):
         """The core's combinations: the drop lies on the chute, and the rigid stick
@@ -126,6 +129,7 @@ class SI(Chute):
         {"youngs_modulus_particle": 1e3, "youngs_modulus_wall": 1e3},
         {"n_segments": 100000, "breakdown_density": 5e-324}, {"n_segments": 100000, "epsilon": 1.0},
         {"integrator": 2, "epsilon": 1.0}, {"rtol": 1e-14, "atol": 1e-20}]
+    work_bound_step = 1e6  # about a second: the drop and the contact after it
 
     def __init__(self):
         self.ranges = model_ranges()
@@ -214,6 +218,7 @@ class Separator:
         {"released": 1, "rtol": 1e-12, "atol": 1e-20}, {"released": 1, "air_viscosity": 5e-324},
         {"released": 1, "height": 100.0, "gravity": 1e-6, "rtol": 1e-12},
         {"released": 1, "semi_major_axis": 1e-7, "air_viscosity": 1.0, "height": 100.0}]
+    work_bound_step = 1e3
 
     def scene_valid(self, values):
         x_limit = values["gap"] / 2 - values["semi_major_axis"]

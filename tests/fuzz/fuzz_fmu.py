@@ -399,10 +399,10 @@ class Fuzzer:
         guard: the limit bounds a doStep to about a second of CPU, which the C tests assert
         in units of work; its CPU is recorded in the summary). Returns (scene, CPU) pairs."""
         probe = Instance(self.fmu_dir, self.version)
-        scenes = Model(probe.md, self.fmu_dir, self.version, False).front.work_bound_scenes
+        front = Model(probe.md, self.fmu_dir, self.version, False).front
         probe.free()
         seen = []
-        for scene in scenes:
+        for scene in front.work_bound_scenes:
             inst = Instance(self.fmu_dir, self.version)
             model = Model(inst.md, self.fmu_dir, self.version, False)
             self.log = [f"work bound: {scene}"]
@@ -415,7 +415,7 @@ class Fuzzer:
             self.expect("enterInitializationMode", self.call("enter", inst.enter_initialization), {OK})
             self.expect("exitInitializationMode", self.call("exit", inst.exit_initialization), {OK})
             model.lifecycle = STEP
-            h = 1e4 * model.time_scale()  # (the fixed step resolves it at dt = 1e-9)
+            h = front.work_bound_step * model.time_scale()
             started = time.process_time()
             status, reached, early, terminate = self.call(f"doStep(0, {h!r}) of {scene}",
                                                           inst.do_step, 0.0, h)
