@@ -1,6 +1,7 @@
 /* The work limit measured (scripts/bench_work_limit.sh; docs/fmu.md, "The work limit").
 
-   1. The CPU one unit of work costs, per kind of work: scenes where one kind dominates,
+   1. The CPU one unit of work costs: scenes where one kind of work dominates, and the SI
+      set-ups and the dimensionless ones on 1e5 segments that cost the most per unit,
       advanced until the default limit stops an advance; CPU per advance / work_limit.
    2. Ordinary use within the default: the paper's drop with the fixed step at its dt and
       with CVODE, in advances of 100 (none may stop early).
@@ -10,6 +11,7 @@
 
    Usage: tribo_bench_work_limit [scenes=300] [seed=1] */
 #define _POSIX_C_SOURCE 199309L
+#include "si.h"
 #include "tribo.h"
 
 #include <math.h>
@@ -25,13 +27,27 @@ static double cpu(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-static tribo_model *make(const char *settings)
+/* A model of dimensionless settings, or (si) of the SI front end's settings; *time_unit:
+   the settings' unit of time in the model's (1, or 1 / t_star). */
+static tribo_model *make_scene(const char *settings, int si, double *time_unit)
 {
     tribo_scene s;
     char msg[512];
     tribo_scene_defaults(&s);
-    if (tribo_scene_apply(&s, settings, msg, sizeof msg) != TRIBO_OK ||
-        tribo_scene_validate(&s, msg, sizeof msg) != TRIBO_OK) {
+    *time_unit = 1.0;
+    if (si) {
+        tribo_si_scene sis;
+        tribo_si_derived d;
+        tribo_si_scene_defaults(&sis);
+        if (tribo_si_scene_apply(&sis, settings, msg, sizeof msg) != TRIBO_OK ||
+            tribo_si_derive(&sis, &d, msg, sizeof msg) != TRIBO_OK) {
+            fprintf(stderr, "%s: %s\n", settings, msg);
+            exit(1);
+        }
+        s = d.scene;
+        *time_unit = 1.0 / d.t_star;
+    } else if (tribo_scene_apply(&s, settings, msg, sizeof msg) != TRIBO_OK ||
+               tribo_scene_validate(&s, msg, sizeof msg) != TRIBO_OK) {
         fprintf(stderr, "%s: %s\n", settings, msg);
         exit(1);
     }
@@ -43,10 +59,19 @@ static tribo_model *make(const char *settings)
     return m;
 }
 
-/* Advance in steps of h until an advance stops at the limit; the CPU of the stopped ones. */
-static void unit_cost(const char *what, const char *settings, double h)
+static tribo_model *make(const char *settings)
 {
-    tribo_model *m = make(settings);
+    double unit;
+    return make_scene(settings, 0, &unit);
+}
+
+/* Advance in steps of h (in the settings' unit of time) until an advance stops at the
+   limit; the CPU of the stopped ones. */
+static void unit_cost_of(const char *what, const char *settings, int si, double h)
+{
+    double time_unit;
+    tribo_model *m = make_scene(settings, si, &time_unit);
+    h *= time_unit;
     double spent = 0.0;
     int stopped = 0;
     for (int k = 0; k < 400 && stopped < 3; k++) {
@@ -67,6 +92,11 @@ static void unit_cost(const char *what, const char *settings, double h)
     else
         printf("  %-34s no advance reached the limit\n", what);
     tribo_free(m);
+}
+
+static void unit_cost(const char *what, const char *settings, double h)
+{
+    unit_cost_of(what, settings, 0, h);
 }
 
 static void ordinary(const char *what, const char *settings, double h, double t_end)
@@ -121,6 +151,21 @@ int main(int argc, char **argv)
               "v_reg=1000 phi0=1e6 drop_speed=10", 0.1);
     unit_cost("flight evaluations (Gamma 1e-12)", "mu=100 Gamma=1e-12 eta=0 n_segments=16 "
               "phi0=-1e6 Omega0=100 integrator=2 atol=1 drop_angle=-1.5", 0.1);
+    unit_cost("CVODE, BDF (no charging)", "charge_model_static=0 charge_model_sliding=0 "
+              "n_segments=16 integrator=2", 1e5);
+    unit_cost("CVODE, rigid stick (no charging)", "charge_model_static=0 "
+              "charge_model_sliding=0 n_segments=16 stick_model=1", 1e5);
+    unit_cost("1e5 segments, Sigma_bd = 1e-6", "n_segments=100000 Sigma_bd=1e-6", 1000.0);
+    unit_cost("1e5 segments, fixed step, limit", "n_segments=100000 Sigma_bd=1e-3 integrator=0",
+              1000.0);
+    unit_cost_of("SI, epsilon = 1", "epsilon=1", 1, 10.0);
+    unit_cost_of("SI, epsilon = 1, 1e5 segments", "epsilon=1 n_segments=100000", 1, 10.0);
+    unit_cost_of("SI, epsilon = 0.001", "epsilon=0.001", 1, 10.0);
+    unit_cost_of("SI, gravity = 1e4", "gravity=1e4", 1, 10.0);
+    unit_cost_of("SI, Young's moduli 1e3", "youngs_modulus_particle=1e3 youngs_modulus_wall=1e3",
+                 1, 10.0);
+    unit_cost_of("SI, epsilon = 0.001, no charging", "epsilon=0.001 charge_model_static=0 "
+                 "charge_model_sliding=0", 1, 10.0);
 
     printf("2. Ordinary use (the paper's drop)\n");
     ordinary("fixed step, dt = 8e-5", "integrator=0", 100.0, 1000.0);

@@ -24,12 +24,28 @@ static double load(fmu_c_type t, const void *values, size_t i)
     return NAN;
 }
 
-/* The value of v at values[i]: an FMI 2.0 Boolean is an int, any but 0 true (C's truth,
-   which importers pass: fmi2True is 1, but nothing else is false). */
+/* The value of v at values[i] (a Boolean as 0 or 1: check_value refuses an FMI 2.0
+   Boolean other than fmi2True and fmi2False). */
 static double load_value(const fmu_variable *v, fmu_c_type t, const void *values, size_t i)
 {
     const double value = load(t, values, i);
     return v->type == FMU_TYPE_BOOLEAN ? (double)(value != 0.0) : value;
+}
+
+/* An FMI 2.0 Boolean is an int that must be fmi2True (1) or fmi2False (0): 2 or -1 is an
+   importer's mistake (a C truth value passed as it is, or memory not written), refused
+   rather than taken as true. (An FMI 3.0 Boolean is a C bool: 0 or 1 by its type.) */
+static int boolean_valid(fmu_instance *inst, const char *fn, const fmu_variable *v,
+                         fmu_c_type t, const void *values, size_t i)
+{
+    if (v->type != FMU_TYPE_BOOLEAN || t != FMU_C_INT)
+        return 1;
+    const double raw = load(t, values, i);
+    if (raw == 0.0 || raw == 1.0)
+        return 1;
+    fmu_error(inst, "%s: %s = %.17g is not an fmi2Boolean: it must be fmi2True (1) or fmi2False (0)",
+              fn, v->name, raw);
+    return 0;
 }
 
 /* Values stored into integer arrays are integers: validated parameters, flags, classes
@@ -136,6 +152,18 @@ static int model_readable(fmu_instance *inst, const char *fn, const fmu_variable
     return fmu_ensure_model(inst, fn) == FMU_OK;
 }
 
+/* Refuse a value of v that is not a number (only a failed core holds one): what the core
+   said about its failure, if anything. */
+static int not_finite(fmu_instance *inst, const char *fn, const fmu_variable *v, const char *index,
+                      double value)
+{
+    const char *why = fmu_front_last_error(inst->core);
+    fmu_error(inst, "%s: %s%s = %g is not a finite number (%s%s)", fn, v->name, index, value,
+              why[0] ? "the core failed: " : "the core reported no failure",
+              why[0] ? why : "");
+    return 0;
+}
+
 /* Write the values of v at values[k...]. */
 static int read_variable(fmu_instance *inst, const char *fn, const fmu_variable *v,
                          fmu_c_type c_type, void *values, size_t k)
@@ -161,11 +189,8 @@ static int read_variable(fmu_instance *inst, const char *fn, const fmu_variable 
            calculated parameter of a parameter that may be INF may be INF: the chute's
            length with no end) */
         const int no_end = value == INFINITY && v->causality == FMU_CAUSALITY_CALCULATED_PARAMETER;
-        if (!isfinite(value) && !no_end) {
-            fmu_error(inst, "%s: %s = %g is not a finite number (the core failed: %s)", fn,
-                      v->name, value, fmu_front_last_error(inst->core));
-            return 0;
-        }
+        if (!isfinite(value) && !no_end)
+            return not_finite(inst, fn, v, "", value);
         store(c_type, values, k, value);
         return 1;
     }
@@ -181,9 +206,9 @@ static int read_variable(fmu_instance *inst, const char *fn, const fmu_variable 
         }
         for (size_t i = 0; i < n; i++)
             if (!isfinite(out[i])) {
-                fmu_error(inst, "%s: %s[%zu] = %g is not a finite number (the core failed: %s)",
-                          fn, v->name, i, out[i], fmu_front_last_error(inst->core));
-                return 0;
+                char index[32];
+                snprintf(index, sizeof index, "[%zu]", i);
+                return not_finite(inst, fn, v, index, out[i]);
             }
         return 1;
     }
@@ -250,6 +275,8 @@ static int model_accepts(const fmu_instance *inst, const fmu_variable *v, double
 static int check_value(fmu_instance *inst, const char *fn, const fmu_variable *v, fmu_c_type c_type,
                        void *values, size_t k)
 {
+    if (!boolean_valid(inst, fn, v, c_type, values, k))
+        return 0;
     const double value = load_value(v, c_type, values, k);
     const tribo_param_info *p = fmu_variable_param(v);
     if (!p) {
@@ -320,6 +347,42 @@ static int apply_value(fmu_instance *inst, const char *fn, const fmu_variable *v
     return 1;
 }
 
+/* Whether the parameters after the call (each value checked alone already) go together
+   where the FMU can tell: the rigid stick chosen explicitly with the fixed step or the
+   centre's dashpot is refused here, at the set call that makes the conflict, whichever of
+   them comes last; a stick_model left unset follows them (fmu_follow_defaults). */
+static int call_fits(fmu_instance *inst, const char *fn, const fmu_vr vrs[], size_t nvr,
+                     fmu_c_type c_type, const void *values)
+{
+    fmu_scene trial = inst->scene;
+    int stick_model_set = inst->stick_model_set;
+    size_t k = 0;
+    for (size_t i = 0; i < nvr; i++) {
+        const fmu_variable *v = fmu_variable_find(vrs[i], inst->fmi_version);
+        if (v->maps_to == FMU_MAPS_TO_PARAMETER) {
+            const tribo_param_info *p = fmu_variable_param(v);
+            tribo_param_write(&trial, p, load_value(v, c_type, values, k));
+            stick_model_set |= strcmp(p->name, "stick_model") == 0;
+        }
+        k += value_count(inst, v);
+    }
+    fmu_follow_defaults(&trial, stick_model_set);
+    char msg[400];
+    if (fmu_stick_model_fits(&trial, msg, sizeof msg))
+        return 1;
+    fmu_error(inst, "%s: %s", fn, msg);
+    return 0;
+}
+
+/* After the call: a default that follows the parameters set follows them. */
+static void follow_defaults(fmu_instance *inst)
+{
+    const fmu_scene before = inst->scene;
+    fmu_follow_defaults(&inst->scene, inst->stick_model_set);
+    if (memcmp(&before, &inst->scene, sizeof before) != 0)
+        inst->model_outdated = 1;
+}
+
 fmu_status fmu_set(fmu_instance *inst, const char *fn, unsigned types, fmu_c_type c_type,
                    const fmu_vr vrs[], size_t nvr, const void *values, size_t nvalues)
 {
@@ -329,7 +392,9 @@ fmu_status fmu_set(fmu_instance *inst, const char *fn, unsigned types, fmu_c_typ
     void *in = (void *)values;
     if (!resolve_all(inst, fn, types, vrs, nvr, values, nvalues) ||
         !walk(inst, fn, vrs, nvr, c_type, in, check_value) ||
+        !call_fits(inst, fn, vrs, nvr, c_type, values) ||
         !walk(inst, fn, vrs, nvr, c_type, in, apply_value))
         return FMU_ERROR;
+    follow_defaults(inst);
     return FMU_OK;
 }

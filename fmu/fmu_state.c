@@ -9,7 +9,8 @@
  *   lifecycle state, start time, stop time, stop time defined, time, the inputs,
  *   number of parameters, every parameter (in the order of the front end's table: the SI
  *   FMUs save the SI scene),
- *   core instance outdated, tolerances set explicitly (bit 0: rtol, bit 1: atol),
+ *   core instance outdated, parameters set explicitly (bit 0: rtol, bit 1: atol, bit 2:
+ *   stick_model, which follows the integrator and the dashpot's point until it is set),
  *   hold_at_end (the FMU layer's parameter, in no front end's table), size of the core's
  *   state, the core's state (the front end's: tribo_state_save,
  *   tribo_separator_state_save)
@@ -87,7 +88,8 @@ fmu_status fmu_state_get(fmu_instance *inst, const char *fn, fmu_state **state)
         tribo_write_double(&c, tribo_param_read(&inst->scene, &params[i]));
     tribo_write_int(&c, core ? 0 : inst->model_outdated);
     /* an importer's tolerance, given later, must not override what was set explicitly */
-    tribo_write_int(&c, (inst->rtol_set ? 1 : 0) | (inst->atol_set ? 2 : 0));
+    tribo_write_int(&c, (inst->rtol_set ? 1 : 0) | (inst->atol_set ? 2 : 0) |
+                            (inst->stick_model_set ? 4 : 0));
     /* with the core's run over it says whether the instance is held there, in Step Mode at a
        time past the core's */
     tribo_write_int(&c, inst->hold_at_end);
@@ -187,9 +189,14 @@ static const char *read_restored(const fmu_instance *inst, const fmu_state *s, r
         return "the size of the core's state does not match the state's";
     if (!lifecycle_valid(inst, r->lifecycle, has_core) ||
         (r->model_outdated != 0 && r->model_outdated != 1) || (has_core && r->model_outdated) ||
-        r->tolerances_set < 0 || r->tolerances_set > 3 ||
+        r->tolerances_set < 0 || r->tolerances_set > 7 ||
         (r->hold_at_end != 0 && r->hold_at_end != 1))
         return "the FMI state is not one this FMU saves";
+    fmu_scene followed = r->scene;
+    fmu_follow_defaults(&followed, (r->tolerances_set & 4) != 0);
+    if (memcmp(&followed, &r->scene, sizeof followed) != 0)
+        return "its stick_model, not set explicitly, does not follow its integrator and "
+               "damping_point";
     if (!isfinite(r->start_time) || !isfinite(r->time) || !isfinite(r->stop_time) ||
         (r->stop_time_defined != 0 && r->stop_time_defined != 1) ||
         (r->stop_time_defined ? !(r->stop_time >= r->start_time) : r->stop_time != 0.0))
@@ -273,6 +280,7 @@ fmu_status fmu_state_set(fmu_instance *inst, const char *fn, const fmu_state *s)
     inst->model_outdated = r.model_outdated != 0;
     inst->rtol_set = (r.tolerances_set & 1) != 0;
     inst->atol_set = (r.tolerances_set & 2) != 0;
+    inst->stick_model_set = (r.tolerances_set & 4) != 0;
     inst->hold_at_end = r.hold_at_end != 0;
     inst->scene = r.scene;
     for (int i = 0; i < FMU_MAX_INPUTS; i++)

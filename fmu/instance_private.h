@@ -46,6 +46,9 @@ struct fmu_instance {
 
     /* rtol, atol set by the importer (they win over the experiment's tolerance) */
     int rtol_set, atol_set;
+    /* stick_model set by the importer; until then it follows the integrator and the
+       dashpot's point (fmu_follow_defaults) */
+    int stick_model_set;
 
     double start_time;
     double stop_time;
@@ -88,7 +91,16 @@ fmu_status fmu_pass_inputs(fmu_instance *inst, const char *fn);
 double fmu_scene_value(const fmu_instance *inst, const char *name);
 /* Drop the core instance and put every variable back to its start value. */
 void fmu_restore_start_values(fmu_instance *inst);
-/* Note that the importer set parameter p (the tolerance does not override it). */
+/* Note that the importer set parameter p (the tolerance does not override it; a default
+   that follows others no longer does). */
 void fmu_note_parameter_set(fmu_instance *inst, const tribo_param_info *p);
+/* The value of stick_model in `scene` that follows the integrator and the dashpot's point
+   where the importer has not set it (stick_model_set 0): its start value, the rigid stick
+   only where they allow it (tribo_rigid_stick_allowed), else the compliant one. A front end
+   without a stick_model is left as it is. */
+void fmu_follow_defaults(fmu_scene *scene, int stick_model_set);
+/* Whether stick_model, integrator and damping_point in `scene` go together; if not, a
+   sentence that says why in msg. */
+int fmu_stick_model_fits(const fmu_scene *scene, char *msg, size_t msg_size);
 
 #endif

@@ -36,6 +36,8 @@ void fmu_restore_start_values(fmu_instance *inst)
     inst->model_outdated = 0;
     fmu_front_defaults(&inst->scene);
     inst->rtol_set = inst->atol_set = 0;
+    inst->stick_model_set = 0;
+    fmu_follow_defaults(&inst->scene, 0);
     inst->hold_at_end = 0;
     const tribo_param_info *inputs = fmu_front_inputs();
     for (int i = 0; i < FMU_MAX_INPUTS; i++)
@@ -85,9 +87,14 @@ fmu_instance *fmu_instantiate(int fmi_version, const char *fn, const char *name,
     if (logger)
         inst->logger = *logger;
     /* errors and warnings (e.g. a contact outside the model's assumptions) reach the
-       importer without debug logging; loggingOn adds the calls and the core's notes */
+       importer without debug logging; loggingOn adds the core's notes. The trace of every
+       call (logFmiCalls, a line per call and per value set) only where the importer asks for
+       it by name, or for every category, with SetDebugLogging: an importer that turns
+       loggingOn on for its own log level (libcosim through the FMI Library) would otherwise
+       print thousands of lines of a run */
     for (int c = 0; c < FMU_LOG_CATEGORY_COUNT; c++)
-        inst->log_enabled[c] = logging_on || c == FMU_LOG_ERROR || c == FMU_LOG_WARNING;
+        inst->log_enabled[c] = c == FMU_LOG_ERROR || c == FMU_LOG_WARNING ||
+                               (logging_on && c != FMU_LOG_CALLS);
     fmu_restore_start_values(inst);
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s(instanceName = \"%s\", loggingOn = %d)", fn, name,
             logging_on != 0);
@@ -126,6 +133,44 @@ void fmu_note_parameter_set(fmu_instance *inst, const tribo_param_info *p)
         inst->rtol_set = 1;
     else if (strcmp(p->name, "atol") == 0)
         inst->atol_set = 1;
+    else if (strcmp(p->name, "stick_model") == 0)
+        inst->stick_model_set = 1;
+}
+
+/* The rigid stick needs CVODE and the contact point's dashpot (model.md §3b): the SI FMUs'
+   default, rigid, gives way to the compliant stick where the importer chose the fixed step
+   or the centre's dashpot and left stick_model alone, so that each of those alone is a
+   valid set-up; chosen explicitly, the rigid stick with either is refused at the set call
+   (access.c). */
+void fmu_follow_defaults(fmu_scene *scene, int stick_model_set)
+{
+    const tribo_param_info *stick = fmu_front_param_find("stick_model");
+    if (!stick || stick_model_set)
+        return;
+    const int rigid_fits = tribo_rigid_stick_allowed(
+        (int)tribo_param_read(scene, fmu_front_param_find("integrator")),
+        (int)tribo_param_read(scene, fmu_front_param_find("damping_point")));
+    tribo_param_write(scene, stick,
+                      stick->start == TRIBO_STICK_RIGID && !rigid_fits ? TRIBO_STICK_COMPLIANT
+                                                                       : stick->start);
+}
+
+int fmu_stick_model_fits(const fmu_scene *scene, char *msg, size_t msg_size)
+{
+    const tribo_param_info *stick = fmu_front_param_find("stick_model");
+    if (!stick || tribo_param_read(scene, stick) != TRIBO_STICK_RIGID)
+        return 1;
+    const double integrator = tribo_param_read(scene, fmu_front_param_find("integrator"));
+    const double damping = tribo_param_read(scene, fmu_front_param_find("damping_point"));
+    if (tribo_rigid_stick_allowed((int)integrator, (int)damping))
+        return 1;
+    snprintf(msg, msg_size,
+             "stick_model = 1 (rigid), set explicitly, does not go with integrator = %g and "
+             "damping_point = %g: the rigid stick needs CVODE (integrator = 1 or 2) and the "
+             "contact point's dashpot (damping_point = 0); set stick_model = 0 (compliant), or "
+             "leave it unset to follow them",
+             integrator, damping);
+    return 0;
 }
 
 double fmu_scene_value(const fmu_instance *inst, const char *name)

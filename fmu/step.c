@@ -84,14 +84,12 @@ static fmu_status check_core_time(fmu_instance *inst, const char *fn, double cur
     return FMU_OK;
 }
 
-fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, double step,
-                       double *reached, int *early_return, int *terminate)
+/* The communication point and step an importer gives, checked against the instance: its
+   state, its time (up to rounding), a step that moves it, and the stop time; the step's end
+   in *end. */
+static fmu_status check_step(fmu_instance *inst, const char *fn, double current_time, double step,
+                             double *end)
 {
-    *early_return = 0;
-    *terminate = 0;
-    if (!inst)
-        return FMU_ERROR;
-    *reached = inst->time;
     if (inst->lifecycle == FMU_LIFECYCLE_EXITED) {
         char reason[400];
         fmu_front_over_reason(inst->core, reason, sizeof reason);
@@ -109,52 +107,51 @@ fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, 
     if (!(isfinite(step) && step > 0.0))
         return fmu_error(inst, "%s: communicationStepSize = %.17g is invalid: it must be > 0 and finite",
                          fn, step);
-    const double end = current_time + step;
-    if (!(end > current_time) || !isfinite(end))
+    *end = current_time + step;
+    if (!(*end > current_time) || !isfinite(*end))
         return fmu_error(inst,
                          "%s: communicationStepSize = %.17g is lost in the rounding of the time "
                          "%.17g (the step would end where it starts)",
                          fn, step, current_time);
     /* a communication point a rounding before the FMU's time is that time, but the step must
        still end after it: the time never goes back */
-    if (!(end > inst->time))
+    if (!(*end > inst->time))
         return fmu_error(inst,
                          "%s: a step from %.17g by %.17g ends at %.17g, not after the FMU's time "
                          "%.17g: the time cannot go back",
-                         fn, current_time, step, end, inst->time);
-    if (inst->stop_time_defined && end > inst->stop_time + fmu_rounding_tolerance(inst->stop_time))
+                         fn, current_time, step, *end, inst->time);
+    if (inst->stop_time_defined && *end > inst->stop_time + fmu_rounding_tolerance(inst->stop_time))
         return fmu_error(inst,
                          "%s: a step from %.17g by %.17g ends at %.17g, after the stop time %.17g "
                          "set at initialization",
-                         fn, current_time, step, end, inst->stop_time);
-    fmu_core *m = inst->core;
-    if (inst->hold_at_end && fmu_front_run_over(m)) {
-        /* held at the run's end: the core stays there (it cannot advance), its inputs with
-           it; only the FMU's time follows the master */
-        inst->time = end;
-        *reached = end;
-        fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s(currentCommunicationPoint = %.17g, "
-                "communicationStepSize = %.17g): held at the run's end", fn, current_time, step);
-        return FMU_OK;
-    }
-    /* the FMU's time is the start time plus the core's, in the front end's unit: the step
-       ends where the core's time is end's, which must lie after the core's time now, else
-       the FMU's time would move and the model's not */
+                         fn, current_time, step, *end, inst->stop_time);
+    return FMU_OK;
+}
+
+/* The core's time of the step's end: the FMU's time is the start time plus the core's, in
+   the front end's unit, so the step ends where the core's time is end's, which must lie
+   after the core's time now (else the FMU's time would move and the model's not) and be
+   one the core can advance to. */
+static fmu_status core_time_of(fmu_instance *inst, const char *fn, double current_time,
+                               double step, double end, double *core_end)
+{
     const double unit = fmu_front_time_unit(&inst->derived);
-    const double core_now = fmu_front_core_time(m), core_end = (end - inst->start_time) / unit;
-    if (!(core_end > core_now))
+    const double core_now = fmu_front_core_time(inst->core);
+    *core_end = (end - inst->start_time) / unit;
+    if (!(*core_end > core_now))
         return fmu_error(inst,
                          "%s: communicationStepSize = %.17g is lost in the rounding of the time: "
                          "the step from %.17g to %.17g does not move the model's time t = %.17g",
                          fn, step, current_time, end, core_now);
-    if (check_core_time(inst, fn, current_time, step, core_end) != FMU_OK)
-        return FMU_ERROR;
+    return check_core_time(inst, fn, current_time, step, *core_end);
+}
 
-    /* inputs set since the last step hold from this communication point on (checked when
-       set: a refusal here changes nothing) */
-    if (fmu_pass_inputs(inst, fn) != FMU_OK)
-        return FMU_ERROR;
-    tribo_status st = fmu_front_advance(m, core_end);
+/* The core advanced to core_end with status st: the instance follows it (the step's end,
+   the time reached where it stopped early, or a failure). */
+static fmu_status after_advance(fmu_instance *inst, const char *fn, double current_time,
+                                double step, double end, tribo_status st, double *reached,
+                                int *early_return, int *terminate)
+{
     if (st == TRIBO_INCOMPLETE || st == TRIBO_ENDED) {
         inst->time = reached_time(inst, end, st == TRIBO_INCOMPLETE);
         const fmu_status status = st == TRIBO_ENDED ? exited(inst, fn, end, early_return, terminate)
@@ -168,7 +165,7 @@ fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, 
         if (st != TRIBO_ERR_TIME)
             inst->lifecycle = FMU_LIFECYCLE_FAILED;
         return fmu_error(inst, "%s: the step from %.17g to %.17g failed: %s", fn, current_time, end,
-                         fmu_front_last_error(m));
+                         fmu_front_last_error(inst->core));
     }
     /* the core is at core_end, the model's time of end */
     inst->time = end;
@@ -176,4 +173,34 @@ fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, 
     fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s(currentCommunicationPoint = %.17g, "
             "communicationStepSize = %.17g)", fn, current_time, step);
     return FMU_OK;
+}
+
+fmu_status fmu_do_step(fmu_instance *inst, const char *fn, double current_time, double step,
+                       double *reached, int *early_return, int *terminate)
+{
+    *early_return = 0;
+    *terminate = 0;
+    if (!inst)
+        return FMU_ERROR;
+    *reached = inst->time;
+    double end, core_end;
+    if (check_step(inst, fn, current_time, step, &end) != FMU_OK)
+        return FMU_ERROR;
+    if (inst->hold_at_end && fmu_front_run_over(inst->core)) {
+        /* held at the run's end: the core stays there (it cannot advance), its inputs with
+           it; only the FMU's time follows the master */
+        inst->time = end;
+        *reached = end;
+        fmu_log(inst, FMU_OK, FMU_LOG_CALLS, "%s(currentCommunicationPoint = %.17g, "
+                "communicationStepSize = %.17g): held at the run's end", fn, current_time, step);
+        return FMU_OK;
+    }
+    if (core_time_of(inst, fn, current_time, step, end, &core_end) != FMU_OK)
+        return FMU_ERROR;
+    /* inputs set since the last step hold from this communication point on (checked when
+       set: a refusal here changes nothing) */
+    if (fmu_pass_inputs(inst, fn) != FMU_OK)
+        return FMU_ERROR;
+    const tribo_status st = fmu_front_advance(inst->core, core_end);
+    return after_advance(inst, fn, current_time, step, end, st, reached, early_return, terminate);
 }

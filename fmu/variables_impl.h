@@ -287,7 +287,10 @@ const char *fmu_type_name(fmu_type type, int fmi_version)
 const char *fmu_causality_name(fmu_causality causality, int fmi_version)
 {
     switch (causality) {
-    case FMU_CAUSALITY_INDEPENDENT: return "independent";
+    /* FMI 2.0: the FMU's time is a local variable, readable; the independent one is
+       implicit there. Declared independent, it leaves an FMI 2.0 importer no right answer:
+       the standard forbids it a start value, which the FMI Library (libcosim's) requires */
+    case FMU_CAUSALITY_INDEPENDENT: return fmi_version == 2 ? "local" : "independent";
     case FMU_CAUSALITY_PARAMETER: return "parameter";
     case FMU_CAUSALITY_STRUCTURAL_PARAMETER:
         return fmi_version == 2 ? "parameter" : "structuralParameter";

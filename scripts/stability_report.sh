@@ -32,7 +32,10 @@ A run passes when it
 - balances its energy, max |E + W_diss - W_ext - E(0)| <= 1e-5 x the run's energy scale
   (the largest |E|, work or kinetic energy seen; model.md §6 — the dissipated work includes
   the normal damping, so the balance applies to every case, not only nu = 0);
-- takes at most 10 s of CPU (optimised build).
+- does at most 2e7 units of work (the work limit's units, about half a microsecond of CPU
+  each: docs/work_limit.md), about 10 s of CPU in an optimised build. The test asserts
+  work, not CPU time, so that it holds on a busy machine; the CPU column is measured here,
+  on a machine shared with other work, and checks nothing.
 
 "sub-steps": extra RK4 steps the fixed step took where its regularised sign is stiff (rate
 nu delta_y / v_reg beyond RK4's stability limit: normal lock with nu >= 1 or a soft contact).

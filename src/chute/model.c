@@ -247,6 +247,13 @@ static tribo_status pending_push(tribo_model *m, const tribo_contact_sample *sam
     return TRIBO_OK;
 }
 
+/* The work of charging one segment value: each is held within the breakdown limit again
+   where there is one (every model's limit follows Sigma_bd, model.md §8b). */
+static double segment_work(const tribo_model *m)
+{
+    return TRIBO_WORK_SEGMENT_UPDATE + (isfinite(m->scene.Sigma_bd) ? TRIBO_WORK_SEGMENT_HELD : 0.0);
+}
+
 tribo_status tribo_charge_sample(tribo_model *m, const tribo_contact_sample *sample,
                                  tribo_charge_destination where)
 {
@@ -255,7 +262,7 @@ tribo_status tribo_charge_sample(tribo_model *m, const tribo_contact_sample *sam
     if (where == TRIBO_CHARGE_PENDING)
         return pending_push(m, sample);
     const long updates = tribo_charging_apply(&m->charging, &m->scene, sample, TRIBO_CHARGE_COMMIT);
-    tribo_work(m, TRIBO_WORK_SEGMENT_UPDATE * (double)updates);
+    tribo_work(m, segment_work(m) * (double)updates);
     return TRIBO_OK;
 }
 
@@ -312,10 +319,21 @@ typedef struct sweep_target {
     const tribo_contact_probe *probe;
 } sweep_target;
 
+/* The sweep's samples, each booked as work per charge model; a pending one also for the
+   values it will charge when the output is read or committed (tribo_charge_sample books a
+   committed one's). */
 static int sink(void *ctx, const tribo_contact_sample *sample)
 {
     sweep_target *s = ctx;
-    return tribo_charge_sample(s->m, sample, s->where) != TRIBO_OK;
+    tribo_model *m = s->m;
+    int models = 0;
+    for (int k = 0; k < m->charging.n_models; k++)
+        models += m->charging.slot[k].selected;
+    double work = TRIBO_WORK_SAMPLE * models;
+    if (s->where == TRIBO_CHARGE_PENDING)
+        work += segment_work(m) * (double)models * (double)sample->count;
+    tribo_work(m, work);
+    return tribo_charge_sample(m, sample, s->where) != TRIBO_OK;
 }
 
 /* The integrator's probe, each look at the contact booked as work. */

@@ -100,6 +100,11 @@ tribo_status tribo_scene_validate(const tribo_scene *scene, char *msg, size_t ms
     return st != TRIBO_OK ? st : tribo_scene_check_combinations(scene, msg, msg_size);
 }
 
+int tribo_rigid_stick_allowed(int integrator, int damping_point)
+{
+    return integrator != TRIBO_INTEGRATOR_FIXED_STEP && damping_point != TRIBO_DAMPING_CENTRE;
+}
+
 tribo_status tribo_scene_check_combinations(const tribo_scene *scene, char *msg, size_t msg_size)
 {
     /* the drop lies on the chute (model.md §9) */

@@ -173,8 +173,13 @@ const tribo_param_info *tribo_input_table(size_t *count);
    (tribo_scene_check_combinations); the first failure is reported as above. */
 tribo_status tribo_scene_validate(const tribo_scene *scene, char *msg, size_t msg_size);
 /* The combinations of valid parameters a scene must also satisfy: the drop lies on the chute,
-   X0 < chute_length (model.md §9). A failure names the parameters and their values. */
+   X0 < chute_length (model.md §9), and the rigid stick goes with the integrator and the
+   dashpot (below). A failure names the parameters and their values. */
 tribo_status tribo_scene_check_combinations(const tribo_scene *scene, char *msg, size_t msg_size);
+/* Whether the rigid stick (stick_model = 1, model.md §3b) goes with an integrator and a
+   dashpot's point: it is a phase of the event-driven integrator, held by the contact
+   point's normal lock, so it needs CVODE and the contact point's dashpot. */
+int tribo_rigid_stick_allowed(int integrator, int damping_point);
 
 /* ---- the instance --------------------------------------------------------------- */
 

@@ -124,8 +124,10 @@ tribo_status tribo_separator_derive(const tribo_separator_scene *sc, tribo_separ
     /* r: the grain's largest half-size, whichever way it tumbles */
     r.half_size = sc->semi_major_axis;
     r.x_limit = sc->gap / 2.0 - r.half_size;
+    /* (a viscosity so small that the time overflows, 5e-324 Pa.s, reads as the largest
+       number: every value of the declared range gives a finite output) */
     r.relaxation_time = sc->air_viscosity > 0.0
-                            ? r.mass / (3.0 * M_PI * sc->air_viscosity * r.diameter)
+                            ? fmin(r.mass / (3.0 * M_PI * sc->air_viscosity * r.diameter), DBL_MAX)
                             : 0.0;
     if (!(r.x_limit > 0.0)) {
         if (msg && msg_size)
@@ -375,10 +377,11 @@ static tribo_status advance_short(tribo_separator *s, double t)
     return TRIBO_OK;
 }
 
-tribo_status tribo_separator_advance(tribo_separator *s, double t)
+static tribo_status check_outputs(tribo_separator *s);
+
+/* The motion to t (tribo_separator_advance, before the outputs are checked). */
+static tribo_status advance_motion(tribo_separator *s, double t)
 {
-    if (!s)
-        return TRIBO_ERR_INVALID_ARGUMENT;
     if (!isfinite(t) || t < s->t || t > TRIBO_TIME_MAX) {
         snprintf(s->error, sizeof s->error,
                  "advance to t = %.17g s is invalid: the valid range is %.17g <= t <= %g (the time "
@@ -440,7 +443,33 @@ tribo_status tribo_separator_advance(tribo_separator *s, double t)
     }
 }
 
+tribo_status tribo_separator_advance(tribo_separator *s, double t)
+{
+    if (!s)
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    const tribo_status st = advance_motion(s, t);
+    if (st != TRIBO_OK && st != TRIBO_ENDED && st != TRIBO_INCOMPLETE)
+        return st;
+    const tribo_status checked = check_outputs(s);
+    return checked != TRIBO_OK ? checked : st;
+}
+
 /* ---- outputs ------------------------------------------------------------------------------ */
+
+/* Every output a number after an advance, or the advance fails and says which is not (no
+   value of the declared ranges makes one: a guard for the contract, like the chute's). */
+static tribo_status check_outputs(tribo_separator *s)
+{
+    for (int q = 0; q < TRIBO_SEPARATOR_Q_COUNT; q++) {
+        const double v = tribo_separator_get(s, (tribo_separator_quantity)q);
+        if (!isfinite(v)) {
+            snprintf(s->error, sizeof s->error, "%s = %g at t = %.17g s is not a finite number",
+                     QUANTITY_NAMES[q], v, s->t);
+            return TRIBO_ERR_INTEGRATOR;
+        }
+    }
+    return TRIBO_OK;
+}
 
 double tribo_separator_reynolds(const tribo_separator *s)
 {
@@ -449,7 +478,9 @@ double tribo_separator_reynolds(const tribo_separator *s)
     const double speed = sqrt(s->y[IVX] * s->y[IVX] + s->y[IVY] * s->y[IVY] + s->y[IVZ] * s->y[IVZ]);
     if (!(s->scene.air_viscosity > 0.0))
         return 0.0; /* no viscosity: Re is not a number the model uses */
-    return s->scene.air_density * speed * s->d.diameter / s->scene.air_viscosity;
+    /* (beyond the largest number, with a viscosity of ~1e-300 Pa.s, the drag is Newton's
+       anyway: Re reads as the largest number) */
+    return fmin(s->scene.air_density * speed * s->d.diameter / s->scene.air_viscosity, DBL_MAX);
 }
 
 int tribo_separator_bin_of(const tribo_separator_scene *sc, double x)

@@ -2,6 +2,7 @@
    it derives, and the model's outputs in SI units. */
 #include "si.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -117,7 +118,9 @@ static double convert(const tribo_si_derived *d, conversion how, double v)
     case RATE: return v * d->t_star;
     case DENSITY: return fabs(v) / d->sigma_scale;
     case FORCE: return v / d->force;
-    case LIMIT: return v > 0.0 ? v / d->sigma_scale : INFINITY; /* model.md §8b */
+    /* model.md §8b; a limit too small for a double in the model's units (5e-324 C/m2) is
+       the smallest one, not none */
+    case LIMIT: return v > 0.0 ? fmax(v / d->sigma_scale, DBL_TRUE_MIN) : INFINITY;
     case POLARISED: return d->sigma0 < 0.0 ? -v / d->sigma_scale : v / d->sigma_scale; /* §8c */
     }
     return v;

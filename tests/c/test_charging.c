@@ -199,7 +199,7 @@ Test(charging, sweep_gives_each_segment_its_exact_contact_time)
    test then hits its timeout). Over such intervals, and longer ones, it must finish with a
    bounded number of pieces and integrate the rate (to 1e-9 over the long intervals); the
    same with a rate singular at the end, sqrt(b - t). */
-Test(charging, sweep_finishes_at_a_kinked_or_singular_end, .timeout = 30)
+Test(charging, sweep_finishes_at_a_kinked_or_singular_end, .timeout = 60)
 {
     tribo_charging c = make(0.6, 2000);
     target = &c;

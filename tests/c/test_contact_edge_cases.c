@@ -13,7 +13,7 @@
 /* The fixed step's regularised sign is stiff in normal lock (rate nu delta_y / v_reg):
    a soft contact (Gamma = 0.5) hit hard with nu = 1 once blew RK4 up at the paper's
    dt = 8e-5 (lambda dt ~ 3e3). It now sub-steps and agrees with CVODE. */
-Test(contact_edge_cases, fixed_step_stable_in_a_stiff_normal_lock, .timeout = 60)
+Test(contact_edge_cases, fixed_step_stable_in_a_stiff_normal_lock, .timeout = 120)
 {
     tribo_scene s = scene_of("Gamma=0.5 drop_speed=1.0 nu=1.0");
     no_charge_models(&s);

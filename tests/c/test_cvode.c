@@ -236,7 +236,7 @@ Test(cvode, modes_are_visited_and_counted)
    gives the time and the state, and leaves the instance resettable. The work limit, raised
    here, would otherwise end each advance early first. (The particle is dropped from above
    the reach of its tips: it spins in flight.) */
-Test(cvode, too_much_work_stops_with_the_time_and_state, .timeout = 30)
+Test(cvode, too_much_work_stops_with_the_time_and_state, .timeout = 60)
 {
     tribo_scene s = cvode_scene(1e-8);
     s.gap0 = 1.0;

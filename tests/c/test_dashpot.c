@@ -71,7 +71,7 @@ static energy_record energy_of_run(const tribo_scene *s, double t_end)
    rounding) and 1.1e-12 for CVODE (rtol 1e-9, atol 1e-11, to tau = 300), against
    E(0) = 0.035 ... 0.058; the tolerances are 19x and 9x those. The centre dashpot gains
    up to 0.25 on such runs (next test). */
-Test(dashpot, energy_never_increases_at_the_contact_point, .timeout = 240)
+Test(dashpot, energy_never_increases_at_the_contact_point, .timeout = 480)
 {
     const double eps[] = {0.3, 0.6, 0.9}, mus[] = {0.1, 1.0, 3.0};
     const int integrators[] = {TRIBO_INTEGRATOR_FIXED_STEP, TRIBO_INTEGRATOR_CVODE};
@@ -97,7 +97,7 @@ Test(dashpot, energy_never_increases_at_the_contact_point, .timeout = 240)
 /* The centre dashpot does work -nu delta_y sgn(V)(V + cx Omega), positive at times while the
    particle spins: on the same kind of run E gains 0.25 by tau = 20 (measured, both
    integrators), so the test above would tell the two laws apart. */
-Test(dashpot, the_centre_dashpot_can_gain_energy, .timeout = 180)
+Test(dashpot, the_centre_dashpot_can_gain_energy, .timeout = 480)
 {
     const int integrators[] = {TRIBO_INTEGRATOR_FIXED_STEP, TRIBO_INTEGRATOR_CVODE};
     for (int i = 0; i < 2; i++) {

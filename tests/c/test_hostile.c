@@ -5,7 +5,6 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "integrator.h"
 #include "model.h"
@@ -146,11 +145,15 @@ static void expect_refused(const tribo_scene *s, const mutation *mutations, int 
         unsigned char *bad = malloc(n);
         memcpy(bad, bytes, n);
         put(bad, mutations[i].offset, mutations[i].value);
-        const clock_t start = clock();
+        tribo_stats stats_before, stats_after;
+        tribo_get_stats(target, &stats_before);
         cr_expect_eq(tribo_state_load(target, bad, n), TRIBO_ERR_STATE, "integrator %d: %s accepted",
                      s->integrator, mutations[i].what);
-        cr_expect((double)(clock() - start) / CLOCKS_PER_SEC < 2.0, "%s: the refusal took long",
-                  mutations[i].what);
+        /* refused before any step is taken (a refusal reads the bytes, it does not run) */
+        tribo_get_stats(target, &stats_after);
+        cr_expect(stats_after.steps == stats_before.steps &&
+                      stats_after.rhs_evals == stats_before.rhs_evals,
+                  "%s: the refusal took steps", mutations[i].what);
         cr_expect(strlen(tribo_last_error(target)) > 0);
         size_t m;
         unsigned char *after = saved_state(target, &m);
@@ -221,7 +224,7 @@ Test(hostile, corrupt_integrator_bytes_are_refused, .timeout = 120)
 
 /* ---- huge steps are refused or bounded, never wrong or endless -------------------- */
 
-Test(hostile, huge_times_are_refused_or_bounded, .timeout = 60)
+Test(hostile, huge_times_are_refused_or_bounded, .timeout = 180)
 {
     for (int k = 0; k < 2; k++) {
         const tribo_scene s = scene_with(INTEGRATORS[k]);
@@ -234,10 +237,10 @@ Test(hostile, huge_times_are_refused_or_bounded, .timeout = 60)
             cr_expect(strstr(tribo_last_error(m), "cannot advance") != NULL);
             cr_expect(same_outputs(m, twin));
         }
-        /* within: one advance does a bounded amount of work and stops early, finite */
-        const clock_t start = clock();
+        /* within: one advance does a bounded amount of work (its limit, and the one step that
+           passes it: a CVODE step of this scene is tens of units) and stops early, finite */
         cr_expect_eq(tribo_advance(m, 1e9), TRIBO_INCOMPLETE);
-        cr_expect((double)(clock() - start) / CLOCKS_PER_SEC < 5.0);
+        cr_expect(m->work <= s.work_limit + 1000.0, "%.0f units", m->work);
         const double t = tribo_get(m, TRIBO_QUANTITY_TIME);
         cr_expect(t > 1.0 && t < 1e9, "t = %g", t);
         cr_expect(outputs_finite(m));

@@ -57,7 +57,7 @@ static double balance_residual(double mu, double dt, double *work)
     return worst;
 }
 
-Test(invariants, energy_balance_with_friction_work, .timeout = 120)
+Test(invariants, energy_balance_with_friction_work, .timeout = 240)
 {
     const double mus[] = {0.1, 1.0};
     for (int i = 0; i < 2; i++) {
@@ -151,7 +151,7 @@ Test(invariants, flat_plate_damped_comes_to_normal_lock, .timeout = 60)
 /* Static charge: 0 <= Q_static <= 1, never decreasing, over tumbling-prone runs, with
    both integrators. (The fixed step at nu = 1 sub-steps through the stiff regularised
    lock, ~3e4 sub-steps per time unit, hence the shorter horizon.) */
-Test(invariants, static_charge_bounded_and_non_decreasing, .timeout = 60)
+Test(invariants, static_charge_bounded_and_non_decreasing, .timeout = 180)
 {
     const double mus[] = {0.1, 1.0};
     for (int integ = 0; integ < 2; integ++) {
@@ -219,7 +219,7 @@ Test(invariants, disc_rolls_without_slip, .timeout = 60)
    did, each lift-off lost that step's increment (measured: 8e-8 of Sigma_s after 10
    lift-offs); now what is left is rounding (2.7e-11). CVODE's sweep integrates it to its
    tolerances (measured 4.5e-9). */
-Test(invariants, saturation_density_follows_the_work_through_lift_offs, .timeout = 60)
+Test(invariants, saturation_density_follows_the_work_through_lift_offs, .timeout = 240)
 {
     const double eps[] = {0.3, 0.9}, tolerance[] = {1e-10, 2e-8};
     for (int integ = 0; integ < 2; integ++) {

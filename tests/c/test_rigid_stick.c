@@ -116,7 +116,7 @@ Test(rigid_stick, exit_times_are_rigid_body_mechanics_in_si)
    Gamma 1e-3, 1e-4, 1e-5) and of a rocking slide (6.7e-6, 1.3e-6, 2.5e-7), and the rolling
    disc's sliding charge, which the compliant stick's ringing raises (3.5e-2, 4.4e-3,
    3.8e-4): each at least 3x closer for each factor 10 of Gamma. */
-Test(rigid_stick, rigid_and_compliant_converge_as_gamma_falls, .timeout = 60)
+Test(rigid_stick, rigid_and_compliant_converge_as_gamma_falls, .timeout = 360)
 {
     const struct {
         const char *settings;
@@ -176,7 +176,7 @@ Test(rigid_stick, energy_and_dissipated_work_never_increase_along_rolling_ellips
 
 /* A state saved anywhere along a run with the rigid stick (in a rigid stick, a creep, a slip,
    a flight) and loaded into a new instance goes on to the same exit bit for bit. */
-Test(rigid_stick, its_phases_save_and_load_bit_for_bit, .timeout = 60)
+Test(rigid_stick, its_phases_save_and_load_bit_for_bit, .timeout = 180)
 {
     const char *grains[] = {"epsilon=1 mu=0.5 drop_height=0", "epsilon=0.6 drop_height=0",
                             "epsilon=0.9 mu=0.5"};
@@ -213,7 +213,7 @@ Test(rigid_stick, its_phases_save_and_load_bit_for_bit, .timeout = 60)
    between restarts; a state saved where the work limit stopped an advance loads again: its
    replayed steps reach the committed point bit for bit, also where putting the point back on
    the constraints a second time (as committing does) moves the last bit of a velocity. */
-Test(rigid_stick, a_state_saved_after_a_long_rigid_stretch_loads_again, .timeout = 60)
+Test(rigid_stick, a_state_saved_after_a_long_rigid_stretch_loads_again, .timeout = 360)
 {
     tribo_si_scene si;
     tribo_si_scene_defaults(&si);

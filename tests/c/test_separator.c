@@ -277,13 +277,13 @@ Test(separator, refusals_name_the_variable_its_value_and_range)
     tribo_separator_scene sc;
     tribo_separator_scene_defaults(&sc);
     cr_expect_eq(tribo_separator_scene_set(&sc, "gap", 0, err, sizeof err), TRIBO_ERR_INVALID_ARGUMENT);
-    cr_expect(strstr(err, "gap = 0 is invalid") && strstr(err, "0.0001 <= gap <= 10"), "%s", err);
-    sc = scene_of("x_entry=0.0496");
+    cr_expect(strstr(err, "gap = 0 is invalid") && strstr(err, "0.002 <= gap <= 10"), "%s", err);
+    sc = scene_of("x_entry=0.0485 semi_major_axis=2e-3");
     cr_expect_null(tribo_separator_create(&sc, err, sizeof err));
-    cr_expect(strstr(err, "x_entry = 0.0496") && strstr(err, "< x_entry < 0.0495"), "%s", err);
-    sc = scene_of("gap=1e-3 semi_major_axis=5e-4");
+    cr_expect(strstr(err, "x_entry = 0.0485") && strstr(err, "< x_entry < 0.048"), "%s", err);
+    sc = scene_of("gap=2e-3 semi_major_axis=1e-3");
     cr_expect_null(tribo_separator_create(&sc, err, sizeof err));
-    cr_expect(strstr(err, "semi_major_axis = 0.0005") && strstr(err, "2 semi_major_axis < gap"), "%s", err);
+    cr_expect(strstr(err, "semi_major_axis = 0.001") && strstr(err, "2 semi_major_axis < gap"), "%s", err);
     sc = scene_of("");
     sc.air_density = NAN;
     cr_expect_null(tribo_separator_create(&sc, err, sizeof err));
@@ -404,9 +404,11 @@ Test(separator, the_equivalent_sphere_has_the_spheroid_s_volume)
     tribo_separator_free(s);
 }
 
-/* Every parameter at both ends of its range (an open end: the nearest value inside), with
-   the inputs at theirs: refused only for a combination, naming it; otherwise finite outputs
-   at a cost bounded by the work limit, as the FMUs' importers need. */
+/* Every parameter at both ends of its range (an open end: the nearest value inside) and
+   just inside them (the next double, or integer: air_viscosity = 5e-324 overflowed the
+   relaxation time and the Reynolds number), with the inputs at theirs: refused only for a
+   combination, naming it; otherwise finite outputs at a cost bounded by the work limit, as
+   the FMUs' importers need. */
 static void run_hostile(tribo_separator_scene sc, const char *what)
 {
     char err[512];
@@ -438,8 +440,10 @@ Test(separator, every_parameter_at_the_ends_of_its_range_gives_finite_outputs)
             continue; /* its top is 2^31 steps: the bound's own size, not a case */
         const double lo = p[i].min_inclusive ? p[i].min : nextafter(p[i].min, INFINITY);
         const double hi = p[i].max_inclusive ? p[i].max : nextafter(p[i].max, -INFINITY);
-        const double at[2] = {lo, hi};
-        for (int k = 0; k < 2; k++) {
+        const int real = p[i].type == TRIBO_TYPE_REAL;
+        const double at[4] = {lo, real ? nextafter(lo, hi) : fmin(lo + 1, hi),
+                              real ? nextafter(hi, lo) : fmax(hi - 1, lo), hi};
+        for (int k = 0; k < 4; k++) {
             tribo_separator_scene sc = scene_of("work_limit=2000");
             tribo_param_write(&sc, &p[i], at[k]);
             char what[96];

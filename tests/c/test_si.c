@@ -2,6 +2,7 @@
    refusal of every SI value out of range and of every set-up whose derived parameters leave
    the model's ranges (naming what made them), and the outputs as the model's in SI units. */
 #include <criterion/criterion.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -210,7 +211,8 @@ Test(si, a_derived_parameter_out_of_the_models_range_names_what_made_it)
 
 Test(si, tunables_and_inputs_convert_as_the_set_up_does)
 {
-    const tribo_si_scene s = si_of("charging_time=2e-3");
+    /* a = 0.1 mm: 10 k' a (9.9e5 N/m) inside the inputs' declared range */
+    const tribo_si_scene s = si_of("charging_time=2e-3 semi_major_axis=1e-4");
     const tribo_si_derived d = derived_of(&s);
     const char *name;
     double v;
@@ -438,4 +440,16 @@ Test(si, a_contact_lost_at_another_switch_is_left_and_the_run_stays_cheap)
     cr_expect_eq(st, TRIBO_ENDED, "status %d after %lld events: %s", st, stats.events, tribo_last_error(m));
     cr_expect_leq(stats.events, 8560, "%lld events", stats.events);
     tribo_free(m);
+}
+
+/* A breakdown limit too small for a double in the model's units (breakdown_density =
+   5e-324 C/m2, inside its range) is the smallest one the model takes, not none, and not 0,
+   which the model refuses. */
+Test(si, the_smallest_breakdown_density_is_the_smallest_limit)
+{
+    tribo_si_scene si = si_of("breakdown_density=5e-324");
+    tribo_si_derived d;
+    char err[512];
+    cr_assert_eq(tribo_si_derive(&si, &d, err, sizeof err), TRIBO_OK, "%s", err);
+    cr_expect_eq(d.scene.Sigma_bd, DBL_TRUE_MIN);
 }

@@ -19,7 +19,7 @@ import os
 import xml.etree.ElementTree as ET
 
 from fmi_calls import DISCARD, ERROR, OK, function_type
-from front_ends import front_end_of
+from front_ends import front_end_of, rigid_stick_valid
 
 INSTANTIATED = "Instantiated"
 CONFIGURATION = "Configuration Mode"
@@ -73,6 +73,8 @@ class Variable:
         return self.causality in ("parameter", "structuralParameter", "input")
 
     def valid(self, value):
+        if self.type == "Boolean":  # fmi2True or fmi2False (FMI 3.0's C bool is one of them)
+            return value in (0.0, 1.0)
         if value == math.inf and self.takes_infinity:
             return True
         if not math.isfinite(value) or not (self.min <= value <= self.max):
@@ -175,14 +177,33 @@ class Model:
             if self.lifecycle == STEP and \
                     not self.front.accepts_while_running(v.name, float(value), self.values):
                 return ERROR, None
+        # the rigid stick chosen explicitly with the fixed step or the centre's dashpot is
+        # refused at the set call that makes the conflict
+        trial, explicit = dict(self.values), set(self.explicit)
+        for v, value in zip(variables, values):
+            trial[v.name] = float(value)
+            explicit |= {v.name} & {"stick_model"}
+        self._follow(trial, explicit)
+        if "stick_model" in trial and not rigid_stick_valid(trial):
+            return ERROR, None
         return OK, list(zip(variables, values))
+
+    def _follow(self, values, explicit):
+        """stick_model, where not set explicitly, follows the integrator and the dashpot's
+        point: its start value, the rigid stick only where they allow it."""
+        if "stick_model" not in values or "stick_model" in explicit:
+            return
+        start = next(v.start for v in self.variables if v.name == "stick_model")
+        values["stick_model"] = start
+        if not rigid_stick_valid(values):
+            values["stick_model"] = 0.0
 
     def apply(self, assignments):
         for v, value in assignments:
-            # a Boolean is true for any non-zero value (FMI 2.0's is an int)
-            self.values[v.name] = float(value != 0) if v.type == "Boolean" else float(value)
-            if v.name in ("rtol", "atol"):
+            self.values[v.name] = float(value)
+            if v.name in ("rtol", "atol", "stick_model"):
                 self.explicit.add(v.name)
+        self._follow(self.values, self.explicit)
 
     # ---- the life cycle ------------------------------------------------------------------
 

@@ -85,6 +85,19 @@ class Chute:
 class Dimensionless(Chute):
     """The model's own variables."""
 
+    # the work limit's bound at the declared extremes that cost the most per unit of work
+    # (docs/work_limit.md), and the breakdown limit on 1e5 segments
+    work_bound_scenes = [
+        {"n_segments": 100000, "Sigma_bd": 5e-324}, {"n_segments": 100000, "Sigma_bd": 1e-6},
+        {"n_segments": 100000, "integrator": 2, "Sigma_bd": 5e-324},
+        {"n_segments": 100000, "integrator": 0, "Sigma_bd": 5e-324},
+        {"epsilon": 1e-3}, {"epsilon": 1.0, "stick_model": 1}, {"Gamma": 10.0},
+        {"Gamma": 1e-12}, {"mu": 100.0, "nu": 100.0}, {"rtol": 1e-14, "atol": 1e-20},
+        {"integrator": 0, "dt": 1e-9, "Gamma": 10.0}, {"Omega0": 100.0, "epsilon": 1e-3}]
+    # each in one doStep of this many of the model's units of time (the fixed step resolves
+    # it at dt = 1e-9)
+    work_bound_step = 1e4
+
     def scene_valid(self, values):
         """The core's combinations: the drop lies on the chute, and the rigid stick
         (docs/model.md section 3b) needs the event-driven integrator and the dashpot at
@@ -115,6 +128,13 @@ def model_ranges():
 
 class SI(Chute):
     """docs/model.md section 8."""
+
+    work_bound_scenes = [
+        {"epsilon": 1.0}, {"epsilon": 0.001}, {"gravity": 1e4},
+        {"youngs_modulus_particle": 1e3, "youngs_modulus_wall": 1e3},
+        {"n_segments": 100000, "breakdown_density": 5e-324}, {"n_segments": 100000, "epsilon": 1.0},
+        {"integrator": 2, "epsilon": 1.0}, {"rtol": 1e-14, "atol": 1e-20}]
+    work_bound_step = 1e6  # about a second: the drop and the contact after it
 
     def __init__(self):
         self.ranges = model_ranges()
@@ -155,8 +175,9 @@ class SI(Chute):
         return {"same": lambda: x, "length": lambda: x / u["a"], "time": lambda: x / u["t_star"],
                 "speed": lambda: x / u["velocity"], "rate": lambda: x * u["t_star"],
                 "density": lambda: abs(x) / u["sigma"], "force": lambda: x / u["force"],
-                # section 8b: a limit of 0 is none
-                "limit": lambda: x / u["sigma"] if x > 0.0 else math.inf}[how]()
+                # section 8b: a limit of 0 is none; one too small for a double in the
+                # model's units is the smallest double
+                "limit": lambda: max(x / u["sigma"], 5e-324) if x > 0.0 else math.inf}[how]()
 
     def in_range(self, model_name, x):
         lo, hi, bounded = self.ranges[model_name]
@@ -196,6 +217,13 @@ class SI(Chute):
 
 class Separator:
     """docs/model.md section 10: the grain fits the gap and enters between the plates."""
+
+    # (its work limit counts CVODE steps; the grain released at the start)
+    work_bound_scenes = [
+        {"released": 1, "rtol": 1e-12, "atol": 1e-20}, {"released": 1, "air_viscosity": 5e-324},
+        {"released": 1, "height": 100.0, "gravity": 1e-6, "rtol": 1e-12},
+        {"released": 1, "semi_major_axis": 1e-7, "air_viscosity": 1.0, "height": 100.0}]
+    work_bound_step = 1e3
 
     def scene_valid(self, values):
         x_limit = values["gap"] / 2 - values["semi_major_axis"]

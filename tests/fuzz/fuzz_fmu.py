@@ -390,6 +390,48 @@ class Fuzzer:
             self.calls += inst.calls
             inst.free()
 
+    # ---- the work limit's bound -----------------------------------------------------------
+
+    def work_bound(self):
+        """Each of the front end's costliest set-ups at the declared extremes (front_ends.py),
+        at the default work limit, in one doStep far too long to finish: it ends early, at a
+        time it reached, with every output a number, within the watchdog's timeout (a hang
+        guard: the limit bounds a doStep to about a second of CPU, which the C tests assert
+        in units of work; its CPU is recorded in the summary). Returns (scene, CPU) pairs."""
+        probe = Instance(self.fmu_dir, self.version)
+        front = Model(probe.md, self.fmu_dir, self.version, False).front
+        probe.free()
+        seen = []
+        for scene in front.work_bound_scenes:
+            inst = Instance(self.fmu_dir, self.version)
+            model = Model(inst.md, self.fmu_dir, self.version, False)
+            self.log = [f"work bound: {scene}"]
+            for name, value in scene.items():
+                v = next(x for x in model.variables if x.name == name)
+                status = self.call(f"set {name}", inst.set, v.ftype, [v.vr],
+                                   [inst.c_value(v.ftype, value)])
+                self.expect(f"set {name} = {value}", status, {OK})
+                model.apply([(v, value)])
+            self.expect("enterInitializationMode", self.call("enter", inst.enter_initialization), {OK})
+            self.expect("exitInitializationMode", self.call("exit", inst.exit_initialization), {OK})
+            model.lifecycle = STEP
+            h = front.work_bound_step * model.time_scale()
+            started = time.process_time()
+            status, reached, early, terminate = self.call(f"doStep(0, {h!r}) of {scene}",
+                                                          inst.do_step, 0.0, h)
+            cpu = time.process_time() - started
+            self.expect(f"doStep of {scene}", status, {OK, DISCARD})
+            if not (0.0 < reached < h or (status == OK and reached == h)):
+                raise Finding(f"{scene}: the step reached {reached!r} of {h!r}")
+            if not model.step_allowed(status, early, 0.0, h, reached, terminate):
+                raise Finding(f"{scene}: status {status}, reached {reached!r}, early {early}, "
+                              f"terminate {terminate}: {inst.errors()[-1:]}")
+            self.check_outputs(inst, model)
+            seen.append({"scene": scene, "cpu_seconds": round(cpu, 3), "status": status})
+            self.calls += inst.calls
+            inst.free()
+        return seen
+
     # ---- mutated states ----------------------------------------------------------------
 
     def base_states(self, count):
@@ -518,6 +560,9 @@ def main():
     parser.add_argument("--values-per-field", type=int, default=4)
     parser.add_argument("--timeout", type=float, default=20.0)
     parser.add_argument("--json")
+    parser.add_argument("--work-bound", action="store_true",
+                        help="also run the costliest set-ups at the declared extremes in one "
+                             "doStep each at the default work limit")
     args = parser.parse_args()
 
     fmu_dir, cleanup = unpacked(args.fmu)
@@ -531,6 +576,12 @@ def main():
             fuzzer.sequence(rng.randint(5, 2 * args.calls_per_sequence))
         except Finding as e:
             findings.append({"sequence": i, "finding": str(e), "calls": fuzzer.log[-int(os.environ.get("FUZZ_LOG", 15)):]})
+    bounded = []
+    if args.work_bound:
+        try:
+            bounded = fuzzer.work_bound()
+        except Finding as e:
+            findings.append({"work_bound": True, "finding": str(e), "calls": fuzzer.log[-5:]})
     mutated = 0
     for inst, model in fuzzer.base_states(args.mutation_bases):
         try:
@@ -547,11 +598,12 @@ def main():
                "exits": fuzzer.exits, "refusals_unchanged": fuzzer.refusals,
                "own_states_restored": fuzzer.restores,
                "own_states_refused_past_a_tiny_chute": fuzzer.own_states_refused_past_a_tiny_chute,
-               "findings": findings}
+               "work_bound_steps": bounded, "findings": findings}
     if args.json:
         with open(args.json, "w") as f:
             json.dump(summary, f, indent=1)
-    listed = ("core_failures", "slow_steps", "own_states_refused_past_a_tiny_chute")
+    listed = ("core_failures", "slow_steps", "own_states_refused_past_a_tiny_chute",
+              "work_bound_steps")
     print(json.dumps({k: (len(v) if k in listed else v)
                       for k, v in summary.items() if k != "findings"}))
     for f in findings[:10]:

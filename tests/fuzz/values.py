@@ -15,7 +15,7 @@ CHEAP = {"n_segments": [16, 64, 500, 2000], "dt": [1e-3, 8e-5, 0.1], "work_limit
          "chute_length": [math.inf, math.inf, 1e6, 2.0, 0.05, 5e-324],
          # the separator's: mostly a grain that fits the gap and enters between the plates (else
          # refused at initialization)
-         "gap": [0.1, 0.1, 0.02, 10.0, 1e-4], "x_entry": [0.0, 0.0, 0.01, -0.03, 3.0]}
+         "gap": [0.1, 0.1, 0.02, 10.0, 2e-3], "x_entry": [0.0, 0.0, 0.01, -0.03, 0.049]}
 # the expensive ends of those ranges, now and then; and of CVODE's tolerances, where one
 # step's charging sweep runs for seconds to minutes past the work limit (the core checks it
 # only between steps: its accounting of the work, not the FMU's contract)

@@ -17,7 +17,6 @@ import shlex
 import socket
 import subprocess
 import sys
-import time
 
 import pytest
 
@@ -222,12 +221,10 @@ def run_example(tmp_path, scheduler, line):
             path.parent.mkdir(parents=True, exist_ok=True)
             path.write_text("[sigma0.steel]\nPE = -1.5e-5\n")
     argv = shrink(sub, argv, scheduler)
-    started = time.perf_counter()
     done = subprocess.run([command("tribo"), sub, *argv], cwd=tmp_path, capture_output=True,
                           text=True, timeout=300)
     assert done.returncode == 0, f"tribo {sub} {' '.join(argv)}:\n{done.stderr[-3000:]}"
     assert "Traceback" not in done.stderr
-    assert time.perf_counter() - started < 300
 
 
 @pytest.mark.parametrize("sub, line", EXAMPLES, ids=[line for _, line in EXAMPLES])

@@ -1,7 +1,8 @@
 """The fuzz suite (tests/fuzz/fuzz_fmu.py) over the FMUs (the dimensionless pair, and fewer
 sequences on the SI pair and the separator's, whose runs are cheap): random call sequences checked
 against a model of the expected statuses, and mutated FMU states, with fixed seeds and a
-timeout per call. Once on the Release build and once on the sanitizer build (build-sanitize:
+timeout per call (a hang guard); on the Release build also the work limit's bound, one
+doStep of each of the costliest set-ups at the declared extremes (front_ends.py). Once on the Release build and once on the sanitizer build (build-sanitize:
 AddressSanitizer and UndefinedBehaviorSanitizer with float-cast-overflow; the FMU's library
 is loaded with the sanitizer runtime preloaded). About three minutes on 2 cores (longer runs: tests/fuzz/fuzz_fmu.py
 with more --sequences); each run's
@@ -65,6 +66,10 @@ def fuzz(run):
     command = [sys.executable, FUZZ, fmu, "--seed", str(seed), "--sequences", str(sequences),
                "--mutation-bases", str(bases), "--values-per-field", str(per_field),
                "--timeout", str(timeout), "--json", summary]
+    if build != SANITIZE_DIR:
+        # the work limit's bound at the declared extremes, 1e5 segments with the breakdown
+        # limit among them (in an optimised build: the bound is about CPU time there)
+        command.append("--work-bound")
     done = subprocess.run(command, env=env, capture_output=True, text=True)
     return run, summary, done
 
@@ -92,7 +97,9 @@ def test_fuzz_every_fmu_release_and_sanitized():
               f"{counts['exits']} exits from the chute; {counts['refusals_unchanged']} refused "
               f"calls changed nothing, {counts['own_states_restored']} own states restored, "
               f"{len(counts['own_states_refused_past_a_tiny_chute'])} own states refused past "
-              f"a chute of at most 1e-250)")
+              f"a chute of at most 1e-250; the costliest set-ups at the default work limit: "
+              f"{len(counts['work_bound_steps'])} doSteps, the slowest "
+              f"{max([w['cpu_seconds'] for w in counts['work_bound_steps']], default=0)} s of CPU)")
         if counts["findings"]:
             failures.append(f"{what}: " + json.dumps(counts["findings"][:3], indent=1))
     assert not failures, "\n".join(failures)

@@ -75,6 +75,8 @@ def test_fmi3_instance_name_may_be_freed_by_the_caller(fmu_dir):
         None, s.fmu.logMessage, s.fmu.intermediateUpdate)
     assert component
     ctypes.memset(name, ord("x"), len(name) - 1)
+    # the trace of the calls, which loggingOn alone does not turn on
+    assert s.fmu._functions["fmi3SetDebugLogging"](component, True, 0, None) == 0
     assert s.fmu._functions["fmi3Reset"](component) == 0
     assert any(m.startswith("fmi3Reset") for _, _, m in s.messages)
     s.fmu.fmi3FreeInstance(component)

@@ -10,6 +10,7 @@ exit velocity and charge-to-mass ratio) collects the grain on the side its charg
 gives."""
 
 import math
+import sys
 
 import pytest
 from fmpy.validation import validate_fmu
@@ -129,7 +130,7 @@ def test_bad_inputs_and_parameters_are_refused_naming_them(fmu_dir, version):
             ("u_entry", -1e4, "u_entry = -10000 is invalid: the valid range is -1000 <= u_entry "
                               "<= 1000"),
             ("v_entry", math.nan, "v_entry = nan is invalid"),
-            ("gap", 0.0, "gap = 0 is invalid: the valid range is 0.0001 <= gap <= 10"),
+            ("gap", 0.0, "gap = 0 is invalid: the valid range is 0.002 <= gap <= 10"),
             ("n_bins", 0, "n_bins = 0 is invalid: the valid range is an integer with 1 <= "
                           "n_bins <= 100000")]:
         assert status_of(s.set, **{name: value}) == ERROR, name
@@ -137,7 +138,7 @@ def test_bad_inputs_and_parameters_are_refused_naming_them(fmu_dir, version):
     # a refused value changes nothing
     assert s.get("charge_to_mass") == 0.0 and s.get("gap") == GAP
     # the combinations are checked when initialization ends: the grain must fit the gap
-    assert status_of(s.init, semi_major_axis=0.06) == ERROR
+    assert status_of(s.init, semi_major_axis=0.04, gap=0.05) == ERROR
     assert "semi_major_axis" in s.errors()[-1] and "gap" in s.errors()[-1]
     s.free()
     s = separator(fmu_dir, version)
@@ -152,12 +153,33 @@ def test_bad_inputs_and_parameters_are_refused_naming_them(fmu_dir, version):
     assert "voltage" in s.errors()[-1] and "fixed parameter" in s.errors()[-1]
 
 
-def test_fmi2_boolean_takes_any_nonzero_as_true(fmu_dir):
+def test_fmi2_boolean_is_fmi2true_or_fmi2false(fmu_dir):
     s = separator(fmu_dir, 2)
     s.init(**VACUUM)
-    s.fmu.setBoolean([s.variables["released"].valueReference], [2])
-    assert s.get("released") == 1
+    vr = s.variables["released"].valueReference
+    for value in (2, -1, 15):
+        assert status_of(s.fmu.setBoolean, [vr], [value]) == ERROR
+        assert s.errors()[-1] == (f"fmi2SetBoolean: released = {value} is not an fmi2Boolean: "
+                                  "it must be fmi2True (1) or fmi2False (0)")
+        assert s.get("released") == 0
+    s.fmu.setBoolean([vr], [1])
     assert s.step_to(STEP) and s.get("has_released") == 1
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_a_viscosity_at_its_smallest_gives_numbers_after_an_ok_step(fmu_dir, version):
+    """air_viscosity = 5e-324 Pa.s, inside its declared range: the relaxation time and the
+    Reynolds number overflow a double, and read as the largest one (the drag is Newton's)."""
+    s = separator(fmu_dir, version)
+    s.init(air_viscosity=5e-324)
+    assert s.get("relaxation_time") == sys.float_info.max
+    release(s, 0.0, u_entry=0.4, v_entry=-0.2)
+    status, _, _ = s.do_step(0.0, 0.01)
+    assert status == OK
+    assert s.get("reynolds") == sys.float_info.max
+    outputs = [v.name for v in s.md.modelVariables
+               if v.causality in ("output", "calculatedParameter")]
+    assert all(math.isfinite(x) for x in s.get_many(outputs).values())
 
 
 def flight(fmu_dir, version, q_per_m, voltage=VOLTAGE, name="separator"):

@@ -358,9 +358,10 @@ def test_derived_numbers_out_of_the_models_range_are_refused(fmu_dir, version, b
 
 @pytest.mark.parametrize("version", VERSIONS)
 def test_an_input_beyond_the_models_range_is_refused_while_running(fmu_dir, version):
-    # (without rolling resistance: pressed this hard, the grain comes to rest at once and its
-    # run ends there, docs/model.md section 3c)
-    s = Slave(fmu_dir(version, SI), version).init(mu_roll=0.0)
+    # a = 0.1 mm: 10 k' a (9.9e5 N/m) lies inside the declared range, +-4.9e6 N/m; without
+    # rolling resistance: pressed this hard, the grain comes to rest at once and its run ends
+    # there (docs/model.md section 3c)
+    s = Slave(fmu_dir(version, SI), version).init(semi_major_axis=1e-4, mu_roll=0.0)
     unit = s.get("k_prime") * s.get("semi_major_axis")  # k' a, N/m
     s.set(F_N_ext=-5 * unit)
     assert status_of(s.set, F_N_ext=-11 * unit) == ERROR
@@ -391,3 +392,42 @@ def test_a_state_of_the_si_fmu_restores_into_a_fresh_instance(fmu_dir, version):
     assert other.get_many(["x", "y", "charge_static", "charge_sliding"]) == expected
     s.free()
     other.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_stick_model_follows_the_integrator_and_the_dashpot_until_it_is_set(fmu_dir, version):
+    """The SI default, the rigid stick, needs CVODE and the contact point's dashpot: left
+    unset, stick_model follows integrator and damping_point (the fixed step or the centre's
+    dashpot alone is a valid set-up); set explicitly, the rigid stick with either is refused
+    at the set call that makes the conflict, in either order or in one call."""
+    s = Slave(fmu_dir(version, SI), version, name=SI)
+    integer = s.fmu.setInteger if version == 2 else s.fmu.setInt64
+    vr = {n: s.variables[n].valueReference for n in ("integrator", "damping_point", "stick_model")}
+    assert s.get("stick_model") == 1
+    s.set(integrator=0)
+    assert s.get("stick_model") == 0
+    s.set(integrator=1)
+    assert s.get("stick_model") == 1
+    s.set(damping_point=1)
+    assert s.get("stick_model") == 0
+    s.set(damping_point=0, stick_model=1)  # now set explicitly
+    assert status_of(s.set, integrator=0) == ERROR
+    assert s.errors()[-1].endswith(
+        "stick_model = 1 (rigid), set explicitly, does not go with integrator = 0 and "
+        "damping_point = 0: the rigid stick needs CVODE (integrator = 1 or 2) and the contact "
+        "point's dashpot (damping_point = 0); set stick_model = 0 (compliant), or leave it "
+        "unset to follow them")
+    assert s.get("integrator") == 1
+    s.fmu.reset()
+    assert status_of(integer, [vr["integrator"], vr["stick_model"]], [0, 1]) == ERROR
+    assert (s.get("integrator"), s.get("stick_model")) == (1, 1)
+    s.set(integrator=0)
+    assert status_of(s.set, stick_model=1) == ERROR
+    # a state keeps whether stick_model was set: restored, it still follows
+    state = s.get_state()
+    fresh = Slave(fmu_dir(version, SI), version, name=SI)
+    fresh.set_state(fresh.deserialize(s.serialize(state)))
+    fresh.set(integrator=2)
+    assert fresh.get("stick_model") == 1
+    fresh.init()
+    assert fresh.do_step(0.0, 1e-6)[0] == OK

@@ -12,7 +12,8 @@ COMPARED = ["X", "Y", "phi", "U", "V", "Omega", "Q_static", "energy"]
 
 
 def run_with_tolerance(fmu_dir, version, tolerance, **params):
-    s = Slave(fmu_dir(version), version, logging_on=True)
+    s = Slave(fmu_dir(version), version)
+    s.fmu.setDebugLogging(True, ["logFmiCalls"])  # the choice of tolerances is logged there
     s.set(**SMALL, **params)
     if version == 2:
         s.fmu.setupExperiment(tolerance=tolerance, startTime=0.0)
@@ -90,7 +91,8 @@ def test_an_explicit_rtol_survives_an_fmu_state(fmu_dir, version):
     a = Slave(fmu_dir(version), version)
     a.set(**SMALL, rtol=1e-7)
     data = a.serialize(a.get_state())
-    b = Slave(fmu_dir(version), version, logging_on=True)
+    b = Slave(fmu_dir(version), version)
+    b.fmu.setDebugLogging(True, ["logFmiCalls"])
     b.set_state(b.deserialize(data))
     if version == 2:
         b.fmu.setupExperiment(tolerance=1e-6, startTime=0.0)

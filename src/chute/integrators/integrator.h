@@ -96,17 +96,26 @@ typedef enum tribo_counter {
 void tribo_count(tribo_model *m, tribo_counter which, long long n);
 
 /* The work the scene's work_limit bounds: each kind of work weighs what it costs, so that a
-   unit is about the same CPU time whatever the inputs (measured over scenes where one kind
-   dominates and random scenes at the ends of the parameters' ranges: docs/fmu.md, "The work
-   limit"). The default limit then bounds an advance to under a second of CPU, and the
-   paper's fixed step in communication steps of 100 stays within it. */
-#define TRIBO_WORK_FIXED_STEP 0.6        /* an RK4 step or sub-step                          */
-#define TRIBO_WORK_CVODE_STEP 8.0        /* a CVODE step with its root finding, grazing
-                                            samples and interpolant                          */
+   unit is about the same CPU time whatever the inputs (fitted to the CPU of advances over
+   scenes where one kind dominates, the SI set-ups at the ends of their ranges and the
+   dimensionless ones on 1e5 segments: docs/work_limit.md). The default limit then bounds an
+   advance to under a second of CPU, and the paper's fixed step in communication steps of
+   100 stays within it. A CVODE step costs what CVODE spent on it: its own book-keeping, each
+   right-hand side it evaluated (more with BDF, whose Newton iteration solves a linear system
+   per evaluation), each derivative of its interpolant taken, and each look for a grazing
+   switch inside it. */
+#define TRIBO_WORK_FIXED_STEP 0.6        /* an RK4 step or sub-step, with its sample         */
+#define TRIBO_WORK_CVODE_STEP 2.0        /* a CVODE step's own book-keeping ...              */
+#define TRIBO_WORK_RHS_ADAMS 3.0         /* ... each right-hand side of it, with Adams ...   */
+#define TRIBO_WORK_RHS_BDF 6.0           /* ... or with BDF ...                              */
+#define TRIBO_WORK_INTERPOLANT 0.7       /* ... each derivative of its interpolant taken ... */
+#define TRIBO_WORK_GRAZING_LOOK 0.15     /* ... and each look at the switch functions inside */
 #define TRIBO_WORK_FLIGHT_PIECE 1.0      /* a piece of a closed-form flight (flight.h) ...   */
 #define TRIBO_WORK_FLIGHT_EVALUATION 0.2 /* ... and each look at its clearance              */
-#define TRIBO_WORK_PROBE 0.2             /* a look of the charging sweep at the contact     */
-#define TRIBO_WORK_SEGMENT_UPDATE 0.0013 /* charging one segment value                      */
+#define TRIBO_WORK_PROBE 0.25            /* a look of the charging sweep at the contact     */
+#define TRIBO_WORK_SAMPLE 0.1            /* a sample of the sweep, per charge model ...     */
+#define TRIBO_WORK_SEGMENT_UPDATE 0.0016 /* each segment value charged ...                 */
+#define TRIBO_WORK_SEGMENT_HELD 0.0019   /* ... and holds within the breakdown limit        */
 /* Book work of the advance under way (the units above). The charging services book their
    own. */
 void tribo_work(tribo_model *m, double units);

@@ -78,6 +78,7 @@ typedef struct cvode_integrator {
     SUNLinearSolver ls;
     phase phase;
     int replaying; /* re-taking saved steps: no counting, no charging */
+    double rhs_work; /* the work of a right-hand side (integrator.h): Adams's or BDF's */
 
     /* a flight is taken in closed form (flight.h), in pieces: the open piece's start, and
        how many pieces the flight has taken since its restart */
@@ -134,8 +135,10 @@ static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *user)
        do not steer the steps: here they are constant */
     for (int i = TRIBO_NMOTION; i < c->n; i++)
         dydt[i] = 0.0;
-    if (!c->replaying)
+    if (!c->replaying) {
         tribo_count(c->m, TRIBO_COUNT_RHS_EVALS, 1);
+        tribo_work(c->m, c->rhs_work);
+    }
     return 0;
 }
 
@@ -293,6 +296,7 @@ static tribo_status create(tribo_model *m, void **data)
     c->n = tribo_state_length(m);
     const tribo_scene *scene = tribo_get_scene(m);
     const int bdf = scene->integrator == TRIBO_INTEGRATOR_CVODE_BDF;
+    c->rhs_work = bdf ? TRIBO_WORK_RHS_BDF : TRIBO_WORK_RHS_ADAMS;
     /* one SUNDIALS context per instance: nothing is shared between instances */
     if (failed(c, SUNContext_Create(NULL, &c->ctx) == 0, "SUNContext_Create") ||
         failed(c, (c->y = N_VNew_Serial(c->n, c->ctx)) != NULL, "N_VNew_Serial") ||
@@ -371,7 +375,7 @@ static tribo_status fail_at(cvode_integrator *c, double t, const double *y, cons
 }
 
 static void capture_interpolant(cvode_integrator *c);
-static void find_grazing_switch(cvode_integrator *c, double t_start);
+static int find_grazing_switch(cvode_integrator *c, double t_start);
 
 /* The longest piece of a flight, in units of slow_step, and the most evaluations of the
    clearance a piece spends looking for the flight's end before it ends where it got to (so
@@ -434,11 +438,13 @@ static tribo_status take_step(cvode_integrator *c)
     if (c->ends_at_root)
         CVodeGetRootInfo(c->mem, c->roots);
     capture_interpolant(c);
-    if (!c->ends_at_root)
-        find_grazing_switch(c, tribo_committed(c->m)->t);
+    const int looks = c->ends_at_root ? 0 : find_grazing_switch(c, tribo_committed(c->m)->t);
     if (!c->replaying) {
+        /* (its right-hand sides are booked as CVODE evaluates them) */
         tribo_count(c->m, TRIBO_COUNT_STEPS, 1);
-        tribo_work(c->m, TRIBO_WORK_CVODE_STEP);
+        tribo_work(c->m, TRIBO_WORK_CVODE_STEP +
+                             TRIBO_WORK_INTERPOLANT * (double)(c->taylor_order + 1) +
+                             TRIBO_WORK_GRAZING_LOOK * (double)looks);
     }
     return TRIBO_OK;
 }
@@ -478,14 +484,16 @@ static void switch_functions(cvode_integrator *c, double t, double *g)
     tribo_switch_functions(c->dyn, &c->phase, y, g);
 }
 
-static void find_grazing_switch(cvode_integrator *c, double t_start)
+/* Returns how many times it looked at the switch functions. */
+static int find_grazing_switch(cvode_integrator *c, double t_start)
 {
     int dir[N_ROOTS];
     tribo_switch_directions(c->dyn, &c->phase, dir);
     double g[GRAZING_SAMPLES + 1][N_ROOTS], scale[N_ROOTS] = {0};
     const double h = c->t_end - t_start;
     if (!(h > 0.0))
-        return;
+        return 0;
+    int looks = GRAZING_SAMPLES + 1;
     for (int j = 0; j <= GRAZING_SAMPLES; j++) {
         switch_functions(c, t_start + h * j / GRAZING_SAMPLES, g[j]);
         for (int i = 0; i < N_ROOTS; i++)
@@ -502,7 +510,7 @@ static void find_grazing_switch(cvode_integrator *c, double t_start)
             continue;
         /* bisect between the last sample before the switch and the first past it */
         double a = t_start + h * (j - 1) / GRAZING_SAMPLES, b = t_start + h * j / GRAZING_SAMPLES;
-        for (int it = 0; it < 60 && b - a > 1e-15 * (1.0 + fabs(b)); it++) {
+        for (int it = 0; it < 60 && b - a > 1e-15 * (1.0 + fabs(b)); it++, looks++) {
             const double mid = 0.5 * (a + b);
             double gm[N_ROOTS];
             switch_functions(c, mid, gm);
@@ -517,8 +525,9 @@ static void find_grazing_switch(cvode_integrator *c, double t_start)
         c->ends_at_root = 1;
         for (int i = 0; i < N_ROOTS; i++)
             c->roots[i] = i == found ? dir[i] : 0;
-        return;
+        return looks;
     }
+    return looks;
 }
 
 /* Take CVODE's interpolant over the step just taken (see taylor). */
