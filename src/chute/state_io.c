@@ -392,6 +392,121 @@ static const char *bands_problem(const tribo_model *m, const tribo_charge_slot *
     return NULL;
 }
 
+/* The saved scene and inputs into l; with check, refuse a structural parameter that is not
+   the instance's own and any value out of its range. */
+static tribo_status read_scene(tribo_model *m, tribo_reader *r, loaded *l, int check)
+{
+    l->scene = m->scene;
+    size_t n_params;
+    const tribo_param_info *params = tribo_param_table(&n_params);
+    char msg[300];
+    for (size_t i = 0; i < n_params; i++) {
+        const tribo_param_info *p = &params[i];
+        const double v = tribo_read_double(r);
+        /* a structural parameter must be the instance's own (valid for its parts); the
+           others must be valid */
+        if (check && p->variability == TRIBO_PARAM_STRUCTURAL && v != tribo_param_read(&m->scene, p))
+            return tribo_fail(m, TRIBO_ERR_STATE,
+                              "state was saved with %s = %.17g, this instance has %s = %.17g",
+                              p->name, v, p->name, tribo_param_read(&m->scene, p));
+        if (check && p->variability != TRIBO_PARAM_STRUCTURAL &&
+            tribo_param_check(p, v, msg, sizeof msg) != TRIBO_OK)
+            return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: %s", msg);
+        tribo_param_write(&l->scene, p, v);
+    }
+    if (check && tribo_scene_check_combinations(&l->scene, msg, sizeof msg) != TRIBO_OK)
+        return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: %s", msg);
+    const tribo_param_info *inputs = tribo_input_table(NULL);
+    l->F_T = tribo_read_double(r);
+    l->F_N = tribo_read_double(r);
+    if (check && (tribo_param_check(&inputs[TRIBO_INPUT_F_T], l->F_T, msg, sizeof msg) != TRIBO_OK ||
+                  tribo_param_check(&inputs[TRIBO_INPUT_F_N], l->F_N, msg, sizeof msg) != TRIBO_OK))
+        return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: %s", msg);
+    return TRIBO_OK;
+}
+
+/* The output time, the work counters, the end flag and the committed point into l. */
+static tribo_status read_point(tribo_model *m, tribo_reader *r, loaded *l, int check)
+{
+    l->t_out = tribo_read_double(r);
+    long long counters[6];
+    for (int i = 0; i < 6; i++) {
+        counters[i] = tribo_read_int(r);
+        if (check && !(counters[i] >= 0 && (double)counters[i] <= COUNTER_MAX))
+            return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt (work counters)");
+    }
+    const tribo_stats stats = {counters[0], counters[1], counters[2],
+                               counters[3], counters[4], counters[5]};
+    l->stats = stats;
+    l->ended = read_small(r);
+    get_point(r, m, &l->committed);
+    const char *problem = check ? point_problem(m, &l->committed, l->t_out) : NULL;
+    if (!problem && check)
+        problem = end_problem(l);
+    if (problem)
+        return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt (%s of the committed point)", problem);
+    return TRIBO_OK;
+}
+
+/* Each selected model's segment charges (and its grain's bands) into l. */
+static tribo_status read_charges(tribo_model *m, tribo_reader *r, loaded *l, int check)
+{
+    const tribo_charging *c = &m->charging;
+    const size_t bytes = (size_t)c->n * sizeof(double);
+    for (int i = 0; i < c->n_models; i++) {
+        const tribo_charge_slot *slot = &c->slot[i];
+        if (!slot->segments)
+            continue;
+        if (!(l->segments[i] = malloc(bytes)) || (slot->bands && !(l->bands[i] = malloc(bytes))))
+            return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
+        tribo_read_bytes(r, l->segments[i], bytes);
+        l->sum[i] = read_compensated(r);
+        l->lost[i] = read_compensated(r);
+        const char *problem = check ? charges_problem(m, slot, &l->scene, l->segments[i], &l->sum[i],
+                                                      &l->lost[i], l->committed.charge_globals)
+                                    : NULL;
+        if (problem)
+            return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: the %s charges hold %s",
+                              slot->model->name, problem);
+        if (!slot->bands)
+            continue;
+        tribo_read_bytes(r, l->bands[i], bytes);
+        l->band_charge[i] = read_compensated(r);
+        l->band_lost[i] = read_compensated(r);
+    }
+    return TRIBO_OK;
+}
+
+/* The grain's band geometry into l; with check, the geometry and every model's bands on it. */
+static tribo_status read_band_geometry(tribo_model *m, tribo_reader *r, loaded *l, int check)
+{
+    const tribo_charging *c = &m->charging;
+    if (!(c->any_selected && c->keep_bands))
+        return TRIBO_OK;
+    const size_t bytes = (size_t)c->n * sizeof(double);
+    tribo_band_geometry *g = &l->geometry;
+    if (!(g->width = malloc(bytes)) || !(g->lo = malloc(bytes)) || !(g->hi = malloc(bytes)))
+        return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
+    tribo_read_bytes(r, g->width, bytes);
+    tribo_read_bytes(r, g->lo, bytes);
+    tribo_read_bytes(r, g->hi, bytes);
+    l->area = read_compensated(r);
+    const char *problem = check && !r->overrun ? geometry_problem(m, g, &l->area) : NULL;
+    if (problem)
+        return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: the grain's bands hold %s",
+                          problem);
+    for (int i = 0; i < c->n_models && check && !r->overrun; i++) {
+        if (!l->bands[i])
+            continue;
+        problem = bands_problem(m, &c->slot[i], &l->scene, l->bands[i], g, &l->band_charge[i],
+                                &l->band_lost[i]);
+        if (problem)
+            return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: the %s charges hold %s",
+                              c->slot[i].model->name, problem);
+    }
+    return TRIBO_OK;
+}
+
 /* Read a state; with check, refuse (with the reason) anything the instance could not have
    saved. Without, only its size is checked: for the instance's own state, put back. */
 static tribo_status read_state(tribo_model *m, const void *buffer, size_t size, loaded *l,
@@ -410,95 +525,11 @@ static tribo_status read_state(tribo_model *m, const void *buffer, size_t size, 
         return tribo_fail(m, TRIBO_ERR_STATE,
                           "state of %zu bytes does not fit this instance (%zu bytes expected)",
                           size, tribo_state_size(m));
-
-    l->scene = m->scene;
-    size_t n_params;
-    const tribo_param_info *params = tribo_param_table(&n_params);
-    char msg[300];
-    for (size_t i = 0; i < n_params; i++) {
-        const tribo_param_info *p = &params[i];
-        const double v = tribo_read_double(&r);
-        /* a structural parameter must be the instance's own (valid for its parts); the
-           others must be valid */
-        if (check && p->variability == TRIBO_PARAM_STRUCTURAL && v != tribo_param_read(&m->scene, p))
-            return tribo_fail(m, TRIBO_ERR_STATE,
-                              "state was saved with %s = %.17g, this instance has %s = %.17g",
-                              p->name, v, p->name, tribo_param_read(&m->scene, p));
-        if (check && p->variability != TRIBO_PARAM_STRUCTURAL &&
-            tribo_param_check(p, v, msg, sizeof msg) != TRIBO_OK)
-            return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: %s", msg);
-        tribo_param_write(&l->scene, p, v);
-    }
-    if (check && tribo_scene_check_combinations(&l->scene, msg, sizeof msg) != TRIBO_OK)
-        return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: %s", msg);
-    const tribo_param_info *inputs = tribo_input_table(NULL);
-    l->F_T = tribo_read_double(&r);
-    l->F_N = tribo_read_double(&r);
-    if (check && (tribo_param_check(&inputs[TRIBO_INPUT_F_T], l->F_T, msg, sizeof msg) != TRIBO_OK ||
-                  tribo_param_check(&inputs[TRIBO_INPUT_F_N], l->F_N, msg, sizeof msg) != TRIBO_OK))
-        return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: %s", msg);
-    l->t_out = tribo_read_double(&r);
-    long long counters[6];
-    for (int i = 0; i < 6; i++) {
-        counters[i] = tribo_read_int(&r);
-        if (check && !(counters[i] >= 0 && (double)counters[i] <= COUNTER_MAX))
-            return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt (work counters)");
-    }
-    const tribo_stats stats = {counters[0], counters[1], counters[2],
-                               counters[3], counters[4], counters[5]};
-    l->stats = stats;
-    l->ended = read_small(&r);
-    get_point(&r, m, &l->committed);
-    const char *problem = check ? point_problem(m, &l->committed, l->t_out) : NULL;
-    if (!problem && check)
-        problem = end_problem(l);
-    if (problem)
-        return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt (%s of the committed point)", problem);
-    const tribo_charging *c = &m->charging;
-    const size_t bytes = (size_t)c->n * sizeof(double);
-    for (int i = 0; i < c->n_models; i++) {
-        const tribo_charge_slot *slot = &c->slot[i];
-        if (!slot->segments)
-            continue;
-        if (!(l->segments[i] = malloc(bytes)) || (slot->bands && !(l->bands[i] = malloc(bytes))))
-            return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
-        tribo_read_bytes(&r, l->segments[i], bytes);
-        l->sum[i] = read_compensated(&r);
-        l->lost[i] = read_compensated(&r);
-        problem = check ? charges_problem(m, slot, &l->scene, l->segments[i], &l->sum[i],
-                                          &l->lost[i], l->committed.charge_globals)
-                        : NULL;
-        if (problem)
-            return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: the %s charges hold %s",
-                              slot->model->name, problem);
-        if (!slot->bands)
-            continue;
-        tribo_read_bytes(&r, l->bands[i], bytes);
-        l->band_charge[i] = read_compensated(&r);
-        l->band_lost[i] = read_compensated(&r);
-    }
-    if (c->any_selected && c->keep_bands) {
-        tribo_band_geometry *g = &l->geometry;
-        if (!(g->width = malloc(bytes)) || !(g->lo = malloc(bytes)) || !(g->hi = malloc(bytes)))
-            return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
-        tribo_read_bytes(&r, g->width, bytes);
-        tribo_read_bytes(&r, g->lo, bytes);
-        tribo_read_bytes(&r, g->hi, bytes);
-        l->area = read_compensated(&r);
-        problem = check && !r.overrun ? geometry_problem(m, g, &l->area) : NULL;
-        if (problem)
-            return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: the grain's bands hold %s",
-                              problem);
-        for (int i = 0; i < c->n_models && check && !r.overrun; i++) {
-            if (!l->bands[i])
-                continue;
-            problem = bands_problem(m, &c->slot[i], &l->scene, l->bands[i], g, &l->band_charge[i],
-                                    &l->band_lost[i]);
-            if (problem)
-                return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: the %s charges hold %s",
-                                  c->slot[i].model->name, problem);
-        }
-    }
+    tribo_status st;
+    if ((st = read_scene(m, &r, l, check)) != TRIBO_OK || (st = read_point(m, &r, l, check)) != TRIBO_OK ||
+        (st = read_charges(m, &r, l, check)) != TRIBO_OK ||
+        (st = read_band_geometry(m, &r, l, check)) != TRIBO_OK)
+        return st;
     l->integrator = r.p;
     return r.overrun ? tribo_fail(m, TRIBO_ERR_STATE, "state is truncated") : TRIBO_OK;
 }

@@ -306,22 +306,12 @@ static void charge_whole_piece(sweep *w, const probe_point *pts, const double *S
     w->cost += TRIBO_SWEEP_CELL_COST * tribo_min((double)s.count, w->c->n);
 }
 
-/* A piece in which each edge moves monotonically by at most w->reach segments and the
-   globals are quadratic to the tolerances: locate the boundary crossings, and charge the
-   parts between them, each with its fixed set of segments (§5a, §5b). pts: the piece's
-   points (PIECE_POINTS); S0, S1, S2: the globals at its start, middle and end. */
-static void charge_piece(sweep *w, const probe_point *pts, const double *S0, const double *S1,
-                         const double *S2)
+/* The boundary crossings of both edges within a piece, in time order: each crossing moves
+   one edge by one segment (step +1 or -1). Returns how many (at most MAX_CUTS). */
+static int locate_cuts(sweep *w, const probe_point *pts, cut *cuts)
 {
-    const int n_globals = w->c->n_globals;
-    if (w->instant) {
-        charge_whole_piece(w, pts, S0, S1, S2);
-        return;
-    }
     const probe_point *a = &pts[0], *b = &pts[PIECE_POINTS - 1];
-    cut cuts[MAX_CUTS];
     int n = 0;
-    double cell[2] = {floor(a->lo / w->seg), floor(a->hi / w->seg)};
     for (int edge = 0; edge < 2; edge++) {
         const double e0 = edge_of(a, edge), e1 = edge_of(b, edge);
         const int step = e1 > e0 ? 1 : -1;
@@ -340,16 +330,40 @@ static void charge_piece(sweep *w, const probe_point *pts, const double *S0, con
         }
     }
     sort_cuts(cuts, n);
+    return n;
+}
 
-    /* each global within the piece: the quadratic through its start, middle and end (one
-       that holds still, as Sigma_s without work, exactly still: its coefficients would be
-       rounding) */
-    double c1[TRIBO_CHARGE_MAX_GLOBALS], c2[TRIBO_CHARGE_MAX_GLOBALS];
+/* Each global within a piece as the quadratic S0 + u (c1 + u c2), u in [0, 1], through its
+   start, middle and end; one that holds still (as Sigma_s without work) exactly still:
+   its coefficients would be rounding. */
+static void globals_quadratic(int n_globals, const double *S0, const double *S1,
+                              const double *S2, double *c1, double *c2)
+{
     for (int g = 0; g < n_globals; g++) {
         const int flat = S0[g] == S1[g] && S1[g] == S2[g];
         c1[g] = flat ? 0.0 : -3.0 * S0[g] + 4.0 * S1[g] - S2[g];
         c2[g] = flat ? 0.0 : 2.0 * (S0[g] - 2.0 * S1[g] + S2[g]);
     }
+}
+
+/* A piece in which each edge moves monotonically by at most w->reach segments and the
+   globals are quadratic to the tolerances: locate the boundary crossings, and charge the
+   parts between them, each with its fixed set of segments (§5a, §5b). pts: the piece's
+   points (PIECE_POINTS); S0, S1, S2: the globals at its start, middle and end. */
+static void charge_piece(sweep *w, const probe_point *pts, const double *S0, const double *S1,
+                         const double *S2)
+{
+    const int n_globals = w->c->n_globals;
+    if (w->instant) {
+        charge_whole_piece(w, pts, S0, S1, S2);
+        return;
+    }
+    const probe_point *a = &pts[0], *b = &pts[PIECE_POINTS - 1];
+    cut cuts[MAX_CUTS];
+    const int n = locate_cuts(w, pts, cuts);
+    double cell[2] = {floor(a->lo / w->seg), floor(a->hi / w->seg)};
+    double c1[TRIBO_CHARGE_MAX_GLOBALS], c2[TRIBO_CHARGE_MAX_GLOBALS];
+    globals_quadratic(n_globals, S0, S1, S2, c1, c2);
     /* The segments from the lower edge's to the upper edge's, as the cuts so far have
        moved them: the run is located once (a division and a floor), then each cut steps it
        around the ring in integers; a contact as wide as the ring, or one far off the
