@@ -326,32 +326,78 @@ def structured_problem_runs(problem: Problem) -> Problem:
 
 def fit_structured(problem: Problem, evaluator: Evaluator) -> Fit:
     """The static model's fit (the module's text)."""
-    from scipy.interpolate import PchipInterpolator  # scipy only when a fit is made
-    from scipy.optimize import least_squares
-
-    runs_problem = structured_problem_runs(problem)
-    run_on = Evaluator(runs_problem, evaluator.image, evaluator.executor)
+    # the factors come from runs on uncharged grains with one impact each
+    run_on = Evaluator(structured_problem_runs(problem), evaluator.image, evaluator.executor)
     sigma_ref = problem.sign * min(1e-5, problem.sigma0_limit)
     fixed = {k: v for k, v in problem.fixed.items() if v is not None}
     warnings = weighing(problem)
-    t0_fixed = fixed.get("charging_time")
     if "charging_time" not in problem.fit:
-        t0 = 0.0 if t0_fixed is None else t0_fixed
-        rows = run_on.rows([dict(fixed, sigma0=sigma_ref, charging_time=t0)])
-        factors = factors_of(problem, rows, sigma_ref)[0]
-        x, result = fit_sigma0(problem, factors)
-        fit = finish(problem, {"sigma0": x}, result.jac, result.fun,
-                     structured_values(problem, problem.sign * 10 ** x, factors), warnings,
-                     {"charging_time": t0})
-        fit.evaluations, fit.runs = run_on.evaluations, run_on.runs
-        return fit
+        fit = fit_at_fixed_t0(problem, run_on, fixed, sigma_ref, warnings)
+    else:
+        fit = fit_with_t0(problem, run_on, fixed, sigma_ref, warnings)
+    fit.evaluations, fit.runs = run_on.evaluations, run_on.runs
+    return fit
+
+
+def factors_run(problem: Problem, run_on: Evaluator, fixed: dict, sigma_ref: float,
+                t0: float) -> np.ndarray:
+    """The factors of every point from its runs at this t0."""
+    rows = run_on.rows([dict(fixed, sigma0=sigma_ref, charging_time=t0)])
+    return factors_of(problem, rows, sigma_ref)[0]
+
+
+def fit_at_fixed_t0(problem: Problem, run_on: Evaluator, fixed: dict, sigma_ref: float,
+                    warnings: list) -> Fit:
+    """sigma0 alone, at the t0 given (0, complete transfer, where none is)."""
+    t0_fixed = fixed.get("charging_time")
+    t0 = 0.0 if t0_fixed is None else t0_fixed
+    factors = factors_run(problem, run_on, fixed, sigma_ref, t0)
+    x, result = fit_sigma0(problem, factors)
+    return finish(problem, {"sigma0": x}, result.jac, result.fun,
+                  structured_values(problem, problem.sign * 10 ** x, factors), warnings,
+                  {"charging_time": t0})
+
+
+def fit_with_t0(problem: Problem, run_on: Evaluator, fixed: dict, sigma_ref: float,
+                warnings: list) -> Fit:
+    """sigma0 and t0 on the factors interpolated in t0, or sigma0 alone where complete
+    transfer fits as well; with the t0 profile."""
     # t0 = 0 first: the contact periods and run times set the grid of t0
     rows0 = run_on.rows([dict(fixed, sigma0=sigma_ref, charging_time=0.0)])
     factors0 = factors_of(problem, rows0, sigma_ref)[0]
-    t_low, t_high = t0_range(rows0[0])
+    grid, nodes = t0_grid_runs(problem, run_on, fixed, sigma_ref, *t0_range(rows0[0]))
+    curves = FactorCurves(nodes)
+    profile = t0_profile(problem, factors0, grid, curves)
+    # sigma0 and t0 together on the interpolated factors, from the grid's best point
+    log_grid = np.log10(grid)
+    s_low, s_high = sigma0_bounds(problem)
+    bounds = ([s_low, log_grid[0]], [s_high, log_grid[-1]])
+    best = int(np.argmin(profile.sums))
+    start = [min(max(math.log10(abs(profile.rows[best + 1][1])), s_low + 1e-9), s_high - 1e-9),
+             log_grid[best]]
+    joint = fit_sigma0_t0(problem, curves, bounds, start)
+    ss = float(np.sum(joint.fun ** 2))
+    scatter = data_scatter(joint.fun, problem, 2)
+    floor = max(scatter, FLOOR_DECADES)
+    if profile.ss0 <= ss + COMPLETE_TRANSFER_CHI2 * floor ** 2:
+        fit = complete_transfer_fit(problem, profile, factors0, grid, floor, warnings)
+    else:
+        joint, exact_factors = refine_at_optimum(problem, run_on, fixed, sigma_ref, curves,
+                                                 bounds, joint)
+        exact = structured_values(problem, problem.sign * 10 ** joint.x[0], exact_factors)
+        fit = finish(problem, {"sigma0": joint.x[0], "charging_time": joint.x[1]}, joint.jac,
+                     residuals(exact, problem), exact, warnings, {},
+                     at_bounds=_at_bounds(joint.x, *bounds, ("sigma0", "charging_time")))
+    fit.profile = profile.rows
+    return fit
+
+
+def t0_grid_runs(problem: Problem, run_on: Evaluator, fixed: dict, sigma_ref: float,
+                 t_low: float, t_high: float) -> tuple[np.ndarray, list]:
+    """The profile's grid of t0, and per point the runs on its kind's grid ({log10 t0: log10
+    F}), all in one batch."""
     grid = t0_grid(t_low, t_high, GRID_PER_DECADE)
-    # each point on its kind's grid (a chute's grains are many and smooth the curve), all in
-    # one batch
+    # each point on its kind's grid (a chute's grains are many and smooth the curve)
     kinds = [p.kind for p in problem.points]
     own = {kind: t0_grid(t_low, t_high, per) for kind, per in GRIDS.items()}
     sets, subsets = [], []
@@ -361,96 +407,119 @@ def fit_structured(problem: Problem, evaluator: Evaluator) -> Fit:
             sets.append(dict(fixed, sigma0=sigma_ref, charging_time=float(t)))
             subsets.append(chosen)
     ran = run_on.rows(sets, subsets)
-    nodes = []  # per point: {log10 t0: log10 F}, the runs made
+    nodes = []
     for i, kind in enumerate(kinds):
         ts = [st["charging_time"] for st, rows in zip(sets, ran) if rows[i] is not None]
-        fs = [value_of(problem.points[i], rows[i]) / sigma_ref for rows in ran if rows[i] is not None]
+        fs = [value_of(problem.points[i], rows[i]) / sigma_ref
+              for rows in ran if rows[i] is not None]
         if min(fs) <= 0:
             raise FitError(f"{problem.points[i].label}: its charge per unit sigma0 is not positive "
                            f"at some t0: the static model's structure does not hold here")
         nodes.append(dict(zip(np.log10(ts), np.log10(fs))))
-    curves = []
+    return grid, nodes
 
-    def interpolate():
-        curves[:] = [PchipInterpolator(sorted(n), [n[k] for k in sorted(n)]) for n in nodes]
 
-    def factors_at(log_t0: float) -> np.ndarray:
-        return np.array([10 ** float(c(log_t0)) for c in curves])
+class FactorCurves:
+    """Each point's factor against t0: a monotone cubic of log10 F in log10 t0 through its
+    runs (`nodes`, per point {log10 t0: log10 F}), remade as runs are added."""
 
-    interpolate()
-    factors = np.array([factors_at(math.log10(t)) for t in grid])
-    # the profile: sigma0 fitted at each t0 of the grid (t0 = 0 first)
+    def __init__(self, nodes: list):
+        self.nodes = nodes
+        self.interpolate()
+
+    def interpolate(self) -> None:
+        from scipy.interpolate import PchipInterpolator  # scipy only when a fit is made
+        self.curves = [PchipInterpolator(sorted(n), [n[k] for k in sorted(n)]) for n in self.nodes]
+
+    def add(self, log_t0: float, factors: np.ndarray) -> None:
+        """The runs at log_t0 as nodes of the curves."""
+        for n, f in zip(self.nodes, factors):
+            n[float(log_t0)] = math.log10(f)
+        self.interpolate()
+
+    def __call__(self, log_t0: float) -> np.ndarray:
+        return np.array([10 ** float(c(log_t0)) for c in self.curves])
+
+
+@dataclass
+class Profile:
+    """sigma0 fitted at t0 = 0 (x0 = log10 |sigma0|, the least-squares result, its sum of
+    squares) and at each t0 of the grid (their sums of squares); `rows`: (t0, sigma0, RMS),
+    t0 = 0 first."""
+
+    x0: float
+    result0: object
+    ss0: float
+    sums: list
+    rows: list
+
+
+def t0_profile(problem: Problem, factors0: np.ndarray, grid: np.ndarray,
+               curves: FactorCurves) -> Profile:
+    """sigma0 fitted alone at t0 = 0 and at each t0 of the grid."""
+    factors = np.array([curves(math.log10(t)) for t in grid])
     x0, result0 = fit_sigma0(problem, factors0)
     ss0 = float(np.sum(result0.fun ** 2))
-    profile = [(0.0, problem.sign * 10 ** x0, rms(result0.fun, problem))]
+    rows = [(0.0, problem.sign * 10 ** x0, rms(result0.fun, problem))]
     sums = []
     for t, f in zip(grid, factors):
         x, r = fit_sigma0(problem, f, start=x0)
         sums.append(float(np.sum(r.fun ** 2)))
-        profile.append((float(t), problem.sign * 10 ** x, rms(r.fun, problem)))
-    # sigma0 and t0 together on the interpolated factors, from the grid's best point
-    log_grid = np.log10(grid)
-    s_low, s_high = sigma0_bounds(problem)
-    best = int(np.argmin(sums))
+        rows.append((float(t), problem.sign * 10 ** x, rms(r.fun, problem)))
+    return Profile(x0, result0, ss0, sums, rows)
+
+
+def fit_sigma0_t0(problem: Problem, curves: FactorCurves, bounds: tuple, start):
+    """sigma0 and t0 together on the interpolated factors: the least-squares result (x =
+    log10 |sigma0|, log10 t0)."""
+    from scipy.optimize import least_squares  # scipy only when a fit is made
 
     def fun(x):
-        return residuals(structured_values(problem, problem.sign * 10 ** x[0], factors_at(x[1])),
+        return residuals(structured_values(problem, problem.sign * 10 ** x[0], curves(x[1])),
                          problem)
 
-    start = [min(max(math.log10(abs(profile[best + 1][1])), s_low + 1e-9), s_high - 1e-9),
-             log_grid[best]]
-    joint = least_squares(fun, start, bounds=([s_low, log_grid[0]], [s_high, log_grid[-1]]),
-                          x_scale=[1.0, 1.0], method="trf")
-    ss = float(np.sum(joint.fun ** 2))
-    scatter = data_scatter(joint.fun, problem, 2)
-    floor = max(scatter, FLOOR_DECADES)
-    # complete transfer fits as well: t0 = 0, sigma0 alone
-    if ss0 <= ss + COMPLETE_TRANSFER_CHI2 * floor ** 2:
-        # the largest t0 of the grid up to which every t0 fits as well as t0 = 0
-        largest = None
-        for t, total in zip(grid, sums):
-            if total > ss0 + COMPLETE_TRANSFER_CHI2 * floor ** 2:
-                break
-            largest = float(t)
-        bound = f"; t0 up to {largest:.2g} s fits them as well" if largest else ""
-        warnings.append(f"charging_time is not determined: the data are those of complete "
-                        f"transfer (t0 = 0 fits them as well as any t0{bound}); written as 0, "
-                        f"instantaneous transfer")
-        fit = finish(problem, {"sigma0": x0}, result0.jac, result0.fun,
-                     structured_values(problem, problem.sign * 10 ** x0, factors0), warnings,
-                     {"charging_time": 0.0}, undetermined={"charging_time": True})
-        fit.profile = profile
-        fit.evaluations, fit.runs = run_on.evaluations, run_on.runs
-        return fit
-    # t0 > 0: the points run at the fitted t0; where the interpolation was off there (more
-    # than REFINED decades), the runs become nodes of the interpolants and the fit is made
-    # again, until it holds at its optimum
+    return least_squares(fun, start, bounds=bounds, x_scale=[1.0, 1.0], method="trf")
+
+
+def complete_transfer_fit(problem: Problem, profile: Profile, factors0: np.ndarray,
+                          grid: np.ndarray, floor: float, warnings: list) -> Fit:
+    """t0 = 0 and sigma0 alone, with the warning that names the largest t0 of the grid up
+    to which every t0 fits as well as t0 = 0."""
+    largest = None
+    for t, total in zip(grid, profile.sums):
+        if total > profile.ss0 + COMPLETE_TRANSFER_CHI2 * floor ** 2:
+            break
+        largest = float(t)
+    bound = f"; t0 up to {largest:.2g} s fits them as well" if largest else ""
+    warnings.append(f"charging_time is not determined: the data are those of complete "
+                    f"transfer (t0 = 0 fits them as well as any t0{bound}); written as 0, "
+                    f"instantaneous transfer")
+    x0 = profile.x0
+    return finish(problem, {"sigma0": x0}, profile.result0.jac, profile.result0.fun,
+                  structured_values(problem, problem.sign * 10 ** x0, factors0), warnings,
+                  {"charging_time": 0.0}, undetermined={"charging_time": True})
+
+
+def refine_at_optimum(problem: Problem, run_on: Evaluator, fixed: dict, sigma_ref: float,
+                      curves: FactorCurves, bounds: tuple, joint) -> tuple:
+    """The joint fit made exact at its optimum: (the fit, the factors run at its t0)."""
+    # the points run at the fitted t0; where the interpolation was off there (more than
+    # REFINED decades), the runs become nodes of the curves and the fit is made again,
+    # until it holds at its optimum
     for _ in range(REFINEMENTS):
-        rows_t = run_on.rows([dict(fixed, sigma0=sigma_ref, charging_time=10 ** joint.x[1])])
-        exact_factors = factors_of(problem, rows_t, sigma_ref)[0]
-        off = np.max(np.abs(np.log10(exact_factors) - np.log10(factors_at(joint.x[1]))))
+        exact_factors = factors_run(problem, run_on, fixed, sigma_ref, 10 ** joint.x[1])
+        off = np.max(np.abs(np.log10(exact_factors) - np.log10(curves(joint.x[1]))))
         if off <= REFINED:
             break
-        for n, f in zip(nodes, exact_factors):
-            n[float(joint.x[1])] = math.log10(f)
-        interpolate()
-        moved = least_squares(fun, joint.x, bounds=([s_low, log_grid[0]], [s_high, log_grid[-1]]),
-                              x_scale=[1.0, 1.0], method="trf")
+        curves.add(joint.x[1], exact_factors)
+        moved = fit_sigma0_t0(problem, curves, bounds, joint.x)
         if np.allclose(moved.x, joint.x, atol=REFINED):
             joint = moved
             break
         joint = moved
     else:  # the last fit's own runs
-        rows_t = run_on.rows([dict(fixed, sigma0=sigma_ref, charging_time=10 ** joint.x[1])])
-        exact_factors = factors_of(problem, rows_t, sigma_ref)[0]
-    exact = structured_values(problem, problem.sign * 10 ** joint.x[0], exact_factors)
-    fit = finish(problem, {"sigma0": joint.x[0], "charging_time": joint.x[1]}, joint.jac,
-                 residuals(exact, problem), exact, warnings, {},
-                 at_bounds=_at_bounds(joint.x, [s_low, log_grid[0]], [s_high, log_grid[-1]],
-                                      ("sigma0", "charging_time")))
-    fit.profile = profile
-    fit.evaluations, fit.runs = run_on.evaluations, run_on.runs
-    return fit
+        exact_factors = factors_run(problem, run_on, fixed, sigma_ref, 10 ** joint.x[1])
+    return joint, exact_factors
 
 
 def _at_bounds(x, low, high, names) -> dict:
@@ -462,13 +531,42 @@ def _at_bounds(x, low, high, names) -> dict:
 
 def fit_runs(problem: Problem, evaluator: Evaluator) -> Fit:
     """The fit on runs at every step (a charge model without the static one's structure)."""
-    from scipy.optimize import least_squares  # scipy only when a fit is made
-
     fixed = {k: v for k, v in problem.fixed.items() if v is not None}
-    s_low, s_high = sigma0_bounds(problem)
     names = list(problem.fit)
     warnings = weighing(problem)
-    # the first runs: at the fixed values and t0 = 0 (where t0 is fitted), for the range of t0
+    bounds, start = bounds_and_start(problem, evaluator, fixed, names)
+    on_runs = RunsFit(problem, evaluator, fixed, bounds, start)
+    result, jacobian = on_runs.solve(names, {})
+    scatter = max(data_scatter(result.fun, problem, len(names)), FLOOR_DECADES)
+    fitted = dict(zip(names, result.x))
+    model = on_runs.values([result.x], names, {})[0]
+    undetermined = {}
+    complete = ("charging_time" in names
+                and complete_transfer_on_runs(problem, on_runs, names, result, scatter))
+    if complete:
+        warnings.append("charging_time is not determined: the data are those of complete "
+                        "transfer (t0 = 0 fits them as well as any t0); written as 0, "
+                        "instantaneous transfer")
+        names, result, jacobian = complete
+        fitted = dict(zip(names, result.x))
+        model = on_runs.values([result.x], names, {"charging_time": 0.0})[0]
+        undetermined["charging_time"] = True
+        fixed = dict(fixed, charging_time=0.0)
+    warnings += capped_warnings(problem, evaluator, fixed, fitted)
+    fit = finish(problem, fitted, jacobian, result.fun, model, warnings,
+                 {k: v for k, v in fixed.items() if k in PARAMETERS and k not in fitted},
+                 undetermined=undetermined,
+                 at_bounds=_at_bounds(result.x, [bounds[n][0] for n in names],
+                                      [bounds[n][1] for n in names], names))
+    fit.evaluations, fit.runs = evaluator.evaluations, evaluator.runs
+    return fit
+
+
+def bounds_and_start(problem: Problem, evaluator: Evaluator, fixed: dict,
+                     names: list) -> tuple[dict, dict]:
+    """Each parameter's bounds and starting point in decades; t0's range from first runs at
+    the fixed values (and t0 = 0 where t0 is fitted)."""
+    s_low, s_high = sigma0_bounds(problem)
     first = dict(fixed, sigma0=problem.sign * min(1e-5, problem.sigma0_limit))
     if "charging_time" in names:
         first["charging_time"] = 0.0
@@ -481,28 +579,46 @@ def fit_runs(problem: Problem, evaluator: Evaluator) -> Fit:
     for name, value in fixed.items():
         if name in bounds and name != "sigma0" and value and name in names:
             start[name] = math.log10(value)
-    cache = {}
+    return bounds, start
 
-    def sets_of(xs, free):
-        return [dict(fixed, **{n: (problem.sign if n == "sigma0" else 1.0) * 10 ** v
-                               for n, v in zip(free, x)}) for x in xs]
 
-    def values(xs, free, extra):
+class RunsFit:
+    """Least squares on runs: the model's values at sets of the free parameters (in decades,
+    the others fixed), each set run once, and the Jacobian's forward differences in one
+    batch per step."""
+
+    def __init__(self, problem: Problem, evaluator: Evaluator, fixed: dict, bounds: dict,
+                 start: dict):
+        self.problem, self.evaluator, self.fixed = problem, evaluator, fixed
+        self.bounds, self.start = bounds, start
+        self.cache = {}
+
+    def sets_of(self, xs, free) -> list[dict]:
+        return [dict(self.fixed, **{n: (self.problem.sign if n == "sigma0" else 1.0) * 10 ** v
+                                    for n, v in zip(free, x)}) for x in xs]
+
+    def values(self, xs, free, extra: dict) -> list:
+        """The model's values at each x (the `free` parameters' decades, `extra` set)."""
         keys = [tuple(np.round(x, 12)) + tuple(sorted(extra.items())) for x in xs]
-        todo = [(k, x) for k, x in zip(keys, xs) if k not in cache]
+        todo = [(k, x) for k, x in zip(keys, xs) if k not in self.cache]
         if todo:
-            sets = [dict(s, **extra) for s in sets_of([x for _, x in todo], free)]
-            for (k, _), v in zip(todo, evaluator.values(sets)):
-                cache[k] = v
-        return [cache[k] for k in keys]
+            sets = [dict(s, **extra) for s in self.sets_of([x for _, x in todo], free)]
+            for (k, _), v in zip(todo, self.evaluator.values(sets)):
+                self.cache[k] = v
+        return [self.cache[k] for k in keys]
 
-    def solve(free, extra):
-        lo = [bounds[n][0] for n in free]
-        hi = [bounds[n][1] for n in free]
-        x0 = [min(max(start[n], l + 1e-9), h - 1e-9) for n, l, h in zip(free, lo, hi)]
+    def solve(self, free: list, extra: dict) -> tuple:
+        """The fit of the `free` parameters (`extra` set): (the least-squares result, the
+        Jacobian at its optimum)."""
+        from scipy.optimize import least_squares  # scipy only when a fit is made
+
+        problem = self.problem
+        lo = [self.bounds[n][0] for n in free]
+        hi = [self.bounds[n][1] for n in free]
+        x0 = [min(max(self.start[n], l + 1e-9), h - 1e-9) for n, l, h in zip(free, lo, hi)]
 
         def fun(x):
-            return residuals(values([np.asarray(x)], free, extra)[0], problem)
+            return residuals(self.values([np.asarray(x)], free, extra)[0], problem)
 
         def jac(x):
             x = np.asarray(x)
@@ -510,7 +626,7 @@ def fit_runs(problem: Problem, evaluator: Evaluator) -> Fit:
             for j in range(len(x)):
                 h = JACOBIAN_STEP if x[j] + JACOBIAN_STEP <= hi[j] else -JACOBIAN_STEP
                 steps.append((j, h, x + np.eye(len(x))[j] * h))
-            base, *moved = values([x] + [m for _, _, m in steps], free, extra)
+            base, *moved = self.values([x] + [m for _, _, m in steps], free, extra)
             r0 = residuals(base, problem)
             return np.column_stack([(residuals(v, problem) - r0) / h
                                     for (j, h, _), v in zip(steps, moved)])
@@ -519,40 +635,31 @@ def fit_runs(problem: Problem, evaluator: Evaluator) -> Fit:
                                max_nfev=50)
         return result, jac(result.x)
 
-    result, jacobian = solve(names, {})
-    scatter = max(data_scatter(result.fun, problem, len(names)), FLOOR_DECADES)
-    fitted = dict(zip(names, result.x))
-    model = values([result.x], names, {})[0]
-    undetermined = {}
-    if "charging_time" in names:  # does complete transfer fit as well?
-        rest = [n for n in names if n != "charging_time"]
-        result0, jac0 = solve(rest, {"charging_time": 0.0})
-        if np.sum(result0.fun ** 2) <= np.sum(result.fun ** 2) + COMPLETE_TRANSFER_CHI2 * scatter ** 2:
-            warnings.append("charging_time is not determined: the data are those of complete "
-                            "transfer (t0 = 0 fits them as well as any t0); written as 0, "
-                            "instantaneous transfer")
-            result, jacobian, names = result0, jac0, rest
-            fitted = dict(zip(names, result.x))
-            model = values([result.x], names, {"charging_time": 0.0})[0]
-            undetermined["charging_time"] = True
-            fixed = dict(fixed, charging_time=0.0)
-    # where the model's charge stands at the breakdown limit, no parameter acts on it
+
+def complete_transfer_on_runs(problem: Problem, on_runs: RunsFit, names: list, result,
+                              scatter: float):
+    """The fit with t0 = 0 where it fits as well as the best t0: (the names fitted, the
+    result, its Jacobian); else None."""
+    rest = [n for n in names if n != "charging_time"]
+    result0, jac0 = on_runs.solve(rest, {"charging_time": 0.0})
+    if np.sum(result0.fun ** 2) <= np.sum(result.fun ** 2) + COMPLETE_TRANSFER_CHI2 * scatter ** 2:
+        return rest, result0, jac0
+    return None
+
+
+def capped_warnings(problem: Problem, evaluator: Evaluator, fixed: dict, fitted: dict) -> list:
+    """The warning where the model's charge stands at the breakdown limit at some points:
+    there no parameter acts on it."""
     final = dict(fixed, **{n: (problem.sign if n == "sigma0" else 1.0) * 10 ** v
                            for n, v in fitted.items()})
     capped = [p.label for p, rows in zip(problem.points, evaluator.rows([final])[0])
               if any(r["capped"] > 0 for r in rows)]
-    if capped:
-        warnings.append(f"at {len(capped)} of {len(problem.points)} points (e.g. {capped[0]}) "
-                        f"the model's charge stands at the air-breakdown limit "
-                        f"(breakdown_density, docs/model.md section 8b): there no charging "
-                        f"parameter acts on it")
-    fit = finish(problem, fitted, jacobian, result.fun, model, warnings,
-                 {k: v for k, v in fixed.items() if k in PARAMETERS and k not in fitted},
-                 undetermined=undetermined,
-                 at_bounds=_at_bounds(result.x, [bounds[n][0] for n in names],
-                                      [bounds[n][1] for n in names], names))
-    fit.evaluations, fit.runs = evaluator.evaluations, evaluator.runs
-    return fit
+    if not capped:
+        return []
+    return [f"at {len(capped)} of {len(problem.points)} points (e.g. {capped[0]}) "
+            f"the model's charge stands at the air-breakdown limit "
+            f"(breakdown_density, docs/model.md section 8b): there no charging "
+            f"parameter acts on it"]
 
 
 # ---- what the data determine ----------------------------------------------------------------
