@@ -38,7 +38,7 @@ def trajectory(out):
     ax1.plot(t_ms, 1e3 * df["y"], lw=0.8, label="centre's height y")
     ax1.set_ylabel("height above the chute [mm]")
     ax2.plot(t_ms, 1e6 * df["charge_to_mass_sliding"], label="sliding model")
-    ax2.plot(t_ms, 1e6 * df["charge_to_mass_static"] * 1e3, label="static model x 1000")
+    ax2.plot(t_ms, 1e6 * df["charge_to_mass_static"], label="static model")
     ax2.set_ylabel("q/m [µC/kg]")
     ax2.set_xlabel("time [ms]")
     for ax in (ax1, ax2):

@@ -1,0 +1,101 @@
+/* The core's cost of a population: settings lines of the SI front end (one grain each, as
+   bench/population_feed.py writes a population's feed) run through the C API to the exit
+   (or rest, or the horizon), each grain's CPU time measured alone. It uses only the SI front
+   end's settings text and the model's advance, so that it compiles against earlier cores
+   too (scripts/bench_population_core.sh --before REV): what differs is the core and its
+   defaults. Prints the total, the median and the slowest grain's CPU, and the grains that
+   ended in an error; exits 3 where one did (the population tests of tests/stability).
+   Usage: tribo_population_core FEED [EXTRA_SETTINGS] [HORIZON_S=5] */
+#include "si.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static double cpu_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int by_value(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* One grain: its CPU seconds, or a negative number where its set-up is refused. */
+static double run_grain(const char *line, const char *extra, double horizon, int *failed)
+{
+    char err[1024];
+    tribo_si_scene si;
+    tribo_si_scene_defaults(&si);
+    tribo_si_derived d;
+    if (tribo_si_scene_apply(&si, line, err, sizeof err) != TRIBO_OK ||
+        tribo_si_scene_apply(&si, extra, err, sizeof err) != TRIBO_OK ||
+        tribo_si_derive(&si, &d, err, sizeof err) != TRIBO_OK) {
+        fprintf(stderr, "refused: %s\n", err);
+        return -1.0;
+    }
+    const double start = cpu_seconds();
+    tribo_model *m = tribo_create(&d.scene, err, sizeof err);
+    if (!m) {
+        fprintf(stderr, "refused: %s\n", err);
+        return -1.0;
+    }
+    const tribo_status st = tribo_advance_fully(m, horizon / d.t_star);
+    const double spent = cpu_seconds() - start;
+    *failed = st != TRIBO_OK && st != TRIBO_ENDED;
+    tribo_free(m);
+    return spent;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        fprintf(stderr, "usage: %s FEED [EXTRA_SETTINGS] [HORIZON_S]\n", argv[0]);
+        return 2;
+    }
+    const char *extra = argc > 2 ? argv[2] : "";
+    const double horizon = argc > 3 ? atof(argv[3]) : 5.0;
+    FILE *f = fopen(argv[1], "r");
+    if (!f) {
+        fprintf(stderr, "cannot read %s\n", argv[1]);
+        return 2;
+    }
+    static char line[1 << 14];
+    double *cost = NULL;
+    int n = 0, capacity = 0, failed = 0;
+    while (fgets(line, sizeof line, f)) {
+        int fail = 0;
+        const double c = run_grain(line, extra, horizon, &fail);
+        if (c < 0.0) {
+            fclose(f);
+            free(cost);
+            return 1;
+        }
+        if (n == capacity) {
+            capacity = capacity ? 2 * capacity : 1024;
+            double *grown = realloc(cost, (size_t)capacity * sizeof *cost);
+            if (!grown) {
+                fclose(f);
+                free(cost);
+                return 1;
+            }
+            cost = grown;
+        }
+        cost[n++] = c;
+        failed += fail;
+    }
+    fclose(f);
+    double total = 0.0;
+    for (int i = 0; i < n; i++)
+        total += cost[i];
+    qsort(cost, (size_t)n, sizeof *cost, by_value);
+    printf("grains %d  CPU %.2f s  median %.2f ms  slowest %.3f s  failed %d\n", n, total,
+           n ? 1e3 * cost[n / 2] : 0.0, n ? cost[n - 1] : 0.0, failed);
+    free(cost);
+    return failed ? 3 : 0;
+}

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# The core's cost of a population (bench/population_core.c; docs/populations.md, "The core's
+# cost"): the particles `tribo population -n N --seed 1` draws, run through the SI C API one
+# by one, each grain's CPU measured alone: the reference feed, the same at mu = 0.5, and
+# discs (epsilon = 1) at mu = 0.5. With --before REV the benchmark is also compiled against
+# revision REV's core (built in a temporary folder), at that revision's defaults, and the two
+# run in turn, ROUNDS times, so that one run of this command gives the before and the after
+# under the same load. Usage: scripts/bench_population_core.sh [--before REV] [N=1000] [ROUNDS=1]
+set -euo pipefail
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+before=""
+if [ "${1:-}" = --before ]; then
+  before=${2:?"--before needs a revision"}
+  shift 2
+fi
+n=${1:-1000}
+rounds=${2:-1}
+"$ROOT/scripts/setup.sh" >/dev/null
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+if [ -n "$before" ]; then
+  mkdir "$tmp/src"
+  git -C "$ROOT" archive "$before" | tar -x -C "$tmp/src"
+  cmake -S "$tmp/src" -B "$tmp/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+        -DTRIBO_BUILD_FMU=OFF -DTRIBO_BUILD_TESTS=OFF >/dev/null
+  cmake --build "$tmp/build" --target tribo_core >/dev/null
+  # every folder of that revision's src/ on the include path (its files include by name)
+  includes=()
+  while IFS= read -r folder; do includes+=(-I"$folder"); done < <(find "$tmp/src/src" -type d)
+  cc -O3 -DNDEBUG -std=c11 -D_DEFAULT_SOURCE "${includes[@]}" "$ROOT/bench/population_core.c" \
+     "$tmp/build/libtribo_core.a" -lsundials_cvode -lsundials_nvecserial -lm -o "$tmp/before"
+fi
+declare -A feeds=([reference]="" [mu0.5]="mu=0.5" [discs-mu0.5]="epsilon=1 mu=0.5")
+for name in reference mu0.5 discs-mu0.5; do
+  # shellcheck disable=SC2086
+  "$ROOT/.venv/bin/python" "$ROOT/bench/population_feed.py" "$n" 1 ${feeds[$name]} > "$tmp/$name.txt"
+done
+after="$ROOT/build/tribo_population_core"
+label="$(git -C "$ROOT" rev-parse --short HEAD)$(git -C "$ROOT" diff --quiet HEAD -- src || echo ', modified')"
+for ((r = 1; r <= rounds; r++)); do
+  for name in reference mu0.5 discs-mu0.5; do
+    if [ -n "$before" ]; then
+      echo "$name, before ($before): $("$tmp/before" "$tmp/$name.txt")"
+    fi
+    echo "$name, this tree ($label): $("$after" "$tmp/$name.txt")"
+  done
+done
