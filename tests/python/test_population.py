@@ -257,8 +257,8 @@ def test_grains_that_came_to_rest_are_counted_apart_and_said_so(tmp_path, capsys
     assert tribo_command(["population", "-n", "3", "--seed", "1", "--tilt-deg", "0.5",
                           "--t-end", "5", "--out", str(out), "--serial", "--no-progress"]) == 0
     said = capsys.readouterr().out
-    assert ("population: 3 grains: 0 left the chute, 3 came to rest on it (100 % of the mass), "
-            "0 were still on it at the horizon of 5 s (0 % of the mass)") in said
+    assert ("population: 3 grains: 0 left the chute, 3 at rest on it (100 % of the mass), "
+            "0 still on it at the horizon of 5 s (0 % of the mass)") in said
     rows = tribo.load_results(str(out))
     assert (rows["exited"] == 0).all() and (rows["end_reason"] == 3).all()
     assert (rows["at_rest"] == 1).all()

@@ -31,7 +31,9 @@ import os
 from ..batch.specs import check_count
 from ..fmu.names import format_number
 from ..line.grain import LineError, check_separator, load_images, run_line_grain
-from ..line.mixture import DEFAULT_FEED_WIDTH, DEFAULT_PAIR, Line, LineJob, check_line, line_specs
+from ..line.mixture import (DEFAULT_FEED_WIDTH, DEFAULT_PAIR, Line, LineJob, check_line,
+                            line_specs, stayed_text)
+from ..materials import material
 from ..populations.feed import DEFAULT_CHUTE
 from .common import (INPUT_ERRORS, add_job_options, add_materials_option, add_out_option, fail,
                      name_value, one_line, run_job)
@@ -128,7 +130,12 @@ def run_grain(args) -> int:
                     [args.voltage], [args.size])
     r = run_line_grain(images, specs[0]).row
     if not r["exited"]:
-        print(f"line: the grain did not leave the chute within {format_number(args.t_end)} s")
+        why = (f"came to rest on the chute at {r['rest_time']:.6g} s" if r["at_rest"] == 1
+               else f"was still on the chute at the horizon of {format_number(args.t_end)} s"
+               if r["end_reason"] == 0
+               else f"did not leave the chute within {format_number(args.t_end)} s")
+        print(f"line: the grain {why}: it does not enter the separator (q/m = "
+              f"{r['charge_to_mass']:.4g} C/kg, {args.charge_model} model)")
         return 0
     print(f"line: {line.particles[0]} on {args.wall}, size {format_number(args.size)} m: left "
           f"the chute at {r['time_end']:.6g} s, u = {r['u']:.4g} m/s, v = {r['v']:.4g} m/s, "
@@ -169,7 +176,10 @@ def told(job, report) -> list[str]:
     if report.table is not None:
         cols = ["voltage"] + [c for c in report.table.columns
                               if c.startswith(("grade_", "recovery_"))]
+        materials = [material(p, "particle").key for p in job.line.particles]
         lines += [report.table[cols].to_string(index=False, float_format=lambda v: f"{v:.4g}"),
+                  f"line: {stayed_text(report.table.iloc[0], materials, job.t_end)}: these do "
+                  f"not enter the separator (not collected: counted in the recovery's fed mass)",
                   f"line: wrote {', '.join(report.files)}"]
     return lines
 

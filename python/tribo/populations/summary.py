@@ -197,6 +197,6 @@ def ends_text(row, horizon: float | None = None) -> str:
         stayed = int(row["n"]) - int(n_exited)
         return text + f", {stayed} did not{share('stayed')}"
     at = f" of {horizon:g} s" if horizon is not None else ""
-    return (text + f", {int(row['n_at_rest'])} came to rest on it{share('at_rest_fraction')}, "
-            f"{int(row['n_at_horizon'])} were still on it at the horizon{at}"
+    return (text + f", {int(row['n_at_rest'])} at rest on it{share('at_rest_fraction')}, "
+            f"{int(row['n_at_horizon'])} still on it at the horizon{at}"
             f"{share('at_horizon_fraction')}")
