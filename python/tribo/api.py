@@ -87,8 +87,11 @@ def run_si(particle: str | None = None, wall: str | None = None, *, t_end: float
            fmu: str | int | None = None, materials=None, **parameters) -> pd.DataFrame:
     """Run one real particle through the SI FMU (docs/model.md section 8) and return its
     outputs in SI units as a DataFrame: "time" in s, then one column per output, a row
-    every `record_interval` seconds until t_end or the chute's exit (the last row is the
-    exit: the FMU ends the run there). record_interval=None: one row, the end, at the
+    every `record_interval` seconds until the run ends: at the chute's exit (`exited`), where
+    the grain comes to rest on the chute (`at_rest`, at `rest_time`; docs/model.md section
+    3c), or at t_end; the FMU ends the run at the first two, and the last row is that end
+    (`end_reason` says which: 1 chute_exit, 3 at_rest, 0 t_end reached on the chute).
+    record_interval=None: one row, the end, at the
     cost of the model's run alone (a calibration's or a sweep's way: the numbers of the
     last row of any record interval); each recorded row costs the FMU a communication
     point (docs/reference_case.md, "The package's cost").
@@ -97,7 +100,7 @@ def run_si(particle: str | None = None, wall: str | None = None, *, t_end: float
     constants, density and sigma0 become start values; keyword arguments are SI parameters
     by the package's names (size=1e-3: the long diameter 2a in m; tilt_deg=30;
     chute_length=0.3, ...) and win. Without materials, parameters not given keep the SI
-    FMU's start values (the reference case, on an endless chute). fmu: a path, or 2 / 3
+    FMU's start values (the reference case: chute_length 0.3 m, mu_roll 0.01). fmu: a path, or 2 / 3
     for the build's SI FMU (default 3); materials: a materials file the pair's values come
     from (tribo.materials)."""
     if (particle is None) != (wall is None):
