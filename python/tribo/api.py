@@ -220,7 +220,9 @@ def line_grain(particle: str = "PE", wall: str = "steel", *, voltage: float = 30
     the separator (separator: its settings, gap, height, n_bins, ...; the voltage U in V;
     x_entry the entry across the gap, m) from the chute's exit state. The chute with one
     charge model ("static" or "sliding"). Returns the chute's results (exited, exit_time,
-    u, v, ...), charge_to_mass (C/kg), mass (kg), the landing (landed, electrode, bin,
+    end_reason, at_rest, rest_time: a grain that came to rest on the chute or was still on
+    it at t_end never enters the separator and lands nowhere; u, v, charged_area, ...),
+    charge_to_mass (C/kg), mass (kg), the landing (landed, electrode, bin,
     x_end, z_end, flight_time, time_land) and the CPU times (chute_cpu_s, cpu_s).
     materials: a materials file the pair's values come from (tribo.materials)."""
     line = Line((particle,), wall, distributions={"epsilon": epsilon, "size": size,

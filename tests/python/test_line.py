@@ -257,3 +257,23 @@ def test_grains_that_stay_on_the_chute_are_counted_apart_in_the_line(tmp_path, c
     stayed = landings[landings["exited"] == 0]
     assert len(stayed) and (stayed[["landed", "electrode"]] == 0).all().all()
     assert "these do not enter the separator" in said
+    # the figure's title says the same, and its right panel draws each material's share
+    from tribo.line import plot as line_plot
+    from tribo.line.mixture import stayed_text
+    from figure_checks import assert_legends_cover_no_data
+    figures = []
+    original = line_plot.save
+    line_plot.save = lambda fig, path: figures.append(fig) or path
+    try:
+        text = stayed_text(table, ["PE", "nylon"], 1.5, sep="\n")
+        line_plot.write_line_figure(pd.read_csv(out / "line.csv"), Line(("PE", "nylon")), 6, 0,
+                                    "unused.png", text)
+    finally:
+        line_plot.save = original
+    fig = figures[0]
+    assert fig._suptitle.get_text().endswith(f"(never in the separator):\n{text}")
+    for m in ("PE", "nylon"):
+        share = next(line for line in fig.axes[1].get_lines()
+                     if line.get_label() == f"{m} stayed on the chute")
+        assert share.get_ydata()[0] == pytest.approx(table[f"not_exited_{m}"] / table[f"fed_{m}"])
+    assert_legends_cover_no_data(fig)

@@ -7,7 +7,9 @@ voltage, or a mixture's voltage sweep with grade and recovery.
     tribo line sweep -n 1000 --seed 1 --voltages 5e3:40e3:8 --workers 2 --out out/line-sweep
     tribo line sweep -n 200 --particles PE,nylon --fraction 0.3 --splitter -0.005 --out out/line-30
 
-grain prints the grain's exit from the chute and its landing. mixture and sweep draw n
+grain prints the grain's exit from the chute and its landing (or that it came to rest on
+the chute, or was still on it at the horizon --t-end: it never enters the separator).
+mixture and sweep draw n
 grains from the feed of tribo population (the reference case's: shapes 0.3-1, sizes
 0.2-2 mm, on 0.3 m of steel tilted 30 degrees), the two materials of --particles (default
 PE and nylon, which charge negatively and positively on steel) by their mass fraction
@@ -20,9 +22,11 @@ height, n_bins, air_density, ...) by --separator NAME=VALUE, chute parameters by
 
 Writes into --out: particles.csv (a row per grain: material, chute results, q/m, mass, the
 landing at the first voltage), landings.csv (a row per grain and voltage), line.csv (a row
-per voltage: masses per material in each product, on each plate, not collected; grade and
-recovery of each product), bins.csv, line.png (a sweep), line.json. An interrupted run
-resumes when the same command is run again. Dask: as tribo population.
+per voltage: masses per material in each product, on each plate, not collected, and the
+grains that stayed on the chute, at rest or at the horizon, by count and mass; grade and
+recovery of each product), bins.csv, line.png (a sweep), line.json; the closing line says
+per material how many grains stayed on the chute. An interrupted run resumes when the same
+command is run again. Dask: as tribo population.
 """
 
 import math
@@ -177,10 +181,14 @@ def told(job, report) -> list[str]:
         cols = ["voltage"] + [c for c in report.table.columns
                               if c.startswith(("grade_", "recovery_"))]
         materials = [material(p, "particle").key for p in job.line.particles]
+        first = report.table.iloc[0]
+        if sum(first[f"not_exited_{m}"] for m in materials) > 0:
+            stayed = (f"line: {stayed_text(first, materials, job.t_end)}: these do not enter "
+                      f"the separator (not collected: counted in the recovery's fed mass)")
+        else:
+            stayed = "line: every grain left the chute"
         lines += [report.table[cols].to_string(index=False, float_format=lambda v: f"{v:.4g}"),
-                  f"line: {stayed_text(report.table.iloc[0], materials, job.t_end)}: these do "
-                  f"not enter the separator (not collected: counted in the recovery's fed mass)",
-                  f"line: wrote {', '.join(report.files)}"]
+                  stayed, f"line: wrote {', '.join(report.files)}"]
     return lines
 
 

@@ -254,8 +254,12 @@ def run_line(line: Line, n: int, seed: int, t_end: float, images: LineImages, ou
         if figure and len(line.particles) == 2 and len(images.voltages) > 1:
             # matplotlib only when a figure is drawn: `import tribo` stays without it
             from .plot import write_line_figure
+            first = report.table.iloc[0]
+            keys = [material(p, "particle").key for p in line.particles]
+            stayed = stayed_text(first, keys, t_end, sep="\n") \
+                if sum(first[f"not_exited_{m}"] for m in keys) > 0 else ""
             report.files.append(write_line_figure(report.table, line, n, seed,
-                                                  os.path.join(out, FIGURE), t_end))
+                                                  os.path.join(out, FIGURE), stayed))
     return report
 
 

@@ -10,7 +10,9 @@ from ..materials import material
 from ..plotting import distinct_colours, legend, plt, save
 
 
-def write_line_figure(table, line, n: int, seed: int, path: str, horizon: float | None = None) -> str:
+def write_line_figure(table, line, n: int, seed: int, path: str, stayed: str = "") -> str:
+    """stayed: what the title says of the grains that stayed on the chute (mixture.py's
+    stayed_text, a line per material), "" where none did."""
     materials = [material(p, "particle").key for p in line.particles]
     colours = distinct_colours(len(materials))
     kv = table["voltage"] / 1e3
@@ -27,9 +29,8 @@ def write_line_figure(table, line, n: int, seed: int, path: str, horizon: float 
     legend(ax, outside=True)
     styles = [("neg_side", "-", "in the -x product"), ("pos_side", "--", "in the +x product"),
               ("plates", ":", "caught on a plate")]
-    stayed = sum(table[f"not_exited_{m}"].iloc[0] for m in materials) > 0
     if stayed:
-        styles.append(("not_exited", (0, (1, 4)), "stayed on the chute"))
+        styles.append(("not_exited", "-.", "stayed on the chute"))
     for m, c in zip(materials, colours):
         fed = table[f"fed_{m}"]
         plates = table[f"plate_neg_{m}"] + table[f"plate_pos_{m}"]
@@ -49,9 +50,6 @@ def write_line_figure(table, line, n: int, seed: int, path: str, horizon: float 
              f"{line.charge_model} charge model, splitter at x = "
              f"{format_number(line.splitter * 1e3)} mm, seed {seed}")
     if stayed:
-        # imported here: mixture.py imports this module's caller
-        from .mixture import stayed_text
-        title += (f"\ngrains that stayed on the chute (never in the separator):\n"
-                  f"{stayed_text(table.iloc[0], materials, horizon, sep=chr(10))}")
+        title += f"\ngrains that stayed on the chute (never in the separator):\n{stayed}"
     fig.suptitle(title, fontsize=10)
     return save(fig, path)
