@@ -166,7 +166,10 @@ def population(n: int, *, seed: int = 0, particle: str = "PE", wall: str = "stee
     tilt_deg (default 30); settings: any other SI parameter. Results go into the folder
     `out` (particles.csv, summary.csv, population.png, population.json); an interrupted
     population resumes. Returns the report: .results (a row per particle), .summary (q/m
-    statistics overall, per shape and size class, the exit stream's mass-weighted q/m).
+    statistics overall, per shape and size class, the exit stream's mass-weighted q/m over
+    the grains that left, and the grains that came to rest on the chute or were still on
+    it at the horizon t_end, counted apart: n_at_rest, n_at_horizon and their mass
+    fractions).
     materials: a materials file the pair's values come from (they go into the settings)."""
     settings = with_pair(particle, wall, dict(settings or {}), materials)
     if isinstance(measured, str):
