@@ -93,13 +93,13 @@ def _scatter(ax, groups, colours, x, y, xlabel, ylabel, title, logx=False, logy=
     legend(ax, outside=True)
 
 
-def _end_groups(results) -> list[tuple[str, str, np.ndarray]]:
+def _end_groups(results) -> tuple[list[tuple[str, str, np.ndarray]], bool]:
     """(legend text, colour, mask) of each way the grains' runs ended that some grain took,
-    the text with the count and the share of the mass; one group of every grain where the
-    rows do not say how the runs ended."""
+    the text with the count and the share of the mass, and True; one group of every grain
+    and False where every grain left or the rows do not say how the runs ended."""
     ends = ends_of(results)
     if ends is None or ends.isna().any() or (ends == EXITED).all():
-        return [(f"{len(results)} particles", "tab:blue", np.ones(len(results), bool))]
+        return [(f"{len(results)} particles", "tab:blue", np.ones(len(results), bool))], False
     mass = grain_mass(results)
     total = mass.sum() if mass is not None else np.nan
     groups = []
@@ -109,13 +109,13 @@ def _end_groups(results) -> list[tuple[str, str, np.ndarray]]:
             share = f", {100 * mass[mask].sum() / total:.3g} % of the mass" \
                 if mass is not None and total > 0 else ""
             groups.append((f"{int(mask.sum())} {text}{share}", colour, mask))
-    return groups
+    return groups, True
 
 
-def _histogram(ax, qm, model, stats, groups):
+def _histogram(ax, qm, model, stats, groups, told):
     """The q/m histogram of a charge model on a log axis of its magnitude, stacked by how the
-    grains' runs ended (`groups`: _end_groups), with the mean and percentiles of the signed
-    values (`stats`: the summary's row of all particles)."""
+    grains' runs ended (`groups`, `told`: _end_groups), with the mean and percentiles of the
+    signed values (`stats`: the summary's row of all particles)."""
     sign = polarity(qm)
     shown = np.abs(qm.to_numpy(dtype=float)) * QM_FACTOR
     positive = shown[shown > 0]
@@ -127,9 +127,11 @@ def _histogram(ax, qm, model, stats, groups):
     else:
         bins = n_bins
     stacks = [shown[mask & (shown > 0)] for _, _, mask in groups]
-    labels = [f"{text}, {n_bins} bins" if len(groups) == 1 else text for text, _, _ in groups]
+    labels = [text if told else f"{text}, {n_bins} bins" for text, _, _ in groups]
     ax.hist(stacks, bins=bins, stacked=True, color=[c for _, c, _ in groups], alpha=0.8,
             label=labels)
+    if told:  # the stacks' entries say how the runs ended: the bins get one of their own
+        ax.plot([], [], " ", label=f"{len(shown)} particles, {n_bins} bins")
     zero = len(shown) - len(positive)
     if zero:
         ax.plot([], [], " ", label=f"{zero} with q/m = 0 (not on the log axis)")
@@ -142,7 +144,6 @@ def _histogram(ax, qm, model, stats, groups):
     ax.set_xlabel(f"{_magnitude_label(sign, 'q/m')}, {model} model ({QM_UNIT})")
     ax.set_ylabel("particles")
     title = f"q/m distribution, {model} model"
-    told = any("chute" in text for text, _, _ in groups)  # the stacks say how runs ended
     ax.set_title(f"{title}, every grain where its run ended" if told else title, fontsize=10)
     legend(ax, outside=True)
     return sign
@@ -158,13 +159,13 @@ def population_figure(results, summary, title: str = ""):
     fig, axes = plt.subplots(len(models), 4, figsize=(26, 5 * len(models)), layout="constrained",
                              squeeze=False)
     overall = summary[summary["grouping"] == "all"].set_index("model")
-    groups = _end_groups(results)
+    groups, told = _end_groups(results)
     ends = ends_of(results)
     left_only = ends is not None and not (ends == EXITED).all()
     exits = [(name, g[ends[g.index] == EXITED] if left_only else g) for name, g in shapes]
     for row, model in zip(axes, models):
         sign = _histogram(row[0], results[f"charge_to_mass_{model}"], model, overall.loc[model],
-                          groups)
+                          groups, told)
         label = f"{_magnitude_label(sign, 'q/m')}, {model} model ({QM_UNIT})"
         qm_of = lambda g: g[f"charge_to_mass_{model}"].abs() * QM_FACTOR  # noqa: E731
         _scatter(row[1], sizes, size_colours, lambda g: g["epsilon"], qm_of,
