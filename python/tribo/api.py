@@ -193,8 +193,9 @@ def impact_map(*, speed, angle_deg, phi0_deg, epsilon, particle: str = "PE",
     """The charge-per-impact map of a materials pair over the grid of impact speeds (m/s),
     angles (angle_deg: degrees from the plate's surface, 90 head-on), orientations
     (phi0_deg, degrees) and roundness values (tribo.impact.episode): one SI FMU episode per
-    point, from first contact to the lift-off or the time limit (`limit` in t*; default
-    DEFAULT_LIMIT). settings: other SI parameters (size, cylinder_length, ...). Written
+    point, from first contact to the lift-off, the grain at rest on the plate or the time
+    limit (`limit` in t*; default DEFAULT_LIMIT; `end_reason` says which), with the charge
+    and the charged area (`charged_area`, m2) per impact. settings: other SI parameters (size, cylinder_length, ...). Written
     into `out` (impact_map.csv, impact_map.json, impact_map.png, episodes.csv), resumable;
     returns tribo.ImpactMap for lookups. materials: a materials file the pair's values come
     from (they go into the settings)."""

@@ -329,3 +329,18 @@ def test_the_figure_stacks_the_grains_by_how_their_runs_ended():
     assert sum(len(c.get_offsets()) for c in fig.axes[3].collections) == (reason == 1).sum()
     assert "the grains that left" in fig.axes[3].get_title()
     assert_legends_cover_no_data(fig)
+
+
+def test_rows_that_do_not_say_why_a_grain_stayed_are_counted_as_far_as_they_go():
+    """Rows of an FMU without end_reason and at_rest: the grains that left are counted, the
+    others only as having stayed; the words say no more than the rows."""
+    from tribo.populations.summary import ends_text
+    rows = pd.DataFrame({"epsilon": [0.5, 0.6, 0.7], "size": [1e-3] * 3, "density": [950.0] * 3,
+                         "exited": [1, 0, 1], "charge_to_mass_static": [-1e-7, -2e-7, -3e-7]})
+    row = summarize_population(rows, ("static",)).iloc[0]
+    assert (row["n_exited"], row["stayed"]) == (2, pytest.approx(0.6 ** 2 / (0.25 + 0.36 + 0.49)))
+    assert np.isnan(row["n_at_rest"]) and np.isnan(row["at_rest_fraction"])
+    assert ends_text(row) == "3 grains: 2 left the chute, 1 did not (32.7 % of the mass)"
+    # an at_rest column alone tells the two apart
+    told = summarize_population(rows.assign(at_rest=[0, 1, 0]), ("static",)).iloc[0]
+    assert (told["n_at_rest"], told["n_at_horizon"]) == (1, 0)
