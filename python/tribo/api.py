@@ -87,8 +87,11 @@ def run_si(particle: str | None = None, wall: str | None = None, *, t_end: float
            fmu: str | int | None = None, materials=None, **parameters) -> pd.DataFrame:
     """Run one real particle through the SI FMU (docs/model.md section 8) and return its
     outputs in SI units as a DataFrame: "time" in s, then one column per output, a row
-    every `record_interval` seconds until t_end or the chute's exit (the last row is the
-    exit: the FMU ends the run there). record_interval=None: one row, the end, at the
+    every `record_interval` seconds until the run ends: at the chute's exit (`exited`), where
+    the grain comes to rest on the chute (`at_rest`, at `rest_time`; docs/model.md section
+    3c), or at t_end; the FMU ends the run at the first two, and the last row is that end
+    (`end_reason` says which: 1 chute_exit, 3 at_rest, 0 t_end reached on the chute).
+    record_interval=None: one row, the end, at the
     cost of the model's run alone (a calibration's or a sweep's way: the numbers of the
     last row of any record interval); each recorded row costs the FMU a communication
     point (docs/reference_case.md, "The package's cost").
@@ -97,7 +100,7 @@ def run_si(particle: str | None = None, wall: str | None = None, *, t_end: float
     constants, density and sigma0 become start values; keyword arguments are SI parameters
     by the package's names (size=1e-3: the long diameter 2a in m; tilt_deg=30;
     chute_length=0.3, ...) and win. Without materials, parameters not given keep the SI
-    FMU's start values (the reference case, on an endless chute). fmu: a path, or 2 / 3
+    FMU's start values (the reference case: chute_length 0.3 m, mu_roll 0.01). fmu: a path, or 2 / 3
     for the build's SI FMU (default 3); materials: a materials file the pair's values come
     from (tribo.materials)."""
     if (particle is None) != (wall is None):
@@ -163,7 +166,10 @@ def population(n: int, *, seed: int = 0, particle: str = "PE", wall: str = "stee
     tilt_deg (default 30); settings: any other SI parameter. Results go into the folder
     `out` (particles.csv, summary.csv, population.png, population.json); an interrupted
     population resumes. Returns the report: .results (a row per particle), .summary (q/m
-    statistics overall, per shape and size class, the exit stream's mass-weighted q/m).
+    statistics overall, per shape and size class, the exit stream's mass-weighted q/m over
+    the grains that left, and the grains that came to rest on the chute or were still on
+    it at the horizon t_end, counted apart: n_at_rest, n_at_horizon and their mass
+    fractions).
     materials: a materials file the pair's values come from (they go into the settings)."""
     settings = with_pair(particle, wall, dict(settings or {}), materials)
     if isinstance(measured, str):
@@ -187,8 +193,9 @@ def impact_map(*, speed, angle_deg, phi0_deg, epsilon, particle: str = "PE",
     """The charge-per-impact map of a materials pair over the grid of impact speeds (m/s),
     angles (angle_deg: degrees from the plate's surface, 90 head-on), orientations
     (phi0_deg, degrees) and roundness values (tribo.impact.episode): one SI FMU episode per
-    point, from first contact to the lift-off or the time limit (`limit` in t*; default
-    DEFAULT_LIMIT). settings: other SI parameters (size, cylinder_length, ...). Written
+    point, from first contact to the lift-off, the grain at rest on the plate or the time
+    limit (`limit` in t*; default DEFAULT_LIMIT; `end_reason` says which), with the charge
+    and the charged area (`charged_area`, m2) per impact. settings: other SI parameters (size, cylinder_length, ...). Written
     into `out` (impact_map.csv, impact_map.json, impact_map.png, episodes.csv), resumable;
     returns tribo.ImpactMap for lookups. materials: a materials file the pair's values come
     from (they go into the settings)."""
@@ -217,7 +224,9 @@ def line_grain(particle: str = "PE", wall: str = "steel", *, voltage: float = 30
     the separator (separator: its settings, gap, height, n_bins, ...; the voltage U in V;
     x_entry the entry across the gap, m) from the chute's exit state. The chute with one
     charge model ("static" or "sliding"). Returns the chute's results (exited, exit_time,
-    u, v, ...), charge_to_mass (C/kg), mass (kg), the landing (landed, electrode, bin,
+    end_reason, at_rest, rest_time: a grain that came to rest on the chute or was still on
+    it at t_end never enters the separator and lands nowhere; u, v, charged_area, ...),
+    charge_to_mass (C/kg), mass (kg), the landing (landed, electrode, bin,
     x_end, z_end, flight_time, time_land) and the CPU times (chute_cpu_s, cpu_s).
     materials: a materials file the pair's values come from (tribo.materials)."""
     line = Line((particle,), wall, distributions={"epsilon": epsilon, "size": size,

@@ -177,3 +177,59 @@ def test_the_figure_has_a_legend_on_every_panel(small_map, monkeypatch, tmp_path
     for ax in figures[0].axes:
         assert ax.get_legend() is not None and len(ax.get_legend().get_texts()) == 2
         assert ax.get_xlabel() and ax.get_ylabel()
+
+
+@pytest.mark.parametrize("speed, angle_deg, epsilon", [(1.0, 90.0, 1.0), (4.0, 30.0, 0.6)])
+def test_the_charge_of_a_first_impact_is_sigma0_over_the_charged_area(si_image, speed, angle_deg,
+                                                                      epsilon):
+    """A first impact on an uncharged grain with instantaneous transfer (the SI default
+    charging time 0, docs/model.md section 5c), below the breakdown limit: the static
+    model's charge is sigma0 times the area the patch touched (measured equal to 4e-16
+    relative, for the head-on 2 mm PE sphere and an oblique spheroid alike)."""
+    grid = Grid.of(speed=[speed], angle_deg=[angle_deg], phi0_deg=[0.0], epsilon=[epsilon])
+    spec = episode_specs(grid, "PE", "steel", {"size": 2e-3}, 200.0)[0]
+    row = run_episode(si_image, spec).row
+    assert row["lifted_off"] == 1 and row["end_reason"] == 2
+    assert row["charged_area"] > 0.0
+    sigma0 = tribo.materials.pair_values("PE", "steel")["sigma0"]
+    assert row["charge_static"] / row["charged_area"] == pytest.approx(sigma0, rel=1e-12)
+
+
+def test_an_episode_that_settles_on_the_plate_ends_at_rest_and_is_said_apart(tmp_path, capsys):
+    """Arriving at 1e-6 m/s the grain does not lift off: it settles and the run ends at
+    rest within microseconds, its "rebound" the state it rests in; a grazing 0.01 m/s
+    arrival at 0.01 degrees slides on past the 200 t* limit, still in contact (both seen in
+    the runs). The map's rows say which and the closing line counts each."""
+    out = tmp_path / "slow"
+    assert tribo_command(["impact-map", "--speed", "1e-6,0.01", "--angle-deg", "0.01,90",
+                          "--epsilon", "0.5", "--out", str(out), "--serial", "--no-progress"]) == 0
+    said = capsys.readouterr().out
+    m = ImpactMap.load(str(out))
+    rows = m.table.set_index(["speed", "angle_deg"])
+    assert list(rows.loc[(1e-6, 90.0), ["lifted_off", "end_reason"]]) == [0, 3]
+    assert rows.loc[(1e-6, 90.0), "rebound_speed"] == 0.0
+    assert list(rows.loc[(0.01, 0.01), ["lifted_off", "end_reason"]]) == [0, 0]
+    assert list(rows.loc[(0.01, 90.0), ["lifted_off", "end_reason"]]) == [1, 2]
+    reasons = m.table["end_reason"]
+    assert (f"impact map: {(reasons == 2).sum()} of 4 episodes lifted off, "
+            f"{(reasons == 3).sum()} came to rest on the plate (no rebound), "
+            f"{(reasons == 0).sum()} still in contact at the time limit of 200 t*") in said
+    assert m.metadata["columns"]["charged_area"].startswith("m2")
+    assert (m.table["charged_area"] > 0).all()
+    assert m("charged_area", 0.01, 90.0, 0.0, 0.5) == m.table["charged_area"].iloc[-1]
+
+
+def test_the_figure_rings_the_points_that_did_not_lift_off(small_map, monkeypatch, tmp_path):
+    table = small_map[1].table.copy()
+    held = (table["speed"] == 3.0) & (table["angle_deg"] == 30.0)
+    table.loc[held, "lifted_off"] = 0
+    figures = []
+    monkeypatch.setattr(impact_plot, "save", lambda fig, path: figures.append(fig) or path)
+    impact_plot.write_impact_figure(table, ("static",), str(tmp_path / "f.png"), "t")
+    angle_panel, speed_panel = figures[0].axes
+    texts = [t.get_text() for t in angle_panel.get_legend().get_texts()]
+    assert texts == ["ε = 0.5", "ε = 1", impact_plot.SUSTAINED]
+    rings = [line for line in angle_panel.get_lines() if line.get_label() == impact_plot.SUSTAINED]
+    assert len(rings) == 2 and all(list(r.get_xdata()) == [30.0] for r in rings)
+    assert len(speed_panel.get_legend().get_texts()) == 2  # the head-on slice lifted off
+    assert_legends_cover_no_data(figures[0])

@@ -213,3 +213,67 @@ def test_each_help_example_runs_at_a_small_size(tmp_path):
             argv += ["--serial", "--no-progress"]
         done = cli(*argv, cwd=tmp_path)
         assert done.returncode == 0, f"{line}:\n{done.stderr[-2000:]}"
+
+
+def test_a_grain_at_rest_on_the_chute_never_enters_the_separator(capsys):
+    g = tribo.line_grain("nylon", "steel", voltage=10e3, chute={"tilt_deg": 0.5})
+    assert (g["exited"], g["at_rest"], g["end_reason"]) == (0, 1, 3)
+    assert 0 < g["rest_time"] == g["time_end"] < 5.0
+    assert (g["landed"], g["electrode"], g["bin"]) == (0, 0, 0)
+    from tribo.cli.main import main as tribo_command
+    assert tribo_command(["line", "grain", "--particle", "nylon", "--tilt-deg", "0.5",
+                          "--voltage", "10e3"]) == 0
+    said = capsys.readouterr().out
+    assert f"the grain came to rest on the chute at {g['rest_time']:.6g} s: it does not enter " \
+           "the separator" in said
+
+
+def test_grains_that_stay_on_the_chute_are_counted_apart_in_the_line(tmp_path, capsys):
+    """Tilted 5 degrees with a 1.5 s horizon, seed 0's six grains: some come to rest, some
+    are still on the chute at the horizon (seen in the run); line.csv counts each apart, by
+    material, with its mass, and the closing line says so."""
+    from tribo.cli.main import main as tribo_command
+    out = tmp_path / "m"
+    assert tribo_command(["line", "mixture", "-n", "6", "--tilt-deg", "5", "--t-end", "1.5",
+                          "--serial", "--no-progress", "--out", str(out)]) == 0
+    said = capsys.readouterr().out
+    rows = pd.read_csv(out / "particles.csv")
+    table = pd.read_csv(out / "line.csv").iloc[0]
+    assert set(rows["end_reason"]) >= {0, 3}  # both ways of staying occur
+    for m in ("PE", "nylon"):
+        g = rows[rows["particle"] == m]
+        rest, horizon = g[g["end_reason"] == 3], g[g["end_reason"] == 0]
+        assert (table[f"n_fed_{m}"], table[f"n_at_rest_{m}"], table[f"n_at_horizon_{m}"]) == \
+            (len(g), len(rest), len(horizon))
+        assert table[f"at_rest_{m}"] == pytest.approx(rest["mass"].sum(), rel=1e-9)
+        assert table[f"at_horizon_{m}"] == pytest.approx(horizon["mass"].sum(), rel=1e-9)
+        assert table[f"not_exited_{m}"] == pytest.approx(
+            table[f"at_rest_{m}"] + table[f"at_horizon_{m}"], rel=1e-12)
+        share = 100 * rest["mass"].sum() / table[f"fed_{m}"]
+        assert (f"{m}: {len(g)} grains fed, {len(rest)} at rest on the chute ({share:.3g} % of "
+                f"its mass)") in said
+    # a grain that stayed on the chute lands nowhere at any voltage
+    landings = pd.read_csv(out / "landings.csv")
+    stayed = landings[landings["exited"] == 0]
+    assert len(stayed) and (stayed[["landed", "electrode"]] == 0).all().all()
+    assert "these do not enter the separator" in said
+    # the figure's title says the same, and its right panel draws each material's share
+    from tribo.line import plot as line_plot
+    from tribo.line.mixture import stayed_text
+    from figure_checks import assert_legends_cover_no_data
+    figures = []
+    original = line_plot.save
+    line_plot.save = lambda fig, path: figures.append(fig) or path
+    try:
+        text = stayed_text(table, ["PE", "nylon"], 1.5, sep="\n")
+        line_plot.write_line_figure(pd.read_csv(out / "line.csv"), Line(("PE", "nylon")), 6, 0,
+                                    "unused.png", text)
+    finally:
+        line_plot.save = original
+    fig = figures[0]
+    assert fig._suptitle.get_text().endswith(f"(never in the separator):\n{text}")
+    for m in ("PE", "nylon"):
+        share = next(line for line in fig.axes[1].get_lines()
+                     if line.get_label() == f"{m} stayed on the chute")
+        assert share.get_ydata()[0] == pytest.approx(table[f"not_exited_{m}"] / table[f"fed_{m}"])
+    assert_legends_cover_no_data(fig)

@@ -248,3 +248,99 @@ def test_the_streams_statistics_are_mass_weighted_over_the_grains_that_left():
     assert all(np.isnan(v) for v in stream_statistics(q, None, left).values())
     nothing = stream_statistics(q, m, pd.Series([0, 0, 0, 0]))
     assert np.isnan(nothing["stream_mean"]) and nothing["stayed"] == 1.0
+
+
+def test_grains_that_came_to_rest_are_counted_apart_and_said_so(tmp_path, capsys):
+    """On a chute tilted 0.5 degrees (mu_roll at its SI default) every grain settles and its
+    run ends at rest: none leaves, the stream is empty, the whole mass stays, at rest."""
+    out = tmp_path / "flat"
+    assert tribo_command(["population", "-n", "3", "--seed", "1", "--tilt-deg", "0.5",
+                          "--t-end", "5", "--out", str(out), "--serial", "--no-progress"]) == 0
+    said = capsys.readouterr().out
+    assert ("population: 3 grains: 0 left the chute, 3 at rest on it (100 % of the mass), "
+            "0 still on it at the horizon of 5 s (0 % of the mass)") in said
+    rows = tribo.load_results(str(out))
+    assert (rows["exited"] == 0).all() and (rows["end_reason"] == 3).all()
+    assert (rows["at_rest"] == 1).all()
+    # the run ends where the grain comes to rest, well before the horizon
+    assert (rows["rest_time"] > 0).all() and (rows["rest_time"] < 5).all()
+    assert (rows["rest_time"] == rows["time_end"]).all()
+    summary = pd.read_csv(out / "summary.csv")
+    overall = summary[summary.grouping == "all"]
+    assert (overall["n_exited"] == 0).all() and (overall["n_at_rest"] == 3).all()
+    assert (overall["n_at_horizon"] == 0).all()
+    assert (overall["at_rest_fraction"] == 1).all() and (overall["stayed"] == 1).all()
+    assert overall["stream_mean"].isna().all() and overall["stream_std"].isna().all()
+
+
+def test_a_population_of_all_three_ends_keeps_the_stream_to_the_grains_that_left(tmp_path):
+    """Tilted 5 degrees with a 1.5 s horizon, the seed's six grains end all three ways (two
+    each, seen in the run): the counts and mass fractions are those of the rows, and the
+    stream's statistics are over the grains that left only."""
+    report = tribo.population(6, seed=1, chute={"chute_length": 0.3, "tilt_deg": 5}, t_end=1.5,
+                              out=str(tmp_path / "mixed"), serial=True)
+    rows = report.results
+    ends = {1: "left", 3: "at rest", 0: "at the horizon"}
+    assert sorted(rows["end_reason"].map(ends)) == sorted(["left", "at rest", "at the horizon"] * 2)
+    assert ((rows["exited"] == 1) == (rows["end_reason"] == 1)).all()
+    assert ((rows["at_rest"] == 1) == (rows["end_reason"] == 3)).all()
+    horizon = rows["end_reason"] == 0
+    assert (rows.loc[horizon, "time_end"] == 1.5).all() and (rows.loc[horizon, "rest_time"] == 0).all()
+    mass = np.pi / 6 * rows["density"] * rows["size"] ** 3 * rows["epsilon"] ** 2
+    left, rest = rows["end_reason"] == 1, rows["end_reason"] == 3
+    overall = report.summary[report.summary.grouping == "all"]
+    for model in ("static", "sliding"):
+        row = overall[overall.model == model].iloc[0]
+        assert (row["n"], row["n_exited"], row["n_at_rest"], row["n_at_horizon"]) == (6, 2, 2, 2)
+        assert row["at_rest_fraction"] == pytest.approx(mass[rest].sum() / mass.sum(), rel=1e-12)
+        assert row["at_horizon_fraction"] == pytest.approx(mass[horizon].sum() / mass.sum(),
+                                                           rel=1e-12)
+        assert row["stayed"] == pytest.approx(row["at_rest_fraction"] + row["at_horizon_fraction"],
+                                              rel=1e-12)
+        qm = rows[f"charge_to_mass_{model}"]
+        assert row["stream_mean"] == pytest.approx((mass[left] * qm[left]).sum() / mass[left].sum(),
+                                                   rel=1e-12)
+        # the plain mean is of every grain, wherever its run ended
+        assert row["mean"] == pytest.approx(qm.mean(), rel=1e-12)
+    # per class the counts add up to the whole
+    for grouping in ("shape", "size"):
+        classes = report.summary[(report.summary.grouping == grouping)
+                                 & (report.summary.model == "static")]
+        assert classes[["n_exited", "n_at_rest", "n_at_horizon"]].sum().tolist() == [2, 2, 2]
+
+
+def test_the_figure_stacks_the_grains_by_how_their_runs_ended():
+    results = synthetic_population(60, seed=5)
+    rng = np.random.default_rng(5)
+    reason = rng.choice([1, 3, 0], size=60, p=[0.6, 0.3, 0.1])
+    results = results.assign(exited=(reason == 1).astype(int), end_reason=reason,
+                             density=950.0)
+    summary = summarize_population(results, ("static",))
+    fig = population_plot.population_figure(results, summary)
+    labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    mass = np.pi / 6 * 950.0 * results["size"] ** 3 * results["epsilon"] ** 2
+    for code, text in ((1, "left the chute"), (3, "at rest on the chute"),
+                       (0, "on the chute at the horizon")):
+        share = 100 * mass[reason == code].sum() / mass.sum()
+        assert f"{(reason == code).sum()} {text}, {share:.3g} % of the mass" in labels
+    # every grain is in one stack; the exit speeds are of the grains that left
+    bars = fig.axes[0].patches
+    assert sum(b.get_height() for b in bars) == 60
+    assert sum(len(c.get_offsets()) for c in fig.axes[3].collections) == (reason == 1).sum()
+    assert "the grains that left" in fig.axes[3].get_title()
+    assert_legends_cover_no_data(fig)
+
+
+def test_rows_that_do_not_say_why_a_grain_stayed_are_counted_as_far_as_they_go():
+    """Rows of an FMU without end_reason and at_rest: the grains that left are counted, the
+    others only as having stayed; the words say no more than the rows."""
+    from tribo.populations.summary import ends_text
+    rows = pd.DataFrame({"epsilon": [0.5, 0.6, 0.7], "size": [1e-3] * 3, "density": [950.0] * 3,
+                         "exited": [1, 0, 1], "charge_to_mass_static": [-1e-7, -2e-7, -3e-7]})
+    row = summarize_population(rows, ("static",)).iloc[0]
+    assert (row["n_exited"], row["stayed"]) == (2, pytest.approx(0.6 ** 2 / (0.25 + 0.36 + 0.49)))
+    assert np.isnan(row["n_at_rest"]) and np.isnan(row["at_rest_fraction"])
+    assert ends_text(row) == "3 grains: 2 left the chute, 1 did not (32.7 % of the mass)"
+    # an at_rest column alone tells the two apart
+    told = summarize_population(rows.assign(at_rest=[0, 1, 0]), ("static",)).iloc[0]
+    assert (told["n_at_rest"], told["n_at_horizon"]) == (1, 0)

@@ -70,3 +70,24 @@ def test_the_stick_model_is_a_parameter_of_the_package_and_its_commands(tmp_path
     message = refused.stderr.strip().splitlines()
     assert len(message) == 1 and message[0].count("stick_model = 2") == 1, refused.stderr
     assert "0 <= stick_model <= 1" in message[0]
+
+
+def test_without_a_chute_length_the_run_ends_at_the_reference_chutes_exit():
+    """The SI FMU's default chute is the reference case's 0.3 m: the last row is its exit."""
+    last = tribo.run_si("PE", "steel", size=1e-3, epsilon=0.6, tilt_deg=30,
+                        record_interval=None).iloc[-1]
+    assert (last["exited"], last["end_reason"], last["at_rest"]) == (1, 1, 0)
+    assert last["x"] == pytest.approx(0.3, rel=1e-9)
+    assert last["time"] == last["exit_time"] < 10.0
+
+
+def test_a_grain_that_settles_ends_its_run_at_rest_in_the_last_row():
+    """Tilted 0.5 degrees (tan 0.5 deg = 0.0087, below mu_roll = 0.01: the rolling resistance
+    holds it) the grain settles: the run ends at rest on the chute, short of the exit and of
+    the horizon."""
+    df = tribo.run_si("PE", "steel", size=1e-3, epsilon=0.6, tilt_deg=0.5, record_interval=1e-2)
+    last = df.iloc[-1]
+    assert (last["exited"], last["at_rest"], last["end_reason"]) == (0, 1, 3)
+    assert last["time"] == pytest.approx(last["rest_time"], rel=1e-12)
+    assert last["time"] < 10.0 and 0 <= last["x"] < 0.3
+    assert (df["at_rest"].iloc[:-1] == 0).all()  # it rests from the last row on

@@ -278,3 +278,37 @@ def test_the_sweep_plots_its_results(fmu_file, tmp_path):
         assert [t.get_text() for t in ax.get_legend().get_texts()] == ["mu = 0.1", "mu = 1"]
         assert ax.get_xlabel() == "epsilon"
         assert all(len(line.get_xdata()) == 3 for line in ax.get_lines())
+
+
+def test_a_run_that_comes_to_rest_is_said_apart_in_the_rows_the_closing_line_and_the_figure(
+        fmu_file, tmp_path):
+    """With rolling resistance and the rigid stick a grain on a plate tilted 2 degrees settles
+    and its run ends at rest before the horizon (seen: at tau ~ 448); at 45 degrees it runs
+    to the horizon. The rows, the closing line and the figure say which."""
+    done, _ = sweep("--param", "beta_deg=2,45", "--param", "mu_roll=0.05", "--param",
+                    "stick_model=1", "--t-end", "500", "--no-progress", "--fmu", fmu_file(3),
+                    "--serial", "--out", str(tmp_path))
+    assert done.returncode == 0, done.stderr
+    assert ("sweep: of the runs, 1 ran to the horizon, 1 came to rest on the chute, 0 left the "
+            "chute") in done.stdout
+    rows = pd.read_csv(tmp_path / "results.csv").set_index("beta_deg")
+    assert (rows.loc[2.0, "end_reason"], rows.loc[2.0, "at_rest"], rows.loc[2.0, "exited"]) == (3, 1, 0)
+    assert 0 < rows.loc[2.0, "rest_time"] < 500
+    assert (rows.loc[45.0, "end_reason"], rows.loc[45.0, "rest_time"]) == (0, 0.0)
+
+    from tribo.batch import plot as sp
+    seen = {}
+    original = sp.save
+    try:
+        sp.save = lambda fig, path: seen.setdefault("fig", fig)
+        sp.write_sweep_figure(pd.read_csv(tmp_path / "results.csv"), ["beta_deg", "mu_roll",
+                                                                     "stick_model"], "unused.png")
+    finally:
+        sp.save = original
+    fig = seen["fig"]
+    assert "1 came to rest on the chute" in fig._suptitle.get_text()
+    for ax in fig.axes:
+        rings = [line for line in ax.get_lines() if line.get_label() == sp.ENDED]
+        assert len(rings) == 1 and list(rings[0].get_xdata()) == [2.0]
+        assert [t.get_text() for t in ax.get_legend().get_texts()][-1] == sp.ENDED
+    assert_legends_cover_no_data(fig)

@@ -26,16 +26,19 @@ from ..fmu import ERROR, FmuImage, Instance, Rows, record
 from ..fmu.charge_models import MEAN_CHARGE_PREFIX, mean_charges, segment_arrays
 from ..fmu.names import fmu_outputs, from_fmu_column, in_package_terms, to_fmu
 from .specs import RunSpec
-from .summary import MOTION_CLASSES, summarize
+from .summary import END_OUTPUTS, MOTION_CLASSES, summarize
 
 
-def recorded(models) -> list[str]:
+def recorded(models, md=None) -> list[str]:
     """The outputs the study records at every communication point (its summary and figures
-    use them), with the mean charge Q_<model> of each of `models`."""
+    use them), with the mean charge Q_<model> of each of `models`, and how the run ended
+    (END_OUTPUTS: those the FMU's description `md` has, all without one)."""
+    names = None if md is None else {v.name for v in md.modelVariables}
     return (["X", "Y", "phi_deg", "U", "V", "Omega", "delta_y", "in_contact"]
             + [MEAN_CHARGE_PREFIX + m for m in models]
             + ["contact_fraction", "turns", "motion_class"]
-            + [f"fraction_{m}" for m in MOTION_CLASSES] + ["assumption_warnings"])
+            + [f"fraction_{m}" for m in MOTION_CLASSES] + ["assumption_warnings"]
+            + [n for n in END_OUTPUTS if names is None or n in names])
 
 # more recorded points than this is a mistake in the horizon or the interval, not a run
 MAX_POINTS = 10_000_000
@@ -88,7 +91,7 @@ def simulate(image: FmuImage, params: dict, t_end: float, record_interval: float
     in degrees). A run the FMU ends early is recorded up to where it ended."""
     times = None if record_interval is None else communication_points(t_end, record_interval)
     md = image.model_description()
-    outputs = recorded(mean_charges(md)) if outputs is None else list(outputs)
+    outputs = recorded(mean_charges(md), md) if outputs is None else list(outputs)
     fmu_names = fmu_outputs(md, outputs)
     reached, data, arrays, messages = _run(image, params, t_end, times, fmu_names, segments)
     series = pd.DataFrame({name: from_fmu_column(md, fmu_name, data[:, i])[1]

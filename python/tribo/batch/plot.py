@@ -1,14 +1,17 @@
 """The figure of a parameter sweep's results: the charges at the horizon, the contact
 fraction and the turns against the first swept parameter, a line per combination of the
-other swept parameters (and per horizon, where the file holds several)."""
+other swept parameters (and per horizon, where the file holds several). A run that ended
+before its horizon (it came to rest on the chute or left it: summary.py, END_OUTPUTS) is
+ringed: its values are those where it ended; the title counts each way a run ended."""
 
 import math
 
 import numpy as np
 
 from ..plotting import charge_label, distinct_colours, legend, plt, save
-from .summary import charge_column
+from .summary import charge_column, ends_text
 
+ENDED = "ended early: its values there"
 MOTION = [  # column, axis label, log scale
     ("contact_fraction", "contact fraction (time in contact / t_end)", False),
     ("turns_max", "most turns |φ − φ0| / 2π", True),
@@ -41,14 +44,26 @@ def write_sweep_figure(results, swept: list[str], path: str) -> str:
             values = values if isinstance(values, tuple) else (values,)
             name = ", ".join(f"{n} = {v:g}" for n, v in zip(others, values)) or "all runs"
             y = g[column].to_numpy(float)
-            ax.plot(g[x], np.maximum(y, 1e-4) if log else y, "o-", ms=4, color=colour, label=name)
+            y = np.maximum(y, 1e-4) if log else y
+            ax.plot(g[x], y, "o-", ms=4, color=colour, label=name)
+            if "end_reason" in g.columns:
+                ended = (g["end_reason"].to_numpy(float) > 0)
+                if ended.any():
+                    ax.plot(g[x].to_numpy()[ended], y[ended], "o", ms=10, mfc="none",
+                            mec="black", label=ENDED)
         if log:
             ax.set_yscale("log")
         ax.set_xlabel(x)
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)
-        legend(ax, fontsize=7, outside=True)
+        handles, labels = ax.get_legend_handles_labels()
+        once = dict(zip(labels, handles))  # the ring's entry once, after the lines
+        order = sorted(once, key=lambda label: label == ENDED)
+        legend(ax, [once[label] for label in order], order, fontsize=7, outside=True)
     horizons = ", ".join(f"{t:g}" for t in sorted(results["t_end"].unique()))
-    fig.suptitle(f"sweep over {', '.join(swept)}: {len(results)} runs, at the horizon τ = {horizons}",
-                 fontsize=10)
+    title = f"sweep over {', '.join(swept)}: {len(results)} runs, at the horizon τ = {horizons}"
+    ends = ends_text(results)
+    if ends:
+        title += f"\n{ends}"
+    fig.suptitle(title, fontsize=10)
     return save(fig, path)

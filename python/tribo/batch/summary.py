@@ -22,6 +22,12 @@ Definitions (used in the tables, the figures and the docs):
   (the FMU counts excursions beyond 0.1 min(epsilon, rho_c) in assumption_warnings).
 * turned over: the orientation has at some recorded time moved by at least
   TURNED_OVER revolutions from its start (|phi - phi0| >= pi: onto the other side).
+* how the run ended (END_OUTPUTS at its last recorded time, NaN where the FMU lacks them):
+  `exited` (it left the chute), `end_reason` (tribo.EndReason: 0 still running at the
+  horizon, 1 chute_exit, 2 first_liftoff, 3 at_rest), `at_rest` and `rest_time` (when it
+  came to rest, docs/model.md section 3c). A run that ended before its horizon is recorded
+  up to there: its charges "at" a later fraction of the horizon are those it ended with
+  (held, as the FMU holds them).
 """
 
 import math
@@ -34,6 +40,7 @@ WARMUP = 60.0  # three classification windows of the FMU (TRIBO_MOTION_WINDOW = 
 TURNED_OVER = 0.5
 REPORT_FRACTIONS = (0.2, 0.4, 0.6, 0.8, 1.0)
 MOTION_CLASSES = ("flight", "rocking", "rolling", "tumbling", "bouncing")  # motion_class 0..4
+END_OUTPUTS = ("exited", "end_reason", "at_rest", "rest_time")
 
 
 def report_times(t_end: float) -> list[float]:
@@ -92,7 +99,7 @@ def summary_columns(models) -> list[str]:
             + [f"fraction_{m}" for m in MOTION_CLASSES]
             + [f"fraction_{m}_after_warmup" for m in MOTION_CLASSES]
             + ["assumption_warnings", "delta_y_max", "Y_max", "bounce_amplitude_end",
-               "bounce_amplitude_mean"])
+               "bounce_amplitude_mean"] + list(END_OUTPUTS))
 
 
 def summarize(series: pd.DataFrame, t_end: float, models) -> dict:
@@ -125,4 +132,19 @@ def summarize(series: pd.DataFrame, t_end: float, models) -> dict:
         bounce_amplitude_end=float(envelope[-1]),
         bounce_amplitude_mean=float(envelope[tau >= WARMUP].mean()) if tau[-1] >= WARMUP else math.nan,
     )
+    for name in END_OUTPUTS:
+        value = float(last[name]) if name in series.columns else math.nan
+        row[name] = value if name == "rest_time" or not math.isfinite(value) else int(value)
     return row
+
+
+def ends_text(results: pd.DataFrame) -> str:
+    """How a sweep's runs ended, in words (how many ran to the horizon, came to rest on the
+    chute, left it, ended at a first lift-off); "" where the rows do not say."""
+    if "end_reason" not in results.columns or results["end_reason"].isna().any():
+        return ""
+    reason = results["end_reason"].astype(int)
+    words = ((0, "ran to the horizon"), (3, "came to rest on the chute"), (1, "left the chute"),
+             (2, "ended at their first lift-off"))
+    return "of the runs, " + ", ".join(f"{int((reason == code).sum())} {text}"
+                                       for code, text in words if code < 2 or (reason == code).any())

@@ -9,17 +9,20 @@ Each grid point is one impact episode (tribo/impact/episode.py): the particle ar
 its lowest point touching a level plate, at the speed (m/s) and angle (--angle-deg:
 degrees from the plate's surface; 90 is head-on), orientation (--phi0-deg: degrees) and
 spin --omega0 (rad/s); the SI FMU runs it with run_end = first_liftoff and ends it
-exactly where it leaves the plate, or at the time limit (--limit, in t*, default 200:
-counted as sustained contact, lifted_off = 0). VALUES: a:b:n (n values from a to b),
+exactly where it leaves the plate, where it comes to rest on it (a grazing or very slow
+arrival settles), or at the time limit (--limit, in t*, default 200); the last two are
+sustained contacts (lifted_off = 0), end_reason says which (2 lifted off, 3 at rest, 0 at
+the limit), and the closing line counts each. VALUES: a:b:n (n values from a to b),
 v1,v2,... or one value. The particle's size (--set size=..., the long diameter 2a in m,
 default 1e-3) and the cylinder depth (--set cylinder_length=..., m, default 1e-3) are the
 SI FMU's: the charges in C are for that depth (q/m does not depend on it).
 
 Writes into the folder --out: impact_map.csv (speed, angle_deg, phi0_deg, epsilon, then
 charge_<model> for each charge model of the FMU (static, sliding: C per impact on the
-cylinder of the depth set), then charge_to_mass_<model> (C/kg), rebound_u, rebound_v,
-rebound_speed (m/s), rebound_angle_deg, rebound_omega (rad/s), contact_time (s),
-lifted_off, time_end, t_star, then the set-up on every row: particle, wall, size,
+cylinder of the depth set), then charge_to_mass_<model> (C/kg), charged_area (m2, the
+area the contact patch charged), rebound_u, rebound_v, rebound_speed (m/s),
+rebound_angle_deg, rebound_omega (rad/s), contact_time (s), lifted_off, end_reason,
+time_end, t_star, then the set-up on every row: particle, wall, size,
 cylinder_length),
 impact_map.json (the set-up, the grid, time limit, the FMU and package versions),
 impact_map.png (its title the set-up) and episodes.csv (the runs as they finish: an
@@ -31,7 +34,7 @@ Dask: as tribo sweep (a local cluster in this process, or --scheduler).
 import os
 
 from ..impact.episode import DEFAULT_LIMIT, Grid
-from ..impact.map import MapJob
+from ..impact.map import MapJob, ends_text
 from ..materials import with_pair
 from .common import add_si_job_options, name_value, run_job, value_list
 
@@ -71,9 +74,8 @@ def told(job, report) -> list[str]:
     lines = [f"impact map: {report.executed} run, {report.skipped} already in the file, "
              f"{len(report.failed)} failed; {report.total} episodes"]
     if report.table is not None:
-        sustained = int((report.table["lifted_off"] == 0).sum())
-        lines.append(f"impact map: {sustained} of {len(report.table)} episodes in sustained "
-                     f"contact at the time limit; wrote {', '.join(report.files)}")
+        lines.append(f"impact map: {ends_text(report.table, job.limit)}; wrote "
+                     f"{', '.join(report.files)}")
     return lines
 
 

@@ -7,7 +7,9 @@ voltage, or a mixture's voltage sweep with grade and recovery.
     tribo line sweep -n 1000 --seed 1 --voltages 5e3:40e3:8 --workers 2 --out out/line-sweep
     tribo line sweep -n 200 --particles PE,nylon --fraction 0.3 --splitter -0.005 --out out/line-30
 
-grain prints the grain's exit from the chute and its landing. mixture and sweep draw n
+grain prints the grain's exit from the chute and its landing (or that it came to rest on
+the chute, or was still on it at the horizon --t-end: it never enters the separator).
+mixture and sweep draw n
 grains from the feed of tribo population (the reference case's: shapes 0.3-1, sizes
 0.2-2 mm, on 0.3 m of steel tilted 30 degrees), the two materials of --particles (default
 PE and nylon, which charge negatively and positively on steel) by their mass fraction
@@ -20,9 +22,11 @@ height, n_bins, air_density, ...) by --separator NAME=VALUE, chute parameters by
 
 Writes into --out: particles.csv (a row per grain: material, chute results, q/m, mass, the
 landing at the first voltage), landings.csv (a row per grain and voltage), line.csv (a row
-per voltage: masses per material in each product, on each plate, not collected; grade and
-recovery of each product), bins.csv, line.png (a sweep), line.json. An interrupted run
-resumes when the same command is run again. Dask: as tribo population.
+per voltage: masses per material in each product, on each plate, not collected, and the
+grains that stayed on the chute, at rest or at the horizon, by count and mass; grade and
+recovery of each product), bins.csv, line.png (a sweep), line.json; the closing line says
+per material how many grains stayed on the chute. An interrupted run resumes when the same
+command is run again. Dask: as tribo population.
 """
 
 import math
@@ -31,7 +35,9 @@ import os
 from ..batch.specs import check_count
 from ..fmu.names import format_number
 from ..line.grain import LineError, check_separator, load_images, run_line_grain
-from ..line.mixture import DEFAULT_FEED_WIDTH, DEFAULT_PAIR, Line, LineJob, check_line, line_specs
+from ..line.mixture import (DEFAULT_FEED_WIDTH, DEFAULT_PAIR, Line, LineJob, check_line,
+                            line_specs, stayed_text)
+from ..materials import material
 from ..populations.feed import DEFAULT_CHUTE
 from .common import (INPUT_ERRORS, add_job_options, add_materials_option, add_out_option, fail,
                      name_value, one_line, run_job)
@@ -128,7 +134,12 @@ def run_grain(args) -> int:
                     [args.voltage], [args.size])
     r = run_line_grain(images, specs[0]).row
     if not r["exited"]:
-        print(f"line: the grain did not leave the chute within {format_number(args.t_end)} s")
+        why = (f"came to rest on the chute at {r['rest_time']:.6g} s" if r["at_rest"] == 1
+               else f"was still on the chute at the horizon of {format_number(args.t_end)} s"
+               if r["end_reason"] == 0
+               else f"did not leave the chute within {format_number(args.t_end)} s")
+        print(f"line: the grain {why}: it does not enter the separator (q/m = "
+              f"{r['charge_to_mass']:.4g} C/kg, {args.charge_model} model)")
         return 0
     print(f"line: {line.particles[0]} on {args.wall}, size {format_number(args.size)} m: left "
           f"the chute at {r['time_end']:.6g} s, u = {r['u']:.4g} m/s, v = {r['v']:.4g} m/s, "
@@ -169,8 +180,15 @@ def told(job, report) -> list[str]:
     if report.table is not None:
         cols = ["voltage"] + [c for c in report.table.columns
                               if c.startswith(("grade_", "recovery_"))]
+        materials = [material(p, "particle").key for p in job.line.particles]
+        first = report.table.iloc[0]
+        if sum(first[f"not_exited_{m}"] for m in materials) > 0:
+            stayed = (f"line: {stayed_text(first, materials, job.t_end)}: these do not enter "
+                      f"the separator (not collected: counted in the recovery's fed mass)")
+        else:
+            stayed = "line: every grain left the chute"
         lines += [report.table[cols].to_string(index=False, float_format=lambda v: f"{v:.4g}"),
-                  f"line: wrote {', '.join(report.files)}"]
+                  stayed, f"line: wrote {', '.join(report.files)}"]
     return lines
 
 

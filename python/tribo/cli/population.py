@@ -17,15 +17,18 @@ from 10 mm onto 0.3 m of steel tilted 30 degrees).
 
 Writes into the folder --out: particles.csv (one row per particle: the materials, the seed,
 every parameter of its run (the feed variables, the chute, the materials' constants), then
-exited, exit_time, u, v, exit_speed, omega, then for each charge model of the FMU
+exited, exit_time, end_reason (1 left the chute, 3 came to rest on it, 0 still on it at the
+horizon), at_rest, rest_time (s), time_end, u, v, exit_speed, omega, then for each charge model of the FMU
 (static, sliding) charge_<model> (C, on the cylinder of depth cylinder_length),
 charge_to_mass_<model> (C/kg), capped_fraction_<model> (of the boundary at the breakdown
-limit),
-contact_fraction, impacts (contacts made while approaching the plate: bounces, the drop's
+limit), charged_area (m2, the area the grain's contact patch charged), contact_fraction, impacts (contacts made while approaching the plate: bounces, the drop's
 first landing included), fraction_flight ... fraction_bouncing, cpu_s, wall_s), summary.csv (q/m in C/kg:
 n, mean, std, percentiles 5 25 50 75 95, stream_mean and stream_std (q/m of the grains that
 left the chute, mass-weighted: what a Faraday cup at its end reads) and stayed (the mass
-fraction that did not leave), overall and per shape and size class),
+fraction that did not leave), n_exited, n_at_rest and n_at_horizon (how many grains left,
+came to rest on the chute, were still on it at the horizon) and at_rest_fraction and
+at_horizon_fraction (the mass fraction of the last two), overall and per shape and size
+class),
 population.png and population.json. Read stream_mean for what a stream carries (README.md,
 docs/populations.md). An interrupted population (Ctrl-C) resumes when the same command
 is run again; another set-up needs another --out, or --fresh (the folder's earlier
@@ -38,6 +41,7 @@ import os
 from ..materials import with_pair
 from ..populations.feed import DEFAULT_CHUTE, FEED_UNITS, FEED_VARIABLES, Feed, read_measured
 from ..populations.runner import PopulationJob
+from ..populations.summary import END_COLUMNS, ends_text
 from .common import add_si_job_options, name_value, numbers, run_job
 
 NAME = "population"
@@ -84,7 +88,7 @@ def told(job, report) -> list[str]:
     lines = [f"population: {report.executed} run, {report.skipped} already in the file, "
              f"{len(report.failed)} failed; {len(report.results)} of {report.total} done"]
     if report.summary is not None:
-        table = report.summary.copy()
+        table = report.summary.drop(columns=END_COLUMNS)
         for c in table.columns[5:]:
             if c not in ("n", "stayed"):
                 table[c] = table[c] * 1e6
@@ -94,6 +98,8 @@ def told(job, report) -> list[str]:
                   "docs/populations.md):",
                   table.drop(columns=["low", "high"]).to_string(
                       index=False, float_format=lambda v: f"{v:.4g}"),
+                  f"population: {ends_text(report.summary.iloc[0], job.t_end)}; stream_mean and "
+                  f"stream_std are of those that left",
                   f"population: wrote {', '.join(report.files)}"]
     return lines
 

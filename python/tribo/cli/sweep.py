@@ -27,7 +27,11 @@ contents are kept in <out>/backup-<n>/). Columns: key, the parameters, t_end,
 record_interval, fmu_sha256, the summary (tribo/batch/summary.py: Q_static_20pct ...
 Q_static_end and the same for Q_sliding, and any other charge model's mean charge the FMU
 outputs, at 1/5 ... 5/5 of t_end; contact fraction,
-turns, turned_over, mode fractions, assumption warnings, bounce amplitude), cpu_s, wall_s.
+turns, turned_over, mode fractions, assumption warnings, bounce amplitude, and how the run
+ended: exited, end_reason (0 ran to the horizon, 1 left the chute, 3 came to rest on it),
+at_rest, rest_time), cpu_s, wall_s. A run that came to rest ends there: its charges at the
+later fractions of t_end are those it rested with; the closing line and the figure (a ring)
+say which runs ended so.
 
 The local cluster runs in threads of this process (--processes: worker processes). On an
 existing cluster the workers need fmpy, numpy and pandas (this package and the FMU are
@@ -41,6 +45,7 @@ listen on all interfaces unless --dashboard-address says otherwise, even with
 import os
 
 from ..batch.grid import SweepJob, parse_param
+from ..batch.summary import ends_text
 from .common import add_job_options, add_out_option, run_job
 
 NAME = "sweep"
@@ -77,6 +82,9 @@ def told(job, report) -> list[str]:
         charges = [c for c in report.results.columns if c.startswith("Q_") and c.endswith("_end")]
         lines.append(report.results[job.names + ["turned_over", "contact_fraction"] + charges]
                      .to_string(index=False))
+        ends = ends_text(report.results)
+        if ends:
+            lines.append(f"sweep: {ends}")
         lines += [f"sweep: figure {path}" for path in report.files if path.endswith(".png")]
     return lines
 

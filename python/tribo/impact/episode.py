@@ -7,11 +7,18 @@ first_liftoff: the
 FMU ends the run where the contact made is lost (located exactly, docs/model.md section 9),
 or at the time limit (`limit` contact periods' worth of t*, read from the FMU): a sustained
 contact, `lifted_off` = 0. Gravity stays on (its effect over an impact of microseconds is
-the model's, not removed).
+the model's, not removed). An episode that does not lift off may also end at rest on the
+plate (a grazing or very slow arrival settles: the FMU ends the run there, docs/model.md
+section 3c): `end_reason` says which (2 lifted off, 3 at rest, 0 in contact at the time
+limit); its "rebound" is then the state it rests or slides in, no rebound at all.
 
 Its results (`episode_columns`): the charge each charge model of the FMU transferred (C on
-the cylinder of the depth set, and per unit mass; fmu/charge_models.py), the rebound (velocity along and normal to the plate, speed,
-angle from the surface in degrees, spin), the contact time and whether it lifted off.
+the cylinder of the depth set, and per unit mass; fmu/charge_models.py), the area the
+contact patch charged (`charged_area`, m2: for a first impact on an uncharged grain with
+instantaneous transfer the static charge is sigma0 times it below the breakdown limit,
+docs/model.md sections 5c, 8c), the rebound (velocity along and normal to the plate, speed,
+angle from the surface in degrees, spin), the contact time, whether it lifted off and how
+the episode ended (`end_reason`; NaN where the FMU lacks it, as `charged_area`).
 
 A map's grid point is (speed m/s, angle_deg, phi0_deg, epsilon): angles in degrees, as
 everywhere in the package (tribo/fmu/names.py converts them for the FMU).
@@ -38,8 +45,11 @@ AXIS_RANGES = {"speed": (0.0, 1e3, False), "angle_deg": (0.0, 90.0, False),
                "phi0_deg": (-180.0, 180.0, True), "epsilon": (1e-3, 1.0, True)}  # low, high, low end included
 # the SI FMU's outputs of each charge model an episode's row holds (charge_<model>, ...)
 MODEL_PREFIXES = ("charge_", "charge_to_mass_")
+AREA_COLUMN = "charged_area"
 MOTION_COLUMNS = ["rebound_u", "rebound_v", "rebound_speed", "rebound_angle_deg",
-                  "rebound_omega", "contact_time", "lifted_off", "time_end", "t_star"]
+                  "rebound_omega", "contact_time", "lifted_off", "end_reason", "time_end", "t_star"]
+# tribo.EndReason of an episode (run_end = first_liftoff); 0: still in contact at the limit
+LIFTED_OFF, AT_REST, AT_LIMIT = 2, 3, 0
 DEFAULT_LIMIT = 200.0  # contact periods' worth of t* before an episode counts as sustained
 
 
@@ -49,7 +59,7 @@ class ImpactError(ValueError):
 
 def episode_columns(models) -> list[str]:
     """The columns of an episode's results row, for the charge models `models`."""
-    return per_model(MODEL_PREFIXES, models) + MOTION_COLUMNS
+    return per_model(MODEL_PREFIXES, models) + [AREA_COLUMN] + MOTION_COLUMNS
 
 
 def episode_parameters(base: dict, speed: float, angle_deg: float, phi0_deg: float,
@@ -117,13 +127,16 @@ def run_episode(image: FmuImage, spec: RunSpec) -> RunResult:
     wall0, cpu0 = time.perf_counter(), time.thread_time()
     md = image.model_description()
     charges = per_model(MODEL_PREFIXES, charge_models(md))
+    optional = [n for n in (AREA_COLUMN, "end_reason")
+                if any(v.name == n and v.causality == "output" for v in md.modelVariables)]
     instance = Instance(image, name="tribo_impact")
     try:
         instance.set_parameters(to_fmu(md, spec.params))
         instance.init(0.0)
         t_star = instance.get("t_star")
         instance.step_to(spec.t_end * t_star)
-        end = instance.get_many(charges + ["u", "v", "omega", "contact_time", "lifted_off"])
+        end = instance.get_many(charges + ["u", "v", "omega", "contact_time", "lifted_off"]
+                                + optional)
         reached = instance.t
         instance.terminate()
     except FMICallException as e:
@@ -132,10 +145,13 @@ def run_episode(image: FmuImage, spec: RunSpec) -> RunResult:
     finally:
         instance.free()
     row = {name: end[name] for name in charges}
+    row[AREA_COLUMN] = float(end.get(AREA_COLUMN, math.nan))
     row.update({"rebound_u": end["u"], "rebound_v": end["v"],
                 "rebound_speed": math.hypot(end["u"], end["v"]),
                 "rebound_angle_deg": math.degrees(math.atan2(end["v"], end["u"])),
                 "rebound_omega": end["omega"], "contact_time": end["contact_time"],
-                "lifted_off": int(end["lifted_off"]), "time_end": reached, "t_star": t_star})
+                "lifted_off": int(end["lifted_off"]),
+                "end_reason": int(end["end_reason"]) if "end_reason" in end else math.nan,
+                "time_end": reached, "t_star": t_star})
     row.update(cpu_s=time.thread_time() - cpu0, wall_s=time.perf_counter() - wall0)
     return RunResult(row, None)

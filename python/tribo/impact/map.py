@@ -37,8 +37,8 @@ from ..fmu.locate import find_fmu
 from ..fmu.names import format_number, start_value
 from ..fmu.parameters import check_values
 from ..materials import material
-from .episode import (AXES, AXIS_UNITS, MODEL_PREFIXES, Grid, episode_columns, episode_specs,
-                      run_episode)
+from .episode import (AT_LIMIT, AT_REST, AXES, AXIS_UNITS, MODEL_PREFIXES, Grid,
+                      episode_columns, episode_specs, run_episode)
 
 EPISODES, TABLE, METADATA, FIGURE = "episodes.csv", "impact_map.csv", "impact_map.json", "impact_map.png"
 # what a charge per impact depends on beyond the grid: the pair, the size, and the depth of
@@ -86,6 +86,21 @@ def set_up_title(set_up: dict) -> str:
             f"cylinder depth ℓ = {format_number(set_up['cylinder_length'])} m")
 
 
+def ends_text(table: pd.DataFrame, limit: float) -> str:
+    """How a map's episodes ended, in words: how many lifted off, came to rest on the plate
+    (no rebound: their rebound columns are the state they rest in) and were still in contact
+    at the time limit (t*); from `lifted_off` alone where the rows lack `end_reason`."""
+    n = len(table)
+    lifted = int((table["lifted_off"] != 0).sum())
+    text = f"{lifted} of {n} episodes lifted off"
+    reason = table["end_reason"] if "end_reason" in table.columns else None
+    if reason is None or reason.isna().any():
+        return text + f", {n - lifted} in sustained contact (at rest or at the time limit)"
+    rest, held = int((reason == AT_REST).sum()), int((reason == AT_LIMIT).sum())
+    return (text + f", {rest} came to rest on the plate (no rebound), {held} still in "
+            f"contact at the time limit of {limit:g} t*")
+
+
 def map_metadata(grid: Grid, particle: str, wall: str, settings: dict, limit: float,
                  omega0: float, image: FmuImage) -> dict:
     md = image.model_description()
@@ -112,6 +127,9 @@ def _unit(column: str) -> str:
     return {"rebound_u": "m/s", "rebound_v": "m/s",
             "rebound_speed": "m/s", "rebound_angle_deg": "deg from the surface",
             "rebound_omega": "rad/s", "contact_time": "s", "lifted_off": "1 (0: sustained contact)",
+            "charged_area": "m2, the area the contact patch charged",
+            "end_reason": "tribo.EndReason (2 lifted off, 3 at rest on the plate, 0 in contact "
+                          "at the time limit)",
             "time_end": "s", "t_star": "s", "particle": "material", "wall": "material",
             "size": "m, the long diameter 2a", "cylinder_length": "m"}[column]
 
@@ -145,8 +163,11 @@ def run_impact_map(grid: Grid, particle: str, wall: str, settings: dict, limit: 
         if figure:
             # matplotlib only when a figure is drawn: `import tribo` stays without it
             from .plot import write_impact_figure
+            title = f"charge per impact: {set_up_title(set_up)}"
+            if (report.table["lifted_off"] == 0).any():
+                title += f"\n{ends_text(report.table, limit)}"
             report.files.append(write_impact_figure(report.table, models, os.path.join(out, FIGURE),
-                                                    f"charge per impact: {set_up_title(set_up)}"))
+                                                    title))
     return report
 
 

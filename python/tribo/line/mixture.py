@@ -22,8 +22,9 @@ all have run, the folder gets
                    at the first voltage (grain.LANDING_COLUMNS)
     landings.csv   a row per grain and voltage: key, particle, mass, voltage, the landing
     line.csv       a row per voltage: the mass fed, in each product, on each plate, airborne,
-                   not out of the chute, per material; a mixture's grade and recovery of each
-                   product
+                   not out of the chute (at rest on it, or still on it at the horizon), per
+                   material, and the number of grains fed, at rest and at the horizon; a
+                   mixture's grade and recovery of each product
     bins.csv       the mass per voltage, bin and material
     line.png       a sweep's figure (grade and recovery against the voltage)
     line.json      the set-up
@@ -37,6 +38,12 @@ is positive is the target of the -x product, the other of the +x one (mirrored f
 grade = target's mass in its product / the product's mass; recovery = target's mass in its
 product / the target's fed mass (grains that do not leave the chute, or are still falling
 at the separator's horizon, count as fed and not collected).
+
+A grain that does not leave the chute never enters the separator: it came to rest on the
+chute (its run ended there, docs/model.md section 3c) or was still on it at the chute's
+horizon `t_end`. Each is counted apart (line.csv's at_rest_<m> and at_horizon_<m> masses,
+n_at_rest_<m> and n_at_horizon_<m> grains; not_exited_<m> is their sum), in the figure's
+title and in the command's closing line.
 """
 
 import json
@@ -54,7 +61,8 @@ from ..batch.sweep import keys_of, read_series, run_sweep
 from ..fmu.names import start_value
 from ..fmu.parameters import check_values
 from ..materials import Materials, material, pair_sigma0, table_of, with_pair
-from ..populations.feed import DEFAULT_CHUTE, Feed, FeedError, draw, particle_parameters
+from ..populations.feed import (DEFAULT_CHUTE, END_AT_REST, Feed, FeedError, draw,
+                               particle_parameters)
 from .grain import (LineError, LineImages, charge_model_settings, check_separator,
                     chute_params_of, load_images, result_columns, run_line_grain)
 
@@ -246,8 +254,12 @@ def run_line(line: Line, n: int, seed: int, t_end: float, images: LineImages, ou
         if figure and len(line.particles) == 2 and len(images.voltages) > 1:
             # matplotlib only when a figure is drawn: `import tribo` stays without it
             from .plot import write_line_figure
+            first = report.table.iloc[0]
+            keys = [material(p, "particle").key for p in line.particles]
+            stayed = stayed_text(first, keys, t_end, sep="\n") \
+                if sum(first[f"not_exited_{m}"] for m in keys) > 0 else ""
             report.files.append(write_line_figure(report.table, line, n, seed,
-                                                  os.path.join(out, FIGURE)))
+                                                  os.path.join(out, FIGURE), stayed))
     return report
 
 
@@ -305,14 +317,27 @@ def collect_landings(results: pd.DataFrame, landings_dir: str) -> pd.DataFrame:
         df.insert(1, "particle", row["particle"])
         df.insert(2, "mass", row["mass"])
         df.insert(3, "exited", int(row["exited"]))
+        df.insert(4, "end_reason", row["end_reason"] if "end_reason" in row else np.nan)
         frames.append(df)
     return pd.concat(frames, ignore_index=True)
 
 
+# the regions of a grain that did not leave the chute: at rest on it, on it at the horizon
+# (or, where its row does not say which, only that it did not leave)
+STAYED_REGIONS = ("at_rest", "at_horizon", "not_exited")
+REGIONS = ("left", "right", "plate_neg", "plate_pos", "airborne") + STAYED_REGIONS
+
+
 def region_of(landings: pd.DataFrame, splitter: float) -> pd.Series:
-    """Each landing's region: "not_exited", "airborne", "plate_neg" (the plate at -gap/2),
-    "plate_pos", "left" (landed at x_end < splitter) or "right"."""
-    region = np.where(landings["exited"] == 0, "not_exited",
+    """Each landing's region: "at_rest" (on the chute, its run ended at rest), "at_horizon"
+    (still on the chute at its horizon), "not_exited" (did not leave, the row does not say
+    why), "airborne", "plate_neg" (the plate at -gap/2), "plate_pos", "left" (landed at
+    x_end < splitter) or "right"."""
+    reason = landings["end_reason"] if "end_reason" in landings.columns \
+        else pd.Series(np.nan, index=landings.index)
+    stayed = np.where(reason == END_AT_REST, "at_rest",
+                      np.where(reason.notna(), "at_horizon", "not_exited"))
+    region = np.where(landings["exited"] == 0, stayed,
                       np.where(landings["electrode"] == -1, "plate_neg",
                                np.where(landings["electrode"] == 1, "plate_pos",
                                         np.where(landings["landed"] == 0, "airborne",
@@ -335,8 +360,14 @@ def tally(landings: pd.DataFrame, line: Line, n_bins: int) -> tuple[pd.DataFrame
             fed = g["mass"].sum()
             by_region = g.groupby("region")["mass"].sum()
             row[f"fed_{m}"] = fed
-            for region in ("left", "right", "plate_neg", "plate_pos", "airborne", "not_exited"):
+            n_by_region = g.groupby("region").size()
+            row[f"n_fed_{m}"] = int(len(g))
+            for region in REGIONS:
                 row[f"{region}_{m}"] = float(by_region.get(region, 0.0))
+            # not_exited: every grain that stayed on the chute, whatever its row says of why
+            row[f"not_exited_{m}"] = sum(row[f"{r}_{m}"] for r in STAYED_REGIONS)
+            for region in ("at_rest", "at_horizon"):
+                row[f"n_{region}_{m}"] = int(n_by_region.get(region, 0))
             row[f"neg_side_{m}"] = row[f"left_{m}"] + row[f"plate_neg_{m}"]
             row[f"pos_side_{m}"] = row[f"right_{m}"] + row[f"plate_pos_{m}"]
             for b in range(1, n_bins + 1):
@@ -356,3 +387,22 @@ def tally(landings: pd.DataFrame, line: Line, n_bins: int) -> tuple[pd.DataFrame
         rows.append(row)
     return pd.DataFrame(rows), pd.DataFrame(bin_rows)
 
+
+def stayed_text(row, materials, horizon: float | None = None, sep: str = "; ") -> str:
+    """Per material of a line.csv row, how many grains stayed on the chute, by why, and
+    their share of its fed mass: they never enter the separator."""
+    at = f" of {horizon:g} s" if horizon is not None else ""
+    parts = []
+    for m in materials:
+        fed = row[f"fed_{m}"]
+
+        def share(region):
+            return f" ({100 * row[f'{region}_{m}'] / fed:.3g} % of its mass)" if fed > 0 else ""
+
+        text = (f"{m}: {int(row[f'n_fed_{m}'])} grains fed, {int(row[f'n_at_rest_{m}'])} at rest "
+                f"on the chute{share('at_rest')}, {int(row[f'n_at_horizon_{m}'])} still on it "
+                f"at the horizon{at}{share('at_horizon')}")
+        if row[f"not_exited_{m}"] > row[f"at_rest_{m}"] + row[f"at_horizon_{m}"]:
+            text += f", others did not leave it{share('not_exited')}"
+        parts.append(text)
+    return sep.join(parts)

@@ -21,11 +21,14 @@ exit or the horizon, keyed like a sweep's run (batch.specs.run_key), so that a p
 resumable like a sweep (batch.sweep.run_sweep).
 
 Per particle (`result_columns`), after the materials and every parameter of its run (the
-feed variables, the chute, the materials' constants): whether and when it left the chute; its velocity
-there (u along, v normal to the chute, the speed, the spin); each charge model's charge and
+feed variables, the chute, the materials' constants): whether and when it left the chute;
+how its run ended (END_COLUMNS, where the FMU outputs them: `end_reason` 1 chute_exit,
+3 at_rest, 0 still running at the horizon; `at_rest`, and `rest_time` in s, the time it came
+to rest on the chute, model.md section 3c); its velocity there (u along, v normal to the chute, the speed, the spin); each charge model's charge and
 charge-to-mass ratio, and the fraction of the boundary held at the air-breakdown limit
 (capped_fraction_<model>, model.md section 8b; the models are the FMU's,
-fmu/charge_models.py); the contact fraction; impacts, the contacts made
+fmu/charge_models.py); the area its contact patch charged (charged_area, m2, model.md
+section 8c, where the FMU outputs it); the contact fraction; impacts, the contacts made
 while approaching the plate (the core's count, model.md section 3b: each bounce is one, the
 drop's first landing included); the fraction of the time in each motion class.
 """
@@ -61,19 +64,33 @@ DEFAULT_CHUTE = {"chute_length": 0.3, "tilt_deg": 30.0}
 
 # the SI FMU's outputs of each charge model a particle's row holds (charge_<model>, ...)
 MODEL_PREFIXES = ("charge_", "charge_to_mass_", "capped_fraction_")
+# how a run ended (docs/model.md sections 3c, 9): the SI FMU's tribo.EndReason and the rest;
+# a row of an FMU without them holds NaN there
+END_COLUMNS = ("end_reason", "at_rest", "rest_time")
+END_RUNNING, END_CHUTE_EXIT, END_FIRST_LIFTOFF, END_AT_REST = 0, 1, 2, 3  # tribo.EndReason
+# the area the grain's contact patch has charged, m2 (docs/model.md section 8c); NaN in the
+# row of an FMU without it, as END_COLUMNS
+AREA_COLUMN = "charged_area"
 
 
-def outputs(models) -> list[str]:
-    """The SI FMU's outputs a particle's run records, for the charge models `models`."""
+def optional_outputs(md) -> list[str]:
+    """END_COLUMNS and AREA_COLUMN that the FMU (its description `md`) outputs."""
+    names = {v.name for v in md.modelVariables if v.causality == "output"}
+    return [c for c in (*END_COLUMNS, AREA_COLUMN) if c in names]
+
+
+def outputs(models, md=None) -> list[str]:
+    """The SI FMU's outputs a particle's run records, for the charge models `models` (and
+    how the run ended, where the FMU's description `md` has those outputs)."""
     return (["exited", "exit_time", "u", "v", "omega", "contact_fraction", "impacts",
              "assumption_warnings"] + per_model(MODEL_PREFIXES, models)
-            + [f"fraction_{c}" for c in MOTION_CLASSES])
+            + [f"fraction_{c}" for c in MOTION_CLASSES] + (optional_outputs(md) if md else []))
 
 
 def result_columns(models) -> list[str]:
     """The columns of a particle's results row, for the charge models `models`."""
-    return (["exited", "exit_time", "time_end", "u", "v", "exit_speed", "omega"]
-            + per_model(MODEL_PREFIXES, models) + ["contact_fraction", "impacts"]
+    return (["exited", "exit_time", *END_COLUMNS, "time_end", "u", "v", "exit_speed", "omega"]
+            + per_model(MODEL_PREFIXES, models) + [AREA_COLUMN, "contact_fraction", "impacts"]
             + [f"fraction_{c}" for c in MOTION_CLASSES] + ["assumption_warnings"])
 
 # a particle's RunSpec carries record_interval = t_end / STEPS_PER_RUN: it is part of the
@@ -198,12 +215,17 @@ def run_particle(image: FmuImage, spec: RunSpec) -> RunResult:
     models), no series. The row needs only the end: one step to the horizon or the exit
     (batch/particle.py, run_to_end)."""
     wall0, cpu0 = time.perf_counter(), time.thread_time()
-    recorded = outputs(charge_models(image.model_description()))
+    md = image.model_description()
+    recorded = outputs(charge_models(md), md)
     end = run_to_end(image, spec.params, spec.t_end, recorded)
     values = end.values
     row = {"time_end": end.time, "exit_speed": math.hypot(values["u"], values["v"])}
+    row.update(dict.fromkeys((*END_COLUMNS, AREA_COLUMN), math.nan))
     row.update(values)
     row["exited"] = int(row["exited"])
+    for name in ("end_reason", "at_rest"):
+        if name in values:
+            row[name] = int(row[name])
     row["impacts"] = int(row["impacts"])
     row["assumption_warnings"] = int(row["assumption_warnings"])
     row.update(cpu_s=time.thread_time() - cpu0, wall_s=time.perf_counter() - wall0)

@@ -9,7 +9,12 @@ the polarity of the pair: −q/m when every particle charges negatively (σ0 < 0
 positively. The mean and the percentiles are those of summary.csv, of the signed values,
 each line labelled with its signed value: the figure's "5th percentile" is the CSV's p5
 (for a negative pair the largest magnitude). Sizes are in m, as in the tables; legends sit
-beside their panels, clear of the data."""
+beside their panels, clear of the data.
+
+The histogram stacks the grains by how their run ended (summary.py's `ends_of`): those that
+left the chute, those that came to rest on it and those still on it at the horizon, each
+with its count and share of the mass in the legend, where the rows say it; the exit speed
+panel shows the grains that left only (the others have no exit)."""
 
 import math
 
@@ -17,13 +22,16 @@ import numpy as np
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 from ..plotting import distinct_colours, legend, plt, save
-from .summary import classes_of, edges_of
+from .summary import AT_HORIZON, AT_REST, EXITED, classes_of, edges_of, ends_of, grain_mass
 
 QM_UNIT, QM_FACTOR = "µC/kg", 1e6
 CHARGE_UNIT, CHARGE_FACTOR = "pC", 1e12
 MIN_BINS, MAX_BINS = 5, 50
 MARKED = (("mean", "-.", "mean"), ("p5", ":", "5th percentile"), ("p50", "-", "median"),
           ("p95", "--", "95th percentile"))
+# the histogram's stacks: how a grain's run ended, its legend text and colour
+ENDS = ((EXITED, "left the chute", "tab:blue"), (AT_REST, "at rest on the chute", "tab:orange"),
+        (AT_HORIZON, "on the chute at the horizon", "tab:gray"))
 
 
 def histogram_bins(n: int) -> int:
@@ -56,8 +64,16 @@ def _by_class(results, summary, grouping, column, unit):
     return groups
 
 
-def _scatter(ax, groups, colours, x, y, xlabel, ylabel, title, logx=False, logy=False):
-    """A panel of y(g) against x(g), a colour and a legend entry per group."""
+def _scatter(ax, groups, colours, x, y, xlabel, ylabel, title, logx=False, logy=False,
+             empty="no particles"):
+    """A panel of y(g) against x(g), a colour and a legend entry per group; `empty` said
+    in the panel where no group has a row (no log axis then: there is nothing to scale)."""
+    if not sum(len(g) for _, g in groups):
+        ax.text(0.5, 0.5, empty, transform=ax.transAxes, ha="center", va="center")
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(ylabel)
+        ax.set_title(title, fontsize=10)
+        return
     for colour, (name, g) in zip(colours, groups):
         ax.scatter(x(g), y(g), s=10, color=colour, label=f"{name} ({len(g)})")
     ax.set_xlabel(xlabel)
@@ -77,9 +93,29 @@ def _scatter(ax, groups, colours, x, y, xlabel, ylabel, title, logx=False, logy=
     legend(ax, outside=True)
 
 
-def _histogram(ax, qm, model, stats):
-    """The q/m histogram of a charge model on a log axis of its magnitude, with the mean and
-    percentiles of the signed values (`stats`: the summary's row of all particles)."""
+def _end_groups(results) -> tuple[list[tuple[str, str, np.ndarray]], bool]:
+    """(legend text, colour, mask) of each way the grains' runs ended that some grain took,
+    the text with the count and the share of the mass, and True; one group of every grain
+    and False where every grain left or the rows do not say how the runs ended."""
+    ends = ends_of(results)
+    if ends is None or ends.isna().any() or (ends == EXITED).all():
+        return [(f"{len(results)} particles", "tab:blue", np.ones(len(results), bool))], False
+    mass = grain_mass(results)
+    total = mass.sum() if mass is not None else np.nan
+    groups = []
+    for end, text, colour in ENDS:
+        mask = (ends == end).to_numpy()
+        if mask.any():
+            share = f", {100 * mass[mask].sum() / total:.3g} % of the mass" \
+                if mass is not None and total > 0 else ""
+            groups.append((f"{int(mask.sum())} {text}{share}", colour, mask))
+    return groups, True
+
+
+def _histogram(ax, qm, model, stats, groups, told):
+    """The q/m histogram of a charge model on a log axis of its magnitude, stacked by how the
+    grains' runs ended (`groups`, `told`: _end_groups), with the mean and percentiles of the
+    signed values (`stats`: the summary's row of all particles)."""
     sign = polarity(qm)
     shown = np.abs(qm.to_numpy(dtype=float)) * QM_FACTOR
     positive = shown[shown > 0]
@@ -90,8 +126,12 @@ def _histogram(ax, qm, model, stats):
         bins = np.geomspace(positive.min() / 1.5, positive.min() * 1.5, n_bins + 1)
     else:
         bins = n_bins
-    ax.hist(positive, bins=bins, color="tab:blue", alpha=0.8,
-            label=f"{len(positive)} particles, {n_bins} bins")
+    stacks = [shown[mask & (shown > 0)] for _, _, mask in groups]
+    labels = [text if told else f"{text}, {n_bins} bins" for text, _, _ in groups]
+    ax.hist(stacks, bins=bins, stacked=True, color=[c for _, c, _ in groups], alpha=0.8,
+            label=labels)
+    if told:  # the stacks' entries say how the runs ended: the bins get one of their own
+        ax.plot([], [], " ", label=f"{len(shown)} particles, {n_bins} bins")
     zero = len(shown) - len(positive)
     if zero:
         ax.plot([], [], " ", label=f"{zero} with q/m = 0 (not on the log axis)")
@@ -103,7 +143,8 @@ def _histogram(ax, qm, model, stats):
     ax.set_xscale("log")
     ax.set_xlabel(f"{_magnitude_label(sign, 'q/m')}, {model} model ({QM_UNIT})")
     ax.set_ylabel("particles")
-    ax.set_title(f"q/m distribution, {model} model", fontsize=10)
+    title = f"q/m distribution, {model} model"
+    ax.set_title(f"{title}, every grain where its run ended" if told else title, fontsize=10)
     legend(ax, outside=True)
     return sign
 
@@ -118,19 +159,25 @@ def population_figure(results, summary, title: str = ""):
     fig, axes = plt.subplots(len(models), 4, figsize=(26, 5 * len(models)), layout="constrained",
                              squeeze=False)
     overall = summary[summary["grouping"] == "all"].set_index("model")
+    groups, told = _end_groups(results)
+    ends = ends_of(results)
+    left_only = ends is not None and not (ends == EXITED).all()
+    exits = [(name, g[ends[g.index] == EXITED] if left_only else g) for name, g in shapes]
     for row, model in zip(axes, models):
-        sign = _histogram(row[0], results[f"charge_to_mass_{model}"], model, overall.loc[model])
+        sign = _histogram(row[0], results[f"charge_to_mass_{model}"], model, overall.loc[model],
+                          groups, told)
         label = f"{_magnitude_label(sign, 'q/m')}, {model} model ({QM_UNIT})"
         qm_of = lambda g: g[f"charge_to_mass_{model}"].abs() * QM_FACTOR  # noqa: E731
         _scatter(row[1], sizes, size_colours, lambda g: g["epsilon"], qm_of,
                  "roundness ε = b/a", label, "q/m against roundness", logy=True)
         _scatter(row[2], shapes, shape_colours, lambda g: g["size"], qm_of,
                  "size, the long diameter 2a (m)", label, "q/m against size", logx=True, logy=True)
-        _scatter(row[3], shapes, shape_colours, lambda g: g[f"charge_{model}"].abs() * CHARGE_FACTOR,
+        _scatter(row[3], exits, shape_colours, lambda g: g[f"charge_{model}"].abs() * CHARGE_FACTOR,
                  lambda g: g["exit_speed"],
                  f"{_magnitude_label(sign, 'charge')}, {model} model ({CHARGE_UNIT}, on the "
                  f"cylinder of the depth set)", "speed at the exit (m/s)",
-                 "exit speed against charge", logx=True)
+                 "exit speed against charge, the grains that left" if left_only
+                 else "exit speed against charge", logx=True, empty="no grain left the chute")
         for ax in row:
             ax.grid(alpha=0.3)
     fig.suptitle(title or f"population of {len(results)} particles")

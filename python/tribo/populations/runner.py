@@ -23,7 +23,7 @@ from ..fmu.locate import find_fmu
 from ..fmu.names import format_number, start_value
 from ..fmu.parameters import check_values
 from .feed import Feed, result_columns, run_particle, specs_of
-from .summary import summarize_population
+from .summary import ends_text, summarize_population
 
 PARTICLES, SUMMARY, FIGURE, METADATA = "particles.csv", "summary.csv", "population.png", "population.json"
 
@@ -81,9 +81,15 @@ def run_population(feed: Feed, n: int, seed: int, t_end: float, image: FmuImage,
             # matplotlib only when a figure is drawn: `import tribo` stays without it
             from .plot import write_population_figure
             chute = described["chute"]
+            overall = report.summary.iloc[0]
+            where = (f"at the exit of a {format_number(chute['chute_length'])} m chute tilted "
+                     f"{format_number(chute['tilt_deg'])}°")
+            if overall["n_exited"] != overall["n"]:  # some stayed, or the rows do not say
+                where = (f"on a {format_number(chute['chute_length'])} m chute tilted "
+                         f"{format_number(chute['tilt_deg'])}°, q/m where each run ended: "
+                         f"{ends_text(overall, t_end)}")
             title = (f"{n} particles of {described['particle']} on {described['wall']} (seed "
-                     f"{seed}), at the exit of a {format_number(chute['chute_length'])} m chute "
-                     f"tilted {format_number(chute['tilt_deg'])}°")
+                     f"{seed}), {where}")
             report.files.append(write_population_figure(report.results, report.summary,
                                                         os.path.join(out, FIGURE), title))
     return report

@@ -5,6 +5,12 @@ Faraday cup at the chute's end reads (docs/model.md section 8d): the stream of t
 that leave the chute, its mass-weighted mean q/m (their charge over their mass) and the
 mass-weighted spread of q/m about it, and the mass fraction that stays on the chute.
 
+A grain that does not leave is counted apart, by why (docs/model.md section 3c): it came to
+rest on the chute (the run ended there, `end_reason` at_rest) or it was still on it at the
+horizon (`end_reason` running); the count of each and its share of the mass. n, mean, std
+and the percentiles are of every grain's q/m where its run ended; the stream's are of the
+grains that left only.
+
 The summary is computed once, from the particles' rows, and holds the class edges (`low`,
 `high`) with the statistics: the figure (plot.py) draws it, it does not compute them again."""
 
@@ -17,7 +23,14 @@ PERCENTILES = (5, 25, 50, 75, 95)
 # the stream's: mass-weighted mean and standard deviation of q/m over the grains that left
 # the chute (C/kg), the mass fraction that did not leave
 STREAM_COLUMNS = ["stream_mean", "stream_std", "stayed"]
-STAT_COLUMNS = ["n", "mean", "std"] + [f"p{p}" for p in PERCENTILES] + STREAM_COLUMNS
+# how many grains left, came to rest on the chute, were still on it at the horizon; the
+# mass fraction of the last two (their sum is `stayed`)
+END_COLUMNS = ["n_exited", "n_at_rest", "n_at_horizon", "at_rest_fraction", "at_horizon_fraction"]
+STAT_COLUMNS = ["n", "mean", "std"] + [f"p{p}" for p in PERCENTILES] + STREAM_COLUMNS + END_COLUMNS
+# a grain's end (`ends`): it left the chute, came to rest on it, or was still on it at the
+# horizon; None where its row does not say which of the last two
+EXITED, AT_REST, AT_HORIZON = "exited", "at_rest", "at_horizon"
+END_AT_REST = 3  # tribo.EndReason at_rest (populations/feed.py)
 CLASSES = 4  # equal-width classes over the population's range, unless edges are given
 
 
@@ -33,17 +46,59 @@ def class_edges(values: pd.Series, edges=None) -> np.ndarray:
 
 
 def statistics(values: pd.Series, mass: pd.Series | None = None,
-               exited: pd.Series | None = None) -> dict:
+               exited: pd.Series | None = None, ends: pd.Series | None = None) -> dict:
     """n, mean, sample standard deviation and percentiles of the values (NaN where
     undefined), then the stream's (stream_statistics, with the grains' masses and whether
-    they left)."""
+    they left) and the grains that did not leave, by why (end_statistics, with `ends`)."""
     v = values.to_numpy(dtype=float)
     n = len(v)
     stats = {"n": n, "mean": v.mean() if n else np.nan, "std": v.std(ddof=1) if n > 1 else np.nan}
     for p in PERCENTILES:
         stats[f"p{p}"] = np.percentile(v, p) if n else np.nan
     stats.update(stream_statistics(values, mass, exited))
+    stats.update(end_statistics(ends, mass))
     return stats
+
+
+def ends_of(results: pd.DataFrame) -> pd.Series | None:
+    """Each grain's end: EXITED, AT_REST or AT_HORIZON, from its row's `exited` and
+    `end_reason` (or `at_rest`); None where the rows lack `exited`. A row that does not say
+    why a grain that stayed stopped (an FMU without the outputs) gets None."""
+    if "exited" not in results.columns:
+        return None
+    exited = results["exited"].astype(float) != 0
+    if "end_reason" in results.columns:
+        rest = results["end_reason"].astype(float) == END_AT_REST
+        known = results["end_reason"].notna()
+    elif "at_rest" in results.columns:
+        rest = results["at_rest"].astype(float) != 0
+        known = results["at_rest"].notna()
+    else:
+        rest = known = pd.Series(False, index=results.index)
+    out = np.where(exited, EXITED, np.where(~known, None, np.where(rest, AT_REST, AT_HORIZON)))
+    return pd.Series(out, index=results.index, dtype=object)
+
+
+def end_statistics(ends: pd.Series | None, mass: pd.Series | None) -> dict:
+    """How many grains left the chute, came to rest on it and were still on it at the
+    horizon, and the mass fraction of the last two; NaN where the rows do not say (the
+    counts) or lack the masses (the fractions)."""
+    out = dict.fromkeys(END_COLUMNS, np.nan)
+    if ends is None:
+        return out
+    e = ends.to_numpy(dtype=object)
+    out["n_exited"] = int((e == EXITED).sum())
+    if any(v is None for v in e):
+        return out
+    out["n_at_rest"] = int((e == AT_REST).sum())
+    out["n_at_horizon"] = int((e == AT_HORIZON).sum())
+    if mass is not None:
+        m = mass.to_numpy(dtype=float)
+        total = m.sum()
+        if total > 0:
+            out["at_rest_fraction"] = float(m[e == AT_REST].sum() / total)
+            out["at_horizon_fraction"] = float(m[e == AT_HORIZON].sum() / total)
+    return out
 
 
 def grain_mass(results: pd.DataFrame) -> pd.Series | None:
@@ -92,9 +147,11 @@ def summarize_population(results: pd.DataFrame, models, shape_edges=None,
     """One row per (charge model of `models`, grouping, class): grouping "all", "shape"
     (classes of epsilon) or "size" (classes of the long diameter, m), with the class's
     edges and the statistics of q/m (C/kg) over its particles (`statistics`: the stream's
-    mass-weighted ones too, where the rows give the masses and `exited`)."""
+    mass-weighted ones too, where the rows give the masses and `exited`, and the grains that
+    stayed on the chute by why, where the rows say it)."""
     mass = grain_mass(results)
     exited = results["exited"] if "exited" in results.columns else None
+    ends = ends_of(results)
     rows = []
     groupings = [("all", None, None),
                  ("shape", "epsilon", class_edges(results["epsilon"], shape_edges)),
@@ -104,7 +161,7 @@ def summarize_population(results: pd.DataFrame, models, shape_edges=None,
         for grouping, column, edges in groupings:
             if column is None:
                 rows.append({"grouping": grouping, "class": "all", "low": np.nan, "high": np.nan,
-                             "model": model, **statistics(qm, mass, exited)})
+                             "model": model, **statistics(qm, mass, exited, ends)})
                 continue
             labels = classes_of(results[column], edges)
             for i, interval in enumerate(labels.cat.categories):
@@ -113,7 +170,8 @@ def summarize_population(results: pd.DataFrame, models, shape_edges=None,
                 rows.append({"grouping": grouping, "class": f"{column} {lo:.3g} to {hi:.3g}",
                              "low": lo, "high": hi, "model": model,
                              **statistics(qm[inside], None if mass is None else mass[inside],
-                                          None if exited is None else exited[inside])})
+                                          None if exited is None else exited[inside],
+                                          None if ends is None else ends[inside])})
     return pd.DataFrame(rows, columns=["grouping", "class", "low", "high", "model"] + STAT_COLUMNS)
 
 
@@ -121,3 +179,24 @@ def edges_of(summary: pd.DataFrame, grouping: str) -> np.ndarray:
     """The class edges of a grouping ("shape" or "size") as the summary holds them."""
     rows = summary[(summary["grouping"] == grouping) & (summary["model"] == summary["model"].iloc[0])]
     return np.append(rows["low"].to_numpy(dtype=float), float(rows["high"].iloc[-1]))
+
+
+def ends_text(row, horizon: float | None = None) -> str:
+    """How the grains of a summary's row ended, in words: how many left the chute, came to
+    rest on it and were still on it at the horizon (s), with the share of the mass of the
+    last two; what the rows do not say is left out."""
+    def share(column):
+        value = row[column]
+        return f" ({100 * value:.3g} % of the mass)" if np.isfinite(value) else ""
+
+    n_exited = row["n_exited"]
+    if not np.isfinite(n_exited):
+        return f"{int(row['n'])} grains (the rows do not say which left the chute)"
+    text = f"{int(row['n'])} grains: {int(n_exited)} left the chute"
+    if not np.isfinite(row["n_at_rest"]):
+        stayed = int(row["n"]) - int(n_exited)
+        return text + f", {stayed} did not{share('stayed')}"
+    at = f" of {horizon:g} s" if horizon is not None else ""
+    return (text + f", {int(row['n_at_rest'])} at rest on it{share('at_rest_fraction')}, "
+            f"{int(row['n_at_horizon'])} still on it at the horizon{at}"
+            f"{share('at_horizon_fraction')}")
