@@ -137,6 +137,8 @@ static double pick(const tribo_param_info *p, unsigned *seed)
     return p->start;
 }
 
+/* The report, section after section in the order it prints: one function, so that it
+   reads as the report does. */
 int main(int argc, char **argv)
 {
     const int scenes = argc > 1 ? atoi(argv[1]) : 300;
