@@ -1,6 +1,7 @@
 /* The charge models of model.md §5 over the segments, and the sweep that charges a contact
    moving along an interval (as CVODE's dense output describes it). */
 #include <criterion/criterion.h>
+#include <float.h>
 #include <math.h>
 
 #include "charge_registry.h"
@@ -93,6 +94,23 @@ Test(charging, sliding_update_exact_for_quadratic_saturation)
         cr_expect(fabs(sigma[7] - y) < 1e-15, "duration %g: %.17g vs %.17g", d, sigma[7], y);
         tribo_charging_free(&c);
     }
+}
+
+/* A charging time so short that duration / tau0 overflows (the smallest double) is the limit
+   tau0 -> 0: the segment at the sample's final saturation, a number (model.md §5c). */
+Test(charging, the_smallest_charging_time_is_instantaneous_transfer)
+{
+    tribo_charging c = make(0.5, 100);
+    tribo_scene P = params();
+    P.tau0 = DBL_TRUE_MIN;
+    const double seg = c.arc.perimeter / 100;
+    const double S0 = 0.010, Sm = 0.0123, S1 = 0.0117;
+    double *sigma = sliding_sigma(&c);
+    sigma[7] = 0.004;
+    const tribo_contact_sample s = sample(&c, 0.3, 7.5 * seg, 0.1 * seg, S0, Sm, S1);
+    tribo_charging_apply(&c, &P, &s, TRIBO_CHARGE_COMMIT);
+    cr_expect(fabs(sigma[7] - S1) <= 1e-15, "%.17g, the end's saturation %.17g", sigma[7], S1);
+    tribo_charging_free(&c);
 }
 
 /* The segment under the contact point charges however small the contact (model.md §5:

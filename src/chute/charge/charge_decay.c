@@ -34,6 +34,9 @@ static double moment(int k, double z)
         return sum;
     }
     const double e = exp(-z);
+    /* where e^-z is 0 its products with powers of z are too (at z = inf they would be NaN) */
+    if (e == 0.0)
+        return k == 1 ? 1.0 / (z * z) : 2.0 / (z * z * z);
     return k == 1 ? (1.0 - e * (1.0 + z)) / (z * z) : (2.0 - e * (z * z + 2.0 * z + 2.0)) / (z * z * z);
 }
 
@@ -64,8 +67,9 @@ const tribo_decay_cache *tribo_decay_moments(tribo_decay_cache *k, double durati
 {
     tribo_decay(k, duration, tau);
     if (!k->has_moments) {
-        k->zf1 = k->z * moment(1, k->z);
-        k->zf2 = k->z * moment(2, k->z);
+        /* z F_k(z) -> 0 as z -> inf (a tau0 so small that duration / tau0 overflows) */
+        k->zf1 = isinf(k->z) ? 0.0 : k->z * moment(1, k->z);
+        k->zf2 = isinf(k->z) ? 0.0 : k->z * moment(2, k->z);
         k->has_moments = 1;
     }
     return k;
