@@ -11,11 +11,14 @@
 #include "si.h"
 #include "support.h"
 
-/* The registry's models over n segments of the ellipse eps, with the grain's bands. */
+/* Every model of the registry over n segments of the ellipse eps, with the grain's bands. */
 static tribo_charging banded(double eps, int n)
 {
     tribo_charging c;
-    cr_assert_eq(tribo_charging_init(&c, TRIBO_CHARGE_MODELS, TRIBO_SEGMENTS_COUNT, 3u, eps, n, 1), 0);
+    const unsigned every_model = (1u << TRIBO_SEGMENTS_COUNT) - 1u;
+    cr_assert_eq(tribo_charging_init(&c, TRIBO_CHARGE_MODELS, TRIBO_SEGMENTS_COUNT, every_model, eps,
+                                     n, 1),
+                 0);
     return c;
 }
 
