@@ -16,16 +16,9 @@ fi
 if [ -n "$before" ]; then
   tmp=$(mktemp -d)
   trap 'rm -rf "$tmp"' EXIT
-  mkdir "$tmp/src"
-  git -C "$ROOT" archive "$before" | tar -x -C "$tmp/src"
-  cmake -S "$tmp/src" -B "$tmp/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
-        -DTRIBO_BUILD_FMU=OFF -DTRIBO_BUILD_TESTS=OFF >/dev/null
-  cmake --build "$tmp/build" --target tribo_core >/dev/null
-  # every folder of that revision's src/ on the include path (its files include by name)
-  includes=()
-  while IFS= read -r folder; do includes+=(-I"$folder"); done < <(find "$tmp/src/src" -type d)
-  cc -O3 -DNDEBUG -std=c11 -D_DEFAULT_SOURCE "${includes[@]}" "$ROOT/bench/sustained_contact.c" \
-     "$tmp/build/libtribo_core.a" -lsundials_cvode -lsundials_nvecserial -lm -o "$tmp/before"
+  # shellcheck source=bench_at_revision.sh
+  . "$ROOT/scripts/bench_at_revision.sh"
+  bench_at_revision "$before" "$ROOT/bench/sustained_contact.c" "$tmp/before"
   echo "== before: $before ($(git -C "$ROOT" rev-parse --short "$before"))"
   "$tmp/before" "$@"
   echo
