@@ -6,6 +6,7 @@ to eight of them, for FMI 2.0 (which stops at the first Discard) and FMI 3.0.
     .venv/bin/python bench/dostep_cpu.py [build directory, default build] [name filter ...]
 """
 
+import math
 import os
 import sys
 import tempfile
@@ -15,13 +16,20 @@ from fmpy import extract
 
 from tribo.fmu import Instance
 
+# The SI set-ups on an unbounded chute: on the default one (0.3 m) the grain leaves within
+# the first doStep, long before the limit
+ENDLESS = {"chute_length": math.inf}
 # (what, FMU, settings, communication step in the FMU's unit of time)
 SETUPS = [
-    ("SI, epsilon = 1", "tribo_si", {"epsilon": 1.0}, 10.0),
-    ("SI, epsilon = 0.001", "tribo_si", {"epsilon": 0.001}, 10.0),
-    ("SI, gravity = 1e4", "tribo_si", {"gravity": 1e4}, 10.0),
+    ("SI, epsilon = 1", "tribo_si", {"epsilon": 1.0, **ENDLESS}, 10.0),
+    ("SI, epsilon = 1, charging_time = 1e-3", "tribo_si",
+     {"epsilon": 1.0, "charging_time": 1e-3, **ENDLESS}, 10.0),
+    ("SI, epsilon = 0.001", "tribo_si", {"epsilon": 0.001, **ENDLESS}, 10.0),
+    ("SI, gravity = 1e4", "tribo_si", {"gravity": 1e4, **ENDLESS}, 10.0),
+    ("SI, gravity = 1e4, 1e5 segments", "tribo_si",
+     {"gravity": 1e4, "n_segments": 100000, **ENDLESS}, 10.0),
     ("SI, both Young's moduli 1e3", "tribo_si",
-     {"youngs_modulus_particle": 1e3, "youngs_modulus_wall": 1e3}, 10.0),
+     {"youngs_modulus_particle": 1e3, "youngs_modulus_wall": 1e3, **ENDLESS}, 10.0),
     ("1e5 segments, Sigma_bd = 1e-6", "tribo", {"n_segments": 100000, "Sigma_bd": 1e-6}, 1000.0),
     ("1e5 segments, Sigma_bd = 5e-324", "tribo", {"n_segments": 100000, "Sigma_bd": 5e-324},
      1000.0),

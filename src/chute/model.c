@@ -254,6 +254,30 @@ static double segment_work(const tribo_model *m)
     return TRIBO_WORK_SEGMENT_UPDATE + (isfinite(m->scene.Sigma_bd) ? TRIBO_WORK_SEGMENT_HELD : 0.0);
 }
 
+static int selected_models(const tribo_model *m)
+{
+    int models = 0;
+    for (int k = 0; k < m->charging.n_models; k++)
+        models += m->charging.slot[k].selected;
+    return models;
+}
+
+/* The work of charging `values` segment values (each model's value of each segment; models
+   of them per segment): each value, its band of the spheroid charged the same way (§8c),
+   the band widened once per segment, and in instantaneous transfer whose globals move each
+   value's own saturation where its segment left the contact (§5c). */
+static double values_work(const tribo_model *m, int leave_by_edges, double values, int models)
+{
+    const int bands = m->charging.keep_bands;
+    const int targets = m->scene.tau0 == 0.0 && leave_by_edges;
+    double work = values * segment_work(m) * (bands ? 2.0 : 1.0);
+    if (targets)
+        work += values * TRIBO_WORK_LEAVE_TARGET;
+    if (bands && models > 0)
+        work += values / models * TRIBO_WORK_BAND;
+    return work;
+}
+
 tribo_status tribo_charge_sample(tribo_model *m, const tribo_contact_sample *sample,
                                  tribo_charge_destination where)
 {
@@ -262,7 +286,7 @@ tribo_status tribo_charge_sample(tribo_model *m, const tribo_contact_sample *sam
     if (where == TRIBO_CHARGE_PENDING)
         return pending_push(m, sample);
     const long updates = tribo_charging_apply(&m->charging, &m->scene, sample, TRIBO_CHARGE_COMMIT);
-    tribo_work(m, segment_work(m) * (double)updates);
+    tribo_work(m, values_work(m, sample->leave_by_edges, (double)updates, selected_models(m)));
     return TRIBO_OK;
 }
 
@@ -326,12 +350,12 @@ static int sink(void *ctx, const tribo_contact_sample *sample)
 {
     sweep_target *s = ctx;
     tribo_model *m = s->m;
-    int models = 0;
-    for (int k = 0; k < m->charging.n_models; k++)
-        models += m->charging.slot[k].selected;
-    double work = TRIBO_WORK_SAMPLE * models;
+    const int models = selected_models(m);
+    double work = TRIBO_WORK_SAMPLE * models +
+                  (m->charging.keep_bands ? TRIBO_WORK_SAMPLE_BAND : 0.0);
     if (s->where == TRIBO_CHARGE_PENDING)
-        work += segment_work(m) * (double)models * (double)sample->count;
+        work += values_work(m, sample->leave_by_edges, (double)models * (double)sample->count,
+                            models);
     tribo_work(m, work);
     return tribo_charge_sample(m, sample, s->where) != TRIBO_OK;
 }
@@ -354,9 +378,16 @@ tribo_status tribo_charge_sweep(tribo_model *m, const tribo_contact_probe *probe
         return TRIBO_OK;
     sweep_target target = {m, where, probe};
     const tribo_contact_probe counted = {counted_probe, &target};
+    /* a segment covered costs the sweep's budget what it costs the work limit, relative to
+       one value charged per model (the budget's unit): so that the step a sweep ends books
+       about the same work whatever the charging of a segment involves (1 exactly where it
+       is one value per model) */
+    const int models = selected_models(m);
+    const double cell_cost = TRIBO_SWEEP_CELL_COST * values_work(m, 1, models, models) /
+                             (models * segment_work(m));
     if (tribo_charging_sweep(&m->charging, &m->scene, &counted, a, b, m->scene.rtol, m->scene.atol,
                              p->y + TRIBO_NMOTION, p->charge_globals, sink, &target,
-                             TRIBO_SWEEP_BUDGET, reached) != 0)
+                             TRIBO_SWEEP_BUDGET, cell_cost, reached) != 0)
         return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
     return TRIBO_OK;
 }

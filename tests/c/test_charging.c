@@ -195,7 +195,7 @@ Test(charging, sweep_gives_each_segment_its_exact_contact_time)
     const double T = 25.0; /* the contact travels 1.5, 0.28 of the perimeter */
     samples = 0;
     cr_assert_eq(tribo_charging_sweep(&c, &PARAMS, &pr, 0.0, T, 1e-8, 1e-10, &work, globals, apply,
-                                      NULL, INFINITY, NULL),
+                                      NULL, INFINITY, TRIBO_SWEEP_CELL_COST, NULL),
                  0);
     double worst = 0.0;
     int touched = 0;
@@ -233,7 +233,8 @@ Test(charging, sweep_finishes_at_a_kinked_or_singular_end, .timeout = 60)
             tribo_charging_start(&c, &PARAMS, globals);
             samples = 0;
             cr_assert_eq(tribo_charging_sweep(&c, &PARAMS, &pr, a, b, 1e-12, 1e-14, &work,
-                                              globals, apply, NULL, INFINITY, NULL), 0);
+                                              globals, apply, NULL, INFINITY, TRIBO_SWEEP_CELL_COST,
+                                              NULL), 0);
             cr_assert(samples < 100000, "interval %d: %ld samples", k, samples);
             const double exact = kind ? 2.0 / 3.0 * pow(b - a, 1.5)
                                       : 0.08 * ((kink - a) * (kink - a) + (b - kink) * (b - kink));

@@ -100,12 +100,20 @@ Test(work_limit, every_right_hand_side_cvode_evaluates_is_booked)
     }
 }
 
-/* The charge of one sample over every one of 1e5 segments, committed: its work. */
-static double work_of_a_wide_sample(const char *settings)
+/* The charge of one sample over every one of 1e5 segments, committed: its work. Where
+   leave_by_edges, the globals move over the sample (instantaneous transfer then takes each
+   segment's saturation where it left the contact, model.md §5c). */
+static double work_of_a_sample(const char *settings, int leave_by_edges)
 {
     tribo_scene s = scene_of(settings);
     tribo_model *m = make(&s);
-    tribo_contact_sample sample = {.duration = 1e-3, .first = 0, .count = m->charging.n};
+    tribo_contact_sample sample = {.duration = 1e-3, .first = 0, .count = m->charging.n,
+                                   .leave_by_edges = leave_by_edges};
+    if (leave_by_edges) {
+        sample.n_patch = TRIBO_PATCH_POINTS;
+        for (int i = 0; i < TRIBO_PATCH_POINTS; i++)
+            sample.patch[i] = (tribo_patch_point){.centre = 5e4 + i, .half = 100.0, .depth = 1.0};
+    }
     memcpy(sample.globals_begin, m->committed.charge_globals, sizeof sample.globals_begin);
     memcpy(sample.globals_mid, m->committed.charge_globals, sizeof sample.globals_mid);
     memcpy(sample.globals_end, m->committed.charge_globals, sizeof sample.globals_end);
@@ -116,6 +124,11 @@ static double work_of_a_wide_sample(const char *settings)
     return work;
 }
 
+static double work_of_a_wide_sample(const char *settings)
+{
+    return work_of_a_sample(settings, 0);
+}
+
 /* Holding every value within the breakdown limit is a second pass over them, as costly as
    the charge itself (model.md §8b): it is booked. */
 Test(work_limit, the_breakdown_limit_on_each_charged_value_is_booked)
@@ -124,6 +137,27 @@ Test(work_limit, the_breakdown_limit_on_each_charged_value_is_booked)
     const double held = work_of_a_wide_sample("n_segments=100000 Sigma_bd=1e-6");
     cr_assert_gt(plain, 0.0);
     cr_expect_gt(held, 2.0 * plain, "%.1f units with the limit, %.1f without", held, plain);
+}
+
+/* The spheroid's bands (model.md §8c) double the values a sample charges, and each band is
+   widened under the patch first: both are booked. */
+Test(work_limit, the_spheroids_bands_under_each_sample_are_booked)
+{
+    const double cylinder = work_of_a_wide_sample("n_segments=100000");
+    const double spheroid = work_of_a_wide_sample("n_segments=100000 grain_geometry=1");
+    cr_expect_geq(spheroid, 2.0 * cylinder + TRIBO_WORK_BAND * 1e5,
+                  "%.1f units on the spheroid, %.1f on the cylinder", spheroid, cylinder);
+}
+
+/* Instantaneous transfer whose globals move over a sample gives each segment the saturation
+   of the time it left the contact: a saturation per value, booked. */
+Test(work_limit, each_segments_own_saturation_in_instantaneous_transfer_is_booked)
+{
+    const double still = work_of_a_sample("n_segments=100000 tau0=0", 0);
+    const double moving = work_of_a_sample("n_segments=100000 tau0=0", 1);
+    /* both charge models: two values per segment */
+    cr_expect_geq(moving, still + TRIBO_WORK_LEAVE_TARGET * 2e5,
+                  "%.1f units where the globals move, %.1f where they hold still", moving, still);
 }
 
 /* A contact moving steadily along the boundary at one segment per unit of time, a

@@ -27,6 +27,7 @@ typedef struct sweep {
     void *sink_ctx;
     int status;
     double cost; /* probes and covered segments so far (tribo_charging_sweep's budget) */
+    double cell_cost; /* what covering one segment adds to cost */
 } sweep;
 
 static probe_point probe_at(sweep *w, double t, const probe_point *near)
@@ -303,7 +304,7 @@ static void charge_whole_piece(sweep *w, const probe_point *pts, const double *S
     memcpy(s.globals_mid, S1, (size_t)n_globals * sizeof *S1);
     memcpy(s.globals_end, S2, (size_t)n_globals * sizeof *S2);
     w->status = w->sink(w->sink_ctx, &s);
-    w->cost += TRIBO_SWEEP_CELL_COST * tribo_min((double)s.count, w->c->n);
+    w->cost += w->cell_cost * tribo_min((double)s.count, w->c->n);
 }
 
 /* The boundary crossings of both edges within a piece, in time order: each crossing moves
@@ -411,7 +412,7 @@ static void charge_piece(sweep *w, const probe_point *pts, const double *S0, con
                 memcpy(at_start, at_end, sizeof at_end);
             }
             w->status = w->sink(w->sink_ctx, &s);
-            w->cost += TRIBO_SWEEP_CELL_COST * tribo_min(cell[1] - cell[0] + 1.0, w->c->n);
+            w->cost += w->cell_cost * tribo_min(cell[1] - cell[0] + 1.0, w->c->n);
             t0 = t1;
         }
         if (i < n) {
@@ -477,7 +478,7 @@ static int advance_states(sweep *w, const probe_point *pts, double h, double rto
 int tribo_charging_sweep(tribo_charging *c, const tribo_scene *s, const tribo_contact_probe *probe,
                          double a, double b, double rtol, double atol, double *quadratures,
                          double *globals, tribo_sample_sink sink, void *sink_ctx, double budget,
-                         double *reached)
+                         double cell_cost, double *reached)
 {
     if (reached)
         *reached = b;
@@ -489,7 +490,8 @@ int tribo_charging_sweep(tribo_charging *c, const tribo_scene *s, const tribo_co
                c->arc.perimeter / c->n, rtol,
                instant,  instant ? SEGMENTS_PER_INSTANT_PIECE : SEGMENTS_PER_PIECE,
                sink,     sink_ctx,
-               0,        0.0};
+               0,        0.0,
+               cell_cost};
     const size_t q_bytes = (size_t)c->n_quadratures * sizeof(double);
     const size_t g_bytes = (size_t)c->n_globals * sizeof(double);
     const int with_states = has_states(c);

@@ -203,7 +203,8 @@ typedef int (*tribo_sample_sink)(void *ctx, const tribo_contact_sample *sample);
    globals[] (the whole set's); each sample goes to the sink. Returns 0, or the sink's
    non-zero value.
    The sweep ends early, after the piece in which its cost (a probe counts 1, a sample
-   TRIBO_SWEEP_CELL_COST per segment it covers) reaches budget, and says where in *reached
+   cell_cost per segment it covers: TRIBO_SWEEP_CELL_COST where a segment costs one value
+   charged per model) reaches budget, and says where in *reached
    (b when it went all the way; reached may be NULL). A sweep over [a, b'] with b' > *reached
    takes the same pieces up to *reached, so the point where a budget ends it does not depend
    on how far it was asked to go. */
@@ -211,6 +212,6 @@ typedef int (*tribo_sample_sink)(void *ctx, const tribo_contact_sample *sample);
 int tribo_charging_sweep(tribo_charging *c, const tribo_scene *s, const tribo_contact_probe *probe,
                          double a, double b, double rtol, double atol, double *quadratures,
                          double *globals, tribo_sample_sink sink, void *sink_ctx, double budget,
-                         double *reached);
+                         double cell_cost, double *reached);
 
 #endif
