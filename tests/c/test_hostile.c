@@ -224,7 +224,7 @@ Test(hostile, corrupt_integrator_bytes_are_refused, .timeout = 120)
 
 /* ---- huge steps are refused or bounded, never wrong or endless -------------------- */
 
-Test(hostile, huge_times_are_refused_or_bounded, .timeout = 180)
+Test(hostile, huge_times_are_refused_or_bounded, .timeout = 300)
 {
     for (int k = 0; k < 2; k++) {
         const tribo_scene s = scene_with(INTEGRATORS[k]);

@@ -213,7 +213,7 @@ Test(rigid_stick, its_phases_save_and_load_bit_for_bit, .timeout = 180)
    between restarts; a state saved where the work limit stopped an advance loads again: its
    replayed steps reach the committed point bit for bit, also where putting the point back on
    the constraints a second time (as committing does) moves the last bit of a velocity. */
-Test(rigid_stick, a_state_saved_after_a_long_rigid_stretch_loads_again, .timeout = 360)
+Test(rigid_stick, a_state_saved_after_a_long_rigid_stretch_loads_again, .timeout = 600)
 {
     tribo_si_scene si;
     tribo_si_scene_defaults(&si);

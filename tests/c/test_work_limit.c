@@ -48,12 +48,12 @@ static void each_advance_is_bounded(const char *settings, int advances)
     tribo_free(m);
 }
 
-Test(work_limit, an_advance_is_bounded_where_the_contact_sweeps_the_boundary_fast, .timeout = 60)
+Test(work_limit, an_advance_is_bounded_where_the_contact_sweeps_the_boundary_fast, .timeout = 120)
 {
     each_advance_is_bounded(SPINNING_NEEDLE, 3);
 }
 
-Test(work_limit, an_advance_is_bounded_where_a_wide_contact_covers_many_segments, .timeout = 60)
+Test(work_limit, an_advance_is_bounded_where_a_wide_contact_covers_many_segments, .timeout = 120)
 {
     each_advance_is_bounded(WIDE_CONTACT, 3);
 }

@@ -1,7 +1,7 @@
 /* The stability matrix (matrix.c): every case with every integrator finishes,
    stays finite, keeps 0 <= Q_static <= 1 non-decreasing, holds the stretch within the
    Coulomb limit, does not sink into the plate in flight, balances its energy (model.md §6)
-   and stays within the stated CPU bound. */
+   and stays within the stated bound on its work (matrix.h). */
 #include <criterion/criterion.h>
 #include <criterion/parameterized.h>
 
