@@ -34,6 +34,10 @@ SETUPS = [
     ("1e5 segments, Sigma_bd = 5e-324", "tribo", {"n_segments": 100000, "Sigma_bd": 5e-324},
      1000.0),
     ("1e5 segments, no limit", "tribo", {"n_segments": 100000}, 1000.0),
+    ("1e5 segments, spheroid, Gamma = 10", "tribo",
+     {"n_segments": 100000, "grain_geometry": 1, "Gamma": 10.0}, 1000.0),
+    ("the same, tau0 = 0", "tribo",
+     {"n_segments": 100000, "grain_geometry": 1, "Gamma": 10.0, "tau0": 0.0}, 1000.0),
 ]
 STEPS = 8
 DISCARD = 2

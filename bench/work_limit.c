@@ -162,6 +162,9 @@ int main(int argc, char **argv)
     unit_cost("CVODE, rigid stick (no charging)", "charge_model_static=0 "
               "charge_model_sliding=0 n_segments=16 stick_model=1", 1e5);
     unit_cost("1e5 segments, Sigma_bd = 1e-6", "n_segments=100000 Sigma_bd=1e-6", 1000.0);
+    unit_cost("1e5 segments, spheroid, Gamma 10", "n_segments=100000 grain_geometry=1 Gamma=10",
+              1000.0);
+    unit_cost("the same, tau0 = 0", "n_segments=100000 grain_geometry=1 Gamma=10 tau0=0", 1000.0);
     unit_cost("1e5 segments, fixed step, limit", "n_segments=100000 Sigma_bd=1e-3 integrator=0",
               1000.0);
     unit_cost_of("SI, epsilon = 1", "epsilon=1" ENDLESS, 1, 10.0);

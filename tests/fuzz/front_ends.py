@@ -93,7 +93,10 @@ class Dimensionless(Chute):
         {"n_segments": 100000, "integrator": 0, "Sigma_bd": 5e-324},
         {"epsilon": 1e-3}, {"epsilon": 1.0, "stick_model": 1}, {"Gamma": 10.0},
         {"Gamma": 1e-12}, {"mu": 100.0, "nu": 100.0}, {"rtol": 1e-14, "atol": 1e-20},
-        {"integrator": 0, "dt": 1e-9, "Gamma": 10.0}, {"Omega0": 100.0, "epsilon": 1e-3}]
+        {"integrator": 0, "dt": 1e-9, "Gamma": 10.0}, {"Omega0": 100.0, "epsilon": 1e-3},
+        # the spheroid's bands under a contact as wide as the weight can press it
+        {"n_segments": 100000, "grain_geometry": 1, "Gamma": 10.0},
+        {"n_segments": 100000, "grain_geometry": 1, "Gamma": 10.0, "tau0": 0.0}]
     # each in one doStep of this many of the model's units of time (the fixed step resolves
     # it at dt = 1e-9)
     work_bound_step = 1e4

@@ -117,9 +117,9 @@ void tribo_count(tribo_model *m, tribo_counter which, long long n);
 #define TRIBO_WORK_SAMPLE_BAND 0.15      /* ... and its patch over the spheroid's bands     */
 #define TRIBO_WORK_SEGMENT_UPDATE 0.0016 /* each segment value charged ...                 */
 #define TRIBO_WORK_SEGMENT_HELD 0.0019   /* ... and holds within the breakdown limit        */
-#define TRIBO_WORK_LEAVE_TARGET 0.01     /* ... in instantaneous transfer where the globals
+#define TRIBO_WORK_LEAVE_TARGET 0.015    /* ... in instantaneous transfer where the globals
                                             move, its saturation where it left the contact  */
-#define TRIBO_WORK_BAND 0.02             /* a segment's band of the spheroid widened under
+#define TRIBO_WORK_BAND 0.05             /* a segment's band of the spheroid widened under
                                             the patch (its models' bands charged as values) */
 /* Book work of the advance under way (the units above). The charging services book their
    own. */
