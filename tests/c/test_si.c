@@ -204,9 +204,11 @@ Test(si, a_derived_parameter_out_of_the_models_range_names_what_made_it)
     /* a drop too fast for the model (more than 10 a / t_star; a / t_star = 23 m/s for E = 1 MPa) */
     expect_refused("drop_speed=1000 youngs_modulus_particle=1e6",
                    (const char *const[]){"drop_speed = ", "drop_speed = 1000 m/s", "youngs_modulus_particle = 1e+06 Pa", NULL});
-    /* a start beyond the chute's end */
-    expect_refused("chute_length=0.3 x0=0.5", (const char *const[]){"x0 = 0.5 m", "chute_length = 0.3", NULL});
-    expect_refused("x0=99 semi_major_axis=1e-5 chute_length=inf", (const char *const[]){"X0 = ", "x0 = 99 m", NULL});
+    /* a start beyond the chute's end (x0's declared range ends at the default chute's end:
+       a shorter chute) */
+    expect_refused("chute_length=0.1 x0=0.2", (const char *const[]){"x0 = 0.2 m", "chute_length = 0.1", NULL});
+    /* a start too far up the chute in the model's lengths (X0 = x0 / a beyond -1e6) */
+    expect_refused("x0=-100 semi_major_axis=1e-7", (const char *const[]){"X0 = ", "x0 = -100 m", NULL});
 }
 
 Test(si, tunables_and_inputs_convert_as_the_set_up_does)
