@@ -76,13 +76,14 @@ def test_the_map_is_written_with_its_metadata(small_map):
     assert meta["columns"]["charge_static"].startswith("C, on the cylinder of depth")
     assert meta["columns"]["charge_to_mass_sliding"] == "C/kg"
     # what the charges in C depend on beyond the grid, in the table and the metadata: the
-    # size as set, the cylinder depth as the FMU's default
+    # size as set, the cylinder depth and the grain's geometry (1: the spheroid) as the
+    # FMU's defaults
     assert m.set_up == {"particle": "PE", "wall": "steel", "size": 1e-3, "cylinder_length": 1e-3,
-                        "n_segments": 400}
+                        "grain_geometry": 1, "n_segments": 400}
     for column, value in (("particle", "PE"), ("wall", "steel"), ("size", 1e-3), ("cylinder_length", 1e-3)):
         assert (m.table[column] == value).all(), column
-    assert report.titles == ["charge per impact: PE on steel, size 2a = 0.001 m, cylinder depth "
-                             "ℓ = 0.001 m"]
+    assert report.titles == ["charge per impact: PE on steel, size 2a = 0.001 m, the spheroid's "
+                             "charge"]
 
 
 def test_the_lookup_is_the_episode_at_grid_points(small_map, si_image):
@@ -233,3 +234,10 @@ def test_the_figure_rings_the_points_that_did_not_lift_off(small_map, monkeypatc
     assert len(rings) == 2 and all(list(r.get_xdata()) == [30.0] for r in rings)
     assert len(speed_panel.get_legend().get_texts()) == 2  # the head-on slice lifted off
     assert_legends_cover_no_data(figures[0])
+
+
+def test_the_title_names_the_cylinders_depth_only_where_the_grain_is_the_cylinder():
+    from tribo.impact.map import set_up_title
+    base = {"particle": "PE", "wall": "steel", "size": 1e-3, "cylinder_length": 2e-3}
+    assert set_up_title(dict(base, grain_geometry=0)).endswith("cylinder depth ℓ = 0.002 m")
+    assert set_up_title(dict(base, grain_geometry=1)).endswith("the spheroid's charge")

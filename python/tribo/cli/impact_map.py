@@ -14,12 +14,13 @@ arrival settles), or at the time limit (--limit, in t*, default 200); the last t
 sustained contacts (lifted_off = 0), end_reason says which (2 lifted off, 3 at rest, 0 at
 the limit), and the closing line counts each. VALUES: a:b:n (n values from a to b),
 v1,v2,... or one value. The particle's size (--set size=..., the long diameter 2a in m,
-default 1e-3) and the cylinder depth (--set cylinder_length=..., m, default 1e-3) are the
-SI FMU's: the charges in C are for that depth (q/m does not depend on it).
+default 1e-3) is the SI FMU's; the charges in C are the grain's, the spheroid's (with
+--set grain_geometry=0 the cylinder's of the depth --set cylinder_length=..., m, default
+1e-3; q/m does not depend on it).
 
 Writes into the folder --out: impact_map.csv (speed, angle_deg, phi0_deg, epsilon, then
-charge_<model> for each charge model of the FMU (static, sliding: C per impact on the
-cylinder of the depth set), then charge_to_mass_<model> (C/kg), charged_area (m2, the
+charge_<model> for each charge model of the FMU (static, sliding: C per impact, the
+grain's), then charge_to_mass_<model> (C/kg), charged_area (m2, the
 area the contact patch charged), rebound_u, rebound_v, rebound_speed (m/s),
 rebound_angle_deg, rebound_omega (rad/s), contact_time (s), lifted_off, end_reason,
 time_end, t_star, then the set-up on every row: particle, wall, size,

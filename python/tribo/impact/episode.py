@@ -12,8 +12,9 @@ plate (a grazing or very slow arrival settles: the FMU ends the run there, docs/
 section 3c): `end_reason` says which (2 lifted off, 3 at rest, 0 in contact at the time
 limit); its "rebound" is then the state it rests or slides in, no rebound at all.
 
-Its results (`episode_columns`): the charge each charge model of the FMU transferred (C on
-the cylinder of the depth set, and per unit mass; fmu/charge_models.py), the area the
+Its results (`episode_columns`): the charge each charge model of the FMU transferred (C,
+the grain's: the spheroid's by default, the cylinder of the depth set with grain_geometry
+= cylinder; and per unit mass; fmu/charge_models.py), the area the
 contact patch charged (`charged_area`, m2: for a first impact on an uncharged grain with
 instantaneous transfer the static charge is sigma0 times it below the breakdown limit,
 docs/model.md sections 5c, 8c), the rebound (velocity along and normal to the plate, speed,

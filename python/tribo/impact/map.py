@@ -42,7 +42,8 @@ from .episode import (AT_LIMIT, AT_REST, AXES, AXIS_UNITS, MODEL_PREFIXES, Grid,
 
 EPISODES, TABLE, METADATA, FIGURE = "episodes.csv", "impact_map.csv", "impact_map.json", "impact_map.png"
 # what a charge per impact depends on beyond the grid: the pair, the size, and the depth of
-# the cylinder the 2D particle stands for (the charges in C scale with it; q/m does not)
+# the cylinder the 2D particle stands for (with grain_geometry = cylinder the charges in C
+# scale with it; the spheroid's do not, nor does q/m)
 SET_UP_COLUMNS = ["particle", "wall", "size", "cylinder_length"]
 
 
@@ -70,11 +71,12 @@ def map_setup(grid: Grid, particle: str, wall: str, settings: dict, limit: float
 
 
 def map_set_up(particle: str, wall: str, settings: dict, image: FmuImage) -> dict:
-    """The set-up of a map's episodes: the materials, the size (m) and the cylinder depth
-    (m) as set or the FMU's defaults, then every other SI parameter set."""
+    """The set-up of a map's episodes: the materials, the size (m), the cylinder depth (m)
+    and the grain's geometry as set or the FMU's defaults, then every other SI parameter
+    set."""
     md = image.model_description()
     set_up = {"particle": material(particle, "particle").key, "wall": material(wall, "wall").key}
-    for name in ("size", "cylinder_length"):
+    for name in ("size", "cylinder_length", "grain_geometry"):
         set_up[name] = float(settings[name]) if name in settings else start_value(md, name)
     set_up.update({k: v for k, v in settings.items() if k not in set_up})
     return set_up
@@ -82,8 +84,11 @@ def map_set_up(particle: str, wall: str, settings: dict, image: FmuImage) -> dic
 
 def set_up_title(set_up: dict) -> str:
     """The set-up in a line, for a figure's title."""
+    # the charges in C are the spheroid's, or the cylinder's of its depth (docs/model.md §8c)
+    grain = ("the spheroid's charge" if set_up.get("grain_geometry") != 0 else
+             f"cylinder depth ℓ = {format_number(set_up['cylinder_length'])} m")
     return (f"{set_up['particle']} on {set_up['wall']}, size 2a = {format_number(set_up['size'])} m, "
-            f"cylinder depth ℓ = {format_number(set_up['cylinder_length'])} m")
+            f"{grain}")
 
 
 def ends_text(table: pd.DataFrame, limit: float) -> str:

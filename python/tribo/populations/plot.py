@@ -174,8 +174,7 @@ def population_figure(results, summary, title: str = ""):
                  "size, the long diameter 2a (m)", label, "q/m against size", logx=True, logy=True)
         _scatter(row[3], exits, shape_colours, lambda g: g[f"charge_{model}"].abs() * CHARGE_FACTOR,
                  lambda g: g["exit_speed"],
-                 f"{_magnitude_label(sign, 'charge')}, {model} model ({CHARGE_UNIT}, on the "
-                 f"cylinder of the depth set)", "speed at the exit (m/s)",
+                 f"{_magnitude_label(sign, 'charge')}, {model} model ({CHARGE_UNIT}, the grain's)", "speed at the exit (m/s)",
                  "exit speed against charge, the grains that left" if left_only
                  else "exit speed against charge", logx=True, empty="no grain left the chute")
         for ax in row:
