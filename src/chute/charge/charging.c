@@ -56,9 +56,10 @@ int tribo_charging_init(tribo_charging *c, const tribo_charge_model *const *mode
         tribo_charge_slot *slot = &c->slot[i];
         if (!slot->selected)
             continue;
-        if (!(slot->segments = malloc(bytes)))
+        /* uncharged until tribo_charging_reset gives them the grain's initial charge */
+        if (!(slot->segments = calloc((size_t)n, sizeof(double))))
             goto fail;
-        if (keep_bands && !(slot->bands = malloc(bytes)))
+        if (keep_bands && !(slot->bands = calloc((size_t)n, sizeof(double))))
             goto fail;
         if (slot->model->cache_size && !(slot->cache = malloc(slot->model->cache_size)))
             goto fail;
