@@ -164,10 +164,14 @@ def run_job(args, make_job, tell) -> int:
                          say=lambda line: print(line, flush=True))
     except INPUT_ERRORS as e:
         return fail(args.prog, one_line(e))
+    except RuntimeError as e:  # a run that failed (a DEM engine's): one line, exit 1
+        return fail(args.prog, one_line(e), 1)
     except MemoryError:  # what the bounds (batch/specs.py's MAX_RUNS) let through
         return fail(args.prog, "not enough memory for this job: make it smaller")
     except KeyboardInterrupt:
-        what = kept(job, args.out) if job is not None and hasattr(job, "sha256") else "nothing kept"
+        what = "nothing kept"
+        if job is not None and hasattr(job, "sha256"):  # a job may say what it keeps itself
+            what = job.kept(args.out) if hasattr(job, "kept") else kept(job, args.out)
         print(f"{args.prog}: interrupted: {what}; run the same command to resume",
               file=sys.stderr, flush=True)
         return 130

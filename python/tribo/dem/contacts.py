@@ -1,0 +1,164 @@
+"""The grain-wall impacts and the exits, read from a LIGGGHTS run's outputs (script.py).
+
+**Sampling.** contacts.dump holds, every `sample_every` steps (a tenth of the fastest
+impact's Hertz contact time, script.py), each grain whose gap to the plate is below `near`
+(twice what the fastest grain covers in a sample) and whose normal speed exceeds
+`slowest`; the wall's normal force on it says whether it touches. So every impact has at
+least one sample in flight just before it and several in contact: none is missed, and
+one that lasts less than a sample interval would be one the time step does not resolve.
+
+**An impact** is a grain's first sample in contact after a sample in flight (or after
+none: a grain that entered touching). Its onset is the free flight from the sample
+before carried to the contact (exact: gravity alone acts in flight): the normal speed
+`v_n = sqrt(v_z^2 + 2 g_n (z - r))`, and the tangential velocity advanced by g_t over the
+time it takes. Without a sample in flight (a grain written first in contact) the onset is
+the first contact sample's velocity (`from_flight` = 0 says so). Its duration runs to its
+last sample in contact, to a sample interval; a contact whose grain stops being written
+while it still touches (it rests or rolls on the plate: normal speed below `slowest`) is
+`sustained`, its duration then a lower bound.
+
+Per impact (`impacts`): grain (0-based, the feed's order), time (s, the onset), normal
+and tangential speed (m/s), angle (degrees from the plate's surface, 90 head-on),
+duration (s), sustained, from_flight.
+"""
+
+import os
+
+import numpy as np
+import pandas as pd
+
+from .script import CONTACT_COLUMNS, EXIT_COLUMNS
+
+IMPACT_COLUMNS = ["grain", "time", "normal_speed", "tangential_speed", "angle_deg",
+                  "duration", "sustained", "from_flight"]
+
+
+class OutputError(ValueError):
+    """A LIGGGHTS output that cannot be read (the message names the file)."""
+
+
+def read_dump(path: str, columns: list[str]) -> pd.DataFrame:
+    """The rows of a LIGGGHTS `dump custom` file: every line with the columns' count of
+    numbers (the frames' headers have fewer), as a table of those columns."""
+    if not os.path.exists(path):
+        raise OutputError(f"{path}: missing (the LIGGGHTS run did not write it)")
+    rows = []
+    with open(path) as f:
+        for line in f:
+            parts = line.split()
+            if len(parts) == len(columns) and not line.startswith("ITEM"):
+                rows.append(parts)
+    if not rows:
+        return pd.DataFrame({c: np.zeros(0) for c in columns})
+    try:
+        data = np.asarray(rows, dtype=float)
+    except ValueError:
+        raise OutputError(f"{path}: a row is not numbers") from None
+    return pd.DataFrame(data, columns=columns)
+
+
+def impacts(path: str, dt: float, sample_every: int, gravity: tuple, n: int) -> pd.DataFrame:
+    """The impacts (the module's text) of contacts.dump, a run of time step dt (s) sampled
+    every sample_every steps, gravity (g_x, g_y, g_z) in m/s2 in the plate's frame, grains
+    1..n. Sorted by grain and time."""
+    d = read_dump_frames(path, CONTACT_COLUMNS).rename(columns={"f_force_walls[3]": "force"})
+    if d.empty:
+        return pd.DataFrame({c: np.zeros(0) for c in IMPACT_COLUMNS})
+    d = d.sort_values(["id", "step"], kind="stable").reset_index(drop=True)
+    grain = d["id"].to_numpy(dtype=np.int64)
+    step = d["step"].to_numpy(dtype=np.int64)
+    touch = d["force"].to_numpy() != 0.0
+    # consecutive samples of a grain: a sample apart, or two where one fell below `slowest`
+    # (the turn of an impact, its normal speed passing zero)
+    same = np.r_[False, (grain[1:] == grain[:-1]) & (step[1:] - step[:-1] <= 2 * sample_every)]
+    before_touch = np.r_[False, touch[:-1]] & same
+    onset = touch & ~before_touch
+    # each contact's last sample in contact, and whether the grain is written after it
+    next_same = np.r_[same[1:], False]
+    next_touch = np.r_[touch[1:], False] & next_same
+    last = touch & ~next_touch
+    starts, ends = np.flatnonzero(onset), np.flatnonzero(last)
+    if len(starts) != len(ends):  # each run of contact samples has one start and one end
+        raise OutputError(f"{path}: contact samples out of order")
+    g_n, g_t = -gravity[2], np.array(gravity[:2])
+    vz, vx, vy = (d[c].to_numpy() for c in ("vz", "vx", "vy"))
+    gap = d["z"].to_numpy() - d["radius"].to_numpy()
+    flight = np.r_[False, same[1:]][starts]  # the sample before is the grain's, in flight
+    prev = np.maximum(starts - 1, 0)
+    # free flight from the sample before to the contact (g_n > 0 towards the plate)
+    v_prev = -vz[prev]
+    normal = np.where(flight, np.sqrt(np.maximum(v_prev ** 2 + 2.0 * g_n * np.maximum(gap[prev], 0.0),
+                                                 0.0)), -vz[starts])
+    wait = np.where(flight, (normal - v_prev) / g_n if g_n > 0 else 0.0, 0.0)
+    tx = np.where(flight, vx[prev] + g_t[0] * wait, vx[starts])
+    ty = np.where(flight, vy[prev] + g_t[1] * wait, vy[starts])
+    tangential = np.hypot(tx, ty)
+    t_onset = np.where(flight, step[prev] * dt + wait, step[starts] * dt)
+    duration = (step[ends] - step[starts] + sample_every) * dt
+    sustained = ~np.r_[same[1:], False][ends]  # not written after its last contact sample
+    out = pd.DataFrame({"grain": grain[starts] - 1, "time": t_onset, "normal_speed": normal,
+                        "tangential_speed": tangential,
+                        "angle_deg": np.degrees(np.arctan2(normal, tangential)),
+                        "duration": duration, "sustained": sustained.astype(int),
+                        "from_flight": flight.astype(int)})
+    # a contact that begins leaving (a grain written first in contact, moving off): no impact
+    out = out[out["normal_speed"] > 0].reset_index(drop=True)
+    if len(out) and (out["grain"].max() >= n or out["grain"].min() < 0):
+        raise OutputError(f"{path}: grain ids outside 1..{n}")
+    return out
+
+
+def exits(path: str, dt: float, chute_length: float, n: int) -> pd.DataFrame:
+    """Each grain's exit (a row per grain, the feed's order): exited (1: its centre passed
+    the chute's end), exit_time (s, when it was first written past the end: to exit_every
+    steps), u (along the chute) and v (normal, m/s), exit_speed, omega (its spin about the
+    axis across the chute, rad/s, the model's sign: negative rolling down-slope)."""
+    d = read_dump_frames(path, EXIT_COLUMNS)
+    first = d.sort_values("step", kind="stable").drop_duplicates("id")
+    out = pd.DataFrame({"exited": np.zeros(n, dtype=int), "exit_time": np.nan, "u": np.nan,
+                        "v": np.nan, "exit_speed": np.nan, "omega": np.nan})
+    idx = first["id"].to_numpy(dtype=np.int64) - 1
+    if len(idx) and (idx.max() >= n or idx.min() < 0):
+        raise OutputError(f"{path}: grain ids outside 1..{n}")
+    out.loc[idx, "exited"] = 1
+    out.loc[idx, "exit_time"] = first["step"].to_numpy() * dt
+    out.loc[idx, "u"] = first["vx"].to_numpy()
+    out.loc[idx, "v"] = first["vz"].to_numpy()
+    out.loc[idx, "exit_speed"] = np.hypot(first["vx"].to_numpy(), first["vz"].to_numpy())
+    out.loc[idx, "omega"] = -first["omegay"].to_numpy()
+    return out
+
+
+def read_dump_frames(path: str, columns: list[str]) -> pd.DataFrame:
+    """A `dump custom` file's rows with each frame's step (its ITEM: TIMESTEP header)."""
+    if not os.path.exists(path):
+        raise OutputError(f"{path}: missing (the LIGGGHTS run did not write it)")
+    steps, rows = [], []
+    step = None
+    with open(path) as f:
+        lines = iter(f)
+        for line in lines:
+            if line.startswith("ITEM: TIMESTEP"):
+                step = int(next(lines))
+            elif not line.startswith("ITEM"):
+                parts = line.split()
+                if len(parts) == len(columns):
+                    rows.append(parts)
+                    steps.append(step)
+    data = np.asarray(rows, dtype=float) if rows else np.zeros((0, len(columns)))
+    out = pd.DataFrame(data, columns=columns)
+    out.insert(0, "step", np.asarray(steps, dtype=float))
+    return out
+
+
+def contact_time(found: pd.DataFrame, n: int) -> np.ndarray:
+    """Each grain's time in contact as the impacts measure it (s; sustained contacts to
+    when the grain was last written touching)."""
+    return np.bincount(found["grain"].to_numpy(dtype=np.int64), weights=found["duration"],
+                       minlength=n) if len(found) else np.zeros(n)
+
+
+def count(found: pd.DataFrame, n: int) -> np.ndarray:
+    return np.bincount(found["grain"].to_numpy(dtype=np.int64), minlength=n) if len(found) \
+        else np.zeros(n, dtype=int)
+
