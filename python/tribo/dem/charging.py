@@ -24,6 +24,16 @@ surface, the simplest such mixing (as for repeated_impacts). So after impacts dq
 q = Q (1 - prod_k (1 - dq_k / Q)), Q = sigma0 A_s. The air-breakdown limit (section 8b) is
 not applied: a chute's grains stay far below it (their charge is a small fraction of Q).
 
+**Sustained contact.** A grain that comes to rest on the plate or rolls on it (a contact
+that lasts: contacts.py's `sustained`) keeps touching it under its own weight, and in the
+model every point of its great circle comes into contact as it rolls: the band of the
+model's patch under its weight (section 8c: half-width S = sqrt(a delta_w) across, with
+the model's own indentation under the weight, delta_w = m' g cos(tilt) / k', m' = rho pi
+a^2 the lamina's mass per length, k' = (pi/4) E*, section 8) all round it charges once:
+`sigma0 2 pi a 2 S`, carried like an impact's gain (the module's next paragraph). An
+impact's map charge does not hold it: an episode ends at its first lift-off. The grain
+rolls many times its circumference on a chute; a shorter roll is not told apart.
+
 **Restitution.** The DEM's normal restitution is the model's: the map's rebound over
 impact normal speed, head-on, at the feed's first landing speed, for the median size.
 """
@@ -141,15 +151,33 @@ def carried(grain: np.ndarray, gains: np.ndarray, saturation: np.ndarray, n: int
     return saturation * -np.expm1(total)
 
 
-def charges(charger: Charger, found: pd.DataFrame, size: np.ndarray, sigma0: float) -> dict:
+def band_charge(size: np.ndarray, density: float, effective_modulus: float, tilt_deg: float,
+                sigma0: float) -> np.ndarray:
+    """The charge (C) of the band a grain rolling on the plate brings into contact under
+    its weight (the module's text), per grain of diameter `size` (m); E* in Pa (the
+    materials', docs/model.md section 8)."""
+    a = np.asarray(size, dtype=float) / 2.0
+    delta = density * math.pi * a ** 2 * 9.81 * math.cos(math.radians(tilt_deg)) / (
+        math.pi / 4.0 * effective_modulus)
+    return sigma0 * 2.0 * math.pi * a * 2.0 * np.sqrt(a * delta)
+
+
+def charges(charger: Charger, found: pd.DataFrame, size: np.ndarray, sigma0: float,
+            band: np.ndarray | None = None) -> dict:
     """Per charge model, each grain's charge (C) after its impacts `found` (contacts.py),
-    its diameter `size` (m), the pair's sigma0 (C/m2)."""
+    its diameter `size` (m), the pair's sigma0 (C/m2); `band`: each grain's sustained
+    contact's charge (band_charge), gained by those with a sustained contact."""
     n = len(size)
     grain = found["grain"].to_numpy(dtype=np.int64)
     saturation = sigma0 * math.pi * size ** 2
+    rolled = np.zeros(0, dtype=np.int64)
+    if band is not None and len(found):
+        rolled = np.unique(grain[found["sustained"].to_numpy() != 0])
     out = {}
     for model in charger.models:
         gains = charger.charge(f"charge_{model}", size[grain], found["normal_speed"].to_numpy(),
                                found["tangential_speed"].to_numpy()) if len(grain) else np.zeros(0)
-        out[model] = carried(grain, gains, saturation, n)
+        out[model] = carried(np.r_[grain, rolled],
+                             np.r_[gains, band[rolled] if len(rolled) else np.zeros(0)],
+                             saturation, n)
     return out

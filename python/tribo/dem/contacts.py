@@ -14,8 +14,8 @@ before carried to the contact (exact: gravity alone acts in flight): the normal 
 time it takes. Without a sample in flight (a grain written first in contact) the onset is
 the first contact sample's velocity (`from_flight` = 0 says so). Its duration runs to its
 last sample in contact, to a sample interval; a contact whose grain stops being written
-while it still touches (it rests or rolls on the plate: normal speed below `slowest`) is
-`sustained`, its duration then a lower bound.
+while it still touches, leaving it slower than SETTLED (it rests or rolls on the plate:
+normal speed below `slowest`) is `sustained`, its duration then a lower bound.
 
 Per impact (`impacts`): grain (0-based, the feed's order), time (s, the onset), normal
 and tangential speed (m/s), angle (degrees from the plate's surface, 90 head-on),
@@ -29,6 +29,7 @@ import pandas as pd
 
 from .script import CONTACT_COLUMNS, EXIT_COLUMNS
 
+SETTLED = 1e-2  # m/s: a contact left slower than this along the normal is sustained
 IMPACT_COLUMNS = ["grain", "time", "normal_speed", "tangential_speed", "angle_deg",
                   "duration", "sustained", "from_flight"]
 
@@ -95,7 +96,9 @@ def impacts(path: str, dt: float, sample_every: int, gravity: tuple, n: int) -> 
     tangential = np.hypot(tx, ty)
     t_onset = np.where(flight, step[prev] * dt + wait, step[starts] * dt)
     duration = (step[ends] - step[starts] + sample_every) * dt
-    sustained = ~np.r_[same[1:], False][ends]  # not written after its last contact sample
+    # not written after its last contact sample, and leaving it slower than a grain that
+    # lifts off (one that lifts off leaves the `near` band unwritten too, but fast)
+    sustained = ~np.r_[same[1:], False][ends] & (vz[ends] < SETTLED)
     out = pd.DataFrame({"grain": grain[starts] - 1, "time": t_onset, "normal_speed": normal,
                         "tangential_speed": tangential,
                         "angle_deg": np.degrees(np.arctan2(normal, tangential)),

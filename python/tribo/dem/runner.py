@@ -40,7 +40,7 @@ from ..populations.feed import (STEPS_PER_RUN, Feed, draw, particle_parameters, 
 from ..populations.runner import FIGURE, METADATA, PARTICLES, SUMMARY
 from ..populations.summary import summarize_population
 from . import contacts, engine, script
-from .charging import Charger, charges
+from .charging import Charger, band_charge, charges
 from .device import Chute, DeviceError, entries
 
 IMPACTS = "impacts.csv"
@@ -193,7 +193,12 @@ class DemJob(Job):
                                  self.n)
         left = contacts.exits(os.path.join(folder, script.EXITS), dt, self.chute.chute_length, self.n)
         sigma0 = float(p0["sigma0"])
-        charged = charges(charger, found, size, sigma0)
+        materials = script.Contact(p0["youngs_modulus_particle"], p0["poisson_ratio_particle"],
+                                   p0["youngs_modulus_wall"], p0["poisson_ratio_wall"],
+                                   p0["density"], 0.5, 0.0, 0.0)
+        band = band_charge(size, p0["density"], materials.effective_modulus,
+                           self.chute.tilt_deg, sigma0)
+        charged = charges(charger, found, size, sigma0, band)
         for model in charger.models:
             grains = found["grain"].to_numpy(dtype=np.int64)
             found[f"gain_{model}"] = charger.charge(

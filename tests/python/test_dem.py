@@ -1,0 +1,131 @@
+"""tribo dem: LIGGGHTS moves a population's grains (spheres) down the reference chute, the
+package charges each grain-wall impact by the impact map (docs/dem.md).
+
+The dilute limit is checked against the project's own population of the same draw (the
+same feed, seed and grains, epsilon = 1): the q/m distributions agree within the sampling
+error of a difference of two means of n grains (Welch's standard error, three of them).
+LIGGGHTS runs with its moduli at a hundredth (--stiffness-scale 0.01: ten times its time
+step; the charges are the map's at the impact speeds, which the stiffness leaves)."""
+
+import math
+import os
+import shutil
+import subprocess
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import tribo
+from study_support import command
+from tribo.dem import contacts, script
+from tribo.dem.charging import carried
+
+needs_liggghts = pytest.mark.skipif(shutil.which("liggghts") is None,
+                                    reason="LIGGGHTS is not installed (scripts/setup.sh installs it)")
+FEED = ["--epsilon", "1", "--size", "uniform:6e-4:1e-3"]
+N = 12
+# a hang guard only, far above a run's time (about 10 s of CPU on one core)
+TIMEOUT = 600
+
+
+def run_dem(tmp, *argv):
+    return subprocess.run([command("tribo"), "dem", *argv, "--no-progress"], cwd=tmp,
+                          capture_output=True, text=True, timeout=TIMEOUT)
+
+
+@pytest.fixture(scope="module")
+def dilute(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("dem")
+    done = run_dem(tmp, "-n", str(N), "--seed", "3", *FEED, "--stiffness-scale", "0.01",
+                   "--out", "dem", "--no-plot")
+    assert done.returncode == 0, done.stderr[-2000:]
+    return tmp
+
+
+@needs_liggghts
+def test_dilute_dem_agrees_with_the_population_of_the_same_draw(dilute, tmp_path):
+    dem = pd.read_csv(dilute / "dem" / "particles.csv")
+    pop = tribo.population(N, seed=3, distributions={"epsilon": 1.0, "size": "uniform:6e-4:1e-3"},
+                           out=str(tmp_path / "pop"), serial=True).results
+    # the same grains: a population's keys (every parameter of a grain's run)
+    assert list(dem["key"]) == list(pop["key"])
+    assert (dem["exited"] == 1).all() and (pop["exited"] == 1).all()
+    for model in ("static",):
+        a, b = dem[f"charge_to_mass_{model}"], pop[f"charge_to_mass_{model}"]
+        se = math.sqrt(a.var() / len(a) + b.var() / len(b))
+        assert abs(a.mean() - b.mean()) <= 3 * se, (a.mean(), b.mean(), se)
+        assert np.sign(a).eq(np.sign(b)).all()
+    # the exit stream leaves at the speed the model's grain does, to what a sphere differs
+    assert abs(dem["exit_speed"].mean() / pop["exit_speed"].mean() - 1) < 0.1
+
+
+@needs_liggghts
+def test_the_dem_folder_is_a_population_folder(dilute):
+    out = dilute / "dem"
+    rows = tribo.load_results(str(out / "particles.csv")) if hasattr(tribo, "load_results") \
+        else pd.read_csv(out / "particles.csv")
+    summary = pd.read_csv(out / "summary.csv")
+    assert {"grouping", "class", "model", "n", "mean", "stream_mean", "stayed"} <= set(summary)
+    assert int(summary[(summary.grouping == "all") & (summary.model == "static")]["n"].iloc[0]) == N
+    impacts = pd.read_csv(out / "impacts.csv")
+    assert set(contacts.IMPACT_COLUMNS) <= set(impacts.columns)
+    # every grain's first impact is its drop's landing, seen from the flight before it:
+    # the normal speed of a fall of 10 mm under g cos 30 degrees
+    first = impacts.sort_values("time").groupby("grain").first()
+    assert (first["from_flight"] == 1).all()
+    assert np.allclose(first["normal_speed"], math.sqrt(2 * 9.81 * math.cos(math.radians(30)) * 0.01),
+                       rtol=1e-3)
+    assert (rows["impacts"] >= 1).all()
+
+
+@needs_liggghts
+def test_a_second_run_only_charges_again(dilute):
+    log = dilute / "dem" / "liggghts" / script.LOG
+    before = os.path.getmtime(log)
+    done = run_dem(dilute, "-n", str(N), "--seed", "3", *FEED, "--stiffness-scale", "0.01",
+                   "--out", "dem", "--no-plot")
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert os.path.getmtime(log) == before
+
+
+@pytest.mark.parametrize("argv, names", [
+    (["--epsilon", "0.5"], "epsilon"),
+    (["--epsilon", "1", "--stiffness-scale", "2"], "stiffness_scale"),
+    (["--epsilon", "1", "--ranks", "0"], "ranks"),
+    (["--epsilon", "1", "--feed-rate", "1e6"], "feed_rate"),
+])
+def test_bad_input_is_one_line_naming_it(tmp_path, argv, names):
+    done = run_dem(tmp_path, "-n", "3", *argv, "--out", "o")
+    assert done.returncode == 2
+    assert "Traceback" not in done.stderr and len(done.stderr.strip().splitlines()) == 1
+    assert names in done.stderr
+
+
+def test_the_charge_carried_approaches_saturation_as_the_condenser_law():
+    # impacts of gain dq each on a grain whose saturation is Q: q_n = Q (1 - (1 - dq/Q)^n)
+    q = carried(np.zeros(5, dtype=np.int64), np.full(5, 0.1), np.array([1.0]), 1)
+    assert q[0] == pytest.approx(1 - 0.9 ** 5, rel=1e-12)
+    # a negative pair's charges, the same law
+    q = carried(np.array([0, 0]), np.array([-0.2, -0.2]), np.array([-1.0]), 1)
+    assert q[0] == pytest.approx(-(1 - 0.8 ** 2), rel=1e-12)
+
+
+def test_an_impact_is_read_from_the_sample_in_flight_before_it(tmp_path):
+    # a grain of radius 1 mm falls along -z under g_n = 10 m/s2: written at step 0 in flight
+    # (gap 1e-4 m, 0.5 m/s down), then touching at steps 10 and 20, then gone (lifted off)
+    rows = [(0, 1, 0.0011, -0.5, 0.0), (10, 1, 0.00099, -0.4, 1.0), (20, 1, 0.00099, 0.4, 1.0)]
+    text = ""
+    for step, gid, z, vz, force in rows:
+        text += (f"ITEM: TIMESTEP\n{step}\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS ff ff ff\n"
+                 f"0 1\n0 1\n0 1\nITEM: ATOMS {' '.join(script.CONTACT_COLUMNS)}\n"
+                 f"{gid} 0 0 {z} 0.2 0 {vz} 0.001 {force}\n")
+    path = tmp_path / "contacts.dump"
+    path.write_text(text)
+    found = contacts.impacts(str(path), 1e-5, 10, (0.0, 0.0, -10.0), 1)
+    assert len(found) == 1
+    row = found.iloc[0]
+    assert row["normal_speed"] == pytest.approx(math.sqrt(0.25 + 2 * 10 * 1e-4))
+    assert row["tangential_speed"] == pytest.approx(0.2)
+    assert row["duration"] == pytest.approx(2e-4)
+    assert row["from_flight"] == 1 and row["sustained"] == 0
