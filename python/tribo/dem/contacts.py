@@ -1,6 +1,6 @@
 """The grain-wall impacts and the exits, read from a LIGGGHTS run's outputs (script.py).
 
-**Sampling.** contacts.dump holds, every `sample_every` steps (a tenth of the fastest
+**Sampling.** contacts.dump holds, every `sample_every` steps (a fifth of the fastest
 impact's Hertz contact time, script.py), each grain whose gap to the plate is below `near`
 (twice what the fastest grain covers in a sample) and whose normal speed exceeds
 `slowest`; the wall's normal force on it says whether it touches. So every impact has at
@@ -22,7 +22,9 @@ and tangential speed (m/s), angle (degrees from the plate's surface, 90 head-on)
 duration (s), sustained, from_flight.
 """
 
+import io
 import os
+import re
 
 import numpy as np
 import pandas as pd
@@ -132,25 +134,34 @@ def exits(path: str, dt: float, chute_length: float, n: int) -> pd.DataFrame:
     return out
 
 
+# a frame with rows: its step, its count, and the header lines down to its rows (the frames
+# without rows, most of a sparse dump, are never looked at)
+FRAME = re.compile(rb"ITEM: TIMESTEP\n(\d+)\nITEM: NUMBER OF ATOMS\n([1-9]\d*)\n"
+                   rb"ITEM: BOX BOUNDS[^\n]*\n[^\n]*\n[^\n]*\n[^\n]*\nITEM: ATOMS[^\n]*\n")
+
+
 def read_dump_frames(path: str, columns: list[str]) -> pd.DataFrame:
     """A `dump custom` file's rows with each frame's step (its ITEM: TIMESTEP header)."""
     if not os.path.exists(path):
         raise OutputError(f"{path}: missing (the LIGGGHTS run did not write it)")
-    steps, rows = [], []
-    step = None
-    with open(path) as f:
-        lines = iter(f)
-        for line in lines:
-            if line.startswith("ITEM: TIMESTEP"):
-                step = int(next(lines))
-            elif not line.startswith("ITEM"):
-                parts = line.split()
-                if len(parts) == len(columns):
-                    rows.append(parts)
-                    steps.append(step)
-    data = np.asarray(rows, dtype=float) if rows else np.zeros((0, len(columns)))
-    out = pd.DataFrame(data, columns=columns)
-    out.insert(0, "step", np.asarray(steps, dtype=float))
+    with open(path, "rb") as f:
+        text = f.read()
+    steps, chunks = [], []
+    for m in FRAME.finditer(text):
+        k = int(m.group(2))
+        end = m.end()
+        for _ in range(k):
+            end = text.index(b"\n", end) + 1
+        chunks.append(text[m.end():end])
+        steps.append(np.full(k, int(m.group(1)), dtype=np.int64))
+    if not chunks:
+        return pd.DataFrame({c: np.zeros(0) for c in ["step"] + columns})
+    try:
+        out = pd.read_csv(io.BytesIO(b"".join(chunks)), sep=r"\s+", header=None, names=columns,
+                          dtype=float, engine="c")
+    except (ValueError, pd.errors.ParserError):
+        raise OutputError(f"{path}: a row is not {len(columns)} numbers") from None
+    out.insert(0, "step", np.concatenate(steps))
     return out
 
 

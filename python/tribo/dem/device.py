@@ -12,16 +12,22 @@ FMU's exit, section 9). The plate is an STL mesh of two triangles: LIGGGHTS repo
 contacts of mesh walls (`compute wall/gran/local`), not of its primitive walls.
 
 The plate is as wide as the grains' lanes need: in the dilute limit each grain has its
-own lane, `lane_spacing` apart (wide enough that no two can meet: a grain rolls and
+own lane, `lane_spacing` apart (wide enough that no two can meet: a sphere rolls and
 bounces straight down a flat plate), all dropped at t = 0; at a feed rate the grains are
-dropped one after another, 1/feed_rate apart, into `lanes` lanes across a plate `lanes`
-lane widths wide, so that neighbours meet.
+dropped one after another, 1/feed_rate apart, into `lanes` lanes closer together than a
+grain (LANE_SPACING), in turn, so that a grain meets its neighbours as they bounce: in
+a lane of its own a sphere never catches the one before it (their motions are the same,
+whatever their size).
 """
 
 import math
 from dataclasses import dataclass
 
 import numpy as np
+
+
+LANE_SPACING = 0.6  # a fed stream's lanes, in the largest grain's diameter
+CLEARANCE = 1.1  # how far the grain before must have fallen, in the largest grain's diameter
 
 
 class DeviceError(ValueError):
@@ -90,7 +96,7 @@ def entries(chute: Chute, size: np.ndarray, drop_height: np.ndarray, drop_speed:
     """The grains' entries (the module's text): diameters `size` (spheres), each dropped
     from drop_height (its lowest point above the plate, normal to it) at x = 0. feed_rate
     None: the dilute limit, a lane each, `lane_spacing` apart (default three of the largest
-    grain); else grains/s into `lanes` lanes (default: as many as fit in 5 grains' width)."""
+    grain); else grains/s into `lanes` lanes (default 5)."""
     size = np.asarray(size, dtype=float)
     n = len(size)
     biggest = float(size.max())
@@ -110,14 +116,18 @@ def entries(chute: Chute, size: np.ndarray, drop_height: np.ndarray, drop_speed:
         count = 5 if lanes is None else lanes
         if isinstance(count, bool) or not isinstance(count, int) or count < 1:
             raise DeviceError(f"lanes = {lanes!r}: a whole number, at least 1")
-        # lanes 1.1 of the largest grain apart: neighbours touch when they wander, and a
-        # grain never enters on top of the one before it in its lane (count / rate later)
-        spacing = 1.1 * biggest
-        # the grain before in the lane must have fallen a diameter, from rest under g
-        highest = count / math.sqrt(2.0 * 1.1 * biggest / 9.81)
+        # lanes closer than a grain (LANE_SPACING of the largest): grains of neighbouring
+        # lanes overlap across the chute, so that they meet; a grain enters only once the
+        # one before it (the next lane) and the one `count` before (its lane) have fallen
+        # clear of where it enters, from rest under g
+        spacing = LANE_SPACING * biggest
+        clear_next = math.sqrt(2.0 * CLEARANCE * biggest * math.sqrt(1.0 - LANE_SPACING ** 2) / 9.81)
+        clear_lane = math.sqrt(2.0 * CLEARANCE * biggest / 9.81)
+        highest = min(1.0 / clear_next if count > 1 else math.inf, count / clear_lane)
         if rate > highest:
             raise DeviceError(f"feed_rate = {rate:g} grains/s: at most {highest:.4g} with "
-                              f"{count} lanes of {biggest:g} m grains (more lanes take more)")
+                              f"{count} lanes of {biggest:g} m grains (the one before must "
+                              f"have fallen clear)")
         width = count * spacing
         y = -width / 2.0 + spacing * (np.arange(n) % count + 0.5)
         time = np.arange(n) / rate
