@@ -67,11 +67,24 @@ def run(folder: str, input_name: str, log_name: str, steps: int, ranks: int = 1,
         bar.close()
     after = os.times()
     cpu = (after.children_user - before.children_user) + (after.children_system - before.children_system)
-    if code != 0 or _error(os.path.join(folder, log_name)):
-        reason = _error(os.path.join(folder, log_name)) or f"exit status {code}"
+    log = os.path.join(folder, log_name)
+    if code != 0 or _error(log) or _forced(log):
+        # LIGGGHTS stops a run it is signalled to stop (SIGINT, SIGTERM) itself, writing a
+        # restart file, and exits 0: the outputs then end early
+        reason = _error(log) or ("interrupted (a signal): LIGGGHTS stopped early and wrote "
+                                 "a restart file; the run is not resumed, run the command "
+                                 "again to start it over" if _forced(log) else f"exit status {code}")
         raise EngineError(f"LIGGGHTS failed after {time.perf_counter() - started:.1f} s: "
                           f"{reason} (log: {os.path.join(folder, log_name)})")
     return cpu
+
+
+def _forced(log: str) -> bool:
+    """Whether LIGGGHTS stopped early on a signal (its log says it wrote a forced restart)."""
+    if not os.path.exists(log):
+        return False
+    with open(log, errors="replace") as f:
+        return any("Forced restart" in line for line in f)
 
 
 def _error(log: str) -> str | None:

@@ -137,8 +137,8 @@ class DemJob(Job):
                 f"{self.seed}, {how}) through LIGGGHTS on {self.ranks} rank(s) into {out}")
 
     def kept(self, out: str) -> str:
-        return ("the LIGGGHTS run is not resumed (it starts over); the impact maps made are "
-                f"kept in {self.maps}")
+        return ("LIGGGHTS' run is not kept (it is not resumed: it starts over), the impact "
+                f"maps made are, in {self.maps}")
 
     def run(self, out: str, executor, *, progress: bool, max_runs: int | None) -> DemReport:
         wall0 = time.perf_counter()
