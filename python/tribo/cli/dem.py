@@ -3,7 +3,7 @@ separate process), each grain-wall impact charged by the project's impact map; t
 stream written as a population's (docs/dem.md).
 
     tribo dem -n 1000 --epsilon 1 --out out/dem
-    tribo dem -n 2000 --epsilon 1 --feed-rate 400 --lanes 5 --ranks 2 --out out/dem-stream
+    tribo dem -n 2000 --epsilon 1 --feed-rate 40 --lanes 5 --ranks 2 --out out/dem-stream
     tribo dem -n 50 --epsilon 1 --size uniform:6e-4:1e-3 --stiffness-scale 0.01 --out out/dem-soft
 
 The feed is a population's (tribo population --help: --size, --drop-height, ... and the

@@ -3,10 +3,11 @@
 grains in the box), its failure said in one line (LIGGGHTS' own ERROR line), its CPU time
 measured (the child's user + system time, all ranks).
 
-A run is not resumed: LIGGGHTS can restart from a restart file, but not into a run whose
-insertion and outputs are this input's; an interrupted or failed run starts over when the
-command is run again. A run that finished is kept (`DONE` in its folder): the charging,
-which reads its outputs, is what runs again.
+LIGGGHTS stops a run it is signalled to stop (Ctrl-C: SIGINT) at the step it is at and
+writes a restart file (restart_forced_liggghts_<step>.data): `on_stop(cpu)` is then told
+the CPU spent, and the runner resumes from that file (script.py's restart input). A run
+that fails otherwise starts over. A run that finished is kept (`DONE` in its folder): the
+charging, which reads its outputs, is what runs again.
 """
 
 import os
@@ -18,6 +19,7 @@ import time
 from tqdm.auto import tqdm
 
 DONE = "done.json"
+STOP_WAIT = 120  # s: what LIGGGHTS is given to write its restart file once signalled
 THERMO = re.compile(r"^\s*(\d+)\s+(\d+)\s*$")
 
 
@@ -42,12 +44,15 @@ def command(ranks: int) -> list[str]:
 
 
 def run(folder: str, input_name: str, log_name: str, steps: int, ranks: int = 1, *,
-        progress: bool = True) -> float:
+        progress: bool = True, first_step: int = 0, on_stop=None) -> float:
     """Run the input in `folder`; returns LIGGGHTS' CPU time (s). EngineError, one line,
-    where it fails: its ERROR line, or its exit status."""
+    where it fails: its ERROR line, or its exit status; where it was stopped by a signal,
+    on_stop(cpu) first (the module's text)."""
+    on_stop = on_stop or (lambda cpu: None)
     argv = command(ranks) + ["-in", input_name, "-log", log_name, "-echo", "none"]
     before = os.times()
-    bar = tqdm(total=steps, desc="DEM steps", unit="step", disable=not progress, unit_scale=True)
+    bar = tqdm(total=steps, initial=first_step, desc="DEM steps", unit="step",
+               disable=not progress, unit_scale=True)
     started = time.perf_counter()
     try:
         proc = subprocess.Popen(argv, cwd=folder, stdout=subprocess.PIPE,
@@ -59,24 +64,37 @@ def run(folder: str, input_name: str, log_name: str, steps: int, ranks: int = 1,
                     step = int(m.group(1))
                     bar.update(max(0, min(step, steps) - bar.n))
         except KeyboardInterrupt:
-            proc.terminate()
-            proc.wait()
+            # LIGGGHTS, in the same process group, has the signal too: it writes its restart
+            # file and stops; it is ended only where it does not
+            try:
+                proc.wait(timeout=STOP_WAIT)
+            except subprocess.TimeoutExpired:
+                proc.terminate()
+                proc.wait()
+            on_stop(_cpu(before))
             raise
         code = proc.wait()
     finally:
         bar.close()
-    after = os.times()
-    cpu = (after.children_user - before.children_user) + (after.children_system - before.children_system)
+    cpu = _cpu(before)
     log = os.path.join(folder, log_name)
     if code != 0 or _error(log) or _forced(log):
         # LIGGGHTS stops a run it is signalled to stop (SIGINT, SIGTERM) itself, writing a
         # restart file, and exits 0: the outputs then end early
-        reason = _error(log) or ("interrupted (a signal): LIGGGHTS stopped early and wrote "
-                                 "a restart file; the run is not resumed, run the command "
-                                 "again to start it over" if _forced(log) else f"exit status {code}")
+        if _forced(log) and not _error(log):
+            on_stop(cpu)
+            raise EngineError("LIGGGHTS was stopped by a signal and wrote a restart file: "
+                              "the same command resumes from it")
+        reason = _error(log) or f"exit status {code}"
         raise EngineError(f"LIGGGHTS failed after {time.perf_counter() - started:.1f} s: "
                           f"{reason} (log: {os.path.join(folder, log_name)})")
     return cpu
+
+
+def _cpu(before) -> float:
+    after = os.times()
+    return (after.children_user - before.children_user) + (after.children_system
+                                                           - before.children_system)
 
 
 def _forced(log: str) -> bool:

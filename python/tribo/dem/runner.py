@@ -23,6 +23,8 @@ charge: only grain-wall impacts charge.
 import json
 import math
 import os
+import re
+import shutil
 import time
 from dataclasses import dataclass
 
@@ -44,6 +46,7 @@ from .charging import Charger, band_charge, charges
 from .device import Chute, DeviceError, entries
 
 IMPACTS = "impacts.csv"
+STOPPED = "stopped.json"  # a run stopped by a signal: its settings, CPU so far, parts run
 RUN_FOLDER = "liggghts"
 SLOWEST = 1e-3  # m/s: contacts slower along the normal are not written (contacts.py)
 
@@ -137,8 +140,8 @@ class DemJob(Job):
                 f"{self.seed}, {how}) through LIGGGHTS on {self.ranks} rank(s) into {out}")
 
     def kept(self, out: str) -> str:
-        return ("LIGGGHTS' run is not kept (it is not resumed: it starts over), the impact "
-                f"maps made are, in {self.maps}")
+        return ("LIGGGHTS' run up to its restart file (the same command resumes from it) "
+                f"and the impact maps made, in {self.maps}")
 
     def run(self, out: str, executor, *, progress: bool, max_runs: int | None) -> DemReport:
         wall0 = time.perf_counter()
@@ -172,21 +175,7 @@ class DemJob(Job):
                "youngs_modulus_wall": contact.youngs_wall, "ranks": self.ranks}
         previous = _read(done_path)
         if previous is None or previous.get("run") != run:
-            os.makedirs(folder, exist_ok=True)
-            if os.path.exists(done_path):
-                os.remove(done_path)
-            text, steps = script.write_input(
-                self.chute, self.entry, size, contact, dt=dt, sample_every=every,
-                t_end=self.t_end, exit_every=run["exit_every"],
-                progress_every=max(1, int(self.t_end / dt / 200)), near=near, slowest=SLOWEST)
-            with open(os.path.join(folder, script.INPUT), "w") as f:
-                f.write(text)
-            with open(os.path.join(folder, script.PLATE), "w") as f:
-                f.write(self.chute.stl(self.entry.width))
-            cpu = engine.run(folder, script.INPUT, script.LOG, steps, self.ranks, progress=progress)
-            previous = {"run": run, "cpu_s": cpu, "wall_s": time.perf_counter() - wall0}
-            with open(done_path, "w") as f:
-                json.dump(previous, f, indent=2)
+            previous = self._simulate(folder, run, size, contact, progress, wall0)
         cpu0 = time.process_time()
         found = contacts.impacts(os.path.join(folder, script.CONTACTS), dt, every,
                                  tuple(9.81 * c for c in self.chute.gravity_vector),
@@ -209,6 +198,44 @@ class DemJob(Job):
                             time.perf_counter() - wall0)
         report.maps_built = charger.built
         return report
+
+    def _simulate(self, folder, run, size, contact, progress, wall0) -> dict:
+        """LIGGGHTS' run into `folder`, resumed from the restart file of a run stopped by a
+        signal with the same settings (engine.py), else from the start; its record."""
+        stopped_path = os.path.join(folder, STOPPED)
+        stopped = _read(stopped_path)
+        restart = _restart(folder) if stopped is not None and stopped.get("run") == run else None
+        if restart is None:  # from the start: what an earlier run left goes
+            if os.path.isdir(folder):
+                shutil.rmtree(folder)
+            os.makedirs(folder)
+            stopped = {"run": run, "cpu_s": 0.0, "parts": 0}
+        part = stopped["parts"]
+        input_name = script.INPUT if part == 0 else f"resume-{part}.{script.INPUT}"
+        log_name = script.LOG if part == 0 else f"resume-{part}.{script.LOG}"
+        text, steps = script.write_input(
+            self.chute, self.entry, size, contact, dt=run["dt"], sample_every=run["sample_every"],
+            t_end=self.t_end, exit_every=run["exit_every"],
+            progress_every=max(1, int(self.t_end / run["dt"] / 200)), near=run["near"],
+            slowest=SLOWEST, restart=restart)
+        with open(os.path.join(folder, input_name), "w") as f:
+            f.write(text)
+        with open(os.path.join(folder, script.PLATE), "w") as f:
+            f.write(self.chute.stl(self.entry.width))
+
+        def on_stop(cpu):
+            with open(stopped_path, "w") as f:
+                json.dump(dict(stopped, cpu_s=stopped["cpu_s"] + cpu, parts=part + 1), f)
+
+        cpu = engine.run(folder, input_name, log_name, steps, self.ranks, progress=progress,
+                         first_step=restart[1] if restart else 0, on_stop=on_stop)
+        record = {"run": run, "cpu_s": stopped["cpu_s"] + cpu, "parts": part + 1,
+                  "wall_s": time.perf_counter() - wall0}
+        with open(os.path.join(folder, engine.DONE), "w") as f:
+            json.dump(record, f, indent=2)
+        if os.path.exists(stopped_path):
+            os.remove(stopped_path)
+        return record
 
     def _rows(self, out, found, left, charged, size, dem, charging_cpu, wall) -> DemReport:
         n = self.n
@@ -265,6 +292,23 @@ class DemJob(Job):
             report.files.append(write_population_figure(rows, summary, os.path.join(out, FIGURE),
                                                         title))
         return report
+
+
+def _restart(folder: str):
+    """(file, step, grains created) of the latest restart file LIGGGHTS wrote when it was
+    stopped in `folder`, or None. The grains created are counted from its logs (each
+    create_atoms says "Created 1 atoms")."""
+    found = [(int(m.group(1)), name) for name in os.listdir(folder)
+             if (m := re.fullmatch(r"restart_forced_liggghts_(\d+)\.data", name))]
+    if not found:
+        return None
+    step, name = max(found)
+    created = 0
+    for log in os.listdir(folder):
+        if log.endswith(script.LOG):
+            with open(os.path.join(folder, log), errors="replace") as f:
+                created += sum(line.startswith("Created 1 atoms") for line in f)
+    return name, step, created
 
 
 def _read(path: str):

@@ -94,11 +94,16 @@ def _number(x: float) -> str:
 
 def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *, dt: float,
                 sample_every: int, t_end: float, exit_every: int, progress_every: int,
-                near: float, slowest: float, contacts: bool = True) -> tuple[str, int]:
+                near: float, slowest: float, contacts: bool = True,
+                restart: tuple | None = None) -> tuple[str, int]:
     """The LIGGGHTS input (the module's text) and its number of steps. The grains enter
     in the order given (grain i is LIGGGHTS' atom i + 1), each at its entry time; the run
     stops once every grain has left the box (past the chute's end or off its sides) or at
-    t_end. contacts=False: without the contacts' output (what it costs: bench_dem.sh)."""
+    t_end. contacts=False: without the contacts' output (what it costs: bench_dem.sh).
+    restart (file, step, created): the input that resumes a run LIGGGHTS stopped at `step`,
+    writing the restart `file`, with `created` grains in: the scene read from it (the
+    grains, their contact histories with the wall), the outputs appended to, the grains
+    not yet in and the steps left."""
     n = len(diameters)
     biggest = float(np.max(diameters))
     L, half = chute.chute_length, entry.width / 2.0
@@ -114,6 +119,13 @@ def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *
         f"{_number(-half - 5 * biggest)} {_number(half + 5 * biggest)} "
         f"{_number(-0.01)} {_number(top)} units box",
         "create_box 2 box",
+    ] if restart is None else [
+        "# resumed by tribo dem from the restart file LIGGGHTS wrote when it was stopped",
+        f"read_restart {restart[0]}",
+        # what a restart file does not hold
+        "communicate single vel yes", "hard_particles yes", "newton off",
+    ]
+    lines += [
         f"neighbor {_number(0.5 * biggest)} bin", "neigh_modify delay 0",
         # type 1: the grains, type 2: the wall
         f"fix m1 all property/global youngsModulus peratomtype {_number(c.youngs_particle)} "
@@ -141,6 +153,7 @@ def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *
         f"dump exits all custom {exit_every} {EXITS} " + " ".join(EXIT_COLUMNS),
         "dump_modify exits thresh v_past == 1",
     ]
+    append = [] if restart is None else ["dump_modify exits append yes"]
     if contacts:
         # a grain is written while near the plate (its gap below `near`, so that the last
         # sample before a contact is in flight) and moving along the normal faster than
@@ -152,10 +165,12 @@ def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *
                   f"dump contacts all custom {sample_every} {CONTACTS} "
                   + " ".join(CONTACT_COLUMNS),
                   f"dump_modify contacts thresh v_near == 1 thresh v_normal_speed > {_number(slowest)}"]
+        append += [] if restart is None else ["dump_modify contacts append yes"]
+    lines += append
     # each grain enters at its step: a `run` to it, then the grain
     start = np.rint(entry.time / dt).astype(np.int64)
-    done = 0
-    for i in range(n):
+    done, first = (0, 0) if restart is None else (int(restart[1]), int(restart[2]))
+    for i in range(first, n):
         if start[i] > done:
             lines.append(f"run {int(start[i] - done)}")
             done = int(start[i])
