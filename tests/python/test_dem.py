@@ -10,7 +10,9 @@ step; the charges are the map's at the impact speeds, which the stiffness leaves
 import math
 import os
 import shutil
+import signal
 import subprocess
+import time
 
 import numpy as np
 import pandas as pd
@@ -35,10 +37,16 @@ def run_dem(tmp, *argv):
 
 
 @pytest.fixture(scope="module")
-def dilute(tmp_path_factory):
+def maps(tmp_path_factory):
+    """One folder of impact maps for the module's runs (made once, as a user's)."""
+    return str(tmp_path_factory.mktemp("maps"))
+
+
+@pytest.fixture(scope="module")
+def dilute(tmp_path_factory, maps):
     tmp = tmp_path_factory.mktemp("dem")
     done = run_dem(tmp, "-n", str(N), "--seed", "3", *FEED, "--stiffness-scale", "0.01",
-                   "--out", "dem", "--no-plot")
+                   "--out", "dem", "--no-plot", "--maps", maps)
     assert done.returncode == 0, done.stderr[-2000:]
     return tmp
 
@@ -80,11 +88,11 @@ def test_the_dem_folder_is_a_population_folder(dilute):
 
 
 @needs_liggghts
-def test_a_second_run_only_charges_again(dilute):
+def test_a_second_run_only_charges_again(dilute, maps):
     log = dilute / "dem" / "liggghts" / script.LOG
     before = os.path.getmtime(log)
     done = run_dem(dilute, "-n", str(N), "--seed", "3", *FEED, "--stiffness-scale", "0.01",
-                   "--out", "dem", "--no-plot")
+                   "--out", "dem", "--no-plot", "--maps", maps)
     assert done.returncode == 0, done.stderr[-2000:]
     assert os.path.getmtime(log) == before
 
@@ -129,3 +137,33 @@ def test_an_impact_is_read_from_the_sample_in_flight_before_it(tmp_path):
     assert row["tangential_speed"] == pytest.approx(0.2)
     assert row["duration"] == pytest.approx(2e-4)
     assert row["from_flight"] == 1 and row["sustained"] == 0
+
+
+@needs_liggghts
+def test_a_run_stopped_by_ctrl_c_resumes_from_liggghts_restart_file(tmp_path, maps):
+    argv = [command("tribo"), "dem", "-n", "3", "--seed", "5", *FEED, "--stiffness-scale",
+            "0.01", "--no-plot", "--no-progress", "--maps", maps]
+    whole = subprocess.run(argv + ["--out", "whole"], cwd=tmp_path, capture_output=True,
+                           text=True, timeout=TIMEOUT)
+    assert whole.returncode == 0, whole.stderr[-2000:]
+    # Ctrl-C reaches the command and LIGGGHTS (its process group) once LIGGGHTS steps
+    proc = subprocess.Popen(argv + ["--out", "cut"], cwd=tmp_path, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, start_new_session=True)
+    log = tmp_path / "cut" / "liggghts" / script.LOG
+    deadline = time.monotonic() + TIMEOUT
+    while not (log.exists() and "Step" in log.read_text(errors="replace")):
+        assert proc.poll() is None and time.monotonic() < deadline
+        time.sleep(0.05)
+    time.sleep(0.5)
+    os.killpg(proc.pid, signal.SIGINT)
+    _, err = proc.communicate(timeout=TIMEOUT)
+    assert proc.returncode == 130, err[-2000:]
+    assert "interrupted" in err and "Traceback" not in err
+    assert any(p.name.startswith("restart_forced") for p in log.parent.iterdir())
+    again = subprocess.run(argv + ["--out", "cut"], cwd=tmp_path, capture_output=True,
+                           text=True, timeout=TIMEOUT)
+    assert again.returncode == 0, again.stderr[-2000:]
+    assert (log.parent / "resume-1.in.liggghts").exists()
+    a, b = (pd.read_csv(tmp_path / f / "particles.csv") for f in ("whole", "cut"))
+    for c in ("charge_static", "exit_time", "exit_speed", "impacts"):
+        assert np.array_equal(a[c], b[c]), c
