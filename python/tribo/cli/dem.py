@@ -19,7 +19,8 @@ plate.stl, outputs and log); its progress is shown; a failed run is said in one 
 LIGGGHTS' own error. An interrupted LIGGGHTS run is not resumed: the same command starts
 it over; a finished one is kept, and running the command again only charges again. The
 impact maps of the pair (one per grain size class) are made once into --maps and found
-there by later runs.
+there by later runs; their episodes run on Dask as a population's (a local cluster in this
+process, --scheduler, or --serial).
 
 Writes into --out: particles.csv, summary.csv, population.png and population.json as a
 population (tribo population --help), impacts.csv (a row per grain-wall impact: grain,
@@ -32,7 +33,8 @@ import os
 from ..materials import with_pair
 from ..populations.feed import DEFAULT_CHUTE, FEED_UNITS, FEED_VARIABLES, Feed
 from ..dem import DemJob
-from .common import add_out_option, add_materials_option, name_value, numbers, positive_number, run_job
+from .common import (add_job_options, add_materials_option, add_out_option, name_value, numbers,
+                     positive_number, run_job)
 
 NAME = "dem"
 HELP = "a population's grains through the chute in LIGGGHTS, each impact charged: q/m"
@@ -70,12 +72,8 @@ def add_arguments(p) -> None:
     add_materials_option(p)
     add_out_option(p, os.path.join("out", "dem"))
     p.add_argument("--fmu", help="the SI FMU (default: tribo_si_fmi3.fmu of the build)")
-    p.add_argument("--fresh", action="store_true",
-                   help="start the folder over (what it held is kept in <out>/backup-<n>/)")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    add_job_options(p)
     p.add_argument("--no-plot", action="store_true", help="no figure")
-    p.set_defaults(serial=True, scheduler=None, workers=None, processes=False,
-                   connect_timeout=5.0)
 
 
 def job_of(args) -> DemJob:

@@ -47,7 +47,8 @@ import numpy as np
 import pandas as pd
 
 from ..batch.executors import SerialExecutor
-from ..batch.job import execute
+from ..batch.folder import claim
+from ..batch.job import check_writable_dir, execute
 from ..impact.episode import Grid
 from ..impact.map import ImpactMap, MapJob
 
@@ -74,11 +75,22 @@ def map_folder(maps: str, particle: str, wall: str, settings: dict, size: float,
     return os.path.join(maps, f"{particle}-{wall}-{size:.4g}m-{digest}")
 
 
+def make_map(job: MapJob, folder: str, executor=None):
+    """The map's job into its folder (batch/job.py's flow) on `executor`, entered by the
+    caller (the DEM job's), or in this process."""
+    if executor is None:
+        return execute(job, folder, SerialExecutor(), progress=False)
+    job.prepare()
+    check_writable_dir(folder)
+    with claim(folder, job.kind, job.setup(), job.sha256, False):
+        return job.run(folder, executor, progress=False, max_runs=None)
+
+
 class Charger:
     """The maps of a pair for a feed's sizes, and the charging of impacts (module's text)."""
 
     def __init__(self, particle: str, wall: str, settings: dict, sizes, maps: str, fmu=None,
-                 say=None):
+                 say=None, executor=None):
         self.sizes = map_sizes(np.asarray(sizes, dtype=float))
         grid = Grid.of(speed=SPEEDS, angle_deg=ANGLES, phi0_deg=(0.0,), epsilon=(1.0,))
         self.maps, self.built = [], 0
@@ -88,9 +100,8 @@ class Charger:
                 if say:
                     say(f"dem: tabulating the impact map of {particle} on {wall}, size "
                         f"{size:.4g} m, into {folder} (once)")
-                report = execute(MapJob(grid, particle, wall, dict(settings, size=float(size)),
-                                        200.0, 0.0, fmu, figure=False),
-                                 folder, SerialExecutor(), progress=False)
+                report = make_map(MapJob(grid, particle, wall, dict(settings, size=float(size)),
+                                         200.0, 0.0, fmu, figure=False), folder, executor)
                 if report.failed:
                     raise RuntimeError(f"the impact map of size {size:.4g} m failed: "
                                        f"{report.failed[0][1]}")

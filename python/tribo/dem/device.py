@@ -118,16 +118,18 @@ def entries(chute: Chute, size: np.ndarray, drop_height: np.ndarray, drop_speed:
             raise DeviceError(f"lanes = {lanes!r}: a whole number, at least 1")
         # lanes closer than a grain (LANE_SPACING of the largest): grains of neighbouring
         # lanes overlap across the chute, so that they meet; a grain enters only once the
-        # one before it (the next lane) and the one `count` before (its lane) have fallen
-        # clear of where it enters, from rest under g
+        # one before it (the next lane) and the one `count` before (its lane) have fallen,
+        # from rest under g, below the lowest a grain enters and clear of it
         spacing = LANE_SPACING * biggest
-        clear_next = math.sqrt(2.0 * CLEARANCE * biggest * math.sqrt(1.0 - LANE_SPACING ** 2) / 9.81)
-        clear_lane = math.sqrt(2.0 * CLEARANCE * biggest / 9.81)
+        spread = float(np.max(z) - np.min(z))
+        clear_next = math.sqrt(2.0 * (spread + CLEARANCE * biggest * math.sqrt(
+            1.0 - LANE_SPACING ** 2)) / 9.81)
+        clear_lane = math.sqrt(2.0 * (spread + CLEARANCE * biggest) / 9.81)
         highest = min(1.0 / clear_next if count > 1 else math.inf, count / clear_lane)
         if rate > highest:
             raise DeviceError(f"feed_rate = {rate:g} grains/s: at most {highest:.4g} with "
-                              f"{count} lanes of {biggest:g} m grains (the one before must "
-                              f"have fallen clear)")
+                              f"{count} lanes of {biggest:g} m grains dropped from heights "
+                              f"{spread:g} m apart (the one before must have fallen clear)")
         width = count * spacing
         y = -width / 2.0 + spacing * (np.arange(n) % count + 0.5)
         time = np.arange(n) / rate

@@ -148,7 +148,7 @@ class DemJob(Job):
         say = (lambda line: print(line, flush=True)) if progress else None
         settings = {k: v for k, v in self.feed.settings.items()}
         charger = Charger(self.feed.particle, self.feed.wall, settings, self.drawn["size"],
-                          self.maps, self.fmu, say=say)
+                          self.maps, self.fmu, say=say, executor=executor)
         size = self.drawn["size"].to_numpy(dtype=float)
         p0 = self.params[0]
         md = self.image.model_description()
@@ -282,6 +282,7 @@ class DemJob(Job):
         report = DemReport(keys=self.keys, results=rows, executed=n, files=paths, summary=summary,
                            impacts=found, dem_cpu_s=dem["cpu_s"], charging_cpu_s=charging_cpu)
         if self.figure:
+            # matplotlib only when a figure is drawn: `import tribo.dem` stays without it
             from ..populations.plot import write_population_figure
             chute = described["chute"]
             how = ("dilute" if self.feed_rate is None else f"{format_number(self.feed_rate)} grains/s")
