@@ -7,9 +7,9 @@
 #     the DEM-coupled run's;
 #  3. a fed stream on 2 MPI ranks (grains meet): the whole coupled run, wall and CPU, and
 #     the figure of its q/m against the dilute limit's (copied to docs/dem/dilute_vs_fed.png).
-# Sizes: BENCH_DILUTE (default 40) and BENCH_FED (default 60) grains of 0.6-1 mm PE
+# Sizes: BENCH_DILUTE (default 40) and BENCH_FED (default 100) grains of 0.6-1 mm PE
 # spheres on the 0.3 m steel chute at 30 degrees, the fed ones dropped from 5-15 mm at
-# BENCH_RATE grains/s (default 20) in 5 lanes, and the same grains in the dilute limit;
+# BENCH_RATE grains/s (default 100) in 5 lanes, and the same grains in the dilute limit;
 # LIGGGHTS' moduli at BENCH_STIFFNESS (default 0.01) of PE's and
 # steel's. Results: out/bench-dem/ (kept between runs: the maps in out/bench-dem/maps).
 set -euo pipefail
@@ -18,8 +18,8 @@ PY="$ROOT/.venv/bin/python"
 TRIBO="$ROOT/.venv/bin/tribo"
 OUT=${BENCH_OUT:-"$ROOT/out/bench-dem"}
 N=${BENCH_DILUTE:-40}
-NF=${BENCH_FED:-60}
-RATE=${BENCH_RATE:-20}
+NF=${BENCH_FED:-100}
+RATE=${BENCH_RATE:-100}
 STIFF=${BENCH_STIFFNESS:-0.01}
 FEED=(--epsilon 1 --size uniform:6e-4:1e-3 --stiffness-scale "$STIFF" --maps "$OUT/maps" --no-progress)
 # the fed stream's grains drop from heights 5-15 mm: their bounces differ, so that they meet

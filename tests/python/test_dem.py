@@ -22,6 +22,7 @@ import tribo
 from study_support import command
 from tribo.dem import contacts, script
 from tribo.dem.charging import carried
+from tribo.dem.device import Chute, DeviceError, entries, highest_rate
 
 needs_liggghts = pytest.mark.skipif(shutil.which("liggghts") is None,
                                     reason="LIGGGHTS is not installed (scripts/setup.sh installs it)")
@@ -167,3 +168,25 @@ def test_a_run_stopped_by_ctrl_c_resumes_from_liggghts_restart_file(tmp_path, ma
     a, b = (pd.read_csv(tmp_path / f / "particles.csv") for f in ("whole", "cut"))
     for c in ("charge_static", "exit_time", "exit_speed", "impacts"):
         assert np.array_equal(a[c], b[c]), c
+
+
+def test_fed_grains_enter_clear_of_the_ones_still_falling():
+    # at the highest rate the device takes, no grain enters overlapping one dropped before
+    # it that is still in free fall (from rest along the tilted gravity)
+    chute = Chute()
+    rng = np.random.default_rng(1)
+    n = 200
+    size = rng.uniform(6e-4, 1e-3, n)
+    height = rng.uniform(0.005, 0.015, n)
+    z = size / 2 + height  # the centres at entry
+    rate = highest_rate(5, size.max(), float(z.max() - z.min()))
+    entry = entries(chute, size, height, np.zeros(n), np.zeros(n), rate, 5)
+    g = 9.81 * np.array(chute.gravity_vector)
+    for i in range(1, n):
+        t = entry.time[i] - entry.time[:i]
+        where = entry.position[:i] + 0.5 * g * t[:, None] ** 2
+        falling = where[:, 2] > size[:i] / 2
+        apart = np.linalg.norm(where - entry.position[i], axis=1)
+        assert (apart[falling] >= (size[:i][falling] + size[i]) / 2).all(), i
+    with pytest.raises(DeviceError, match="feed_rate"):
+        entries(chute, size, height, np.zeros(n), np.zeros(n), 1.01 * rate, 5)

@@ -11,8 +11,8 @@ materials), its grains spheres: --epsilon 1 (LIGGGHTS holds spheres here; ellips
 represented) and no spin at the drop. Without --feed-rate the grains are in the dilute
 limit: each in its own lane across a plate wide enough for all, dropped at once, so that
 none meets another; with it, grains/s dropped one after another into --lanes lanes (5 by
-default) a grain apart, so that they collide (LIGGGHTS moves them through it; grain-grain
-contacts transfer no charge).
+default) closer than a grain, three drop points along each, so that they collide
+(LIGGGHTS moves them through it; grain-grain contacts transfer no charge).
 
 LIGGGHTS runs as `liggghts` or `mpirun -np RANKS liggghts` in <out>/liggghts/ (its input,
 plate.stl, outputs and log); its progress is shown; a failed run is said in one line with

@@ -145,9 +145,6 @@ class Charger:
             out[at] = ((1 - w[at]) * lo + w[at] * hi) * size[at] ** 2
         return out
 
-    def fastest(self) -> float:
-        return SPEEDS[-1]
-
 
 def carried(grain: np.ndarray, gains: np.ndarray, saturation: np.ndarray, n: int) -> np.ndarray:
     """Each grain's charge after its impacts' gains (an uncharged grain's each), the charge

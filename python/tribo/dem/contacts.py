@@ -40,26 +40,6 @@ class OutputError(ValueError):
     """A LIGGGHTS output that cannot be read (the message names the file)."""
 
 
-def read_dump(path: str, columns: list[str]) -> pd.DataFrame:
-    """The rows of a LIGGGHTS `dump custom` file: every line with the columns' count of
-    numbers (the frames' headers have fewer), as a table of those columns."""
-    if not os.path.exists(path):
-        raise OutputError(f"{path}: missing (the LIGGGHTS run did not write it)")
-    rows = []
-    with open(path) as f:
-        for line in f:
-            parts = line.split()
-            if len(parts) == len(columns) and not line.startswith("ITEM"):
-                rows.append(parts)
-    if not rows:
-        return pd.DataFrame({c: np.zeros(0) for c in columns})
-    try:
-        data = np.asarray(rows, dtype=float)
-    except ValueError:
-        raise OutputError(f"{path}: a row is not numbers") from None
-    return pd.DataFrame(data, columns=columns)
-
-
 def impacts(path: str, dt: float, sample_every: int, gravity: tuple, n: int) -> pd.DataFrame:
     """The impacts (the module's text) of contacts.dump, a run of time step dt (s) sampled
     every sample_every steps, gravity (g_x, g_y, g_z) in m/s2 in the plate's frame, grains

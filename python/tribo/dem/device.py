@@ -15,9 +15,10 @@ The plate is as wide as the grains' lanes need: in the dilute limit each grain h
 own lane, `lane_spacing` apart (wide enough that no two can meet: a sphere rolls and
 bounces straight down a flat plate), all dropped at t = 0; at a feed rate the grains are
 dropped one after another, 1/feed_rate apart, into `lanes` lanes closer together than a
-grain (LANE_SPACING), in turn, so that a grain meets its neighbours as they bounce: in
-a lane of its own a sphere never catches the one before it (their motions are the same,
-whatever their size).
+grain (LANE_SPACING), in turn, each lane with ROWS drop points a grain apart along the
+chute (the chute is that much shorter for them: 2.2 of the largest grain's diameters at
+most), so that a grain meets its neighbours as they bounce: in a lane of its own a sphere
+never catches the one before it (their motions are the same, whatever their size).
 """
 
 import math
@@ -27,7 +28,31 @@ import numpy as np
 
 
 LANE_SPACING = 0.6  # a fed stream's lanes, in the largest grain's diameter
-CLEARANCE = 1.1  # how far the grain before must have fallen, in the largest grain's diameter
+CLEARANCE = 1.1  # how far apart grains enter, at least, in the largest grain's diameter
+ROWS = 3  # a fed stream's drop points along the chute, per lane
+ROW_SPACING = 1.1  # between them, in the largest grain's diameter
+
+
+def highest_rate(lanes: int, biggest: float, spread: float) -> float:
+    """The highest feed rate (grains/s) at which every grain enters clear of those that
+    entered before it: each earlier grain whose drop point lies within CLEARANCE diameters
+    of its own across the plate must have fallen, from rest under g, the height it needs
+    below the highest entry to the lowest (`spread`, m) and clear of it. The drop points
+    repeat every lanes x ROWS grains: the pairs of one period and the next say it all."""
+    period = lanes * ROWS
+    reach = CLEARANCE * biggest
+    highest = math.inf
+    for lag in range(1, 2 * period + 1):
+        for i in range(period):
+            j = i + lag
+            dy = LANE_SPACING * biggest * abs(i % lanes - j % lanes)
+            dx = ROW_SPACING * biggest * abs(i % ROWS - j % ROWS)
+            apart = math.hypot(dx, dy)
+            if apart >= reach:
+                continue
+            fall = spread + math.sqrt(reach * reach - apart * apart)
+            highest = min(highest, lag / math.sqrt(2.0 * fall / 9.81))
+    return highest
 
 
 class DeviceError(ValueError):
@@ -117,21 +142,22 @@ def entries(chute: Chute, size: np.ndarray, drop_height: np.ndarray, drop_speed:
         if isinstance(count, bool) or not isinstance(count, int) or count < 1:
             raise DeviceError(f"lanes = {lanes!r}: a whole number, at least 1")
         # lanes closer than a grain (LANE_SPACING of the largest): grains of neighbouring
-        # lanes overlap across the chute, so that they meet; a grain enters only once the
-        # one before it (the next lane) and the one `count` before (its lane) have fallen,
-        # from rest under g, below the lowest a grain enters and clear of it
+        # lanes overlap across the chute, so that they meet. Each lane has ROWS drop points
+        # along the chute, a grain apart, taken in turn with the lanes (ROWS and the lanes
+        # share no factor but 1), so that consecutive grains enter clear of each other
         spacing = LANE_SPACING * biggest
-        spread = float(np.max(z) - np.min(z))
-        clear_next = math.sqrt(2.0 * (spread + CLEARANCE * biggest * math.sqrt(
-            1.0 - LANE_SPACING ** 2)) / 9.81)
-        clear_lane = math.sqrt(2.0 * (spread + CLEARANCE * biggest) / 9.81)
-        highest = min(1.0 / clear_next if count > 1 else math.inf, count / clear_lane)
+        width = count * spacing
+        i = np.arange(n)
+        y = -width / 2.0 + spacing * (i % count + 0.5)
+        x = ROW_SPACING * biggest * (i % ROWS)
+        highest = highest_rate(count, biggest, float(np.max(z) - np.min(z)))
         if rate > highest:
             raise DeviceError(f"feed_rate = {rate:g} grains/s: at most {highest:.4g} with "
                               f"{count} lanes of {biggest:g} m grains dropped from heights "
-                              f"{spread:g} m apart (the one before must have fallen clear)")
-        width = count * spacing
-        y = -width / 2.0 + spacing * (np.arange(n) % count + 0.5)
-        time = np.arange(n) / rate
+                              f"{float(np.max(z) - np.min(z)):g} m apart (a grain enters only "
+                              f"where the ones before have fallen clear)")
+        time = i / rate
+        position = np.stack([x, y, z], axis=-1)
+        return Entry(position, velocity, time, width)
     position = np.stack([np.zeros(n), y, z], axis=-1)
     return Entry(position, velocity, time, width)

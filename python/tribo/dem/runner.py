@@ -182,11 +182,11 @@ class DemJob(Job):
                                  self.n)
         left = contacts.exits(os.path.join(folder, script.EXITS), dt, self.chute.chute_length, self.n)
         sigma0 = float(p0["sigma0"])
-        materials = script.Contact(p0["youngs_modulus_particle"], p0["poisson_ratio_particle"],
-                                   p0["youngs_modulus_wall"], p0["poisson_ratio_wall"],
-                                   p0["density"], 0.5, 0.0, 0.0)
-        band = band_charge(size, p0["density"], materials.effective_modulus,
-                           self.chute.tilt_deg, sigma0)
+        # the materials' own moduli (not LIGGGHTS' scaled ones): the model's indentation
+        modulus = script.effective_modulus(p0["youngs_modulus_particle"],
+                                           p0["poisson_ratio_particle"],
+                                           p0["youngs_modulus_wall"], p0["poisson_ratio_wall"])
+        band = band_charge(size, p0["density"], modulus, self.chute.tilt_deg, sigma0)
         charged = charges(charger, found, size, sigma0, band)
         for model in charger.models:
             grains = found["grain"].to_numpy(dtype=np.int64)

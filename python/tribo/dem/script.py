@@ -59,9 +59,15 @@ class Contact:
 
     @property
     def effective_modulus(self) -> float:
-        """E* of a grain on the wall: 1 / ((1 - nu_p^2)/E_p + (1 - nu_w^2)/E_w)."""
-        return 1.0 / ((1.0 - self.poisson_particle ** 2) / self.youngs_particle
-                      + (1.0 - self.poisson_wall ** 2) / self.youngs_wall)
+        return effective_modulus(self.youngs_particle, self.poisson_particle,
+                                 self.youngs_wall, self.poisson_wall)
+
+
+def effective_modulus(youngs_particle: float, poisson_particle: float, youngs_wall: float,
+                      poisson_wall: float) -> float:
+    """E* of a grain on the wall (Pa): 1 / ((1 - nu_p^2)/E_p + (1 - nu_w^2)/E_w)."""
+    return 1.0 / ((1.0 - poisson_particle ** 2) / youngs_particle
+                  + (1.0 - poisson_wall ** 2) / youngs_wall)
 
 
 def rayleigh_time(diameter: float, c: Contact) -> float:
