@@ -190,3 +190,20 @@ def test_fed_grains_enter_clear_of_the_ones_still_falling():
         assert (apart[falling] >= (size[:i][falling] + size[i]) / 2).all(), i
     with pytest.raises(DeviceError, match="feed_rate"):
         entries(chute, size, height, np.zeros(n), np.zeros(n), 1.01 * rate, 5)
+
+
+def test_a_failed_liggghts_run_is_one_line_with_its_error(tmp_path, maps):
+    # a stand-in for LIGGGHTS that fails as it does: its ERROR line in its log, status 1
+    bin_dir = tmp_path / "bin"
+    bin_dir.mkdir()
+    fake = bin_dir / "liggghts"
+    fake.write_text('#!/bin/sh\nwhile [ "$1" != "-log" ]; do shift; done\n'
+                    'echo "ERROR: Lost atoms: original 3 current 2 (stand-in)" > "$2"\nexit 1\n')
+    fake.chmod(0o755)
+    env = dict(os.environ, PATH=f"{bin_dir}:{os.environ['PATH']}")
+    done = subprocess.run([command("tribo"), "dem", "-n", "3", *FEED, "--stiffness-scale", "0.01",
+                           "--maps", maps, "--out", "o", "--no-progress"], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=TIMEOUT, env=env)
+    assert done.returncode == 1
+    assert "Traceback" not in done.stderr and len(done.stderr.strip().splitlines()) == 1
+    assert "ERROR: Lost atoms" in done.stderr and "log.liggghts" in done.stderr
