@@ -1,6 +1,6 @@
 """The grain-wall impacts and the exits, read from a LIGGGHTS run's outputs (script.py).
 
-**Sampling.** contacts.dump holds, every `sample_every` steps (a fifth of the fastest
+**Sampling.** contacts.dump holds, every `sample_every` steps (a third of the fastest
 impact's Hertz contact time, script.py), each grain whose gap to the plate is below `near`
 (twice what the fastest grain covers in a sample) and whose normal speed exceeds
 `slowest`; the wall's normal force on it says whether it touches. So every impact has at

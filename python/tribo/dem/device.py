@@ -30,6 +30,7 @@ import numpy as np
 LANE_SPACING = 0.6  # a fed stream's lanes, in the largest grain's diameter
 CLEARANCE = 1.1  # how far apart grains enter, at least, in the largest grain's diameter
 ROWS = 3  # a fed stream's drop points along the chute, per lane
+SIDE_MARGIN = 0.03  # m: a fed stream's plate beyond its lanes, each side
 ROW_SPACING = 1.1  # between them, in the largest grain's diameter
 
 
@@ -146,9 +147,11 @@ def entries(chute: Chute, size: np.ndarray, drop_height: np.ndarray, drop_speed:
         # along the chute, a grain apart, taken in turn with the lanes (ROWS and the lanes
         # share no factor but 1), so that consecutive grains enter clear of each other
         spacing = LANE_SPACING * biggest
-        width = count * spacing
+        # the plate is wider than the lanes by SIDE_MARGIN each side: grains knocked
+        # sideways stay on it, as between a chute's side walls (which are not modelled)
+        width = count * spacing + 2.0 * SIDE_MARGIN
         i = np.arange(n)
-        y = -width / 2.0 + spacing * (i % count + 0.5)
+        y = -count * spacing / 2.0 + spacing * (i % count + 0.5)
         x = ROW_SPACING * biggest * (i % ROWS)
         highest = highest_rate(count, biggest, float(np.max(z) - np.min(z)))
         if rate > highest:

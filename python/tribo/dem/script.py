@@ -12,8 +12,8 @@ refuses Young's moduli above 1e9 Pa in SI units without it.
 
 The time step is a fraction of the smallest grain's Rayleigh time and of its Hertz contact
 time at the fastest impact (`time_step`); the wall contacts are written every
-`sample_every` steps, a fifth of that contact time, so that every contact is seen at least
-five times (contacts.py reads them).
+`sample_every` steps, a third of that contact time, so that every contact is seen at least
+three times (contacts.py reads them).
 
 Outputs (the run's folder):
 
@@ -41,7 +41,7 @@ EXIT_COLUMNS = ["id", "x", "y", "z", "vx", "vy", "vz", "omegay"]
 # a tenth of the smallest grain's Rayleigh time: LIGGGHTS warns above a fifth of it
 RAYLEIGH_FRACTION = 0.1
 STEPS_PER_CONTACT = 40  # the time step: the fastest impact's Hertz contact time over this
-SAMPLES_PER_CONTACT = 5  # the contacts' sampling: at least this many samples per contact
+SAMPLES_PER_CONTACT = 3  # the contacts' sampling: at least this many samples per contact
 
 
 @dataclass(frozen=True)
