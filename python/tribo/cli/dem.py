@@ -16,11 +16,11 @@ default) closer than a grain, three drop points along each, so that they collide
 
 LIGGGHTS runs as `liggghts` or `mpirun -np RANKS liggghts` in <out>/liggghts/ (its input,
 plate.stl, outputs and log); its progress is shown; a failed run is said in one line with
-LIGGGHTS' own error. An interrupted LIGGGHTS run is not resumed: the same command starts
-it over; a finished one is kept, and running the command again only charges again. The
-impact maps of the pair (one per grain size class) are made once into --maps and found
-there by later runs; their episodes run on Dask as a population's (a local cluster in this
-process, --scheduler, or --serial).
+LIGGGHTS' own error. Ctrl-C stops LIGGGHTS at a restart file it writes, and the same
+command resumes from it; a finished run is kept, and running the command again only
+charges again. The impact maps of the pair (one per grain size class) are made once into
+--maps and found there by later runs; their episodes run on Dask as a population's (a
+local cluster in this process, --scheduler, or --serial).
 
 Writes into --out: particles.csv, summary.csv, population.png and population.json as a
 population (tribo population --help), impacts.csv (a row per grain-wall impact: grain,

@@ -1,6 +1,7 @@
 """The figure that sets a fed stream's q/m beside the dilute limit's, for the same draw of
 grains (docs/dem.md): the histograms of -q/m (or q/m for a positive pair) of both, and each
-grain's fed q/m against its dilute q/m (the line: equal)."""
+grain's fed q/m against its dilute q/m (the line: equal; a cross: a fed grain that did not
+leave by the chute's end)."""
 
 import numpy as np
 
@@ -21,7 +22,11 @@ def comparison_figure(dilute, fed, model: str = "static", title: str = ""):
     left.set_xlabel(f"{what}, {model} model ({QM_UNIT})")
     left.set_ylabel("grains")
     legend(left)
-    right.scatter(x, y, s=12, label="a grain")
+    left_chute = fed.set_index("key")["exited"].reindex(a.index).to_numpy() == 1
+    right.scatter(x[left_chute], y[left_chute], s=12, label="a grain (left by the chute's end)")
+    if not left_chute.all():
+        right.scatter(x[~left_chute], y[~left_chute], s=16, marker="x",
+                      label="a grain of the fed stream that did not leave by the end")
     lo, hi = bins[0], bins[-1]
     right.plot([lo, hi], [lo, hi], "k--", lw=1, label="fed = dilute")
     right.set_xlabel(f"{what} in the dilute limit ({QM_UNIT})")
