@@ -75,6 +75,17 @@ def map_folder(maps: str, particle: str, wall: str, settings: dict, size: float,
     return os.path.join(maps, f"{particle}-{wall}-{size:.4g}m-{digest}")
 
 
+def _current(folder: str, fmu_sha256: str | None) -> bool:
+    """Whether `folder` holds a finished map of the FMU of that SHA-256 (any, if None)."""
+    try:
+        with open(os.path.join(folder, "impact_map.json")) as f:
+            made_by = json.load(f)["model"]["fmu_sha256"]
+    except (OSError, ValueError, KeyError):
+        return False
+    return os.path.exists(os.path.join(folder, "impact_map.csv")) and (
+        fmu_sha256 is None or made_by == fmu_sha256)
+
+
 def make_map(job: MapJob, folder: str, executor=None):
     """The map's job into its folder (batch/job.py's flow) on `executor`, entered by the
     caller (the DEM job's), or in this process."""
@@ -90,13 +101,13 @@ class Charger:
     """The maps of a pair for a feed's sizes, and the charging of impacts (module's text)."""
 
     def __init__(self, particle: str, wall: str, settings: dict, sizes, maps: str, fmu=None,
-                 say=None, executor=None):
+                 say=None, executor=None, fmu_sha256: str | None = None):
         self.sizes = map_sizes(np.asarray(sizes, dtype=float))
         grid = Grid.of(speed=SPEEDS, angle_deg=ANGLES, phi0_deg=(0.0,), epsilon=(1.0,))
         self.maps, self.built = [], 0
         for size in self.sizes:
             folder = map_folder(maps, particle, wall, settings, size, fmu)
-            if not os.path.exists(os.path.join(folder, "impact_map.csv")):
+            if not _current(folder, fmu_sha256):  # missing, or another FMU's: made (again)
                 if say:
                     say(f"dem: tabulating the impact map of {particle} on {wall}, size "
                         f"{size:.4g} m, into {folder} (once)")

@@ -148,7 +148,8 @@ class DemJob(Job):
         say = (lambda line: print(line, flush=True)) if progress else None
         settings = {k: v for k, v in self.feed.settings.items()}
         charger = Charger(self.feed.particle, self.feed.wall, settings, self.drawn["size"],
-                          self.maps, self.fmu, say=say, executor=executor)
+                          self.maps, self.fmu, say=say, executor=executor,
+                          fmu_sha256=self.sha256)
         size = self.drawn["size"].to_numpy(dtype=float)
         p0 = self.params[0]
         md = self.image.model_description()
