@@ -34,7 +34,7 @@ from ..materials import with_pair
 from ..populations.feed import DEFAULT_CHUTE, FEED_UNITS, FEED_VARIABLES, Feed
 from ..dem import DemJob
 from .common import (add_job_options, add_materials_option, add_out_option, name_value, numbers,
-                     positive_number, run_job)
+                     positive_number, qm_table, run_job)
 
 NAME = "dem"
 HELP = "a population's grains through the chute in LIGGGHTS, each impact charged: q/m"
@@ -99,14 +99,11 @@ def told(job, report) -> list[str]:
                  f"({int(found['sustained'].sum()) if len(found) else 0} ending in sustained "
                  f"contact); CPU: LIGGGHTS {report.dem_cpu_s:.3g} s, charging "
                  f"{report.charging_cpu_s:.3g} s ({100 * share:.2g} % of LIGGGHTS')")
-    table = report.summary.copy()
-    for c in table.columns[5:]:
-        if c not in ("n", "stayed"):
-            table[c] = table[c] * 1e6
     lines += ["q/m (µC/kg; stream_mean and stream_std: mass-weighted, of the grains that "
               "left the chute; stayed: the mass fraction that did not leave; docs/dem.md):",
-              table.drop(columns=["low", "high"]).to_string(index=False,
-                                                             float_format=lambda v: f"{v:.4g}"),
+              qm_table(report.summary),
+              f"dem: {int(report.summary.iloc[0]['n_exited'])} of {len(report.results)} grains "
+              f"left by the chute's end",
               f"dem: wrote {', '.join(report.files)}"]
     return lines
 

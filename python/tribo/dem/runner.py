@@ -257,12 +257,18 @@ class DemJob(Job):
                        "exit_speed": left["exit_speed"].to_numpy(), "omega": left["omega"].to_numpy(),
                        "contact_fraction": contacts.contact_time(found, n) / end,
                        "impacts": contacts.count(found, n), "assumption_warnings": 0})
+        # how a grain's run ended, where the population's rows say it (populations/feed.py):
+        # one that left by the chute's end ended there (1); of one that did not, LIGGGHTS
+        # does not say whether it rests, rolls or fell off the plate's side: left empty
+        left_by_end = left["exited"].to_numpy() == 1
+        result.update({"end_reason": np.where(left_by_end, 1.0, np.nan),
+                       "at_rest": np.where(left_by_end, 0.0, np.nan)})
         for model in self.models:
             q = charged.get(model, np.full(n, np.nan))
             result[f"charge_{model}"] = q
             result[f"charge_to_mass_{model}"] = q / mass
             result[f"capped_fraction_{model}"] = 0.0
-        for c in columns:
+        for c in columns:  # the population's columns, those it has
             rows[c] = result[c]
         total_cpu = dem["cpu_s"] + charging_cpu
         rows["cpu_s"] = total_cpu / n
