@@ -207,3 +207,19 @@ def test_a_failed_liggghts_run_is_one_line_with_its_error(tmp_path, maps):
     assert done.returncode == 1
     assert "Traceback" not in done.stderr and len(done.stderr.strip().splitlines()) == 1
     assert "ERROR: Lost atoms" in done.stderr and "log.liggghts" in done.stderr
+
+
+def test_the_comparison_figure_labels_both_and_covers_no_data():
+    from figure_checks import assert_legends_cover_no_data
+    from tribo.dem.plot import comparison_figure
+
+    rng = np.random.default_rng(2)
+    keys = [f"k{i}" for i in range(60)]
+    dilute = pd.DataFrame({"key": keys, "charge_to_mass_static": -rng.uniform(4e-8, 8e-8, 60),
+                           "exited": 1})
+    fed = dilute.assign(charge_to_mass_static=dilute["charge_to_mass_static"]
+                        * rng.uniform(0.4, 1.2, 60), exited=(rng.uniform(size=60) > 0.1).astype(int))
+    fig = comparison_figure(dilute, fed, title="test")
+    labels = [ax.get_xlabel() + ax.get_ylabel() for ax in fig.axes]
+    assert all("µC/kg" in text or "grains" in text for text in labels)
+    assert_legends_cover_no_data(fig)
