@@ -163,7 +163,7 @@ def shrink(sub: str, argv: list[str], scheduler: str) -> list[str]:
         out += ["--chute-length", "0.05"]
     if sub == "study":
         out += ["--epsilons", "1.0", "--t-end", "20", "--transition-width", "0.5"]
-    if sub == "dem" and "--stiffness-scale" not in out:  # LIGGGHTS' time step ten times
+    if sub == "dem" and "--stiffness-scale" not in out:  # LIGGGHTS' time step 6.3 times
         out += ["--stiffness-scale", "0.01"]
     return out + ["--no-progress"]
 
