@@ -5,7 +5,7 @@ The dilute limit is checked against the project's own population of the same dra
 same feed, seed and grains, epsilon = 1): the q/m distributions agree within the sampling
 error of a difference of two means of n grains (Welch's standard error, three of them).
 LIGGGHTS runs with its moduli at a hundredth (--stiffness-scale 0.01: 6.3 times its time
-step; q/m 0.5 % from the materials' moduli', docs/dem.md)."""
+step; q/m 0.5 % from that with the materials' moduli: docs/dem.md)."""
 
 import math
 import os
