@@ -103,6 +103,7 @@ def test_a_second_run_only_charges_again(dilute, maps):
     (["--epsilon", "1", "--stiffness-scale", "2"], "stiffness_scale"),
     (["--epsilon", "1", "--ranks", "0"], "ranks"),
     (["--epsilon", "1", "--feed-rate", "1e6"], "feed_rate"),
+    (["--epsilon", "1", "--lanes", "3"], "lanes"),
 ])
 def test_bad_input_is_one_line_naming_it(tmp_path, argv, names):
     done = run_dem(tmp_path, "-n", "3", *argv, "--out", "o")

@@ -109,6 +109,9 @@ class DemJob(Job):
                            f"LIGGGHTS takes, in (0, 1]")
         if not (isinstance(self.t_end, (int, float)) and math.isfinite(self.t_end) and self.t_end > 0):
             raise DemError(f"t_end = {self.t_end!r}: the horizon in s, a positive number")
+        if self.lanes is not None and self.feed_rate is None:
+            raise DemError(f"lanes = {self.lanes!r}: the lanes of a fed stream, taken with a "
+                           f"feed rate only (the dilute limit gives each grain its own)")
         _spheres(self.feed)
         self.chute = Chute(**self.feed.describe()["chute"])
         self.image = FmuImage.load(find_fmu(self.fmu, "si"))
