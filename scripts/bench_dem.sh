@@ -29,11 +29,11 @@ cd "$OUT"
 
 "$TRIBO" dem -n "$N" --seed 1 "${FEED[@]}" --out dilute --fresh | sed -n 2p
 # the sampling's cost: the dilute run's LIGGGHTS input again, with and without the
-# contacts' output (its dump lines removed), twice each, alternately; the least CPU of each
+# contacts' output (its dump lines removed), four times each, alternately; the least CPU of each
 rm -rf withdump nodump && cp -r dilute/liggghts withdump && cp -r dilute/liggghts nodump
 rm -f withdump/*.dump nodump/*.dump
 grep -v "contacts\|variable near\|variable normal_speed\|compute radius" dilute/liggghts/in.liggghts > nodump/in.liggghts
-for k in 1 2; do
+for k in 1 2 3 4; do
   for d in withdump nodump; do
     ( cd "$d" && /usr/bin/time -f "%U %S" -a -o cpu.txt liggghts -in in.liggghts -log log.liggghts -echo none > /dev/null )
   done
@@ -57,7 +57,7 @@ with_dump, without = least("withdump/cpu.txt"), least("nodump/cpu.txt")
 pop = pd.read_csv("population/particles.csv")
 pop_cpu = pop["cpu_s"].sum() / n
 print(f"dilute, {n} grains, 1 rank: LIGGGHTS CPU {dem:.3g} s in the coupled run; the same "
-      f"input, least of two: {with_dump:.3g} s with the contacts' output, {without:.3g} s "
+      f"input, least of four: {with_dump:.3g} s with the contacts' output, {without:.3g} s "
       f"without it (the sampling: {100 * (with_dump / without - 1):.3g} %); charging "
       f"{charging:.3g} s = {100 * charging / dem:.3g} % of LIGGGHTS'")
 print(f"per grain: the population {pop_cpu:.3g} s CPU, LIGGGHTS + charging "
