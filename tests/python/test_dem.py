@@ -104,6 +104,8 @@ def test_a_second_run_only_charges_again(dilute, maps):
     (["--epsilon", "1", "--ranks", "0"], "ranks"),
     (["--epsilon", "1", "--feed-rate", "1e6"], "feed_rate"),
     (["--epsilon", "1", "--lanes", "3"], "lanes"),
+    (["--epsilon", "1", "--vibration", "0.05,50"], "vibration"),
+    (["--epsilon", "1", "--vibration", "5e-4"], "--vibration"),
 ])
 def test_bad_input_is_one_line_naming_it(tmp_path, argv, names):
     done = run_dem(tmp_path, "-n", "3", *argv, "--out", "o")
@@ -224,3 +226,21 @@ def test_the_comparison_figure_labels_both_and_covers_no_data():
     labels = [ax.get_xlabel() + ax.get_ylabel() for ax in fig.axes]
     assert all("µC/kg" in text or "grains" in text for text in labels)
     assert_legends_cover_no_data(fig)
+
+
+@needs_liggghts
+def test_a_vibrating_chute_is_met_relative_to_its_motion(tmp_path, maps):
+    # the plate moves 0.5 mm at 50 Hz along its normal: the first landing's normal speed is
+    # the free fall's relative to the plate, within the plate's own speed of it, and every
+    # impact is read from the flight before it, the plate's motion followed
+    done = run_dem(tmp_path, "-n", "3", "--seed", "4", *FEED, "--stiffness-scale", "0.01",
+                   "--vibration", "5e-4,50", "--out", "vib", "--no-plot", "--maps", maps)
+    assert done.returncode == 0, done.stderr[-2000:]
+    found = pd.read_csv(tmp_path / "vib" / "impacts.csv")
+    rows = pd.read_csv(tmp_path / "vib" / "particles.csv")
+    assert (rows["exited"] == 1).all() and (found["from_flight"] == 1).all()
+    fall = math.sqrt(2 * 9.81 * math.cos(math.radians(30)) * 0.01)
+    plate = 5e-4 * 2 * math.pi * 50
+    first = found.sort_values("time").groupby("grain").first()
+    assert ((first["normal_speed"] > fall - plate) & (first["normal_speed"] < fall + plate)).all()
+    assert not np.allclose(first["normal_speed"], fall, rtol=1e-3)

@@ -5,6 +5,7 @@ stream written as a population's (docs/dem.md).
     tribo dem -n 1000 --epsilon 1 --out out/dem
     tribo dem -n 2000 --epsilon 1 --feed-rate 40 --lanes 5 --ranks 2 --out out/dem-stream
     tribo dem -n 50 --epsilon 1 --size uniform:6e-4:1e-3 --stiffness-scale 0.01 --out out/dem-soft
+    tribo dem -n 100 --epsilon 1 --vibration 5e-4,50 --out out/dem-vibrating
 
 The feed is a population's (tribo population --help: --size, --drop-height, ... and the
 materials), its grains spheres: --epsilon 1 (LIGGGHTS holds spheres here; ellipses are not
@@ -59,6 +60,9 @@ def add_arguments(p) -> None:
     p.add_argument("--feed-rate", type=positive_number, metavar="PER_S",
                    help="grains/s dropped one after another (default: the dilute limit)")
     p.add_argument("--lanes", type=int, help="lanes of a fed stream (default 5)")
+    p.add_argument("--vibration", type=numbers, metavar="A,F",
+                   help="the plate vibrates along its normal: amplitude A in m, frequency F "
+                        "in Hz (a vibrating chute: each grain meets it many times)")
     p.add_argument("--ranks", type=int, default=1, help="LIGGGHTS' MPI ranks (default 1)")
     p.add_argument("--stiffness-scale", type=float, default=1.0, metavar="F",
                    help="the Young's moduli LIGGGHTS takes, as a fraction of the materials' "
@@ -83,9 +87,19 @@ def job_of(args) -> DemJob:
                 with_pair(args.particle, args.wall, dict(args.set), args.materials))
     return DemJob(feed, args.particles, args.seed, args.t_end, args.fmu,
                   feed_rate=args.feed_rate, lanes=args.lanes, ranks=args.ranks,
+                  vibration=_vibration(args.vibration),
                   stiffness_scale=args.stiffness_scale, maps=args.maps,
                   figure=not args.no_plot, shape_edges=args.shape_classes,
                   size_edges=args.size_classes)
+
+
+def _vibration(values):
+    if values is None:
+        return None
+    if len(values) != 2:
+        raise ValueError(f"--vibration {','.join(f'{v:g}' for v in values)}: two numbers, "
+                         f"the amplitude in m and the frequency in Hz")
+    return values
 
 
 def told(job, report) -> list[str]:

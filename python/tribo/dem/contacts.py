@@ -40,7 +40,8 @@ class OutputError(ValueError):
     """A LIGGGHTS output that cannot be read (the message names the file)."""
 
 
-def impacts(path: str, dt: float, sample_every: int, gravity: tuple, n: int) -> pd.DataFrame:
+def impacts(path: str, dt: float, sample_every: int, gravity: tuple, n: int,
+            wall=None) -> pd.DataFrame:
     """The impacts (the module's text) of contacts.dump, a run of time step dt (s) sampled
     every sample_every steps, gravity (g_x, g_y, g_z) in m/s2 in the plate's frame, grains
     1..n. Sorted by grain and time."""
@@ -64,8 +65,13 @@ def impacts(path: str, dt: float, sample_every: int, gravity: tuple, n: int) -> 
     if len(starts) != len(ends):  # each run of contact samples has one start and one end
         raise OutputError(f"{path}: contact samples out of order")
     g_n, g_t = -gravity[2], np.array(gravity[:2])
-    vz, vx, vy = (d[c].to_numpy() for c in ("vz", "vx", "vy"))
-    gap = d["z"].to_numpy() - d["radius"].to_numpy()
+    vx, vy = (d[c].to_numpy() for c in ("vx", "vy"))
+    t = step * dt
+    wall_z = wall.wall_z if wall is not None else np.zeros_like
+    wall_vz = wall.wall_vz if wall is not None else np.zeros_like
+    # along the normal, relative to the plate (which a vibrating chute moves)
+    vz = d["vz"].to_numpy() - wall_vz(t)
+    gap = d["z"].to_numpy() - d["radius"].to_numpy() - wall_z(t)
     flight = np.r_[False, same[1:]][starts]  # the sample before is the grain's, in flight
     prev = np.maximum(starts - 1, 0)
     # free flight from the sample before to the contact (g_n > 0 towards the plate)
@@ -73,6 +79,15 @@ def impacts(path: str, dt: float, sample_every: int, gravity: tuple, n: int) -> 
     normal = np.where(flight, np.sqrt(np.maximum(v_prev ** 2 + 2.0 * g_n * np.maximum(gap[prev], 0.0),
                                                  0.0)), -vz[starts])
     wait = np.where(flight, (normal - v_prev) / g_n if g_n > 0 else 0.0, 0.0)
+    if wall is not None and getattr(wall, "amplitude", 0):
+        # a moving plate: where the flight meets it, by Newton from the still plate's time
+        z0, w0, t0 = d["z"].to_numpy()[prev] - d["radius"].to_numpy()[prev], d["vz"].to_numpy()[prev], t[prev]
+        for _ in range(20):
+            f = z0 + w0 * wait - 0.5 * g_n * wait ** 2 - wall_z(t0 + wait)
+            slope = w0 - g_n * wait - wall_vz(t0 + wait)
+            wait = np.clip(wait - f / np.where(slope < 0, slope, -1e-9), 0.0,
+                           2 * sample_every * dt)
+        normal = np.where(flight, -(w0 - g_n * wait - wall_vz(t0 + wait)), normal)
     tx = np.where(flight, vx[prev] + g_t[0] * wait, vx[starts])
     ty = np.where(flight, vy[prev] + g_t[1] * wait, vy[starts])
     tangential = np.hypot(tx, ty)

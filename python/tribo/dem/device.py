@@ -11,6 +11,9 @@ plane, and a grain has left the chute when its centre passes x = chute_length (t
 FMU's exit, section 9). The plate is an STL mesh of two triangles: LIGGGHTS reports the
 contacts of mesh walls (`compute wall/gran/local`), not of its primitive walls.
 
+A **vibrating chute** (amplitude > 0) moves the plate along its normal, A sin(2 pi f t):
+a grain meets it many times as it goes down (LIGGGHTS' `fix move/mesh ... wiggle`).
+
 The plate is as wide as the grains' lanes need: in the dilute limit each grain has its
 own lane, `lane_spacing` apart (wide enough that no two can meet: a sphere rolls and
 bounces straight down a flat plate), all dropped at t = 0; at a feed rate the grains are
@@ -73,12 +76,29 @@ class Chute:
 
     chute_length: float = 0.3
     tilt_deg: float = 30.0
+    amplitude: float = 0.0  # m: the plate's vibration along its normal (0: at rest)
+    frequency: float = 0.0  # Hz
 
     def __post_init__(self):
         _positive("chute_length", self.chute_length, "m")
         if not (isinstance(self.tilt_deg, (int, float)) and 0 < self.tilt_deg < 90):
             raise DeviceError(f"tilt_deg = {self.tilt_deg!r}: the chute's tilt from the "
                               f"horizontal, degrees, in (0, 90)")
+        if self.amplitude:
+            _positive("vibration amplitude", self.amplitude, "m, below 0.01")
+            _positive("vibration frequency", self.frequency, "Hz, up to 1000")
+            if self.amplitude >= 0.01 or self.frequency > 1000:
+                raise DeviceError(f"vibration {self.amplitude:g} m at {self.frequency:g} Hz: "
+                                  f"an amplitude below 0.01 m, a frequency up to 1000 Hz")
+
+    def wall_z(self, t):
+        """The plate's height along its normal at time t (s): A sin(2 pi f t), the
+        LIGGGHTS `wiggle` of the mesh from t = 0."""
+        return self.amplitude * np.sin(2.0 * math.pi * self.frequency * np.asarray(t, dtype=float))
+
+    def wall_vz(self, t):
+        w = 2.0 * math.pi * self.frequency
+        return self.amplitude * w * np.cos(w * np.asarray(t, dtype=float))
 
     @property
     def gravity_vector(self) -> tuple:

@@ -82,7 +82,8 @@ def _spheres(feed: Feed) -> None:
 class DemJob(Job):
     """n grains of `feed` (spheres) through the chute in LIGGGHTS, charged by the impact
     map (the module's text). feed_rate None: the dilute limit (a lane each, all dropped at
-    once); else grains/s into `lanes` lanes. ranks: LIGGGHTS' MPI ranks. stiffness_scale:
+    once); else grains/s into `lanes` lanes. vibration (amplitude m, frequency Hz): the
+    plate vibrates along its normal (device.py). ranks: LIGGGHTS' MPI ranks. stiffness_scale:
     the Young's moduli LIGGGHTS takes, as a fraction of the materials' (a larger time step;
     the charges are the map's, at the impact speeds). maps: the folder the impact maps are
     kept in."""
@@ -91,11 +92,13 @@ class DemJob(Job):
 
     def __init__(self, feed: Feed, n: int, seed: int = 0, t_end: float = 5.0, fmu=None, *,
                  feed_rate: float | None = None, lanes: int | None = None,
-                 lane_spacing: float | None = None, ranks: int = 1, stiffness_scale: float = 1.0,
+                 lane_spacing: float | None = None, vibration: tuple | None = None,
+                 ranks: int = 1, stiffness_scale: float = 1.0,
                  maps: str = os.path.join("out", "impact-maps"), figure: bool = True,
                  shape_edges=None, size_edges=None):
         self.feed, self.n, self.seed, self.t_end, self.fmu = feed, n, seed, t_end, fmu
         self.feed_rate, self.lanes, self.lane_spacing = feed_rate, lanes, lane_spacing
+        self.vibration = tuple(vibration) if vibration else None
         self.ranks, self.stiffness_scale, self.maps = ranks, stiffness_scale, maps
         self.figure, self.shape_edges, self.size_edges = figure, shape_edges, size_edges
         self.keys = []
@@ -113,7 +116,9 @@ class DemJob(Job):
             raise DemError(f"lanes = {self.lanes!r}: the lanes of a fed stream, taken with a "
                            f"feed rate only (the dilute limit gives each grain its own)")
         _spheres(self.feed)
-        self.chute = Chute(**self.feed.describe()["chute"])
+        amplitude, frequency = self.vibration or (0.0, 0.0)
+        self.chute = Chute(**self.feed.describe()["chute"], amplitude=amplitude,
+                           frequency=frequency)
         self.image = FmuImage.load(find_fmu(self.fmu, "si"))
         md = self.image.model_description()
         depth = start_value(md, "cylinder_length")
@@ -134,6 +139,7 @@ class DemJob(Job):
     def setup(self) -> dict:
         return {"n": self.n, "seed": self.seed, "t_end_s": self.t_end, "feed": self.feed.describe(),
                 "feed_rate": self.feed_rate, "lanes": self.lanes, "lane_spacing": self.lane_spacing,
+                "vibration": list(self.vibration) if self.vibration else None,
                 "ranks": self.ranks, "stiffness_scale": self.stiffness_scale}
 
     def describe(self, out: str, executor) -> str:
@@ -165,7 +171,10 @@ class DemJob(Job):
             p0["density"], min(max(charger.restitution(first), 0.05), 0.95),
             p0.get("mu", start_value(md, "mu")), p0.get("mu_roll", start_value(md, "mu_roll")))
         g = 9.81
-        fastest = float(np.max(self.drawn["drop_speed"]) + math.sqrt(
+        # the fastest impact: a free fall from the drop to the chute's end, onto a plate
+        # coming up at its vibration's fastest
+        fastest = float(self.chute.amplitude * 2 * math.pi * self.chute.frequency
+                        + np.max(self.drawn["drop_speed"]) + math.sqrt(
             2 * g * (float(np.max(self.drawn["drop_height"])) + self.chute.chute_length
                      * math.sin(math.radians(self.chute.tilt_deg)))))
         dt, every = script.time_step(size, fastest, contact)
@@ -183,7 +192,7 @@ class DemJob(Job):
         cpu0 = time.process_time()
         found = contacts.impacts(os.path.join(folder, script.CONTACTS), dt, every,
                                  tuple(9.81 * c for c in self.chute.gravity_vector),
-                                 self.n)
+                                 self.n, wall=self.chute)
         left = contacts.exits(os.path.join(folder, script.EXITS), dt, self.chute.chute_length, self.n)
         sigma0 = float(p0["sigma0"])
         # the materials' own moduli (not LIGGGHTS' scaled ones): the model's indentation
@@ -208,7 +217,9 @@ class DemJob(Job):
         signal with the same settings (engine.py), else from the start; its record."""
         stopped_path = os.path.join(folder, STOPPED)
         stopped = _read(stopped_path)
-        restart = _restart(folder) if stopped is not None and stopped.get("run") == run else None
+        # a vibrating plate is not resumed: its mesh's motion restarts with the input
+        restart = (_restart(folder) if stopped is not None and stopped.get("run") == run
+                   and not self.chute.amplitude else None)
         if restart is None:  # from the start: what an earlier run left goes
             if os.path.isdir(folder):
                 shutil.rmtree(folder)

@@ -149,6 +149,11 @@ def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *
         f"timestep {_number(dt)}",
         f"fix gravity all gravity 9.81 vector {_number(gx)} {_number(gy)} {_number(gz)}",
         f"fix plate all mesh/surface file {PLATE} type 2",
+    ]
+    if chute.amplitude:  # the vibrating chute: the mesh moves along its normal
+        lines += [f"fix vibrate all move/mesh mesh plate wiggle amplitude 0 0 "
+                  f"{_number(chute.amplitude)} period {_number(1.0 / chute.frequency)}"]
+    lines += [
         "fix walls all wall/gran model hertz tangential history rolling_friction cdt "
         "mesh n_meshes 1 meshes plate store_force yes",
         "fix integrate all nve/sphere",
@@ -163,11 +168,17 @@ def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *
     if contacts:
         # a grain is written while near the plate (its gap below `near`, so that the last
         # sample before a contact is in flight) and moving along the normal faster than
-        # `slowest`: a grain at rest or rolling on the plate is not written
+        # `slowest` relative to it: a grain at rest or rolling on the plate is not written
+        # (the plate where it is: a vibrating plate's A sin(2 pi f t))
+        phase = f"2*PI*{_number(chute.frequency)}*step*{_number(dt)}"
+        wall, wall_speed = ((f"{_number(chute.amplitude)}*sin({phase})",
+                             f"{_number(chute.amplitude * 2 * math.pi * chute.frequency)}*cos({phase})")
+                            if chute.amplitude else ("0", "0"))
         lines += ["compute radius all property/atom radius",
-                  f"variable near atom (z-c_radius<{_number(near)})*(x>-c_radius)*"
+                  f"variable wall equal {wall}", f"variable wall_speed equal {wall_speed}",
+                  f"variable near atom (z-c_radius-v_wall<{_number(near)})*(x>-c_radius)*"
                   f"(x<{_number(L)}+c_radius)",
-                  "variable normal_speed atom abs(vz)",
+                  "variable normal_speed atom abs(vz-v_wall_speed)",
                   f"dump contacts all custom {sample_every} {CONTACTS} "
                   + " ".join(CONTACT_COLUMNS),
                   f"dump_modify contacts thresh v_near == 1 thresh v_normal_speed > {_number(slowest)}"]
