@@ -6,7 +6,8 @@ set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 
 APT_PACKAGES=(build-essential cmake ninja-build pkg-config libsundials-dev libcriterion-dev
-              python3 python3-venv zip libtbb12)
+              python3 python3-venv zip libtbb12
+              liggghts)  # tribo dem's DEM engine (docs/dem.md)
 # scripts/build_fmus.sh: Windows binaries (MinGW-w64), checked under Wine, and dpkg-source
 # for the SUNDIALS source package
 if [ "${TRIBO_SETUP_WINDOWS:-0}" = 1 ]; then

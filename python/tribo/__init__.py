@@ -69,11 +69,15 @@ Its subpackages, by concern (each module's docstring says what it does):
                  single impact, repeated impacts, a chute's exit stream), data (the CSV
                  files), fit (sigma0, t0, eta and what the data determine), plot, runner
                  (a calibration into a folder, the materials file it writes)
+    dem/         a population's grains through a device in LIGGGHTS (docs/dem.md): device
+                 (the chute, the grains' entries), script (the LIGGGHTS input), engine
+                 (LIGGGHTS as a process), contacts (the impacts from its output), charging
+                 (the maps, the charge carried), runner (the job), plot
     cli/         the command `tribo` (main) and its subcommands, a module each
 
 Each imports only its own modules and the layers below it: plotting and fmu at the
 bottom, then materials and batch, then study, populations and impact (not each other), then
-line and calibration (on populations and impact; not each other), then api and cli (CONTRIBUTING.md; tests/python/test_package_layout.py checks it).
+line, calibration and dem (on populations and impact; not each other), then api and cli (CONTRIBUTING.md; tests/python/test_package_layout.py checks it).
 """
 
 from . import fmu, materials

@@ -23,7 +23,7 @@ import pytest
 from study_support import PYTHON, command
 from tribo_fmu import ROOT
 
-SUBCOMMANDS = ["study", "sweep", "population", "impact-map", "line", "calibrate"]
+SUBCOMMANDS = ["study", "sweep", "population", "impact-map", "line", "calibrate", "dem"]
 ALIASES = ["tribo-study", "tribo-sweep", "tribo-population", "tribo-impact-map", "tribo-line"]
 
 
@@ -140,8 +140,8 @@ GRID = re.compile(r"^(\w+=)?(-?[\d.]+(?:e-?\d+)?):(-?[\d.]+(?:e-?\d+)?):(\d+)$")
 
 def shrink(sub: str, argv: list[str], scheduler: str) -> list[str]:
     """An example at a small size: grids a:b:n of 2 values, 3 particles of 0.5 s, 3 grains
-    on a 5 cm chute, sweeps to tau = 20, the study on one roundness to tau = 20, the
-    cluster address the test's."""
+    on a 5 cm chute, sweeps to tau = 20, the study on one roundness to tau = 20, the DEM's
+    moduli at a hundredth, the cluster address the test's."""
     out = []
     args = list(argv)
     while args:
@@ -163,6 +163,8 @@ def shrink(sub: str, argv: list[str], scheduler: str) -> list[str]:
         out += ["--chute-length", "0.05"]
     if sub == "study":
         out += ["--epsilons", "1.0", "--t-end", "20", "--transition-width", "0.5"]
+    if sub == "dem" and "--stiffness-scale" not in out:  # LIGGGHTS' time step 6.3 times
+        out += ["--stiffness-scale", "0.01"]
     return out + ["--no-progress"]
 
 

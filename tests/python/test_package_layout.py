@@ -16,6 +16,7 @@ PACKAGE_DIR = os.path.dirname(tribo.__file__)
 # of a lower layer (tribo/__init__.py says the same)
 LAYERS = {"tribo.plotting": 0, "tribo.fmu": 0, "tribo.materials": 1, "tribo.batch": 1,
           "tribo.study": 2, "tribo.populations": 2, "tribo.impact": 2, "tribo.line": 3, "tribo.calibration": 3,
+          "tribo.dem": 3,
           "tribo.api": 4, "tribo.cli": 5, "tribo": 6}
 # what `import tribo` must not load: the package imports them where they are used (plots,
 # Dask runs, map lookups), each such import with its reason

@@ -46,10 +46,12 @@ OWN_FILES = {
              "bins.csv", "line.png", "line.json"],
     "calibration": ["fit.csv", "points.csv", "profile.csv", "materials.toml",
                     "calibration.png", "calibration.json"],
+    "dem": ["particles.csv", "impacts.csv", "summary.csv", "population.png", "population.json",
+            "liggghts"],
 }
 COMMANDS = {"study": "tribo study", "sweep": "tribo sweep", "population": "tribo population",
             "impact map": "tribo impact-map", "line": "tribo line",
-            "calibration": "tribo calibrate"}
+            "calibration": "tribo calibrate", "dem": "tribo dem"}
 
 
 class FolderError(ValueError):

@@ -10,6 +10,7 @@ import sys
 from ..batch.executors import executor_for
 from ..batch.grid import parse_values
 from ..batch.job import execute, kept
+from ..populations.summary import END_COLUMNS
 
 # what a mistake in the input raises (every error class of the package is one of these, with
 # a message of one line): the command says it in one line and exits 2
@@ -164,16 +165,31 @@ def run_job(args, make_job, tell) -> int:
                          say=lambda line: print(line, flush=True))
     except INPUT_ERRORS as e:
         return fail(args.prog, one_line(e))
+    except RuntimeError as e:  # a run that failed (a DEM engine's): one line, exit 1
+        return fail(args.prog, one_line(e), 1)
     except MemoryError:  # what the bounds (batch/specs.py's MAX_RUNS) let through
         return fail(args.prog, "not enough memory for this job: make it smaller")
     except KeyboardInterrupt:
-        what = kept(job, args.out) if job is not None and hasattr(job, "sha256") else "nothing kept"
+        what = "nothing kept"
+        if job is not None and hasattr(job, "sha256"):  # a job may say what it keeps itself
+            what = job.kept(args.out) if hasattr(job, "kept") else kept(job, args.out)
         print(f"{args.prog}: interrupted: {what}; run the same command to resume",
               file=sys.stderr, flush=True)
         return 130
     for line in report.notes + tell(job, report):
         print(line)
     return 1 if report.failed else 0
+
+
+def qm_table(summary) -> str:
+    """A population's summary (populations/summary.py) as a text table, q/m in µC/kg; the
+    counts of how the grains ended are said apart (ends_text)."""
+    table = summary.drop(columns=END_COLUMNS)
+    for c in table.columns[5:]:
+        if c not in ("n", "stayed"):
+            table[c] = table[c] * 1e6
+    return table.drop(columns=["low", "high"]).to_string(index=False,
+                                                         float_format=lambda v: f"{v:.4g}")
 
 
 def one_line(e: BaseException) -> str:

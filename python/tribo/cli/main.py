@@ -23,6 +23,7 @@ SUBCOMMANDS = (
     "calibrate",
     "sweep",
     "study",
+    "dem",
 )
 # other names of the subcommands, as console scripts (pyproject.toml): each runs its
 # subcommand, with its options, and its --help says whose alias it is

@@ -41,8 +41,8 @@ import os
 from ..materials import with_pair
 from ..populations.feed import DEFAULT_CHUTE, FEED_UNITS, FEED_VARIABLES, Feed, read_measured
 from ..populations.runner import PopulationJob
-from ..populations.summary import END_COLUMNS, ends_text
-from .common import add_si_job_options, name_value, numbers, run_job
+from ..populations.summary import ends_text
+from .common import add_si_job_options, name_value, numbers, qm_table, run_job
 
 NAME = "population"
 HELP = "particles drawn from a feed, down the chute (SI FMU): q/m statistics and figure"
@@ -88,16 +88,11 @@ def told(job, report) -> list[str]:
     lines = [f"population: {report.executed} run, {report.skipped} already in the file, "
              f"{len(report.failed)} failed; {len(report.results)} of {report.total} done"]
     if report.summary is not None:
-        table = report.summary.drop(columns=END_COLUMNS)
-        for c in table.columns[5:]:
-            if c not in ("n", "stayed"):
-                table[c] = table[c] * 1e6
         lines += ["q/m (µC/kg; size classes in m; stream_mean and stream_std: mass-weighted, "
                   "of the grains that left the chute, what a Faraday cup there reads; stayed: "
                   "the mass fraction that did not leave; the median is the typical grain: "
                   "docs/populations.md):",
-                  table.drop(columns=["low", "high"]).to_string(
-                      index=False, float_format=lambda v: f"{v:.4g}"),
+                  qm_table(report.summary),
                   f"population: {ends_text(report.summary.iloc[0], job.t_end)}; stream_mean and "
                   f"stream_std are of those that left",
                   f"population: wrote {', '.join(report.files)}"]

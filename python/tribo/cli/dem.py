@@ -1,0 +1,126 @@
+"""tribo dem: a population's grains, as spheres, through the reference chute in LIGGGHTS (a
+separate process), each grain-wall impact charged by the project's impact map; the exit
+stream written as a population's (docs/dem.md).
+
+    tribo dem -n 1000 --epsilon 1 --out out/dem
+    tribo dem -n 2000 --epsilon 1 --feed-rate 40 --lanes 5 --ranks 2 --out out/dem-stream
+    tribo dem -n 50 --epsilon 1 --size uniform:6e-4:1e-3 --stiffness-scale 0.01 --out out/dem-soft
+    tribo dem -n 100 --epsilon 1 --vibration 5e-4,50 --out out/dem-vibrating
+
+The feed is a population's (tribo population --help: --size, --drop-height, ... and the
+materials), its grains spheres: --epsilon 1 (LIGGGHTS holds spheres here; ellipses are not
+represented) and no spin at the drop. Without --feed-rate the grains are in the dilute
+limit: each in its own lane across a plate wide enough for all, dropped at once, so that
+none meets another; with it, grains/s dropped one after another into --lanes lanes (5 by
+default) closer than a grain, three drop points along each, so that they collide
+(LIGGGHTS moves them through it; grain-grain contacts transfer no charge).
+
+LIGGGHTS runs as `liggghts` or `mpirun -np RANKS liggghts` in <out>/liggghts/ (its input,
+plate.stl, outputs and log); its progress is shown; a failed run is said in one line with
+LIGGGHTS' own error. Ctrl-C stops LIGGGHTS at a restart file it writes, and the same
+command resumes from it; a finished run is kept, and running the command again only
+charges again. The impact maps of the pair (one per grain size class) are made once into
+--maps and found there by later runs; their episodes run on Dask as a population's (a
+local cluster in this process, --scheduler, or --serial).
+
+Writes into --out: particles.csv, summary.csv, population.png and population.json as a
+population (tribo population --help), impacts.csv (a row per grain-wall impact: grain,
+time, normal_speed, tangential_speed, angle_deg, duration, sustained, from_flight, and its
+charge gain gain_<model> for an uncharged grain, C) and liggghts/.
+"""
+
+import os
+
+from ..materials import with_pair
+from ..populations.feed import DEFAULT_CHUTE, FEED_UNITS, FEED_VARIABLES, Feed
+from ..dem import DemJob
+from .common import (add_job_options, add_materials_option, add_out_option, name_value, numbers,
+                     positive_number, qm_table, run_job)
+
+NAME = "dem"
+HELP = "a population's grains through the chute in LIGGGHTS, each impact charged: q/m"
+
+
+def add_arguments(p) -> None:
+    p.add_argument("-n", "--particles", type=int, required=True, help="how many grains")
+    p.add_argument("--seed", type=int, default=0, help="the draw's seed (default 0)")
+    p.add_argument("--particle", default="PE", help="particle material (default PE)")
+    p.add_argument("--wall", default="steel", help="wall material (default steel)")
+    for name in FEED_VARIABLES:
+        p.add_argument(f"--{name.replace('_', '-')}", dest=name, metavar="DIST",
+                       help=f"distribution of {name} ({FEED_UNITS[name]})")
+    p.add_argument("--chute-length", type=float, default=DEFAULT_CHUTE["chute_length"],
+                   help=f"length of the chute, m (default {DEFAULT_CHUTE['chute_length']:g})")
+    p.add_argument("--tilt-deg", type=float, default=DEFAULT_CHUTE["tilt_deg"],
+                   help=f"tilt of the chute, degrees (default {DEFAULT_CHUTE['tilt_deg']:g})")
+    p.add_argument("--set", type=name_value, action="append", default=[], metavar="NAME=VALUE",
+                   help="any other SI parameter by the package's names (mu=0.5, ...)")
+    p.add_argument("--t-end", type=float, default=5.0,
+                   help="horizon of the DEM run, s (default 5; it ends once every grain has left)")
+    p.add_argument("--feed-rate", type=positive_number, metavar="PER_S",
+                   help="grains/s dropped one after another (default: the dilute limit)")
+    p.add_argument("--lanes", type=int, help="lanes of a fed stream (default 5)")
+    p.add_argument("--vibration", type=numbers, metavar="A,F",
+                   help="the plate vibrates along its normal: amplitude A in m, frequency F "
+                        "in Hz (a vibrating chute: each grain meets it many times)")
+    p.add_argument("--ranks", type=int, default=1, help="LIGGGHTS' MPI ranks (default 1)")
+    p.add_argument("--stiffness-scale", type=float, default=1.0, metavar="F",
+                   help="the Young's moduli LIGGGHTS takes, as a fraction of the materials' "
+                        "(default 1; less: a larger time step, docs/dem.md)")
+    p.add_argument("--maps", default=os.path.join("out", "impact-maps"), metavar="FOLDER",
+                   help="where the impact maps are kept (default out/impact-maps)")
+    p.add_argument("--shape-classes", type=numbers, metavar="E0,E1,...",
+                   help="edges of the shape classes (default: 4 equal classes)")
+    p.add_argument("--size-classes", type=numbers, metavar="S0,S1,...",
+                   help="edges of the size classes, m (default: 4 equal classes)")
+    add_materials_option(p)
+    add_out_option(p, os.path.join("out", "dem"))
+    p.add_argument("--fmu", help="the SI FMU (default: tribo_si_fmi3.fmu of the build)")
+    add_job_options(p)
+    p.add_argument("--no-plot", action="store_true", help="no figure")
+
+
+def job_of(args) -> DemJob:
+    distributions = {n: getattr(args, n) for n in FEED_VARIABLES if getattr(args, n) is not None}
+    feed = Feed(args.particle, args.wall, distributions,
+                {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg},
+                with_pair(args.particle, args.wall, dict(args.set), args.materials))
+    return DemJob(feed, args.particles, args.seed, args.t_end, args.fmu,
+                  feed_rate=args.feed_rate, lanes=args.lanes, ranks=args.ranks,
+                  vibration=_vibration(args.vibration),
+                  stiffness_scale=args.stiffness_scale, maps=args.maps,
+                  figure=not args.no_plot, shape_edges=args.shape_classes,
+                  size_edges=args.size_classes)
+
+
+def _vibration(values):
+    if values is None:
+        return None
+    if len(values) != 2:
+        raise ValueError(f"--vibration {','.join(f'{v:g}' for v in values)}: two numbers, "
+                         f"the amplitude in m and the frequency in Hz")
+    return values
+
+
+def told(job, report) -> list[str]:
+    lines = []
+    if report.failed:
+        lines.append(f"dem: {report.failed[0][1]}")
+        return lines
+    share = report.charging_cpu_s / report.dem_cpu_s if report.dem_cpu_s > 0 else float("nan")
+    found = report.impacts
+    lines.append(f"dem: {len(report.results)} grains, {len(found)} grain-wall impacts "
+                 f"({int(found['sustained'].sum()) if len(found) else 0} ending in sustained "
+                 f"contact); CPU: LIGGGHTS {report.dem_cpu_s:.3g} s, charging "
+                 f"{report.charging_cpu_s:.3g} s ({100 * share:.2g} % of LIGGGHTS')")
+    lines += ["q/m (µC/kg; stream_mean and stream_std: mass-weighted, of the grains that "
+              "left the chute; stayed: the mass fraction that did not leave; docs/dem.md):",
+              qm_table(report.summary),
+              f"dem: {int(report.summary.iloc[0]['n_exited'])} of {len(report.results)} grains "
+              f"left by the chute's end",
+              f"dem: wrote {', '.join(report.files)}"]
+    return lines
+
+
+def run(args) -> int:
+    return run_job(args, job_of, told)

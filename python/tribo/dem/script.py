@@ -1,0 +1,206 @@
+"""The LIGGGHTS input of a DEM run: the device (device.py), the materials, the contact law,
+the grains as they enter, and the two outputs the charging reads.
+
+The contact law is LIGGGHTS' Hertz-Mindlin (`hertz tangential history`, rolling friction
+`cdt`) with the pair's Young's moduli and Poisson's ratios (tribo.materials, times
+`stiffness_scale`), the normal restitution e of the project's own model (what an impact
+of its grain gives: charging.py) and its friction mu and rolling resistance mu_roll
+(docs/model.md sections 3, 3c): the grains bounce and roll as the model's grain does, to
+what a sphere can do. Grain-grain contacts take the same law: LIGGGHTS moves the grains
+through each other's collisions; they exchange no charge. `hard_particles yes`: LIGGGHTS
+refuses Young's moduli above 1e9 Pa in SI units without it.
+
+The time step is a fraction of the smallest grain's Rayleigh time and of its Hertz contact
+time at the fastest impact (`time_step`); the wall contacts are written every
+`sample_every` steps, a third of that contact time, so that every contact is seen at least
+three times (contacts.py reads them).
+
+Outputs (the run's folder):
+
+    contacts.dump  every sample_every steps, each grain near the plate and moving along its
+                   normal: the step, its id, position, velocity, radius, and the wall's
+                   normal force on it (LIGGGHTS' wall contact: nonzero while touching)
+    exits.dump     every exit_every steps, the grains whose centre has passed the chute's
+                   end (x > chute_length): id, position, velocity, spin
+    log.liggghts   LIGGGHTS' log; its thermo lines (step, grains in the box) show progress
+"""
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .device import Chute, Entry
+
+INPUT, PLATE, CONTACTS, EXITS, LOG = "in.liggghts", "plate.stl", "contacts.dump", "exits.dump", "log.liggghts"
+# the columns contacts.dump holds (each frame headed by its step): the grain's id, centre, velocity and radius,
+# and the normal component of the force the wall exerts on it (fix wall/gran's
+# store_force: nonzero while the grain touches the wall)
+CONTACT_COLUMNS = ["id", "x", "y", "z", "vx", "vy", "vz", "radius", "f_force_walls[3]"]
+EXIT_COLUMNS = ["id", "x", "y", "z", "vx", "vy", "vz", "omegay"]
+# a tenth of the smallest grain's Rayleigh time: LIGGGHTS warns above a fifth of it
+RAYLEIGH_FRACTION = 0.1
+STEPS_PER_CONTACT = 40  # the time step: the fastest impact's Hertz contact time over this
+SAMPLES_PER_CONTACT = 3  # the contacts' sampling: at least this many samples per contact
+
+
+@dataclass(frozen=True)
+class Contact:
+    """The contact law's constants (the module's text); moduli in Pa."""
+
+    youngs_particle: float
+    poisson_particle: float
+    youngs_wall: float
+    poisson_wall: float
+    density: float
+    restitution: float
+    friction: float
+    rolling_friction: float
+
+    @property
+    def effective_modulus(self) -> float:
+        return effective_modulus(self.youngs_particle, self.poisson_particle,
+                                 self.youngs_wall, self.poisson_wall)
+
+
+def effective_modulus(youngs_particle: float, poisson_particle: float, youngs_wall: float,
+                      poisson_wall: float) -> float:
+    """E* of a grain on the wall (Pa): 1 / ((1 - nu_p^2)/E_p + (1 - nu_w^2)/E_w)."""
+    return 1.0 / ((1.0 - poisson_particle ** 2) / youngs_particle
+                  + (1.0 - poisson_wall ** 2) / youngs_wall)
+
+
+def rayleigh_time(diameter: float, c: Contact) -> float:
+    """The Rayleigh wave's time across a grain: pi r sqrt(rho/G) / (0.1631 nu + 0.8766)."""
+    shear = c.youngs_particle / (2.0 * (1.0 + c.poisson_particle))
+    return (math.pi * diameter / 2.0 * math.sqrt(c.density / shear)
+            / (0.1631 * c.poisson_particle + 0.8766))
+
+
+def hertz_time(diameter, speed, c: Contact):
+    """The duration (s) of an elastic Hertz impact of a sphere on the wall at normal speed
+    `speed`: 2.87 (m^2 / (r E*^2 v))^(1/5) (arrays broadcast)."""
+    r = np.asarray(diameter, dtype=float) / 2.0
+    m = 4.0 / 3.0 * math.pi * c.density * r ** 3
+    v = np.maximum(np.asarray(speed, dtype=float), 1e-9)
+    return 2.87 * (m * m / (r * c.effective_modulus ** 2 * v)) ** 0.2
+
+
+def time_step(diameters: np.ndarray, fastest: float, c: Contact) -> tuple[float, int]:
+    """The time step (s) and the contacts' sampling interval (steps): the module's text."""
+    small = float(np.min(diameters))
+    contact = float(hertz_time(small, fastest, c))
+    dt = min(RAYLEIGH_FRACTION * rayleigh_time(small, c), contact / STEPS_PER_CONTACT)
+    return dt, max(1, int(contact / dt / SAMPLES_PER_CONTACT))
+
+
+def _number(x: float) -> str:
+    return f"{x:.10g}"
+
+
+def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *, dt: float,
+                sample_every: int, t_end: float, exit_every: int, progress_every: int,
+                near: float, slowest: float, contacts: bool = True,
+                restart: tuple | None = None) -> tuple[str, int]:
+    """The LIGGGHTS input (the module's text) and its number of steps. The grains enter
+    in the order given (grain i is LIGGGHTS' atom i + 1), each at its entry time; the run
+    stops once every grain has left the box (past the chute's end or off its sides) or at
+    t_end. contacts=False: without the contacts' output (what it costs: bench_dem.sh).
+    restart (file, step, created): the input that resumes a run LIGGGHTS stopped at `step`,
+    writing the restart `file`, with `created` grains in: the scene read from it (the
+    grains, their contact histories with the wall), the outputs appended to, the grains
+    not yet in and the steps left."""
+    n = len(diameters)
+    biggest = float(np.max(diameters))
+    L, half = chute.chute_length, entry.width / 2.0
+    top = float(np.max(entry.position[:, 2])) + 10.0 * biggest + 0.02
+    steps = int(math.ceil(t_end / dt))
+    gx, gy, gz = chute.gravity_vector
+    lines = [
+        "# written by tribo dem (python/tribo/dem/script.py): the reference chute in the",
+        "# plate's frame, gravity tilted; grains as the feed drew them",
+        "atom_style granular", "atom_modify map array", "boundary f f f", "newton off",
+        "communicate single vel yes", "units si", "hard_particles yes",
+        f"region box block {_number(-5 * biggest)} {_number(L + 0.01)} "
+        f"{_number(-half - 5 * biggest)} {_number(half + 5 * biggest)} "
+        f"{_number(-0.01)} {_number(top)} units box",
+        "create_box 2 box",
+    ] if restart is None else [
+        "# resumed by tribo dem from the restart file LIGGGHTS wrote when it was stopped",
+        f"read_restart {restart[0]}",
+        # what a restart file does not hold
+        "communicate single vel yes", "hard_particles yes", "newton off",
+    ]
+    lines += [
+        f"neighbor {_number(0.5 * biggest)} bin", "neigh_modify delay 0",
+        # type 1: the grains, type 2: the wall
+        f"fix m1 all property/global youngsModulus peratomtype {_number(c.youngs_particle)} "
+        f"{_number(c.youngs_wall)}",
+        f"fix m2 all property/global poissonsRatio peratomtype {_number(c.poisson_particle)} "
+        f"{_number(c.poisson_wall)}",
+        f"fix m3 all property/global coefficientRestitution peratomtypepair 2 "
+        + " ".join([_number(c.restitution)] * 4),
+        f"fix m4 all property/global coefficientFriction peratomtypepair 2 "
+        + " ".join([_number(c.friction)] * 4),
+        f"fix m5 all property/global coefficientRollingFriction peratomtypepair 2 "
+        + " ".join([_number(c.rolling_friction)] * 4),
+        "pair_style gran model hertz tangential history rolling_friction cdt",
+        "pair_coeff * *",
+        f"timestep {_number(dt)}",
+        f"fix gravity all gravity 9.81 vector {_number(gx)} {_number(gy)} {_number(gz)}",
+        f"fix plate all mesh/surface file {PLATE} type 2",
+    ]
+    if chute.amplitude:  # the vibrating chute: the mesh moves along its normal
+        lines += [f"fix vibrate all move/mesh mesh plate wiggle amplitude 0 0 "
+                  f"{_number(chute.amplitude)} period {_number(1.0 / chute.frequency)}"]
+    lines += [
+        "fix walls all wall/gran model hertz tangential history rolling_friction cdt "
+        "mesh n_meshes 1 meshes plate store_force yes",
+        "fix integrate all nve/sphere",
+        # the grains that leave the box (past the end, off the sides) are dropped
+        "thermo_style custom step atoms", f"thermo {progress_every}",
+        "thermo_modify lost ignore norm no",
+        f"variable past atom x>{_number(L)}",
+        f"dump exits all custom {exit_every} {EXITS} " + " ".join(EXIT_COLUMNS),
+        "dump_modify exits thresh v_past == 1",
+    ]
+    append = [] if restart is None else ["dump_modify exits append yes"]
+    if contacts:
+        # a grain is written while near the plate (its gap below `near`, so that the last
+        # sample before a contact is in flight) and moving along the normal faster than
+        # `slowest` relative to it: a grain at rest or rolling on the plate is not written
+        # (the plate where it is: a vibrating plate's A sin(2 pi f t))
+        phase = f"2*PI*{_number(chute.frequency)}*step*{_number(dt)}"
+        wall, wall_speed = ((f"{_number(chute.amplitude)}*sin({phase})",
+                             f"{_number(chute.amplitude * 2 * math.pi * chute.frequency)}*cos({phase})")
+                            if chute.amplitude else ("0", "0"))
+        lines += ["compute radius all property/atom radius",
+                  f"variable wall equal {wall}", f"variable wall_speed equal {wall_speed}",
+                  f"variable near atom (z-c_radius-v_wall<{_number(near)})*(x>-c_radius)*"
+                  f"(x<{_number(L)}+c_radius)",
+                  "variable normal_speed atom abs(vz-v_wall_speed)",
+                  f"dump contacts all custom {sample_every} {CONTACTS} "
+                  + " ".join(CONTACT_COLUMNS),
+                  f"dump_modify contacts thresh v_near == 1 thresh v_normal_speed > {_number(slowest)}"]
+        append += [] if restart is None else ["dump_modify contacts append yes"]
+    lines += append
+    # each grain enters at its step: a `run` to it, then the grain
+    start = np.rint(entry.time / dt).astype(np.int64)
+    done, first = (0, 0) if restart is None else (int(restart[1]), int(restart[2]))
+    for i in range(first, n):
+        if start[i] > done:
+            lines.append(f"run {int(start[i] - done)}")
+            done = int(start[i])
+        (x, y, z), (vx, vy, vz) = entry.position[i], entry.velocity[i]
+        lines += [f"create_atoms 1 single {_number(x)} {_number(y)} {_number(z)} units box",
+                  f"set atom {i + 1} diameter {_number(diameters[i])} density {_number(c.density)} "
+                  f"vx {_number(vx)} vy {_number(vy)} vz {_number(vz)}"]
+    # then in pieces until the box is empty or the horizon is reached
+    piece = max(progress_every, 1)
+    remaining = max(steps - done, 0)
+    pieces = int(math.ceil(remaining / piece))
+    lines += ["variable left equal atoms", f"variable piece loop {max(pieces, 1)}",
+              "label pieces", f"run {piece} post no",
+              'if "${left} == 0" then "jump SELF finished"',
+              "next piece", "jump SELF pieces", "label finished"]
+    return "\n".join(lines) + "\n", done + pieces * piece
