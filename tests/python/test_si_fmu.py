@@ -368,7 +368,9 @@ def test_an_input_beyond_the_models_range_is_refused_while_running(fmu_dir, vers
     message = s.errors()[-1]
     assert "F_N_ext" in message and "k' a" in message, message
     assert s.get("F_N_ext") == -5 * unit
-    assert s.step_to(1e-4)
+    # (a short step: pressed this hard the grain's rocking costs FMI 2.0's whole work limit,
+    # which it cannot continue past, in about 7e-5 s)
+    assert s.step_to(2e-5)
     s.free()
 
 
