@@ -169,8 +169,11 @@ def test_a_run_stopped_by_ctrl_c_resumes_from_liggghts_restart_file(tmp_path, ma
     assert again.returncode == 0, again.stderr[-2000:]
     assert (log.parent / "resume-1.in.liggghts").exists()
     a, b = (pd.read_csv(tmp_path / f / "particles.csv") for f in ("whole", "cut"))
-    for c in ("charge_static", "exit_time", "exit_speed", "impacts"):
-        assert np.array_equal(a[c], b[c]), c
+    # the same grains to rounding: LIGGGHTS rebuilds its neighbour lists at a restart, so
+    # sums may round differently (a fresh clone's run agreed to 7 digits, below 5e-7)
+    assert np.array_equal(a["impacts"], b["impacts"])
+    for c in ("charge_static", "exit_time", "exit_speed"):
+        assert np.allclose(a[c], b[c], rtol=1e-6, atol=0), c
 
 
 def test_fed_grains_enter_clear_of_the_ones_still_falling():
