@@ -10,6 +10,7 @@ import sys
 from ..batch.executors import executor_for
 from ..batch.grid import parse_values
 from ..batch.job import execute, kept
+from ..populations.feed import DEFAULT_CHUTE, FEED_UNITS, FEED_VARIABLES
 from ..populations.summary import END_COLUMNS
 
 # what a mistake in the input raises (every error class of the package is one of these, with
@@ -99,6 +100,27 @@ def add_materials_option(p: argparse.ArgumentParser) -> None:
                    help="a materials file read over the package's table (tribo.materials: "
                         "a pair's sigma0 and charging parameters, e.g. the materials.toml of "
                         "tribo calibrate)")
+
+
+def add_feed_options(p: argparse.ArgumentParser, what: str) -> None:
+    """What a population's draw takes: -n (how many `what`), --seed, --particle, --wall and a
+    distribution per feed variable (populations/feed.py)."""
+    p.add_argument("-n", "--particles", type=int, required=True, help=f"how many {what}")
+    p.add_argument("--seed", type=int, default=0, help="the draw's seed (default 0)")
+    p.add_argument("--particle", default="PE", help="particle material (default PE)")
+    p.add_argument("--wall", default="steel", help="wall material (default steel)")
+    for name in FEED_VARIABLES:
+        p.add_argument(f"--{name.replace('_', '-')}", dest=name, metavar="DIST",
+                       help=f"distribution of {name} ({FEED_UNITS[name]})")
+
+
+def add_chute_options(p: argparse.ArgumentParser) -> None:
+    """--chute-length (m) and --tilt-deg, the reference chute's by default."""
+    p.add_argument("--chute-length", type=float, default=DEFAULT_CHUTE["chute_length"],
+                   help=f"length of the chute, m (default {DEFAULT_CHUTE['chute_length']:g})")
+    p.add_argument("--tilt-deg", type=float, default=DEFAULT_CHUTE["tilt_deg"],
+                   help=f"tilt of the chute from the horizontal, degrees (default "
+                        f"{DEFAULT_CHUTE['tilt_deg']:g})")
 
 
 def add_si_job_options(p: argparse.ArgumentParser, out: str, *, max_runs: str | None = None) -> None:

@@ -32,27 +32,18 @@ charge gain gain_<model> for an uncharged grain, C) and liggghts/.
 import os
 
 from ..materials import with_pair
-from ..populations.feed import DEFAULT_CHUTE, FEED_UNITS, FEED_VARIABLES, Feed
+from ..populations.feed import FEED_VARIABLES, Feed
 from ..dem import DemJob
-from .common import (add_job_options, add_materials_option, add_out_option, name_value, numbers,
-                     positive_number, qm_table, run_job)
+from .common import (add_chute_options, add_feed_options, add_job_options, add_materials_option,
+                     add_out_option, name_value, numbers, positive_number, qm_table, run_job)
 
 NAME = "dem"
 HELP = "a population's grains through the chute in LIGGGHTS, each impact charged: q/m"
 
 
 def add_arguments(p) -> None:
-    p.add_argument("-n", "--particles", type=int, required=True, help="how many grains")
-    p.add_argument("--seed", type=int, default=0, help="the draw's seed (default 0)")
-    p.add_argument("--particle", default="PE", help="particle material (default PE)")
-    p.add_argument("--wall", default="steel", help="wall material (default steel)")
-    for name in FEED_VARIABLES:
-        p.add_argument(f"--{name.replace('_', '-')}", dest=name, metavar="DIST",
-                       help=f"distribution of {name} ({FEED_UNITS[name]})")
-    p.add_argument("--chute-length", type=float, default=DEFAULT_CHUTE["chute_length"],
-                   help=f"length of the chute, m (default {DEFAULT_CHUTE['chute_length']:g})")
-    p.add_argument("--tilt-deg", type=float, default=DEFAULT_CHUTE["tilt_deg"],
-                   help=f"tilt of the chute, degrees (default {DEFAULT_CHUTE['tilt_deg']:g})")
+    add_feed_options(p, "grains")
+    add_chute_options(p)
     p.add_argument("--set", type=name_value, action="append", default=[], metavar="NAME=VALUE",
                    help="any other SI parameter by the package's names (mu=0.5, ...)")
     p.add_argument("--t-end", type=float, default=5.0,

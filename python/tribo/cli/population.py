@@ -39,29 +39,20 @@ process, or --scheduler).
 import os
 
 from ..materials import with_pair
-from ..populations.feed import DEFAULT_CHUTE, FEED_UNITS, FEED_VARIABLES, Feed, read_measured
+from ..populations.feed import FEED_VARIABLES, Feed, read_measured
 from ..populations.runner import PopulationJob
 from ..populations.summary import ends_text
-from .common import add_si_job_options, name_value, numbers, qm_table, run_job
+from .common import (add_chute_options, add_feed_options, add_si_job_options, name_value, numbers,
+                     qm_table, run_job)
 
 NAME = "population"
 HELP = "particles drawn from a feed, down the chute (SI FMU): q/m statistics and figure"
 
 
 def add_arguments(p) -> None:
-    p.add_argument("-n", "--particles", type=int, required=True, help="how many particles")
-    p.add_argument("--seed", type=int, default=0, help="the draw's seed (default 0)")
-    p.add_argument("--particle", default="PE", help="particle material (default PE)")
-    p.add_argument("--wall", default="steel", help="wall material (default steel)")
-    for name in FEED_VARIABLES:
-        p.add_argument(f"--{name.replace('_', '-')}", dest=name, metavar="DIST",
-                       help=f"distribution of {name} ({FEED_UNITS[name]})")
+    add_feed_options(p, "particles")
     p.add_argument("--measured", metavar="CSV", help="measured values, a column per feed variable")
-    p.add_argument("--chute-length", type=float, default=DEFAULT_CHUTE["chute_length"],
-                   help=f"length of the chute, m (default {DEFAULT_CHUTE['chute_length']:g})")
-    p.add_argument("--tilt-deg", type=float, default=DEFAULT_CHUTE["tilt_deg"],
-                   help=f"tilt of the chute from the horizontal, degrees (default "
-                        f"{DEFAULT_CHUTE['tilt_deg']:g})")
+    add_chute_options(p)
     p.add_argument("--set", type=name_value, action="append", default=[], metavar="NAME=VALUE",
                    help="any other SI parameter by the package's names (mu=0.5, "
                         "cylinder_length=2e-3, n_segments=500, ...)")
