@@ -534,9 +534,13 @@ static int find_grazing_switch(cvode_integrator *c, double t_start)
 static void capture_interpolant(cvode_integrator *c)
 {
     CVodeGetCurrentTime(c->mem, &c->taylor_t);
+    /* the interpolant's degree is the last step's order: asking CVodeGetDky beyond it is an
+       error CVODE formats into a message, once per step */
+    int order = 0;
+    CVodeGetLastOrder(c->mem, &order);
     double factorial = 1.0;
     int k = 0;
-    for (; k < 13 && CVodeGetDky(c->mem, c->taylor_t, k, c->dky) == CV_SUCCESS; k++) {
+    for (; k <= order && k < 13 && CVodeGetDky(c->mem, c->taylor_t, k, c->dky) == CV_SUCCESS; k++) {
         if (k > 0)
             factorial *= k;
         const double *d = N_VGetArrayPointer(c->dky);
