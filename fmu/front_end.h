@@ -84,6 +84,10 @@ void fmu_front_defaults(fmu_scene *scene);
    variables. */
 tribo_status fmu_front_derive(const fmu_scene *scene, fmu_derived *d, char *msg, size_t msg_size);
 
+/* What the derived scene's set-up asks that it does not do (a parameter set that nothing
+   uses), for a warning; NULL when nothing. */
+const char *fmu_front_notice(const fmu_derived *d);
+
 /* A tunable parameter's new value as the core's parameter (name, value), checked against
    the core's range. */
 tribo_status fmu_front_tunable(const fmu_derived *d, const tribo_param_info *p, double value,

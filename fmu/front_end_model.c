@@ -26,6 +26,12 @@ tribo_status fmu_front_derive(const fmu_scene *scene, fmu_derived *d, char *msg,
     return tribo_scene_validate(&d->model, msg, msg_size);
 }
 
+const char *fmu_front_notice(const fmu_derived *d)
+{
+    (void)d;
+    return NULL;
+}
+
 tribo_scene *fmu_front_model_scene(fmu_derived *d) { return &d->model; }
 
 tribo_status fmu_front_tunable(const fmu_derived *d, const tribo_param_info *p, double value,

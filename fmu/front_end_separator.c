@@ -51,6 +51,12 @@ tribo_status fmu_front_derive(const fmu_scene *scene, fmu_derived *d, char *msg,
     return tribo_separator_derive(&d->separator.scene, &d->separator.d, msg, msg_size);
 }
 
+const char *fmu_front_notice(const fmu_derived *d)
+{
+    (void)d;
+    return NULL;
+}
+
 /* Every parameter is fixed (the table's); a tunable would be the core's own. */
 tribo_status fmu_front_tunable(const fmu_derived *d, const tribo_param_info *p, double value,
                                const char **model_name, double *model_value, char *msg,

@@ -25,6 +25,8 @@ tribo_status fmu_front_derive(const fmu_scene *scene, fmu_derived *d, char *msg,
     return tribo_si_derive(&scene->si, &d->si, msg, msg_size);
 }
 
+const char *fmu_front_notice(const fmu_derived *d) { return d->si.notice[0] ? d->si.notice : NULL; }
+
 tribo_scene *fmu_front_model_scene(fmu_derived *d) { return &d->si.scene; }
 
 tribo_status fmu_front_tunable(const fmu_derived *d, const tribo_param_info *p, double value,

@@ -293,6 +293,9 @@ static fmu_core *make_model(fmu_instance *inst, const char *fn, fmu_derived *der
         fmu_error(inst, "%s: the model cannot be created: %s", fn, why);
         return NULL;
     }
+    const char *notice = fmu_front_notice(derived);
+    if (notice)
+        fmu_log(inst, FMU_WARNING, FMU_LOG_WARNING, "%s: %s", fn, notice);
     return core;
 }
 

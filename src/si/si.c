@@ -152,7 +152,7 @@ static void append_value(char *buf, size_t n, const tribo_si_scene *si, const ch
 static void describe_stiffness(char *buf, size_t n, const tribo_si_scene *si, const tribo_si_derived *d)
 {
     const size_t used = strlen(buf);
-    if (si->contact_stiffness > 0.0) {
+    if (si->stiffness_source == TRIBO_STIFFNESS_GIVEN) {
         append_value(buf, n, si, "contact_stiffness", ", ");
         return;
     }
@@ -161,6 +161,20 @@ static void describe_stiffness(char *buf, size_t n, const tribo_si_scene *si, co
     append_value(buf, n, si, "poisson_ratio_particle", ", ");
     append_value(buf, n, si, "youngs_modulus_wall", ", ");
     append_value(buf, n, si, "poisson_ratio_wall", ", ");
+}
+
+/* A contact stiffness set where stiffness_source takes it from the moduli is not used: say so
+   (a set-up of an earlier interface, where any stiffness given was used, would otherwise
+   run on another stiffness than it names). */
+static void note_unused_stiffness(const tribo_si_scene *si, tribo_si_derived *d)
+{
+    const tribo_param_info *p = tribo_si_param_find("contact_stiffness");
+    if (si->stiffness_source != TRIBO_STIFFNESS_MODULI || si->contact_stiffness == p->start)
+        return;
+    snprintf(d->notice, sizeof d->notice,
+             "contact_stiffness = %.6g N/m2 is not used: stiffness_source = 1 (moduli) takes "
+             "k' = %.6g N/m2 from the Young's moduli; stiffness_source = 0 (given) uses it",
+             si->contact_stiffness, d->k_prime);
 }
 
 /* The SI inputs of a derived number: its own SI parameter (if any), and what the unit of its
@@ -295,7 +309,9 @@ tribo_status tribo_si_derive(const tribo_si_scene *si, tribo_si_derived *d, char
                            si->youngs_modulus_particle +
                        (1.0 - si->poisson_ratio_wall * si->poisson_ratio_wall) /
                            si->youngs_modulus_wall);
-    d->k_prime = si->contact_stiffness > 0.0 ? si->contact_stiffness : (M_PI / 4.0) * d->E_star;
+    d->k_prime = si->stiffness_source == TRIBO_STIFFNESS_GIVEN ? si->contact_stiffness
+                                                                : (M_PI / 4.0) * d->E_star;
+    note_unused_stiffness(si, d);
     d->mass_per_length = si->density * M_PI * a * a * si->epsilon;
     d->t_star = sqrt(d->mass_per_length / d->k_prime);
     d->velocity = a / d->t_star;

@@ -35,6 +35,13 @@ enum {
 #undef TRIBO_CHARGE_MODEL
 };
 
+/* stiffness_source: where the contact stiffness k' comes from (si_quantities.def's
+   enumeration StiffnessSource, whose values these are: tests/c/test_si.c). */
+typedef enum tribo_stiffness_source {
+    TRIBO_STIFFNESS_GIVEN = 0, /* contact_stiffness                                      */
+    TRIBO_STIFFNESS_MODULI = 1 /* (pi/4) E* from the Young's moduli and Poisson's ratios */
+} tribo_stiffness_source;
+
 /* Every parameter of the SI table, one field per row of si_quantities.def. */
 typedef struct tribo_si_scene {
 #define TRIBO_PARAMETER(name, type, ...) TRIBO_CTYPE_##type name;
@@ -81,6 +88,8 @@ typedef struct tribo_si_derived {
     int charge_to_mass_model; /* the registry's row (from 1) whose ratio charge_to_mass is:
                                  the parameter's, or with 0 the first row included */
     tribo_scene scene;      /* the model's scene                                     */
+    char notice[256];       /* what the set-up asks that is not done, for a warning: a
+                               parameter set where nothing uses it; "" when none     */
 } tribo_si_derived;
 
 /* Derive: every SI value in its range, the drop on the chute, and every parameter of the

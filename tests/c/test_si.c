@@ -56,11 +56,42 @@ Test(si, the_reference_case_maps_as_model_md_section_8_says)
     cr_expect_eq(d.scene.n_segments, 2000);
     cr_expect_eq(d.scene.integrator, TRIBO_INTEGRATOR_CVODE);
     cr_expect(d.scene.charge_model_static == 1 && d.scene.charge_model_sliding == 1);
-    /* a stiffness given directly wins over the moduli */
-    tribo_si_scene k = si_of("contact_stiffness=2e9");
+    cr_expect_str_empty(d.notice);
+    /* a stiffness given is the one used where stiffness_source says so */
+    tribo_si_scene k = si_of("stiffness_source=0 contact_stiffness=2e9");
     const tribo_si_derived dk = derived_of(&k);
     cr_expect_eq(dk.k_prime, 2e9);
     cr_expect(close_to(dk.t_star, sqrt(dk.mass_per_length / 2e9), 1e-15));
+    cr_expect_str_empty(dk.notice);
+    /* given at its smallest, where Gamma = m' g / (k' a) is still within the model's range */
+    tribo_si_scene soft = si_of("stiffness_source=0 contact_stiffness=1");
+    cr_expect_eq(derived_of(&soft).k_prime, 1.0);
+}
+
+/* A stiffness set while stiffness_source takes the moduli's is not used, and the set-up says
+   so, naming both and the stiffness used. */
+Test(si, a_stiffness_set_but_not_used_is_noticed)
+{
+    tribo_si_scene defaults = si_of("");
+    const double moduli = derived_of(&defaults).k_prime;
+    tribo_si_scene k = si_of("contact_stiffness=2e9");
+    const tribo_si_derived dk = derived_of(&k);
+    cr_expect_eq(dk.k_prime, moduli);
+    cr_expect(strstr(dk.notice, "contact_stiffness = 2e+09 N/m2 is not used") != NULL, "%s", dk.notice);
+    cr_expect(strstr(dk.notice, "stiffness_source = 1 (moduli)") != NULL, "%s", dk.notice);
+}
+
+/* stiffness_source's values are si_quantities.def's enumeration StiffnessSource's. */
+Test(si, the_stiffness_sources_are_the_tables)
+{
+    int items = 0;
+#define TRIBO_ENUM_ITEM(id, name, value, description)                                            \
+    if (strcmp(#id, "StiffnessSource") == 0) {                                                    \
+        items++;                                                                                 \
+        cr_expect_eq(value, strcmp(name, "given") == 0 ? TRIBO_STIFFNESS_GIVEN : TRIBO_STIFFNESS_MODULI); \
+    }
+#include "si_quantities.def"
+    cr_expect_eq(items, 2);
 }
 
 /* The TRIBO_MAPS and TRIBO_DERIVES rows of the SI table. */
@@ -198,7 +229,7 @@ Test(si, a_derived_parameter_out_of_the_models_range_names_what_made_it)
     expect_refused("sigma0=1e-12", (const char *const[]){"Sigma0 = ", "sigma0 = 1e-12 C/m2",
                                                          "interface_capacitance", NULL});
     /* the given stiffness is named as given */
-    expect_refused("contact_stiffness=1e12 semi_major_axis=1e-7",
+    expect_refused("stiffness_source=0 contact_stiffness=1e12 semi_major_axis=1e-7",
                    (const char *const[]){"the model's parameter derived from",
                                          "contact_stiffness = 1e+12 N/m2", NULL});
     /* a drop too fast for the model (more than 10 a / t_star; a / t_star = 23 m/s for E = 1 MPa) */

@@ -164,7 +164,7 @@ class SI(Chute):
     def units(v):
         """The set-up's units (model.md section 8), each computed as the SI FMU does."""
         a = v["semi_major_axis"]
-        if v["contact_stiffness"] > 0.0:
+        if v["stiffness_source"] == 0:
             k = v["contact_stiffness"]
         else:
             nu_p, nu_w = v["poisson_ratio_particle"], v["poisson_ratio_wall"]

@@ -15,7 +15,7 @@ import pint
 import pytest
 from fmpy import read_model_description, simulate_fmu
 
-from tribo_fmu import ERROR, OK, VERSIONS, Slave, libcosim_run, status_of
+from tribo_fmu import ERROR, OK, VERSIONS, WARNING, Slave, libcosim_run, status_of
 
 U = pint.UnitRegistry()
 SI = "tribo_si"
@@ -129,7 +129,7 @@ def test_section_8_relations_hold_dimensionally(described):
 
 @pytest.mark.parametrize("version", VERSIONS)
 def test_calculated_parameters_are_section_8s_numbers(fmu_dir, version):
-    s = Slave(fmu_dir(version, SI), version).init(contact_stiffness=0.0)
+    s = Slave(fmu_dir(version, SI), version).init()
     g = s.get
     a, ell = g("semi_major_axis"), g("cylinder_length")
     e_star = 1 / ((1 - g("poisson_ratio_particle") ** 2) / g("youngs_modulus_particle") +
@@ -158,6 +158,27 @@ def test_calculated_parameters_are_section_8s_numbers(fmu_dir, version):
     s.set(charging_time=2e-3)
     assert g("tau0") == pytest.approx(2e-3 / g("t_star"), rel=1e-15)
     s.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_a_given_stiffness_is_used_where_stiffness_source_says_so_and_else_is_named_unused(
+        fmu_dir, version):
+    from_moduli = Slave(fmu_dir(version, SI), version).init()
+    moduli = from_moduli.get("k_prime")
+    assert from_moduli.messages == []
+    from_moduli.free()
+    given = Slave(fmu_dir(version, SI), version).init(stiffness_source=0, contact_stiffness=2e9)
+    assert given.get("k_prime") == 2e9 and given.messages == []
+    given.free()
+    # set alone, the earlier interface's way to give it: the moduli's stiffness runs, and a
+    # warning names the value not used and the switch that would use it
+    unused = Slave(fmu_dir(version, SI), version).init(contact_stiffness=2e9)
+    assert unused.get("k_prime") == moduli
+    warnings = [m for status, _, m in unused.messages if status == WARNING]
+    assert len(warnings) == 1
+    assert "contact_stiffness = 2e+09 N/m2 is not used" in warnings[0]
+    assert "stiffness_source = 0 (given) uses it" in warnings[0]
+    unused.free()
 
 
 # ---- the SI FMU is the dimensionless one in other units -----------------------------------------
