@@ -143,6 +143,25 @@ def test_an_impact_is_read_from_the_sample_in_flight_before_it(tmp_path):
     assert row["from_flight"] == 1 and row["sustained"] == 0
 
 
+def test_a_dump_read_in_blocks_is_the_dump_read_whole(tmp_path, monkeypatch):
+    # frames of 0 to 3 rows; blocks from smaller than a frame to larger than the file cut
+    # frames anywhere, and every cut must give the same rows with the same steps
+    text = ""
+    for step, rows in enumerate([2, 0, 3, 1, 0, 2]):
+        text += (f"ITEM: TIMESTEP\n{step * 10}\nITEM: NUMBER OF ATOMS\n{rows}\n"
+                 f"ITEM: BOX BOUNDS ff ff ff\n0 1\n0 1\n0 1\nITEM: ATOMS {' '.join(script.EXIT_COLUMNS)}\n")
+        for k in range(rows):
+            text += " ".join(str(step + 0.25 * k + j) for j in range(len(script.EXIT_COLUMNS))) + "\n"
+    path = tmp_path / "exits.dump"
+    path.write_text(text)
+    whole = contacts.read_dump_frames(str(path), script.EXIT_COLUMNS)
+    assert len(whole) == 8 and list(whole["step"]) == [0, 0, 20, 20, 20, 30, 50, 50]
+    for block in (7, 64, 150, 333, len(text) - 1, len(text), 1 << 20):
+        monkeypatch.setattr(contacts, "BLOCK", block)
+        pd.testing.assert_frame_equal(contacts.read_dump_frames(str(path), script.EXIT_COLUMNS),
+                                      whole)
+
+
 @needs_liggghts
 def test_a_run_stopped_by_ctrl_c_resumes_from_liggghts_restart_file(tmp_path, maps):
     argv = [command("tribo"), "dem", "-n", "3", "--seed", "5", *FEED, "--stiffness-scale",

@@ -135,12 +135,38 @@ FRAME = re.compile(rb"ITEM: TIMESTEP\n(\d+)\nITEM: NUMBER OF ATOMS\n([1-9]\d*)\n
                    rb"ITEM: BOX BOUNDS[^\n]*\n[^\n]*\n[^\n]*\n[^\n]*\nITEM: ATOMS[^\n]*\n")
 
 
+BLOCK = 1 << 26  # bytes of a dump read at a time: its whole would be parsed in copies
+
+
 def read_dump_frames(path: str, columns: list[str]) -> pd.DataFrame:
-    """A `dump custom` file's rows with each frame's step (its ITEM: TIMESTEP header)."""
+    """A `dump custom` file's rows with each frame's step (its ITEM: TIMESTEP header),
+    read a block of whole frames at a time, so that the memory a large dump takes is its
+    numbers, not its text several times over."""
     if not os.path.exists(path):
         raise OutputError(f"{path}: missing (the LIGGGHTS run did not write it)")
+    parts = []
     with open(path, "rb") as f:
-        text = f.read()
+        rest = b""
+        while True:
+            block = f.read(BLOCK)
+            text = rest + block
+            if block:
+                # up to the last frame's start: a frame may go on into the next block
+                cut = text.rfind(b"ITEM: TIMESTEP\n")
+                cut = cut if cut > 0 else len(text) if not block else 0
+                text, rest = text[:cut], text[cut:]
+            if text:
+                parts.append(parse_frames(path, text, columns))
+            if not block:
+                break
+    parts = [p for p in parts if len(p)]
+    if not parts:
+        return pd.DataFrame({c: np.zeros(0) for c in ["step"] + columns})
+    return pd.concat(parts, ignore_index=True) if len(parts) > 1 else parts[0]
+
+
+def parse_frames(path: str, text: bytes, columns: list[str]) -> pd.DataFrame:
+    """The rows of the whole frames in text, with each frame's step."""
     steps, chunks = [], []
     for m in FRAME.finditer(text):
         k = int(m.group(2))
@@ -150,7 +176,7 @@ def read_dump_frames(path: str, columns: list[str]) -> pd.DataFrame:
         chunks.append(text[m.end():end])
         steps.append(np.full(k, int(m.group(1)), dtype=np.int64))
     if not chunks:
-        return pd.DataFrame({c: np.zeros(0) for c in ["step"] + columns})
+        return pd.DataFrame()
     try:
         out = pd.read_csv(io.BytesIO(b"".join(chunks)), sep=r"\s+", header=None, names=columns,
                           dtype=float, engine="c")
