@@ -4,15 +4,15 @@ against a model of the expected statuses, and mutated FMU states, with fixed see
 timeout per call (a hang guard); on the Release build also the work limit's bound, one
 doStep of each of the costliest set-ups at the declared extremes (front_ends.py). Once on the Release build and once on the sanitizer build (build-sanitize:
 AddressSanitizer and UndefinedBehaviorSanitizer with float-cast-overflow; the FMU's library
-is loaded with the sanitizer runtime preloaded). About three minutes on 2 cores (longer runs: tests/fuzz/fuzz_fmu.py
-with more --sequences); each run's
-counts are written to <build>/fuzz/*.json and printed."""
+is loaded with the sanitizer runtime preloaded). One test per FMU and build, so that
+pytest's workers (pytest-xdist, scripts/test.sh) share them out; about eight minutes of a
+worker's time in all on 2 loaded cores (longer runs: tests/fuzz/fuzz_fmu.py with more --sequences); each run's counts are
+written to <build>/fuzz/*.json and printed."""
 
 import json
 import os
 import subprocess
 import sys
-from concurrent.futures import ThreadPoolExecutor
 
 import pytest
 
@@ -74,32 +74,31 @@ def fuzz(run):
     return run, summary, done
 
 
-def test_fuzz_every_fmu_release_and_sanitized():
-    for build, name, *_ in RUNS:
-        if not os.path.exists(os.path.join(build, "fmu", f"{name}.fmu")):
-            pytest.fail(f"{build}/fmu/{name}.fmu is missing: build it "
-                        f"(scripts/test.sh builds build-sanitize with the FMUs)")
-    with ThreadPoolExecutor(max_workers=2) as pool:
-        results = list(pool.map(fuzz, RUNS))
-    failures = []
-    for run, summary, done in results:
-        what = f"{os.path.basename(run[0])} {run[1]} (seed {run[2]})"
-        # a crash, a sanitizer report or a timeout ends the process otherwise than by 0 / 1
-        if done.returncode not in (0, 1) or not os.path.exists(summary):
-            failures.append(f"{what}: exit {done.returncode}\n{done.stderr[-4000:]}")
-            continue
-        with open(summary) as f:
-            counts = json.load(f)
-        print(f"{what}: {counts['sequences']} sequences, {counts['calls']} calls, "
-              f"{counts['mutated_states']} mutated states, {counts['seconds']} s "
-              f"(slowest call {counts['slowest_call_seconds']} s, "
-              f"{len(counts['core_failures'])} failures of the core reported, "
-              f"{counts['exits']} exits from the chute; {counts['refusals_unchanged']} refused "
-              f"calls changed nothing, {counts['own_states_restored']} own states restored, "
-              f"{len(counts['own_states_refused_past_a_tiny_chute'])} own states refused past "
-              f"a chute of at most 1e-250; the costliest set-ups at the default work limit: "
-              f"{len(counts['work_bound_steps'])} doSteps, the slowest "
-              f"{max([w['cpu_seconds'] for w in counts['work_bound_steps']], default=0)} s of CPU)")
-        if counts["findings"]:
-            failures.append(f"{what}: " + json.dumps(counts["findings"][:3], indent=1))
-    assert not failures, "\n".join(failures)
+def run_id(run):
+    return f"{os.path.basename(run[0])}-{run[1]}"
+
+
+@pytest.mark.parametrize("run", RUNS, ids=run_id)
+def test_the_fuzz_suite_finds_nothing_wrong(run):
+    build, name, *_ = run
+    if not os.path.exists(os.path.join(build, "fmu", f"{name}.fmu")):
+        pytest.fail(f"{build}/fmu/{name}.fmu is missing: build it "
+                    f"(scripts/test.sh builds build-sanitize with the FMUs)")
+    run, summary, done = fuzz(run)
+    what = f"{os.path.basename(run[0])} {run[1]} (seed {run[2]})"
+    # a crash, a sanitizer report or a timeout ends the process otherwise than by 0 / 1
+    assert done.returncode in (0, 1) and os.path.exists(summary), \
+        f"{what}: exit {done.returncode}\n{done.stderr[-4000:]}"
+    with open(summary) as f:
+        counts = json.load(f)
+    print(f"{what}: {counts['sequences']} sequences, {counts['calls']} calls, "
+          f"{counts['mutated_states']} mutated states, {counts['seconds']} s "
+          f"(slowest call {counts['slowest_call_seconds']} s, "
+          f"{len(counts['core_failures'])} failures of the core reported, "
+          f"{counts['exits']} exits from the chute; {counts['refusals_unchanged']} refused "
+          f"calls changed nothing, {counts['own_states_restored']} own states restored, "
+          f"{len(counts['own_states_refused_past_a_tiny_chute'])} own states refused past "
+          f"a chute of at most 1e-250; the costliest set-ups at the default work limit: "
+          f"{len(counts['work_bound_steps'])} doSteps, the slowest "
+          f"{max([w['cpu_seconds'] for w in counts['work_bound_steps']], default=0)} s of CPU)")
+    assert not counts["findings"], f"{what}: " + json.dumps(counts["findings"][:3], indent=1)
