@@ -10,7 +10,8 @@ import sys
 from ..batch.executors import executor_for
 from ..batch.grid import parse_values
 from ..batch.job import execute, kept
-from ..populations.feed import DEFAULT_CHUTE, FEED_UNITS, FEED_VARIABLES
+from ..materials import with_pair
+from ..populations.feed import DEFAULT_CHUTE, FEED_UNITS, FEED_VARIABLES, Feed
 from ..populations.summary import END_COLUMNS
 
 # what a mistake in the input raises (every error class of the package is one of these, with
@@ -121,6 +122,23 @@ def add_chute_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--tilt-deg", type=float, default=DEFAULT_CHUTE["tilt_deg"],
                    help=f"tilt of the chute from the horizontal, degrees (default "
                         f"{DEFAULT_CHUTE['tilt_deg']:g})")
+
+
+def add_class_options(p: argparse.ArgumentParser) -> None:
+    """--shape-classes and --size-classes: the edges of a summary's classes."""
+    p.add_argument("--shape-classes", type=numbers, metavar="E0,E1,...",
+                   help="edges of the shape classes (default: 4 equal classes over the range)")
+    p.add_argument("--size-classes", type=numbers, metavar="S0,S1,...",
+                   help="edges of the size classes, m (default: 4 equal classes over the range)")
+
+
+def feed_of(args, measured=None) -> Feed:
+    """The feed the options of add_feed_options, add_chute_options, --set and --materials
+    describe (measured: rows read from --measured, where the command takes it)."""
+    distributions = {n: getattr(args, n) for n in FEED_VARIABLES if getattr(args, n) is not None}
+    return Feed(args.particle, args.wall, distributions,
+                {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg},
+                with_pair(args.particle, args.wall, dict(args.set), args.materials), measured)
 
 
 def add_si_job_options(p: argparse.ArgumentParser, out: str, *, max_runs: str | None = None) -> None:

@@ -31,11 +31,9 @@ charge gain gain_<model> for an uncharged grain, C) and liggghts/.
 
 import os
 
-from ..materials import with_pair
-from ..populations.feed import FEED_VARIABLES, Feed
 from ..dem import DemJob
-from .common import (add_chute_options, add_feed_options, add_job_options, add_materials_option,
-                     add_out_option, name_value, numbers, positive_number, qm_table, run_job)
+from .common import (add_chute_options, add_class_options, add_feed_options, add_si_job_options,
+                     feed_of, name_value, numbers, positive_number, qm_table, run_job)
 
 NAME = "dem"
 HELP = "a population's grains through the chute in LIGGGHTS, each impact charged: q/m"
@@ -60,23 +58,12 @@ def add_arguments(p) -> None:
                         "(default 1; less: a larger time step, docs/dem.md)")
     p.add_argument("--maps", default=os.path.join("out", "impact-maps"), metavar="FOLDER",
                    help="where the impact maps are kept (default out/impact-maps)")
-    p.add_argument("--shape-classes", type=numbers, metavar="E0,E1,...",
-                   help="edges of the shape classes (default: 4 equal classes)")
-    p.add_argument("--size-classes", type=numbers, metavar="S0,S1,...",
-                   help="edges of the size classes, m (default: 4 equal classes)")
-    add_materials_option(p)
-    add_out_option(p, os.path.join("out", "dem"))
-    p.add_argument("--fmu", help="the SI FMU (default: tribo_si_fmi3.fmu of the build)")
-    add_job_options(p)
-    p.add_argument("--no-plot", action="store_true", help="no figure")
+    add_class_options(p)
+    add_si_job_options(p, os.path.join("out", "dem"))
 
 
 def job_of(args) -> DemJob:
-    distributions = {n: getattr(args, n) for n in FEED_VARIABLES if getattr(args, n) is not None}
-    feed = Feed(args.particle, args.wall, distributions,
-                {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg},
-                with_pair(args.particle, args.wall, dict(args.set), args.materials))
-    return DemJob(feed, args.particles, args.seed, args.t_end, args.fmu,
+    return DemJob(feed_of(args), args.particles, args.seed, args.t_end, args.fmu,
                   feed_rate=args.feed_rate, lanes=args.lanes, ranks=args.ranks,
                   vibration=_vibration(args.vibration),
                   stiffness_scale=args.stiffness_scale, maps=args.maps,

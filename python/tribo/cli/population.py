@@ -38,12 +38,11 @@ process, or --scheduler).
 
 import os
 
-from ..materials import with_pair
-from ..populations.feed import FEED_VARIABLES, Feed, read_measured
+from ..populations.feed import read_measured
 from ..populations.runner import PopulationJob
 from ..populations.summary import ends_text
-from .common import (add_chute_options, add_feed_options, add_si_job_options, name_value, numbers,
-                     qm_table, run_job)
+from .common import (add_chute_options, add_class_options, add_feed_options, add_si_job_options,
+                     feed_of, name_value, qm_table, run_job)
 
 NAME = "population"
 HELP = "particles drawn from a feed, down the chute (SI FMU): q/m statistics and figure"
@@ -57,20 +56,13 @@ def add_arguments(p) -> None:
                    help="any other SI parameter by the package's names (mu=0.5, "
                         "cylinder_length=2e-3, n_segments=500, ...)")
     p.add_argument("--t-end", type=float, default=5.0, help="horizon of each particle, s (default 5)")
-    p.add_argument("--shape-classes", type=numbers, metavar="E0,E1,...",
-                   help="edges of the shape classes (default: 4 equal classes over the range)")
-    p.add_argument("--size-classes", type=numbers, metavar="S0,S1,...",
-                   help="edges of the size classes, m (default: 4 equal classes over the range)")
+    add_class_options(p)
     add_si_job_options(p, os.path.join("out", "population"), max_runs="particles")
 
 
 def job_of(args) -> PopulationJob:
     measured = read_measured(args.measured) if args.measured else None
-    distributions = {n: getattr(args, n) for n in FEED_VARIABLES if getattr(args, n) is not None}
-    feed = Feed(args.particle, args.wall, distributions,
-                {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg},
-                with_pair(args.particle, args.wall, dict(args.set), args.materials), measured)
-    return PopulationJob(feed, args.particles, args.seed, args.t_end, args.fmu,
+    return PopulationJob(feed_of(args, measured), args.particles, args.seed, args.t_end, args.fmu,
                          figure=not args.no_plot, shape_edges=args.shape_classes,
                          size_edges=args.size_classes)
 
