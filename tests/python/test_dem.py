@@ -189,10 +189,13 @@ def test_a_run_stopped_by_ctrl_c_resumes_from_liggghts_restart_file(tmp_path, ma
     assert (log.parent / "resume-1.in.liggghts").exists()
     a, b = (pd.read_csv(tmp_path / f / "particles.csv") for f in ("whole", "cut"))
     # the same grains to rounding: LIGGGHTS rebuilds its neighbour lists at a restart, so
-    # sums may round differently (a fresh clone's run agreed to 7 digits, below 5e-7)
+    # sums may round differently. Measured in 11 runs beside two busy jobs (where Ctrl-C
+    # lands varies): the exits agreed within 6e-13 (held to 1e-6, where a fresh clone's
+    # first run had put every column), the charges within 9.0e-6 (two runs; 2.2e-8 in a
+    # third, the rest exactly), held to 1e-4, 11 times that
     assert np.array_equal(a["impacts"], b["impacts"])
-    for c in ("charge_static", "exit_time", "exit_speed"):
-        assert np.allclose(a[c], b[c], rtol=1e-6, atol=0), c
+    for c, rtol in (("charge_static", 1e-4), ("exit_time", 1e-6), ("exit_speed", 1e-6)):
+        assert np.allclose(a[c], b[c], rtol=rtol, atol=0), c
 
 
 def test_fed_grains_enter_clear_of_the_ones_still_falling():
