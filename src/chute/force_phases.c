@@ -67,11 +67,11 @@ void tribo_switch_functions(const tribo_dyn_params *p, const tribo_force_law *la
         g[i] = 1.0;
     if (isfinite(p->chute_length))
         g[TRIBO_SWITCH_EXIT] = p->chute_length - y[TRIBO_IX];
-    tribo_pose_at(p->eps2, y[TRIBO_IPHI], &ev.pose);
     g[TRIBO_SWITCH_CONTACT] = -y[TRIBO_IGAP];
     if (!tribo_touching(law))
         return;
-    /* the contact as the phase sees it, even where delta_y has just gone negative */
+    /* the contact as the phase sees it, even where delta_y has just gone negative (with its
+       pose: the only one these functions take, since they run several times a step) */
     tribo_contact_at(p, law, y, &ev);
     const double dy = -y[TRIBO_IGAP];
     if (law->normal == TRIBO_NORMAL_CREEP) {
