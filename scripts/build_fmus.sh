@@ -23,44 +23,16 @@ cmake --build "$ROOT/build"
 PYTHON="$ROOT/.venv/bin/python"
 mkdir -p "$OUT"
 
-# ---- SUNDIALS' sources: Debian's source package, through a private sources list ---------
-# apt reads a deb-src copy of the system's Debian entries and keeps its lists in
-# $OUT/apt, so the system's apt configuration is left as it is.
-version=$(dpkg-query -W -f='${source:Version}' libsundials-dev)
-SUNDIALS_SRC="$OUT/sundials/src"
-if [ ! -f "$SUNDIALS_SRC/.version" ] || [ "$(cat "$SUNDIALS_SRC/.version")" != "$version" ]; then
-  echo "build_fmus: fetching the source package sundials $version"
-  APT="$OUT/apt"
-  rm -rf "$APT" "$OUT/sundials"
-  mkdir -p "$APT/parts" "$APT/lists/partial" "$APT/cache/archives/partial" "$OUT/sundials"
-  for f in /etc/apt/sources.list.d/*.sources; do
-    [ -e "$f" ] && sed 's/^Types:.*/Types: deb-src/' "$f" > "$APT/parts/$(basename "$f")"
-  done
-  if [ -f /etc/apt/sources.list ]; then
-    sed -n 's/^deb /deb-src /p' /etc/apt/sources.list > "$APT/parts/system.list"
-  fi
-  apt_options=(-o Dir::Etc::SourceList=/dev/null -o Dir::Etc::SourceParts="$APT/parts"
-               -o Dir::State::Lists="$APT/lists" -o Dir::Cache="$APT/cache"
-               -o APT::Sandbox::User=root)
-  apt-get "${apt_options[@]}" update -qq
-  (cd "$OUT/sundials" && apt-get "${apt_options[@]}" source --download-only -qq "sundials=$version")
-  dpkg-source -x "$OUT/sundials"/sundials_*.dsc "$SUNDIALS_SRC" >/dev/null
-  echo "$version" > "$SUNDIALS_SRC/.version"
-fi
-
-# ---- CVODE for Windows (static) ------------------------------------------------------------
+# ---- CVODE for Windows (static), from Debian's source package of SUNDIALS (setup.sh fetched
+# it for the native build) ----------------------------------------------------------------
+# shellcheck source=sundials.sh
+. "$ROOT/scripts/sundials.sh"
+SUNDIALS_SRC="$ROOT/build-sundials/src"
+SUNDIALS_WIN="$ROOT/build-sundials/win64"
 TOOLCHAIN="$ROOT/cmake/mingw-w64-x86_64.cmake"
-SUNDIALS_WIN="$OUT/sundials/win64"
-if [ ! -f "$SUNDIALS_WIN/lib/libsundials_cvode.a" ]; then
-  echo "build_fmus: building CVODE for Windows"
-  cmake -S "$SUNDIALS_SRC" -B "$OUT/sundials/build-win64" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$TOOLCHAIN" \
-    -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=OFF -DBUILD_STATIC_LIBS=ON \
-    -DBUILD_ARKODE=OFF -DBUILD_CVODES=OFF -DBUILD_IDA=OFF -DBUILD_IDAS=OFF -DBUILD_KINSOL=OFF \
-    -DBUILD_CVODE=ON -DEXAMPLES_ENABLE_C=OFF -DEXAMPLES_INSTALL=OFF -DSUNDIALS_INDEX_SIZE=64 \
-    -DCMAKE_INSTALL_PREFIX="$SUNDIALS_WIN" >/dev/null
-  cmake --build "$OUT/sundials/build-win64" >/dev/null
-  cmake --install "$OUT/sundials/build-win64" >/dev/null
-fi
+sundials_source "$ROOT/build-sundials"
+sundials_build "$SUNDIALS_SRC" "$ROOT/build-sundials/build-win64" "$SUNDIALS_WIN" \
+  -DCMAKE_TOOLCHAIN_FILE="$TOOLCHAIN"
 
 # ---- the FMUs' Windows binaries, with the native build's descriptions and tokens ---------
 if [ ! -f "$OUT/win64/build.ninja" ]; then

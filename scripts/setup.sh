@@ -5,13 +5,13 @@
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 
+# dpkg-dev: dpkg-source, for SUNDIALS' source package (scripts/sundials.sh)
 APT_PACKAGES=(build-essential cmake ninja-build pkg-config libsundials-dev libcriterion-dev
-              python3 python3-venv zip libtbb12
+              dpkg-dev python3 python3-venv zip libtbb12
               liggghts)  # tribo dem's DEM engine (docs/dem.md)
-# scripts/build_fmus.sh: Windows binaries (MinGW-w64), checked under Wine, and dpkg-source
-# for the SUNDIALS source package
+# scripts/build_fmus.sh: Windows binaries (MinGW-w64), checked under Wine
 if [ "${TRIBO_SETUP_WINDOWS:-0}" = 1 ]; then
-  APT_PACKAGES+=(gcc-mingw-w64-x86-64 wine64 dpkg-dev)
+  APT_PACKAGES+=(gcc-mingw-w64-x86-64 wine64)
 fi
 missing=()
 for p in "${APT_PACKAGES[@]}"; do
@@ -57,9 +57,17 @@ configured() { # configured <dir> <cmake args...>: the build's cache holds every
     esac
   done
 }
+# CVODE optimised, from Debian's source package of the installed version (scripts/sundials.sh):
+# position-independent, since it links into the FMUs' shared libraries
+# shellcheck source=sundials.sh
+. "$ROOT/scripts/sundials.sh"
+sundials_source "$ROOT/build-sundials"
+sundials_build "$ROOT/build-sundials/src" "$ROOT/build-sundials/build-native" \
+  "$ROOT/build-sundials/native" -DCMAKE_POSITION_INDEPENDENT_CODE=ON
 build() { # build <dir> <cmake args...>
   local dir=$1; shift
-  local args=(-DTRIBO_PYTHON="$VENV/bin/python" "$@")
+  local args=(-DTRIBO_PYTHON="$VENV/bin/python"
+              -DSUNDIALS_DIR="$ROOT/build-sundials/native/lib/cmake/sundials" "$@")
   if ! configured "$dir" "${args[@]}"; then
     cmake -S "$ROOT" -B "$ROOT/$dir" -G Ninja "${args[@]}" >/dev/null
   fi
