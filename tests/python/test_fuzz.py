@@ -2,12 +2,12 @@
 sequences on the SI pair and the separator's, whose runs are cheap): random call sequences checked
 against a model of the expected statuses, and mutated FMU states, with fixed seeds and a
 timeout per call (a hang guard); on the Release build also the work limit's bound, one
-doStep of each of the costliest set-ups at the declared extremes (front_ends.py). Once on the Release build and once on the sanitizer build (build-sanitize:
+doStep of each of the costliest set-ups at the declared extremes (front_ends.py). Once on
+the Release build and once on the sanitizer build (build-sanitize:
 AddressSanitizer and UndefinedBehaviorSanitizer with float-cast-overflow; the FMU's library
 is loaded with the sanitizer runtime preloaded). One test per FMU and build, so that
-pytest's workers (pytest-xdist, scripts/test.sh) share them out; about eight minutes of a
-worker's time in all on 2 loaded cores (longer runs: tests/fuzz/fuzz_fmu.py with more --sequences); each run's counts are
-written to <build>/fuzz/*.json and printed."""
+pytest's workers (pytest-xdist, scripts/test.sh) share them out (a longer campaign with other
+seeds: scripts/fuzz.sh); each run's counts are written to <build>/fuzz/*.json and printed."""
 
 import json
 import os
@@ -22,21 +22,26 @@ SANITIZE_DIR = os.path.abspath(os.environ.get("TRIBO_SANITIZE_BUILD_DIR",
                                               os.path.join(ROOT, "build-sanitize")))
 FUZZ = os.path.join(ROOT, "tests", "fuzz", "fuzz_fmu.py")
 
-# (build, FMU, seed, sequences, states mutated, values per field, seconds per call)
+# (build, FMU, seed, sequences, states mutated, values per field, seconds per call): fixed
+# seeds, so that the suite repeats the same sequences as a regression check; a campaign with
+# new seeds and larger budgets is scripts/fuzz.sh (TRIBO_FUZZ_SCALE, TRIBO_FUZZ_SEED)
 RUNS = [
-    (BUILD_DIR, "tribo_fmi2", 11, 250, 8, 4, 20),
-    (BUILD_DIR, "tribo_fmi3", 12, 250, 8, 4, 20),
-    (SANITIZE_DIR, "tribo_fmi2", 13, 50, 3, 2, 120),
-    (SANITIZE_DIR, "tribo_fmi3", 14, 50, 3, 2, 120),
-    (BUILD_DIR, "tribo_si_fmi2", 15, 60, 3, 2, 20),
-    (BUILD_DIR, "tribo_si_fmi3", 16, 60, 3, 2, 20),
-    (SANITIZE_DIR, "tribo_si_fmi2", 17, 15, 2, 1, 120),
-    (SANITIZE_DIR, "tribo_si_fmi3", 18, 15, 2, 1, 120),
+    (BUILD_DIR, "tribo_fmi2", 11, 125, 4, 4, 20),
+    (BUILD_DIR, "tribo_fmi3", 12, 125, 4, 4, 20),
+    (SANITIZE_DIR, "tribo_fmi2", 13, 30, 2, 2, 120),
+    (SANITIZE_DIR, "tribo_fmi3", 14, 30, 2, 2, 120),
+    (BUILD_DIR, "tribo_si_fmi2", 15, 30, 2, 2, 20),
+    (BUILD_DIR, "tribo_si_fmi3", 16, 30, 2, 2, 20),
+    (SANITIZE_DIR, "tribo_si_fmi2", 17, 8, 1, 1, 120),
+    (SANITIZE_DIR, "tribo_si_fmi3", 18, 8, 1, 1, 120),
     (BUILD_DIR, "tribo_separator_fmi2", 19, 150, 8, 3, 20),
     (BUILD_DIR, "tribo_separator_fmi3", 20, 150, 8, 3, 20),
     (SANITIZE_DIR, "tribo_separator_fmi2", 21, 40, 4, 2, 120),
     (SANITIZE_DIR, "tribo_separator_fmi3", 22, 40, 4, 2, 120),
 ]
+# scripts/fuzz.sh: every budget times SCALE, every seed plus SEED
+SCALE = int(os.environ.get("TRIBO_FUZZ_SCALE", "1"))
+SEED = int(os.environ.get("TRIBO_FUZZ_SEED", "0"))
 
 
 def sanitizer_runtime():
@@ -53,6 +58,7 @@ def sanitizer_runtime():
 
 def fuzz(run):
     build, name, seed, sequences, bases, per_field, timeout = run
+    seed, sequences, bases = seed + SEED, sequences * SCALE, bases * SCALE
     fmu = os.path.join(build, "fmu", f"{name}.fmu")
     summary = os.path.join(build, "fuzz", f"{name}_seed{seed}.json")
     os.makedirs(os.path.dirname(summary), exist_ok=True)
@@ -85,7 +91,7 @@ def test_the_fuzz_suite_finds_nothing_wrong(run):
         pytest.fail(f"{build}/fmu/{name}.fmu is missing: build it "
                     f"(scripts/test.sh builds build-sanitize with the FMUs)")
     run, summary, done = fuzz(run)
-    what = f"{os.path.basename(run[0])} {run[1]} (seed {run[2]})"
+    what = f"{os.path.basename(run[0])} {run[1]} (seed {run[2] + SEED})"
     # a crash, a sanitizer report or a timeout ends the process otherwise than by 0 / 1
     assert done.returncode in (0, 1) and os.path.exists(summary), \
         f"{what}: exit {done.returncode}\n{done.stderr[-4000:]}"
