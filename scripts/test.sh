@@ -6,11 +6,31 @@ set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 TRIBO_SETUP_SANITIZE=1 "$ROOT/scripts/setup.sh"
 JOBS=$(nproc)
-echo "== C unit tests (Release)"
-ctest --test-dir "$ROOT/build" --output-on-failure -j "$JOBS"
-echo "== C unit tests (AddressSanitizer + UndefinedBehaviorSanitizer)"
-ctest --test-dir "$ROOT/build-sanitize" --output-on-failure -j "$JOBS"
-echo "== The multi-platform FMUs (Windows binaries, sources/; checked under Wine by pytest)"
-"$ROOT/scripts/build_fmus.sh"
+# The C tests of both builds and the multi-platform FMUs at once (each step's output kept and
+# shown in turn), so that one's single long test (test_regression, test_stability) runs
+# beside the other's many short ones; then pytest, which needs the FMUs
+logs=$(mktemp -d)
+trap 'rm -rf "$logs"' EXIT
+ctest --test-dir "$ROOT/build" --output-on-failure -j "$JOBS" > "$logs/release" 2>&1 &
+release=$!
+ctest --test-dir "$ROOT/build-sanitize" --output-on-failure -j "$JOBS" > "$logs/sanitize" 2>&1 &
+sanitize=$!
+"$ROOT/scripts/build_fmus.sh" > "$logs/fmus" 2>&1 &
+fmus=$!
+failed=0
+for step in "release:C unit tests (Release)" \
+            "sanitize:C unit tests (AddressSanitizer + UndefinedBehaviorSanitizer)" \
+            "fmus:The multi-platform FMUs (Windows binaries, sources/; checked under Wine by pytest)"; do
+  name=${step%%:*}
+  status=0
+  wait "${!name}" || status=$?
+  echo "== ${step#*:}"
+  cat "$logs/$name"
+  if [ "$status" -ne 0 ]; then
+    echo "== ${step#*:}: failed (exit $status)"
+    failed=1
+  fi
+done
+[ "$failed" -eq 0 ] || exit 1
 echo "== Python tests (pytest + fmpy, libcosim, ecos, with the fuzz suite; a worker per core)"
 "$ROOT/.venv/bin/python" -m pytest -q -n "$JOBS" "$ROOT/tests/python"
