@@ -80,13 +80,37 @@ bottom, then materials and batch, then study, populations and impact (not each o
 line, calibration and dem (on populations and impact; not each other), then api and cli (CONTRIBUTING.md; tests/python/test_package_layout.py checks it).
 """
 
-from . import fmu, materials
-from .api import (calibrate, impact_map, line_grain, line_mixture, line_population, line_sweep,
-                  load_results, population, run, run_si, sweep)
-from .calibration.observables import chute_stream, repeated_impacts, single_impact
-from .fmu.locate import find_fmu
-from .impact.map import ImpactMap
+import importlib
+
+# where each name of the API is defined: imported at its first use, so that `import tribo`
+# (and the command, tribo/cli) does not import the libraries of every job
+_DEFINED_IN = {
+    "fmu": None, "materials": None,
+    **{name: ".api" for name in ("calibrate", "impact_map", "line_grain", "line_mixture",
+                                 "line_population", "line_sweep", "load_results", "population",
+                                 "run", "run_si", "sweep")},
+    **{name: ".calibration.observables" for name in ("chute_stream", "repeated_impacts",
+                                                     "single_impact")},
+    "find_fmu": ".fmu.locate",
+    "ImpactMap": ".impact.map",
+}
 
 __all__ = ["run", "run_si", "sweep", "load_results", "find_fmu", "materials", "population",
            "impact_map", "ImpactMap", "line_grain", "line_population", "line_mixture",
            "line_sweep", "single_impact", "repeated_impacts", "chute_stream", "calibrate"]
+
+
+def __getattr__(name: str):
+    if name not in _DEFINED_IN:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    module = _DEFINED_IN[name]
+    if module is None:  # a subpackage or module of the API itself
+        value = importlib.import_module(f".{name}", __name__)
+    else:
+        value = getattr(importlib.import_module(module, __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))

@@ -161,3 +161,31 @@ def test_importing_tribo_leaves_the_heavy_optional_dependencies_unloaded():
     done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=60)
     assert done.returncode == 0, done.stderr
     assert done.stdout.strip() == "[]"
+
+
+
+def modules_loaded_by_the_command(argv: list) -> set:
+    """The modules a fresh interpreter has imported after `tribo argv` (main(argv))."""
+    script = ("import sys\nfrom tribo.cli.main import main\ntry:\n"
+              f"    main({argv!r})\nexcept SystemExit:\n    pass\nprint(sorted(sys.modules))")
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          timeout=60)
+    assert done.returncode == 0, done.stderr
+    return set(eval(done.stdout.strip().splitlines()[-1]))
+
+
+JOB_LIBRARIES = {"numpy", "pandas", "fmpy", "matplotlib", "dask", "distributed", "scipy"}
+
+
+def test_the_commands_help_imports_only_the_named_subcommands_libraries():
+    """`tribo --help` and a mistake in the subcommand's name are answered by the parser alone;
+    a subcommand imports its own job's modules, not the other jobs' (calibrate's scipy,
+    the DEM's, the study's)."""
+    for argv in (["--help"], ["bogus"], []):
+        loaded = {m.split(".")[0] for m in modules_loaded_by_the_command(argv)}
+        assert not loaded & JOB_LIBRARIES, (argv, loaded & JOB_LIBRARIES)
+    loaded = modules_loaded_by_the_command(["sweep", "--help"])
+    assert "tribo.cli.sweep" in loaded and "pandas" in loaded  # its own job's
+    others = {m for m in loaded if m.startswith(("tribo.calibration", "tribo.dem", "tribo.study",
+                                                 "tribo.cli.calibrate", "scipy"))}
+    assert not others, others

@@ -40,8 +40,6 @@ from ..calibration.runner import CalibrationJob
 from ..impact.episode import DEFAULT_LIMIT
 from .common import add_si_job_options, name_value, run_job
 
-NAME = "calibrate"
-HELP = "a pair's charging parameters fitted to measured impacts and chute runs; a materials file"
 
 
 def add_arguments(p) -> None:

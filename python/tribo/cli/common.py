@@ -1,10 +1,8 @@
-"""What the subcommands share: the parser (errors in one line, no prefix matching, negative
-numbers read as values), argument types, the options every job takes (--out, --fresh,
+"""What the subcommands share: the parser (parsing.py), argument types, the options every job takes (--out, --fresh,
 where runs execute, --no-progress) and `run_job`, which runs a job through the package's
 one flow (tribo/batch/job.py) and meets every mistake with one line."""
 
 import argparse
-import re
 import sys
 
 from ..batch.executors import executor_for
@@ -13,36 +11,11 @@ from ..batch.job import execute, kept
 from ..materials import with_pair
 from ..populations.feed import DEFAULT_CHUTE, FEED_UNITS, FEED_VARIABLES, Feed
 from ..populations.summary import END_COLUMNS
+from .parsing import OneLineParser, described  # noqa: F401 (the subcommands' parser)
 
 # what a mistake in the input raises (every error class of the package is one of these, with
 # a message of one line): the command says it in one line and exits 2
 INPUT_ERRORS = (ValueError, OSError)
-
-
-class OneLineParser(argparse.ArgumentParser):
-    """argparse, with a usage error in one line (no usage block), options only by their
-    full names (`--tilt` is not taken for `--tilt-deg`), and a negative number after an
-    option read as its value (`--size -1e-3`), so that the value's check answers."""
-
-    # -1, -.5, -1e-3, -inf, -nan, and lists such as -1,2 or -1:1:3: no option starts so
-    # (argparse's own takes -1 and -0.5 only)
-    _negative_number_matcher = re.compile(r"^-(\.?\d|inf|nan)", re.IGNORECASE)
-
-    def __init__(self, *args, **kwargs):
-        kwargs["allow_abbrev"] = False
-        super().__init__(*args, **kwargs)
-        self._negative_number_matcher = OneLineParser._negative_number_matcher
-
-    def error(self, message):
-        self.exit(2, f"{self.prog}: error: {message} (see --help)\n")
-
-
-def described(doc: str) -> dict:
-    """A parser's description (the first paragraph of a module's docstring `doc`) and
-    epilogue (the rest of it)."""
-    head, _, rest = doc.partition("\n\n")
-    return {"description": head, "epilog": rest,
-            "formatter_class": argparse.RawDescriptionHelpFormatter}
 
 
 def numbers(text: str) -> tuple:

@@ -35,8 +35,6 @@ from ..dem import DemJob
 from .common import (add_chute_options, add_class_options, add_feed_options, add_si_job_options,
                      feed_of, name_value, numbers, positive_number, qm_table, run_job)
 
-NAME = "dem"
-HELP = "a population's grains through the chute in LIGGGHTS, each impact charged: q/m"
 
 
 def add_arguments(p) -> None:

@@ -39,8 +39,6 @@ from ..impact.map import MapJob, ends_text
 from ..materials import with_pair
 from .common import add_si_job_options, name_value, run_job, value_list
 
-NAME = "impact-map"
-HELP = "the charge one wall impact transfers, over speed, angle, orientation and roundness"
 
 
 def add_arguments(p) -> None:

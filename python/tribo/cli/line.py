@@ -42,8 +42,6 @@ from ..populations.feed import DEFAULT_CHUTE
 from .common import (INPUT_ERRORS, add_job_options, add_materials_option, add_out_option, fail,
                      name_value, one_line, run_job)
 
-NAME = "line"
-HELP = "grains down the SI chute and through the separator: one grain, a mixture, a voltage sweep"
 VOLTAGE_DEFAULT = 30e3
 
 

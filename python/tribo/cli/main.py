@@ -12,27 +12,34 @@ import importlib
 import sys
 import time
 
-from .common import OneLineParser, described
+from .parsing import OneLineParser, described
 
-# the subcommands, each a module of this folder (tribo/cli/<module>.py) with NAME, HELP,
-# add_arguments(parser) and run(args): a new subcommand is its module and its line here
-SUBCOMMANDS = (
-    "population",
-    "line",
-    "impact_map",
-    "calibrate",
-    "sweep",
-    "study",
-    "dem",
-)
+# the subcommands, each a module of this folder (tribo/cli/<module>.py) with add_arguments
+# (parser) and run(args), by name with the module and the line `tribo --help` gives it: a new
+# subcommand is its module and its line here
+SUBCOMMANDS = {
+    "population": ("population",
+                   "particles drawn from a feed, down the chute (SI FMU): q/m statistics and figure"),
+    "line": ("line", "grains down the SI chute and through the separator: one grain, a mixture, "
+                     "a voltage sweep"),
+    "impact-map": ("impact_map", "the charge one wall impact transfers, over speed, angle, "
+                                 "orientation and roundness"),
+    "calibrate": ("calibrate", "a pair's charging parameters fitted to measured impacts and chute "
+                               "runs; a materials file"),
+    "sweep": ("sweep", "a parameter sweep of the dimensionless FMU: every combination of the "
+                       "values given"),
+    "study": ("study", "the paper's study (docs/model.md section 7): eps_t of each friction "
+                       "case, figures, tables"),
+    "dem": ("dem", "a population's grains through the chute in LIGGGHTS, each impact charged: q/m"),
+}
 # other names of the subcommands, as console scripts (pyproject.toml): each runs its
 # subcommand, with its options, and its --help says whose alias it is
 ALIASES = {"tribo-population": "population", "tribo-line": "line",
-           "tribo-impact-map": "impact_map", "tribo-sweep": "sweep", "tribo-study": "study"}
+           "tribo-impact-map": "impact-map", "tribo-sweep": "sweep", "tribo-study": "study"}
 
 
-def subcommand(module_name: str):
-    return importlib.import_module(f"{__package__}.{module_name}")
+def subcommand(name: str):
+    return importlib.import_module(f"{__package__}.{SUBCOMMANDS[name][0]}")
 
 
 def add_subcommand(p, module, prog: str) -> None:
@@ -41,21 +48,30 @@ def add_subcommand(p, module, prog: str) -> None:
     p.set_defaults(run=module.run, prog=prog)
 
 
-def parser() -> OneLineParser:
+def parser(argv=None) -> OneLineParser:
+    """`tribo`'s parser. Given the command line argv, only the subcommand it names is
+    imported and takes its options (the others are listed with their line), so that a
+    command does not import every job's libraries, and --help or a mistake answers at once;
+    without, every subcommand's."""
     p = OneLineParser(prog="tribo", **described(__doc__))
     commands = p.add_subparsers(title="commands", dest="command", metavar="COMMAND",
                                 required=True, parser_class=OneLineParser)
+    named = None if argv is None else next((a for a in argv if not a.startswith("-")), "")
     p.subcommands = {}  # name -> its parser, which says what it does not take (_run)
-    for name in SUBCOMMANDS:
-        module = subcommand(name)
-        sub = commands.add_parser(module.NAME, help=module.HELP, **described(module.__doc__))
-        add_subcommand(sub, module, sub.prog)
-        p.subcommands[module.NAME] = sub
+    for name, (_, line) in SUBCOMMANDS.items():
+        if named is None or name == named:
+            module = subcommand(name)
+            sub = commands.add_parser(name, help=line, **described(module.__doc__))
+            add_subcommand(sub, module, sub.prog)
+        else:
+            sub = commands.add_parser(name, help=line)
+        p.subcommands[name] = sub
     return p
 
 
 def main(argv=None) -> int:
-    return _run(parser(), argv, 1)
+    argv = sys.argv[1:] if argv is None else list(argv)
+    return _run(parser(argv), argv, 1)
 
 
 def _run(p, argv, skip: int) -> int:
@@ -76,7 +92,7 @@ def alias(name: str, argv=None) -> int:
     """The console script `name` (ALIASES): its subcommand's options and run, its --help
     saying it is an alias."""
     module = subcommand(ALIASES[name])
-    new = f"tribo {module.NAME}"
+    new = f"tribo {ALIASES[name]}"
     options = described(module.__doc__)
     what = options["description"].removeprefix(f"{new}: ")
     options["description"] = f"{name}: alias of `{new}`: {what}"

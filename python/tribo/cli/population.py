@@ -44,8 +44,6 @@ from ..populations.summary import ends_text
 from .common import (add_chute_options, add_class_options, add_feed_options, add_si_job_options,
                      feed_of, name_value, qm_table, run_job)
 
-NAME = "population"
-HELP = "particles drawn from a feed, down the chute (SI FMU): q/m statistics and figure"
 
 
 def add_arguments(p) -> None:

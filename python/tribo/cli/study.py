@@ -26,8 +26,6 @@ from ..fmu.locate import CHECKOUT
 from ..study.runner import FULL, REDUCED, StudyJob
 from .common import add_execution_options, add_out_option, numbers, run_job
 
-NAME = "study"
-HELP = "the paper's study (docs/model.md section 7): eps_t of each friction case, figures, tables"
 
 
 def integers(text: str) -> tuple:

@@ -48,8 +48,6 @@ from ..batch.grid import SweepJob, parse_param
 from ..batch.summary import ends_text
 from .common import add_job_options, add_out_option, run_job
 
-NAME = "sweep"
-HELP = "a parameter sweep of the dimensionless FMU: every combination of the values given"
 
 
 def add_arguments(p) -> None:
