@@ -4,6 +4,7 @@ those below it, a function-local import says why, and `import tribo` leaves the 
 optional dependencies unloaded."""
 
 import ast
+import json
 import os
 import pkgutil
 import subprocess
@@ -156,22 +157,23 @@ def test_a_function_local_import_says_why():
     assert not silent, silent
 
 
-def test_importing_tribo_leaves_the_heavy_optional_dependencies_unloaded():
-    script = f"import sys, tribo; print(sorted({{m.split('.')[0] for m in sys.modules}} & {set(HEAVY)!r}))"
-    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=60)
+def modules_loaded_by(code: str) -> set:
+    """The modules a fresh interpreter has imported after running code."""
+    script = f"import json, sys\n{code}\nprint(json.dumps(sorted(sys.modules)))"
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          timeout=60)
     assert done.returncode == 0, done.stderr
-    assert done.stdout.strip() == "[]"
-
+    return set(json.loads(done.stdout.strip().splitlines()[-1]))
 
 
 def modules_loaded_by_the_command(argv: list) -> set:
     """The modules a fresh interpreter has imported after `tribo argv` (main(argv))."""
-    script = ("import sys\nfrom tribo.cli.main import main\ntry:\n"
-              f"    main({argv!r})\nexcept SystemExit:\n    pass\nprint(sorted(sys.modules))")
-    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
-                          timeout=60)
-    assert done.returncode == 0, done.stderr
-    return set(eval(done.stdout.strip().splitlines()[-1]))
+    return modules_loaded_by(f"from tribo.cli.main import main\ntry:\n    main({argv!r})\n"
+                             f"except SystemExit:\n    pass")
+
+
+def test_importing_tribo_leaves_the_heavy_optional_dependencies_unloaded():
+    assert not {m.split(".")[0] for m in modules_loaded_by("import tribo")} & set(HEAVY)
 
 
 JOB_LIBRARIES = {"numpy", "pandas", "fmpy", "matplotlib", "dask", "distributed", "scipy"}

@@ -41,7 +41,6 @@ from ..impact.episode import DEFAULT_LIMIT
 from .common import add_si_job_options, name_value, run_job
 
 
-
 def add_arguments(p) -> None:
     p.add_argument("--impacts", metavar="CSV", help=f"single impacts: {columns_text('impacts')}")
     p.add_argument("--chutes", metavar="CSV", help=f"chute runs: {columns_text('chutes')}")

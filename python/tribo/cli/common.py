@@ -1,6 +1,7 @@
-"""What the subcommands share: the parser (parsing.py), argument types, the options every job takes (--out, --fresh,
-where runs execute, --no-progress) and `run_job`, which runs a job through the package's
-one flow (tribo/batch/job.py) and meets every mistake with one line."""
+"""What the subcommands share: the parser (parsing.py), argument types, the options every
+job takes (--out, --fresh, where runs execute, --no-progress) and `run_job`, which runs a
+job through the package's one flow (tribo/batch/job.py) and meets every mistake with one
+line."""
 
 import argparse
 import sys

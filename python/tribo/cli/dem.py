@@ -36,7 +36,6 @@ from .common import (add_chute_options, add_class_options, add_feed_options, add
                      feed_of, name_value, numbers, positive_number, qm_table, run_job)
 
 
-
 def add_arguments(p) -> None:
     add_feed_options(p, "grains")
     add_chute_options(p)

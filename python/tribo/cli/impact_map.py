@@ -40,7 +40,6 @@ from ..materials import with_pair
 from .common import add_si_job_options, name_value, run_job, value_list
 
 
-
 def add_arguments(p) -> None:
     p.add_argument("--speed", type=value_list, required=True, metavar="VALUES", help="impact speeds, m/s")
     p.add_argument("--angle-deg", type=value_list, required=True, metavar="VALUES",

@@ -45,7 +45,6 @@ from .common import (add_chute_options, add_class_options, add_feed_options, add
                      feed_of, name_value, qm_table, run_job)
 
 
-
 def add_arguments(p) -> None:
     add_feed_options(p, "particles")
     p.add_argument("--measured", metavar="CSV", help="measured values, a column per feed variable")

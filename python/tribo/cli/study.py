@@ -27,7 +27,6 @@ from ..study.runner import FULL, REDUCED, StudyJob
 from .common import add_execution_options, add_out_option, numbers, run_job
 
 
-
 def integers(text: str) -> tuple:
     try:
         return tuple(int(x) for x in text.split(","))

@@ -49,7 +49,6 @@ from ..batch.summary import ends_text
 from .common import add_job_options, add_out_option, run_job
 
 
-
 def add_arguments(p) -> None:
     p.add_argument("--param", action="append", required=True, metavar="NAME=VALUES",
                    help="a swept parameter and its values (repeat for more)")
