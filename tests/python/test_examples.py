@@ -141,7 +141,7 @@ GRID = re.compile(r"^(\w+=)?(-?[\d.]+(?:e-?\d+)?):(-?[\d.]+(?:e-?\d+)?):(\d+)$")
 def shrink(sub: str, argv: list[str], scheduler: str) -> list[str]:
     """An example at a small size: grids a:b:n of 2 values, 3 particles of 0.5 s, 3 grains
     on a 5 cm chute, sweeps to tau = 20, the study on one roundness to tau = 20, the DEM's
-    moduli at a hundredth, the cluster address the test's."""
+    grains on a 5 cm chute with its moduli at a hundredth, the cluster address the test's."""
     out = []
     args = list(argv)
     while args:
@@ -159,7 +159,7 @@ def shrink(sub: str, argv: list[str], scheduler: str) -> list[str]:
             out.append(GRID.sub(r"\1\2:\3:2", a))
     if sub == "population":
         out += ["--t-end", "0.5"]
-    if sub == "line":
+    if sub in ("line", "dem") and "--chute-length" not in out:
         out += ["--chute-length", "0.05"]
     if sub == "study":
         out += ["--epsilons", "1.0", "--t-end", "20", "--transition-width", "0.5"]
