@@ -48,9 +48,12 @@ description_name() { # description_name <prefix> <fmi version>: as fmu/CMakeList
   if [ "$1" = tribo ]; then echo "fmi$2"; else echo "$1_fmi$2"; fi
 }
 make_sources() { # make_sources <prefix> <fmi version> <folder>
-  # CVODE: the sources of the objects in the static libraries the Windows build links (they
-  # bundle the dense matrix, linear and nonlinear solvers), with the headers configured there
+  # the core's and CVODE's sources of the objects the two binaries link (the linkers' maps;
+  # CVODE's static libraries bundle the dense matrix, linear and nonlinear solvers), with
+  # SUNDIALS' headers configured for the Windows build
+  local id=$1_fmi$2
   "$PYTHON" "$ROOT/fmu/tools/make_sources.py" --prefix "$1" --version "$2" --out "$3" \
+    --link-map "$ROOT/build/fmu/lib/$id.map" --link-map "$OUT/win64/fmu/lib/$id.map" \
     --token "$ROOT/build/fmu/generated/$(description_name "$1" "$2")/instantiation_token.h" \
     --sundials "$SUNDIALS_SRC" --sundials-config "$SUNDIALS_WIN/include/sundials" \
     --sundials-library "$SUNDIALS_WIN/lib/libsundials_cvode.a" \

@@ -7,6 +7,7 @@ says.
         --token <instantiation_token.h> --sundials <SUNDIALS' source tree>
         --sundials-config <folder with the configured sundials_config.h, sundials_export.h>
         --sundials-library <static library> [--sundials-library ...]
+        [--link-map <the linker's map of the FMU's binary> ...]
 
 The layout (fmu/README.md):
 
@@ -18,6 +19,13 @@ The layout (fmu/README.md):
                   files and the private headers beside them), flattened into this one
                   folder because those files include each other's private headers by
                   quotes across SUNDIALS' own source folders; SUNDIALS' LICENSE and NOTICE
+
+With --link-map (the GNU linker's -Map of each binary the FMU ships: fmu/CMakeLists.txt
+writes them), the C files of the core and of SUNDIALS are only those whose objects one of
+the binaries links: what the FMU runs, without the parts of SUNDIALS it never calls (the
+Krylov solvers, band and sparse matrices) or the core of another FMU (the separator's FMUs
+hold none of the chute), so that an importer compiles no more than that. Headers are kept
+whole.
     cvode/, nvector/, sunlinsol/, ...   the public headers of the other SUNDIALS modules
                   compiled in, where <cvode/cvode.h> and the like resolve
     buildDescription.xml   (build_description.py) the files to compile
@@ -28,6 +36,7 @@ path are an error, not an overwrite.
 
 import argparse
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -68,19 +77,54 @@ class Layout:
                 f.write(text)
 
 
-def library_objects(libraries):
-    """The C files SUNDIALS' static libraries were compiled from (members `<file>.c.obj`
-    or `<file>.c.o`), each once."""
+CORE_LIBRARY = "libtribo_core.a"
+# a member of a static library as a GNU linker's map (ld's or lld's) names it: lib.a(member)
+MAP_MEMBER = re.compile(r"([^\s()]+\.a)\(([^\s()]+)\)")
+
+
+def c_file_of(member, library):
+    """The C file an object of a static library was compiled from (members `<file>.c.obj`
+    or `<file>.c.o`)."""
+    stem, _ = os.path.splitext(member)
+    if not stem.endswith(".c"):
+        sys.exit(f"make_sources: {library}: member {member} is not an object of a C file")
+    return stem
+
+
+def linked_members(maps):
+    """{static library's file name: the file names, less the object's extension, of its
+    members that the binaries link (for the core's and SUNDIALS' libraries, the C files
+    they were compiled from)}, from their linker maps; None without maps (every member is
+    linked)."""
+    if not maps:
+        return None
+    linked = {}
+    for path in maps:
+        try:
+            with open(path, encoding="utf-8", errors="replace") as f:
+                found = MAP_MEMBER.findall(f.read())
+        except OSError as e:
+            sys.exit(f"make_sources: cannot read the link map {path}: {e.strerror}")
+        if not any(os.path.basename(library) == CORE_LIBRARY for library, _ in found):
+            sys.exit(f"make_sources: {path} names no member of {CORE_LIBRARY}: not the map of "
+                     f"an FMU's link")
+        for library, member in found:
+            linked.setdefault(os.path.basename(library), set()).add(os.path.splitext(member)[0])
+    return linked
+
+
+def library_objects(libraries, linked=None):
+    """The C files SUNDIALS' static libraries were compiled from, each once: every member's,
+    or with linked (linked_members) those the binaries link."""
     names = set()
     for library in libraries:
         listing = subprocess.run(["ar", "t", library], capture_output=True, text=True)
         if listing.returncode != 0:
             sys.exit(f"make_sources: cannot list {library}: {listing.stderr.strip()}")
-        for member in listing.stdout.split():
-            stem, _ = os.path.splitext(member)
-            if not stem.endswith(".c"):
-                sys.exit(f"make_sources: {library}: member {member} is not an object of a C file")
-            names.add(stem)
+        members = {c_file_of(member, library) for member in listing.stdout.split()}
+        if linked is not None:
+            members &= linked.get(os.path.basename(library), set())
+        names |= members
     return sorted(names)
 
 
@@ -108,9 +152,16 @@ def core_files():
     return files
 
 
-def add_tribo(layout, prefix, version, token):
+def add_tribo(layout, prefix, version, token, linked=None):
     core = core_files()
     compiled = [f for f in core if f.endswith(".c")]
+    if linked is not None:
+        wanted = linked.get(CORE_LIBRARY, set())
+        unknown = wanted - {os.path.basename(f) for f in compiled}
+        if unknown:
+            sys.exit(f"make_sources: the link map names {' '.join(sorted(unknown))} of "
+                     f"{CORE_LIBRARY}, not a C file of src/")
+        compiled = [f for f in compiled if os.path.basename(f) in wanted]
     compiled += [f"fmu/{f}" for f in FMU_LAYER + FRONT_END[prefix] + [f"fmi{version}.c"]]
     other = [f for f in core if f.endswith((".h", ".def"))]
     other += [f"fmu/{f}" for f in sorted(os.listdir(os.path.join(ROOT, "fmu"))) if f.endswith(".h")]
@@ -121,8 +172,8 @@ def add_tribo(layout, prefix, version, token):
     return [f"tribo/{os.path.basename(path)}" for path in compiled]
 
 
-def add_sundials(layout, tree, config, libraries):
-    files = sundials_files(tree, library_objects(libraries))
+def add_sundials(layout, tree, config, libraries, linked=None):
+    files = sundials_files(tree, library_objects(libraries, linked))
     compiled = []
     for name, path in sorted(files.items()):
         layout.add(f"sundials/{name}", os.path.join(tree, "src", path))
@@ -160,13 +211,16 @@ def main():
     parser.add_argument("--sundials", required=True)
     parser.add_argument("--sundials-config", required=True)
     parser.add_argument("--sundials-library", required=True, action="append")
+    parser.add_argument("--link-map", action="append", default=[])
     args = parser.parse_args()
 
+    linked = linked_members(args.link_map)
     shutil.rmtree(args.out, ignore_errors=True)
     layout = Layout(args.out)
     try:
-        compiled = add_tribo(layout, args.prefix, args.version, args.token)
-        compiled += add_sundials(layout, args.sundials, args.sundials_config, args.sundials_library)
+        compiled = add_tribo(layout, args.prefix, args.version, args.token, linked)
+        compiled += add_sundials(layout, args.sundials, args.sundials_config, args.sundials_library,
+                                 linked)
     except OSError as e:
         sys.exit(f"make_sources: {e}")
     # every C file there is one to compile: `cc sources/*/*.c` is the build (fmu/README.md)

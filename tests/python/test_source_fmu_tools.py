@@ -100,6 +100,54 @@ def test_make_sources_lays_out_the_folder_for_one_include_directory(tmp_path):
     assert sorted(listed) == sorted(p for p in made if p.endswith(".c"))
 
 
+def test_make_sources_lays_out_only_what_the_link_maps_name(tmp_path):
+    """With the linker's maps of the binaries, the C files of the core and of SUNDIALS are
+    those of the members some map names (a member of any other library is not looked at);
+    the headers and this FMU's files of the FMI layer stay."""
+    args = sundials_tree(tmp_path / "s", ["src/cvode/cvode.c", "src/cvode/cvode_diag.c",
+                                          "src/sundials/sundials_math.c", "include/cvode/cvode.h"],
+                         ["cvode.c.obj", "cvode_diag.c.obj", "sundials_math.c.obj"])
+    linux, windows = tmp_path / "linux.map", tmp_path / "windows.map"
+    linux.write_text("Archive member included to satisfy reference by file (symbol)\n\n"
+                     "/b/libtribo_core.a(model.c.o)\n    fmu/step.c.o (tribo_create)\n"
+                     "/b/libtribo_core.a(geometry.c.o)\n    /b/libtribo_core.a(model.c.o) (x)\n"
+                     "/s/lib.a(cvode.c.obj)\n    /b/libtribo_core.a(model.c.o) (CVodeCreate)\n"
+                     "/usr/lib/libm.a(e_exp.o)\n")
+    windows.write_text("C:/b/libtribo_core.a(model.c.obj)\n/s/lib.a(sundials_math.c.obj)\n"
+                       "/w/libkernel32.a(libkernel32s01409.o)\n")
+    out = tool("make_sources.py", *args, "--out", tmp_path / "sources", "--link-map", linux,
+               "--link-map", windows)
+    assert out.returncode == 0, out.stderr
+    build = ET.parse(tmp_path / "sources" / "buildDescription.xml").getroot()
+    listed = {f.get("name") for f in build.iter("SourceFile")}
+    layer = {"tribo/logging.c", "tribo/lifecycle.c", "tribo/step.c", "tribo/access.c",
+             "tribo/fmu_state.c", "tribo/variables_model.c", "tribo/front_end_model.c",
+             "tribo/front_end_chute.c", "tribo/fmi3.c"}
+    assert listed == layer | {"tribo/model.c", "tribo/geometry.c", "sundials/cvode.c",
+                              "sundials/sundials_math.c"}
+    made = {os.path.relpath(os.path.join(d, f), tmp_path / "sources")
+            for d, _, fs in os.walk(tmp_path / "sources") for f in fs}
+    assert {p for p in made if p.endswith(".c")} == listed
+    assert {"tribo/model.h", "tribo/quantities.def", "cvode/cvode.h"} <= made
+
+
+@pytest.mark.parametrize("case", ["no_core", "unknown_core_file", "unreadable"])
+def test_make_sources_refuses_a_link_map_it_cannot_use(tmp_path, case):
+    args = sundials_tree(tmp_path / "s", ["src/cvode/cvode.c", "include/cvode/cvode.h"],
+                         ["cvode.c.obj"])
+    link_map = tmp_path / "binary.map"
+    link_map.write_text({"no_core": "/s/lib.a(cvode.c.obj)\n",
+                         "unknown_core_file": "/b/libtribo_core.a(elsewhere.c.o)\n",
+                         "unreadable": ""}[case])
+    if case == "unreadable":
+        link_map = tmp_path / "absent.map"
+    out = tool("make_sources.py", *args, "--out", tmp_path / "sources", "--link-map", link_map)
+    words = {"no_core": ["binary.map", "names no member of libtribo_core.a"],
+             "unknown_core_file": ["elsewhere.c", "not a C file of src/"],
+             "unreadable": ["cannot read the link map", "absent.map"]}[case]
+    refused(out, *words)
+
+
 @pytest.mark.parametrize("case", ["twice_in_sundials", "same_header_in_two_folders", "missing_library"])
 def test_make_sources_refuses_what_it_cannot_lay_out(tmp_path, case):
     files = ["src/cvode/cvode.c", "include/cvode/cvode.h"]
