@@ -31,7 +31,7 @@ PYTHON=/usr/bin/python3
 VENV="$ROOT/.venv"
 # the venv is made again when the pinned requirements or the package's metadata change
 want=$(cat "$ROOT/requirements.txt" "$ROOT/pyproject.toml" | sha256sum | cut -d' ' -f1)
-if [ ! -x "$VENV/bin/python" ] || [ "$(cat "$VENV/.requirements.sha256" 2>/dev/null)" != "$want" ]; then
+make_venv() {
   echo "setup: creating the Python venv in .venv"
   rm -rf "$VENV"
   "$PYTHON" -m venv "$VENV"
@@ -40,6 +40,12 @@ if [ ! -x "$VENV/bin/python" ] || [ "$(cat "$VENV/.requirements.sha256" 2>/dev/n
   # code; its dependencies are already there, at the pinned versions
   "$VENV/bin/pip" install -q --disable-pip-version-check --no-deps -e "$ROOT"
   echo "$want" > "$VENV/.requirements.sha256"
+}
+# made while CVODE is fetched and built (pip mostly waits on the network and one core)
+venv=""
+if [ ! -x "$VENV/bin/python" ] || [ "$(cat "$VENV/.requirements.sha256" 2>/dev/null)" != "$want" ]; then
+  make_venv &
+  venv=$!
 fi
 
 configured() { # configured <dir> <cmake args...>: the build's cache holds every -DNAME=VALUE
@@ -64,6 +70,11 @@ configured() { # configured <dir> <cmake args...>: the build's cache holds every
 sundials_source "$ROOT/build-sundials"
 sundials_build "$ROOT/build-sundials/src" "$ROOT/build-sundials/build-native" \
   "$ROOT/build-sundials/native" -DCMAKE_POSITION_INDEPENDENT_CODE=ON
+# the builds need the venv: the FMI headers come from its fmpy
+if [ -n "$venv" ] && ! wait "$venv"; then
+  echo "setup: making the Python venv failed" >&2
+  exit 1
+fi
 build() { # build <dir> <cmake args...>
   local dir=$1; shift
   local args=(-DTRIBO_PYTHON="$VENV/bin/python"
