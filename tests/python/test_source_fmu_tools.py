@@ -109,12 +109,12 @@ def test_make_sources_lays_out_only_what_the_link_maps_name(tmp_path):
                          ["cvode.c.obj", "cvode_diag.c.obj", "sundials_math.c.obj"])
     linux, windows = tmp_path / "linux.map", tmp_path / "windows.map"
     linux.write_text("Archive member included to satisfy reference by file (symbol)\n\n"
-                     "/b/libtribo_core.a(model.c.o)\n    fmu/step.c.o (tribo_create)\n"
-                     "/b/libtribo_core.a(geometry.c.o)\n    /b/libtribo_core.a(model.c.o) (x)\n"
-                     "/s/lib.a(cvode.c.obj)\n    /b/libtribo_core.a(model.c.o) (CVodeCreate)\n"
-                     "/usr/lib/libm.a(e_exp.o)\n")
-    windows.write_text("C:/b/libtribo_core.a(model.c.obj)\n/s/lib.a(sundials_math.c.obj)\n"
-                       "/w/libkernel32.a(libkernel32s01409.o)\n")
+                     "build/libtribo_core.a(model.c.o)\n    fmu/step.c.o (tribo_create)\n"
+                     "build/libtribo_core.a(geometry.c.o)\n    build/libtribo_core.a(model.c.o) (x)\n"
+                     "sundials/lib.a(cvode.c.obj)\n    build/libtribo_core.a(model.c.o) (CVodeCreate)\n"
+                     "lib/libm.a(e_exp.o)\n")
+    windows.write_text("build-win64/libtribo_core.a(model.c.obj)\nsundials/lib.a(sundials_math.c.obj)\n"
+                       "mingw/libkernel32.a(libkernel32s01409.o)\n")
     out = tool("make_sources.py", *args, "--out", tmp_path / "sources", "--link-map", linux,
                "--link-map", windows)
     assert out.returncode == 0, out.stderr
@@ -136,8 +136,8 @@ def test_make_sources_refuses_a_link_map_it_cannot_use(tmp_path, case):
     args = sundials_tree(tmp_path / "s", ["src/cvode/cvode.c", "include/cvode/cvode.h"],
                          ["cvode.c.obj"])
     link_map = tmp_path / "binary.map"
-    link_map.write_text({"no_core": "/s/lib.a(cvode.c.obj)\n",
-                         "unknown_core_file": "/b/libtribo_core.a(elsewhere.c.o)\n",
+    link_map.write_text({"no_core": "sundials/lib.a(cvode.c.obj)\n",
+                         "unknown_core_file": "build/libtribo_core.a(elsewhere.c.o)\n",
                          "unreadable": ""}[case])
     if case == "unreadable":
         link_map = tmp_path / "absent.map"
