@@ -78,6 +78,28 @@ def available_cores() -> int:
         return os.cpu_count() or 1
 
 
+class _InterruptedSyncFilter(logging.Filter):
+    """Drops the one record Ctrl-C makes Dask's event loop log with a traceback: when the
+    interrupt comes before the coroutine of distributed's `sync` has started, the
+    callback that cancels it (`cancel` in distributed/utils.py) reads a variable not yet
+    set and raises NameError (distributed 2026.8.0), which tornado logs on its loop
+    thread. The sweep has stopped as asked by then; any other record passes."""
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        exc = record.exc_info[1] if record.exc_info else None
+        if not isinstance(exc, NameError) or exc.__traceback__ is None:
+            return True
+        tb = exc.__traceback__
+        while tb.tb_next is not None:
+            tb = tb.tb_next
+        code = tb.tb_frame.f_code
+        return not (code.co_name == "cancel"
+                    and code.co_filename.replace(os.sep, "/").endswith("distributed/utils.py"))
+
+
+INTERRUPTED_SYNC_FILTER = _InterruptedSyncFilter()
+
+
 class SerialExecutor:
     """Runs in this process, in order."""
 
@@ -141,6 +163,8 @@ class DaskExecutor:
     def __enter__(self):
         # distributed only when a Dask run starts: `import tribo` and serial runs stay without it
         from distributed import Client, LocalCluster
+
+        logging.getLogger("tornado.application").addFilter(INTERRUPTED_SYNC_FILTER)  # (added once)
 
         if self.address:
             self._client = _connect(self.address, self.connect_timeout)
