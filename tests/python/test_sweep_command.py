@@ -266,6 +266,44 @@ def test_ctrl_c_before_a_dask_call_starts_logs_no_traceback():
         assert INTERRUPTED_SYNC_FILTER in logging.getLogger("tornado.application").filters
 
 
+def test_what_dask_logs_while_closing_after_ctrl_c_is_not_shown():
+    """After Ctrl-C the executor closes its cluster without showing what Dask and tornado
+    log of the runs it stops (a worker's heartbeat to a scheduler that is closing, with
+    its traceback, seen under load); without an interrupt, and once it is closed, their
+    errors are logged as before."""
+    import logging
+
+    class Kept(logging.Handler):
+        def __init__(self):
+            super().__init__(logging.DEBUG)
+            self.records = []
+
+        def emit(self, record):
+            self.records.append(record.getMessage())
+
+    kept = Kept()
+    logging.getLogger().addHandler(kept)
+    try:
+        for exc_type in (KeyboardInterrupt, None):
+            executor = DaskExecutor(workers=1).__enter__()
+            cluster_close = executor._cluster.close
+
+            def close_logging(*args, **kwargs):
+                logging.getLogger("distributed.worker").error("heartbeat failed")
+                logging.getLogger("tornado.application").error("exception in callback")
+                return cluster_close(*args, **kwargs)
+
+            executor._cluster.close = close_logging
+            executor.__exit__(exc_type, exc_type and exc_type(), None)
+            shown = [m for m in kept.records if m in ("heartbeat failed", "exception in callback")]
+            assert shown == ([] if exc_type else ["heartbeat failed", "exception in callback"])
+            kept.records.clear()
+        logging.getLogger("distributed.worker").error("after closing")
+        assert "after closing" in kept.records
+    finally:
+        logging.getLogger().removeHandler(kept)
+
+
 def _session_alive(sid):
     for q in psutil.process_iter(["pid"]):
         try:

@@ -170,12 +170,15 @@ class DaskExecutor:
             self._client = _connect(self.address, self.connect_timeout)
             _ship_package(self._client)
         elif self.processes:
+            # the worker processes' own logs are not the command's: a run's failure comes
+            # back with its result, and after Ctrl-C a worker's heartbeat to the scheduler
+            # that is closing logs an error with a traceback
             with _sigint_ignored():  # inherited by the worker processes
                 self._cluster = LocalCluster(
                     n_workers=self.n_workers, threads_per_worker=1, processes=True,
                     host="127.0.0.1", dashboard_address=None,
                     scheduler_kwargs={"dashboard": False, "dashboard_address": "127.0.0.1:0"},
-                    silence_logs=logging.ERROR)
+                    silence_logs=logging.CRITICAL)
             self._client = Client(self._cluster)
         else:
             # in-process: the scheduler and the worker talk through memory; their HTTP
@@ -190,10 +193,11 @@ class DaskExecutor:
 
     def __exit__(self, exc_type, *exc):
         self._scattered.clear()
-        # after Ctrl-C, a second one does not cut the closing short
-        quiet = _sigint_ignored() if exc_type is not None and issubclass(exc_type, KeyboardInterrupt) \
-            else contextlib.nullcontext()
-        with quiet:
+        interrupted = exc_type is not None and issubclass(exc_type, KeyboardInterrupt)
+        # after Ctrl-C, a second one does not cut the closing short, and what Dask logs of
+        # the runs it is stopping is not an error to show
+        with (_sigint_ignored() if interrupted else contextlib.nullcontext()), \
+                (_logs_silenced() if interrupted else contextlib.nullcontext()):
             if self._client is not None:
                 self._client.close()
             if self._cluster is not None:
@@ -342,6 +346,18 @@ def _sigint_ignored():
         yield
     finally:
         signal.signal(signal.SIGINT, previous)
+
+
+@contextlib.contextmanager
+def _logs_silenced():
+    """No record below critical is logged in this process until the block ends (Dask and
+    tornado give some of their loggers levels of their own, so all of them)."""
+    previous = logging.root.manager.disable
+    logging.disable(logging.ERROR)
+    try:
+        yield
+    finally:
+        logging.disable(previous)
 
 
 def _first_line(e: BaseException) -> str:
