@@ -35,9 +35,9 @@ make_venv() {
   echo "setup: creating the Python venv in .venv"
   rm -rf "$VENV"
   "$PYTHON" -m venv "$VENV"
-  # not byte-compiling every module installed (half of pip's time): Python compiles a module
-  # the first time it is imported, and keeps it
-  "$VENV/bin/pip" install -q --disable-pip-version-check --no-compile -r "$ROOT/requirements.txt"
+  # byte-compiled at install (pip's default): an environment with PYTHONDONTWRITEBYTECODE
+  # set would otherwise compile every module again in each process that imports it
+  "$VENV/bin/pip" install -q --disable-pip-version-check -r "$ROOT/requirements.txt"
   # the Python package tribo (python/tribo), editable: the venv imports the working tree's
   # code; its dependencies are already there, at the pinned versions
   "$VENV/bin/pip" install -q --disable-pip-version-check --no-deps -e "$ROOT"
