@@ -31,24 +31,36 @@ PYTHON=/usr/bin/python3
 VENV="$ROOT/.venv"
 # the venv is made again when the pinned requirements or the package's metadata change
 want=$(cat "$ROOT/requirements.txt" "$ROOT/pyproject.toml" | sha256sum | cut -d' ' -f1)
-make_venv() {
+pip_install() {
+  "$VENV/bin/pip" install -q --disable-pip-version-check "$@"
+}
+# The venv in two parts, each beside other work (pip mostly waits on the network and one
+# core): first what the builds need, while CVODE is fetched and built (fmpy, whose FMI
+# headers the FMUs compile against; Markdown, which renders their documentation), then the
+# rest while the C code is built. Byte-compiled at install (pip's default): with
+# PYTHONDONTWRITEBYTECODE set, every process would otherwise compile the modules it imports.
+venv_for_builds=""
+venv_rest=""
+if [ ! -x "$VENV/bin/python" ] || [ "$(cat "$VENV/.requirements.sha256" 2>/dev/null)" != "$want" ]; then
   echo "setup: creating the Python venv in .venv"
   rm -rf "$VENV"
   "$PYTHON" -m venv "$VENV"
-  # byte-compiled at install (pip's default): an environment with PYTHONDONTWRITEBYTECODE
-  # set would otherwise compile every module again in each process that imports it
-  "$VENV/bin/pip" install -q --disable-pip-version-check -r "$ROOT/requirements.txt"
+  pip_install -c "$ROOT/requirements.txt" FMPy Markdown &
+  venv_for_builds=$!
+fi
+venv_waited() { # venv_waited <pid> <what>: waits for a part of the venv; its failure ends set-up
+  if [ -n "$1" ] && ! wait "$1"; then
+    echo "setup: installing $2 into the Python venv failed" >&2
+    exit 1
+  fi
+}
+rest_of_venv() {
+  pip_install -r "$ROOT/requirements.txt"
   # the Python package tribo (python/tribo), editable: the venv imports the working tree's
   # code; its dependencies are already there, at the pinned versions
-  "$VENV/bin/pip" install -q --disable-pip-version-check --no-deps -e "$ROOT"
+  pip_install --no-deps -e "$ROOT"
   echo "$want" > "$VENV/.requirements.sha256"
 }
-# made while CVODE is fetched and built (pip mostly waits on the network and one core)
-venv=""
-if [ ! -x "$VENV/bin/python" ] || [ "$(cat "$VENV/.requirements.sha256" 2>/dev/null)" != "$want" ]; then
-  make_venv &
-  venv=$!
-fi
 
 configured() { # configured <dir> <cmake args...>: the build's cache holds every -DNAME=VALUE
   local dir=$1 a kv; shift
@@ -72,10 +84,10 @@ configured() { # configured <dir> <cmake args...>: the build's cache holds every
 sundials_source "$ROOT/build-sundials"
 sundials_build "$ROOT/build-sundials/src" "$ROOT/build-sundials/build-native" \
   "$ROOT/build-sundials/native" -DCMAKE_POSITION_INDEPENDENT_CODE=ON
-# the builds need the venv: the FMI headers come from its fmpy
-if [ -n "$venv" ] && ! wait "$venv"; then
-  echo "setup: making the Python venv failed" >&2
-  exit 1
+venv_waited "$venv_for_builds" "fmpy and Markdown"
+if [ -n "$venv_for_builds" ]; then
+  rest_of_venv &
+  venv_rest=$!
 fi
 build() { # build <dir> <cmake args...>
   local dir=$1; shift
@@ -92,3 +104,4 @@ if [ "${TRIBO_SETUP_SANITIZE:-0}" = 1 ]; then
   # with the FMUs: the fuzz suite drives them under the sanitizers too
   build build-sanitize -DCMAKE_BUILD_TYPE=Debug -DTRIBO_SANITIZE=ON -DTRIBO_BUILD_FMU=ON -DTRIBO_WERROR=ON
 fi
+venv_waited "$venv_rest" "the pinned requirements and the package"
