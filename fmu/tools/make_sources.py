@@ -19,6 +19,9 @@ The layout (fmu/README.md):
                   files and the private headers beside them), flattened into this one
                   folder because those files include each other's private headers by
                   quotes across SUNDIALS' own source folders; SUNDIALS' LICENSE and NOTICE
+    cvode/, nvector/, sunlinsol/, ...   the public headers of the other SUNDIALS modules
+                  compiled in, where <cvode/cvode.h> and the like resolve
+    buildDescription.xml   (build_description.py) the files to compile
 
 With --link-map (the GNU linker's -Map of each binary the FMU ships: fmu/CMakeLists.txt
 writes them), the C files of the core and of SUNDIALS are only those whose objects one of
@@ -26,9 +29,6 @@ the binaries links: what the FMU runs, without the parts of SUNDIALS it never ca
 Krylov solvers, band and sparse matrices) or the core of another FMU (the separator's FMUs
 hold none of the chute), so that an importer compiles no more than that. Headers are kept
 whole.
-    cvode/, nvector/, sunlinsol/, ...   the public headers of the other SUNDIALS modules
-                  compiled in, where <cvode/cvode.h> and the like resolve
-    buildDescription.xml   (build_description.py) the files to compile
 
 Every C file in the folder is one to compile. Any two files that would land on the same
 path are an error, not an overwrite.

@@ -1,7 +1,7 @@
-"""What the subcommands share: the parser (parsing.py), argument types, the options every
-job takes (--out, --fresh, where runs execute, --no-progress) and `run_job`, which runs a
-job through the package's one flow (tribo/batch/job.py) and meets every mistake with one
-line."""
+"""What the subcommands share (their parser is parsing.py's): argument types, the options
+every job takes (--out, --fresh, where runs execute, --no-progress) and `run_job`, which
+runs a job through the package's one flow (tribo/batch/job.py) and meets every mistake with
+one line."""
 
 import argparse
 import sys
@@ -12,7 +12,6 @@ from ..batch.job import execute, kept
 from ..materials import with_pair
 from ..populations.feed import DEFAULT_CHUTE, FEED_UNITS, FEED_VARIABLES, Feed
 from ..populations.summary import END_COLUMNS
-from .parsing import OneLineParser, described  # noqa: F401 (the subcommands' parser)
 
 # what a mistake in the input raises (every error class of the package is one of these, with
 # a message of one line): the command says it in one line and exits 2
