@@ -8,7 +8,7 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 TRIBO_SETUP_SANITIZE=1 "$ROOT/scripts/setup.sh"
 JOBS=$(nproc)
 # The C tests of both builds and the multi-platform FMUs at once (each step's output kept and
-# shown in turn), so that one's single long test (test_regression, test_stability) runs
+# shown in turn), so that one's long tests (test_stability, the parts of test_regression) run
 # beside the other's many short ones; then pytest, which needs the FMUs
 logs=$(mktemp -d)
 trap 'rm -rf "$logs"' EXIT

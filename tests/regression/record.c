@@ -2,6 +2,9 @@
    for the regression test that holds a change to "behaviour does not change".
 
      tribo_regression_record > tests/regression/golden.txt
+     tribo_regression_record PART...      only the parts named, each the lines of
+                                          golden.txt whose run names start with PART/
+                                          (study, stability, study_contact_point, physical)
 
    At each sample time one line: run name, time (C99 hex float), "hash" and an FNV-1a hash
    of the bytes of every output (but those of a charge model the run leaves out) and of
@@ -168,12 +171,10 @@ static void record_physical(void)
     }
 }
 
-int main(void)
+/* The stability matrix, every case with every integrator, sampled as its test does (every
+   0.5 to tau = 50); every 10th sample is printed. */
+static void record_stability(void)
 {
-    record_study("study", TRIBO_DAMPING_CENTRE);
-
-    /* The stability matrix, every case with every integrator, sampled as its test does
-       (every 0.5 to tau = 50); every 10th sample is printed. */
     double times[100];
     for (int k = 0; k < 100; k++)
         times[k] = 0.5 * (k + 1);
@@ -207,9 +208,47 @@ int main(void)
             tribo_free(m);
         }
     }
+}
 
-    /* The default: the study grid with the dashpot on the contact point. */
+static void record_study_centre(void) { record_study("study", TRIBO_DAMPING_CENTRE); }
+
+/* The default: the study grid with the dashpot on the contact point. */
+static void record_study_contact_point(void)
+{
     record_study("study_contact_point", TRIBO_DAMPING_CONTACT_POINT);
-    record_physical();
+}
+
+/* The parts of the record, in the order of golden.txt: the regression test runs each on
+   its own (tests/regression/CMakeLists.txt), so that ctest shares them out over the cores. */
+static const struct {
+    const char *name;
+    void (*record)(void);
+} PARTS[] = {{"study", record_study_centre},
+             {"stability", record_stability},
+             {"study_contact_point", record_study_contact_point},
+             {"physical", record_physical}};
+enum { N_PARTS = sizeof PARTS / sizeof *PARTS };
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        for (int p = 0; p < N_PARTS; p++)
+            PARTS[p].record();
+        return 0;
+    }
+    for (int a = 1; a < argc; a++) {
+        int p = 0;
+        while (p < N_PARTS && strcmp(argv[a], PARTS[p].name) != 0)
+            p++;
+        if (p == N_PARTS) {
+            fprintf(stderr, "tribo_regression_record: no part %s (the parts: study, stability, "
+                            "study_contact_point, physical)\n", argv[a]);
+            return 2;
+        }
+    }
+    for (int a = 1; a < argc; a++)
+        for (int p = 0; p < N_PARTS; p++)
+            if (strcmp(argv[a], PARTS[p].name) == 0)
+                PARTS[p].record();
     return 0;
 }
