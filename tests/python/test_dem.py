@@ -188,13 +188,25 @@ def test_a_run_stopped_by_ctrl_c_resumes_from_liggghts_restart_file(tmp_path, ma
     assert again.returncode == 0, again.stderr[-2000:]
     assert (log.parent / "resume-1.in.liggghts").exists()
     a, b = (pd.read_csv(tmp_path / f / "particles.csv") for f in ("whole", "cut"))
-    # the same grains to rounding: LIGGGHTS rebuilds its neighbour lists at a restart, so
-    # sums may round differently. Measured in 11 runs beside two busy jobs (where Ctrl-C
-    # lands varies): the exits agreed within 6e-13 (held to 1e-6, where a fresh clone's
-    # first run had put every column), the charges within 9.0e-6 (two runs; 2.2e-8 in a
-    # third, the rest exactly), held to 1e-4, 11 times that
+    # up to the step LIGGGHTS stopped at, the impacts are the uninterrupted run's, bit for bit
+    step = int(next(p.name for p in log.parent.iterdir()
+                    if p.name.startswith("restart_forced")).split("_")[-1].split(".")[0])
+    dt = float(next(line.split()[1] for line in (log.parent / script.INPUT).read_text().splitlines()
+                    if line.startswith("timestep ")))
+    impacts = [pd.read_csv(tmp_path / f / "impacts.csv") for f in ("whole", "cut")]
+    before = impacts[0]["time"] < step * dt
+    assert len(impacts[0]) == len(impacts[1]) and before.any()
+    assert impacts[0][before].equals(impacts[1][before])
+    # after it, the same impacts, and the same grains to rounding amplified: LIGGGHTS
+    # rebuilds its neighbour lists at a restart, so its sums may round differently, and the
+    # contact law's switches (stick and slip, the rolling torque's sign) can make such a
+    # difference larger, bounce after bounce. Measured over 25 cuts at random steps: in most
+    # the grains are the same to the bit; the largest differences, 3.7e-4 in a charge and
+    # 7.0e-6 in an exit speed, appear impacts after the cut (not at the first contact after
+    # it, which a lost contact history would change). Held to 10 times those.
     assert np.array_equal(a["impacts"], b["impacts"])
-    for c, rtol in (("charge_static", 1e-4), ("exit_time", 1e-6), ("exit_speed", 1e-6)):
+    for c, rtol in (("charge_static", 4e-3), ("charge_sliding", 4e-3), ("exit_time", 1e-4),
+                    ("exit_speed", 1e-4)):
         assert np.allclose(a[c], b[c], rtol=rtol, atol=0), c
 
 
