@@ -34,4 +34,6 @@ for step in "release:C unit tests (Release)" \
 done
 [ "$failed" -eq 0 ] || exit 1
 echo "== Python tests (pytest + fmpy, libcosim, ecos, with the fuzz suite; a worker per core)"
-"$ROOT/.venv/bin/python" -m pytest -q -n "$JOBS" "$ROOT/tests/python"
+# worksteal: a worker that runs out takes tests still queued on another (with pytest-xdist's
+# default, one worker sat idle for the last minute while the other worked through its queue)
+"$ROOT/.venv/bin/python" -m pytest -q -n "$JOBS" --dist worksteal "$ROOT/tests/python"

@@ -6,12 +6,22 @@ one named by the environment variable TRIBO_BUILD_DIR (e.g. build-fmu). Build fi
 """
 
 import os
+import sys
 import zipfile
 
 import pytest
 from fmpy import read_model_description
 
 from tribo_fmu import BUILD_DIR
+
+
+@pytest.fixture(autouse=True)
+def no_figure_left_open():
+    """Figures a test keeps to look at (a stubbed save) are closed after it, so that a
+    worker's tests do not pile them up in pyplot (matplotlib warns past 20)."""
+    yield
+    if "matplotlib.pyplot" in sys.modules:  # only where a test drew one
+        sys.modules["matplotlib.pyplot"].close("all")
 
 
 def built(*parts):
