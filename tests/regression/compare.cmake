@@ -1,14 +1,13 @@
 # Runs the regression recorder and compares its output with the golden file, byte for
 # byte; on a difference, prints the first differing lines. With PART, only that part of
-# the record, against the golden file's lines of that part (those whose run name starts
-# with PART/).
-#   cmake -DRECORD=<tribo_regression_record> -DGOLDEN=<golden.txt> -DOUT=<file> [-DPART=<part>]
-#         -P compare.cmake
+# the record, against the golden file's lines of that part (those PATTERN matches).
+#   cmake -DRECORD=<tribo_regression_record> -DGOLDEN=<golden.txt> -DOUT=<file>
+#         [-DPART=<part> -DPATTERN=<regex>] -P compare.cmake
 set(expected ${GOLDEN})
 if(DEFINED PART)
-  file(STRINGS ${GOLDEN} lines ENCODING UTF-8 REGEX "^${PART}/")
+  file(STRINGS ${GOLDEN} lines ENCODING UTF-8 REGEX "${PATTERN}")
   if(NOT lines)
-    message(FATAL_ERROR "${GOLDEN} has no line of the part ${PART}")
+    message(FATAL_ERROR "${GOLDEN} has no line of the part ${PART} (${PATTERN})")
   endif()
   list(JOIN lines "\n" text)
   set(expected ${OUT}.golden)

@@ -2,9 +2,10 @@
    for the regression test that holds a change to "behaviour does not change".
 
      tribo_regression_record > tests/regression/golden.txt
-     tribo_regression_record PART...      only the parts named, each the lines of
-                                          golden.txt whose run names start with PART/
-                                          (study, stability, study_contact_point, physical)
+     tribo_regression_record PART...      only the parts named (PARTS below): study,
+                                          stability (or its runs of the fixed step and of
+                                          CVODE apart: stability_fixed_step,
+                                          stability_cvode), study_contact_point, physical
 
    At each sample time one line: run name, time (C99 hex float), "hash" and an FNV-1a hash
    of the bytes of every output (but those of a charge model the run leaves out) and of
@@ -171,15 +172,21 @@ static void record_physical(void)
     }
 }
 
-/* The stability matrix, every case with every integrator, sampled as its test does (every
-   0.5 to tau = 50); every 10th sample is printed. */
-static void record_stability(void)
+enum stability_runs { FIXED_STEP_RUNS = 1, CVODE_RUNS = 2, EVERY_RUN = 3 };
+
+/* The stability matrix, every case with every integrator (`runs`: those of the fixed step,
+   of CVODE or both), sampled as its test does (every 0.5 to tau = 50); every 10th sample
+   is printed. */
+static void record_stability(enum stability_runs runs)
 {
     double times[100];
     for (int k = 0; k < 100; k++)
         times[k] = 0.5 * (k + 1);
     for (int c = 0; c < N_STABILITY_CASES; c++) {
         for (int i = 0; i < N_STABILITY_INTEGRATORS; i++) {
+            const int fixed = STABILITY_INTEGRATORS[i] == TRIBO_INTEGRATOR_FIXED_STEP;
+            if (!(runs & (fixed ? FIXED_STEP_RUNS : CVODE_RUNS)))
+                continue;
             tribo_scene s;
             tribo_scene_defaults(&s);
             tribo_scene_apply(&s, STABILITY_CASES[c].settings, NULL, 0);
@@ -211,6 +218,9 @@ static void record_stability(void)
 }
 
 static void record_study_centre(void) { record_study("study", TRIBO_DAMPING_CENTRE); }
+static void record_stability_every_run(void) { record_stability(EVERY_RUN); }
+static void record_stability_fixed_step(void) { record_stability(FIXED_STEP_RUNS); }
+static void record_stability_cvode(void) { record_stability(CVODE_RUNS); }
 
 /* The default: the study grid with the dashpot on the contact point. */
 static void record_study_contact_point(void)
@@ -218,13 +228,17 @@ static void record_study_contact_point(void)
     record_study("study_contact_point", TRIBO_DAMPING_CONTACT_POINT);
 }
 
-/* The parts of the record, in the order of golden.txt: the regression test runs each on
-   its own (tests/regression/CMakeLists.txt), so that ctest shares them out over the cores. */
+/* The parts of the record that the regression tests run each on its own
+   (tests/regression/CMakeLists.txt), so that ctest shares them out over the cores: golden.txt
+   is study, stability (each case's runs of both integrators in turn), study_contact_point
+   and physical. */
 static const struct {
     const char *name;
     void (*record)(void);
 } PARTS[] = {{"study", record_study_centre},
-             {"stability", record_stability},
+             {"stability", record_stability_every_run},
+             {"stability_fixed_step", record_stability_fixed_step},
+             {"stability_cvode", record_stability_cvode},
              {"study_contact_point", record_study_contact_point},
              {"physical", record_physical}};
 enum { N_PARTS = sizeof PARTS / sizeof *PARTS };
@@ -232,8 +246,10 @@ enum { N_PARTS = sizeof PARTS / sizeof *PARTS };
 int main(int argc, char **argv)
 {
     if (argc < 2) {
-        for (int p = 0; p < N_PARTS; p++)
-            PARTS[p].record();
+        record_study_centre();
+        record_stability_every_run();
+        record_study_contact_point();
+        record_physical();
         return 0;
     }
     for (int a = 1; a < argc; a++) {
@@ -242,7 +258,8 @@ int main(int argc, char **argv)
             p++;
         if (p == N_PARTS) {
             fprintf(stderr, "tribo_regression_record: no part %s (the parts: study, stability, "
-                            "study_contact_point, physical)\n", argv[a]);
+                            "stability_fixed_step, stability_cvode, study_contact_point, "
+                            "physical)\n", argv[a]);
             return 2;
         }
     }
