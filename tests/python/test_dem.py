@@ -7,6 +7,7 @@ error of a difference of two means of n grains (Welch's standard error, three of
 LIGGGHTS runs with its moduli at a hundredth (--stiffness-scale 0.01: 6.3 times its time
 step; q/m 0.5 % from that with the materials' moduli: docs/dem.md)."""
 
+import json
 import math
 import os
 import shutil
@@ -20,7 +21,7 @@ import pytest
 
 import tribo
 from study_support import command
-from tribo.dem import contacts, script
+from tribo.dem import contacts, engine, runner, script
 from tribo.dem.charging import carried
 from tribo.dem.device import Chute, DeviceError, entries, highest_rate
 
@@ -189,10 +190,8 @@ def test_a_run_stopped_by_ctrl_c_resumes_from_liggghts_restart_file(tmp_path, ma
     assert (log.parent / "resume-1.in.liggghts").exists()
     a, b = (pd.read_csv(tmp_path / f / "particles.csv") for f in ("whole", "cut"))
     # up to the step LIGGGHTS stopped at, the impacts are the uninterrupted run's, bit for bit
-    step = int(next(p.name for p in log.parent.iterdir()
-                    if p.name.startswith("restart_forced")).split("_")[-1].split(".")[0])
-    dt = float(next(line.split()[1] for line in (log.parent / script.INPUT).read_text().splitlines()
-                    if line.startswith("timestep ")))
+    _, step, _ = runner._restart(str(log.parent))
+    dt = json.loads((log.parent / engine.DONE).read_text())["run"]["dt"]
     impacts = [pd.read_csv(tmp_path / f / "impacts.csv") for f in ("whole", "cut")]
     before = impacts[0]["time"] < step * dt
     assert len(impacts[0]) == len(impacts[1]) and before.any()

@@ -243,6 +243,15 @@ static const struct {
              {"physical", record_physical}};
 enum { N_PARTS = sizeof PARTS / sizeof *PARTS };
 
+/* The index of the part named `name` in PARTS, or -1. */
+static int part_named(const char *name)
+{
+    for (int p = 0; p < N_PARTS; p++)
+        if (strcmp(name, PARTS[p].name) == 0)
+            return p;
+    return -1;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -253,19 +262,15 @@ int main(int argc, char **argv)
         return 0;
     }
     for (int a = 1; a < argc; a++) {
-        int p = 0;
-        while (p < N_PARTS && strcmp(argv[a], PARTS[p].name) != 0)
-            p++;
-        if (p == N_PARTS) {
-            fprintf(stderr, "tribo_regression_record: no part %s (the parts: study, stability, "
-                            "stability_fixed_step, stability_cvode, study_contact_point, "
-                            "physical)\n", argv[a]);
+        if (part_named(argv[a]) < 0) {
+            fprintf(stderr, "tribo_regression_record: no part %s (the parts:", argv[a]);
+            for (int p = 0; p < N_PARTS; p++)
+                fprintf(stderr, " %s", PARTS[p].name);
+            fprintf(stderr, ")\n");
             return 2;
         }
     }
     for (int a = 1; a < argc; a++)
-        for (int p = 0; p < N_PARTS; p++)
-            if (strcmp(argv[a], PARTS[p].name) == 0)
-                PARTS[p].record();
+        PARTS[part_named(argv[a])].record();
     return 0;
 }
