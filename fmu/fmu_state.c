@@ -216,7 +216,7 @@ static fmu_core *load_core(fmu_instance *inst, const char *fn, restored *r)
         fmu_error(inst, "%s: the state is corrupt: its parameters make no model: %s", fn, why);
         return NULL;
     }
-    fmu_core *m = fmu_front_create(&r->derived, fmu_core_logger, inst, why, sizeof why);
+    fmu_core *m = fmu_front_create(&r->derived, inst->core, fmu_core_logger, inst, why, sizeof why);
     if (!m) {
         fmu_error(inst, "%s: the model cannot be created: %s", fn, why);
         return NULL;

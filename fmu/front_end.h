@@ -110,9 +110,11 @@ tribo_status fmu_front_segments(const fmu_derived *d, fmu_core *core, int which,
 /* ---- the core instance ------------------------------------------------------------------ */
 
 /* A core instance of what the front end derived, its messages routed to log(user, ...);
-   NULL and the reason in why on failure. */
-fmu_core *fmu_front_create(const fmu_derived *d, tribo_log_fn log, void *user, char *why,
-                           size_t why_size);
+   NULL and the reason in why on failure. `like` (NULL: none) is a core instance whose work
+   the new one may reuse where their set-ups share it (the instance's own, which a state load
+   or a new model replaces): the result is the same as without. */
+fmu_core *fmu_front_create(const fmu_derived *d, const fmu_core *like, tribo_log_fn log,
+                           void *user, char *why, size_t why_size);
 void fmu_front_free(fmu_core *core);
 const char *fmu_front_last_error(const fmu_core *core);
 /* The core's time, in its own unit. */

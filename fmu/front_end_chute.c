@@ -15,11 +15,12 @@ const char fmu_front_exited_state_name[] =
 
 int fmu_front_input_count(void) { return TRIBO_INPUT_COUNT; }
 
-fmu_core *fmu_front_create(const fmu_derived *d, tribo_log_fn log, void *user, char *why,
-                           size_t why_size)
+fmu_core *fmu_front_create(const fmu_derived *d, const fmu_core *like, tribo_log_fn log,
+                           void *user, char *why, size_t why_size)
 {
     /* the scene is only read: the derived numbers stay the caller's */
-    tribo_model *m = tribo_create(fmu_front_model_scene((fmu_derived *)d), why, why_size);
+    tribo_model *m = tribo_create_like(fmu_front_model_scene((fmu_derived *)d),
+                                       const_model_of(like), why, why_size);
     if (m)
         tribo_set_logger(m, log, user);
     return (fmu_core *)m;

@@ -104,10 +104,11 @@ tribo_status fmu_front_segments(const fmu_derived *d, fmu_core *core, int which,
 
 /* ---- the core instance ------------------------------------------------------------------ */
 
-fmu_core *fmu_front_create(const fmu_derived *d, tribo_log_fn log, void *user, char *why,
-                           size_t why_size)
+fmu_core *fmu_front_create(const fmu_derived *d, const fmu_core *like, tribo_log_fn log,
+                           void *user, char *why, size_t why_size)
 {
-    (void)log; /* the separator's core logs nothing: its refusals come back as messages */
+    (void)like; /* nothing of the separator's core is costly to make */
+    (void)log;  /* the separator's core logs nothing: its refusals come back as messages */
     (void)user;
     fmu_core *core = calloc(1, sizeof *core);
     if (!core) {

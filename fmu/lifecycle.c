@@ -289,7 +289,7 @@ static fmu_core *make_model(fmu_instance *inst, const char *fn, fmu_derived *der
     char why[512];
     fmu_core *core = NULL;
     if (fmu_front_derive(&inst->scene, derived, why, sizeof why) != TRIBO_OK ||
-        !(core = fmu_front_create(derived, fmu_core_logger, inst, why, sizeof why))) {
+        !(core = fmu_front_create(derived, inst->core, fmu_core_logger, inst, why, sizeof why))) {
         fmu_error(inst, "%s: the model cannot be created: %s", fn, why);
         return NULL;
     }

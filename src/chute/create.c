@@ -27,6 +27,12 @@ tribo_parts tribo_registry_parts(const tribo_scene *scene)
 
 tribo_model *tribo_create(const tribo_scene *scene, char *err, size_t err_size)
 {
+    return tribo_create_like(scene, NULL, err, err_size);
+}
+
+tribo_model *tribo_create_like(const tribo_scene *scene, const tribo_model *like, char *err,
+                               size_t err_size)
+{
     const tribo_parts registry = tribo_registry_parts(scene);
-    return tribo_create_from_parts(scene, &registry, err, err_size);
+    return tribo_create_from_parts(scene, &registry, like, err, err_size);
 }

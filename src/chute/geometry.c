@@ -3,6 +3,7 @@
 #include "geometry.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 /* 8-point Gauss-Legendre nodes and weights on [-1, 1]. */
 static const double GL_X[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
@@ -74,7 +75,7 @@ static int halves_suffice(double eps, double r, double tmax)
    |s''''| ~ 1/eps^2 near the tips) stays far below a segment at every allowed N. */
 #define ARC_INTERVALS 8192
 
-int tribo_arclength_init(tribo_arclength *a, double eps)
+int tribo_arclength_init(tribo_arclength *a, double eps, const tribo_arclength *like)
 {
     const size_t n = ARC_INTERVALS;
     const double eps2 = eps * eps;
@@ -86,6 +87,12 @@ int tribo_arclength_init(tribo_arclength *a, double eps)
     if (!a->s || !a->speed) {
         tribo_arclength_free(a);
         return -1;
+    }
+    if (like && like->s && like->speed && like->eps == eps && like->n_intervals == n) {
+        memcpy(a->s, like->s, (n + 1) * sizeof *a->s);
+        memcpy(a->speed, like->speed, (n + 1) * sizeof *a->speed);
+        a->perimeter = like->perimeter;
+        return 0;
     }
     a->s[0] = 0.0;
     const int halves = halves_suffice(eps, 0.5 * a->dt_grid, 2.0 * M_PI);

@@ -72,8 +72,10 @@ typedef struct tribo_arclength {
     double *speed;    /* ds/dt at the nodes                  */
 } tribo_arclength;
 
-/* Build the table; returns 0 on success, -1 if out of memory. */
-int tribo_arclength_init(tribo_arclength *a, double eps);
+/* Build the table; returns 0 on success, -1 if out of memory. The table is a function of
+   eps alone, bit for bit: where `like` (NULL for none) holds the table of the same eps, it is
+   copied, not computed again (computing it is most of the work of creating an instance). */
+int tribo_arclength_init(tribo_arclength *a, double eps, const tribo_arclength *like);
 void tribo_arclength_free(tribo_arclength *a);
 
 /* s(t) for t in [0, 2 pi]. */

@@ -420,7 +420,7 @@ static void report(char *err, size_t err_size, const char *msg)
 }
 
 tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts *parts,
-                                     char *err, size_t err_size)
+                                     const tribo_model *like, char *err, size_t err_size)
 {
     char msg[512];
     if (!scene || !parts) {
@@ -454,9 +454,10 @@ tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts
     }
     m->scene = *scene;
     tribo_derive_params(m);
+    const tribo_arclength *like_arc = like && like->charging.arc.s ? &like->charging.arc : NULL;
     const int st = tribo_charging_init(&m->charging, models, n_models, parts->charge_selection,
                                        scene->epsilon, scene->n_segments,
-                                       scene->grain_geometry == TRIBO_GRAIN_SPHEROID);
+                                       scene->grain_geometry == TRIBO_GRAIN_SPHEROID, like_arc);
     if (st != 0) {
         snprintf(msg, sizeof msg,
                  st == -1 ? "out of memory (%s = %d)"

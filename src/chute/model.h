@@ -61,8 +61,10 @@ typedef struct tribo_parts {
 /* The registry's models as the scene selects them, with the scene's integrator. */
 tribo_parts tribo_registry_parts(const tribo_scene *scene);
 
+/* An instance of the scene made of the parts (tribo_create_like: what it takes from `like`,
+   NULL for nothing). */
 tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts *parts,
-                                     char *err, size_t err_size);
+                                     const tribo_model *like, char *err, size_t err_size);
 
 /* ---- the charges at the output point (charge_outputs.c) ------------------------------------ */
 

@@ -195,6 +195,12 @@ typedef void (*tribo_log_fn)(void *user, int level, const char *message);
    Every function below given a NULL instance refuses it and does nothing: a status
    TRIBO_ERR_INVALID_ARGUMENT, a value NaN, tribo_last_error "the instance is NULL". */
 tribo_model *tribo_create(const tribo_scene *scene, char *err, size_t err_size);
+/* The same instance as tribo_create's, made faster where `like` (NULL: none; only read)
+   shares the grain's shape with the scene: what depends on the roundness alone is copied from
+   it, not computed again (most of the work of a create; a state load, which makes an instance
+   of the scene it restores, gives the one it replaces). */
+tribo_model *tribo_create_like(const tribo_scene *scene, const tribo_model *like, char *err,
+                               size_t err_size);
 void tribo_free(tribo_model *model);
 void tribo_set_logger(tribo_model *model, tribo_log_fn fn, void *user);
 

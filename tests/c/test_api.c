@@ -15,12 +15,14 @@ Test(api, the_constructors_refuse_a_null_scene_or_parts_saying_so)
     cr_expect_null(tribo_create(NULL, err, sizeof err));
     cr_expect_str_eq(err, "scene is NULL");
     cr_expect_null(tribo_create(NULL, NULL, 0)); /* no room for the reason: still refused */
+    cr_expect_null(tribo_create_like(NULL, NULL, err, sizeof err));
+    cr_expect_str_eq(err, "scene is NULL");
 
     const tribo_scene s = scene_of("");
-    cr_expect_null(tribo_create_from_parts(&s, NULL, err, sizeof err));
+    cr_expect_null(tribo_create_from_parts(&s, NULL, NULL, err, sizeof err));
     cr_expect_str_eq(err, "parts is NULL");
     const tribo_parts parts = tribo_registry_parts(&s);
-    cr_expect_null(tribo_create_from_parts(NULL, &parts, err, sizeof err));
+    cr_expect_null(tribo_create_from_parts(NULL, &parts, NULL, err, sizeof err));
     cr_expect_str_eq(err, "scene is NULL");
 
     cr_expect_null(tribo_separator_create(NULL, err, sizeof err));
@@ -142,4 +144,36 @@ Test(api, the_readers_of_a_null_scene_or_set_up_give_no_number)
     cr_expect_eq(tribo_separator_bin_of(NULL, 0.0), 0);
     cr_expect_null(tribo_separator_get_scene(NULL));
     cr_expect_null(tribo_separator_get_derived(NULL));
+}
+
+/* An instance made like another is the one tribo_create makes, whatever it is like: the same
+   roundness (whose boundary table it copies), another, one that charges nothing, none; its run
+   gives the same outputs and segment charges, bit for bit. */
+Test(api, an_instance_made_like_another_runs_as_one_made_alone)
+{
+    const tribo_scene s = scene_of("epsilon=0.6 n_segments=48 Omega0=2");
+    tribo_scene uncharged = s;
+    no_charge_models(&uncharged);
+    const tribo_scene likes[] = {s, scene_of("epsilon=0.3 n_segments=48"), uncharged};
+    char err[256] = "";
+    for (int k = 0; k <= 3; k++) {
+        tribo_model *like = k < 3 ? make(&likes[k]) : NULL;
+        tribo_model *alone = make(&s), *made = tribo_create_like(&s, like, err, sizeof err);
+        cr_assert_not_null(made, "like %d: %s", k, err);
+        if (like)
+            cr_assert_eq(tribo_advance(like, 3.0), TRIBO_OK); /* what it has run is not taken */
+        advance_both(alone, made, 12.0);
+        cr_expect(same_outputs(alone, made), "like %d: the outputs differ", k);
+        for (int which = 0; which < TRIBO_SEGMENTS_COUNT; which++) {
+            if (!tribo_includes_charge_model(alone, which))
+                continue;
+            double a[48], b[48];
+            cr_assert_eq(tribo_get_segment_charges(alone, which, a, 48), TRIBO_OK);
+            cr_assert_eq(tribo_get_segment_charges(made, which, b, 48), TRIBO_OK);
+            cr_expect_eq(memcmp(a, b, sizeof a), 0, "like %d: model %d's charges differ", k, which);
+        }
+        tribo_free(alone);
+        tribo_free(made);
+        tribo_free(like);
+    }
 }

@@ -13,8 +13,9 @@ static tribo_charging make(double eps, int n)
 {
     tribo_charging c;
     const unsigned both = 1u << TRIBO_SEGMENTS_STATIC | 1u << TRIBO_SEGMENTS_SLIDING;
-    cr_assert_eq(tribo_charging_init(&c, TRIBO_CHARGE_MODELS, TRIBO_SEGMENTS_COUNT, both, eps, n, 0),
-                 0);
+    cr_assert_eq(
+        tribo_charging_init(&c, TRIBO_CHARGE_MODELS, TRIBO_SEGMENTS_COUNT, both, eps, n, 0, NULL),
+        0);
     return c;
 }
 

@@ -1,6 +1,7 @@
 /* Geometry of model.md §2 and the equal-arc segments of model.md §5. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <string.h>
 
 #include "geometry.h"
 
@@ -107,7 +108,7 @@ Test(geometry, segments_have_equal_arc_length)
     const int n_seg = 64;
     for (int e = 0; e < 3; e++) {
         tribo_arclength arc;
-        cr_assert_eq(tribo_arclength_init(&arc, eps_list[e]), 0);
+        cr_assert_eq(tribo_arclength_init(&arc, eps_list[e], NULL), 0);
         const double len = arc.perimeter / n_seg;
         double t_prev = 0.0, total = 0.0;
         for (int k = 1; k <= n_seg; k++) {
@@ -130,7 +131,7 @@ Test(geometry, arclength_table_interpolation)
     const double eps_list[] = {0.01, 0.5};
     for (int e = 0; e < 2; e++) {
         tribo_arclength arc;
-        cr_assert_eq(tribo_arclength_init(&arc, eps_list[e]), 0);
+        cr_assert_eq(tribo_arclength_init(&arc, eps_list[e], NULL), 0);
         for (double t = 0.0; t <= 2 * M_PI; t += 0.0137) {
             const double exact = tribo_arc_between(eps_list[e], 0.0, t);
             cr_expect(fabs(tribo_arclength_at(&arc, t) - exact) < 1e-10,
@@ -139,4 +140,30 @@ Test(geometry, arclength_table_interpolation)
         }
         tribo_arclength_free(&arc);
     }
+}
+
+/* A table made like another of the same roundness is that table, bit for bit; like one of
+   another roundness, it is its own (computed, as without). */
+Test(geometry, a_table_made_like_another_is_the_one_computed)
+{
+    tribo_arclength computed, other, copied, not_copied;
+    cr_assert_eq(tribo_arclength_init(&computed, 0.37, NULL), 0);
+    cr_assert_eq(tribo_arclength_init(&other, 0.71, NULL), 0);
+    cr_assert_eq(tribo_arclength_init(&copied, 0.37, &computed), 0);
+    cr_assert_eq(tribo_arclength_init(&not_copied, 0.37, &other), 0);
+    const size_t bytes = (computed.n_intervals + 1) * sizeof(double);
+    for (int k = 0; k < 2; k++) {
+        const tribo_arclength *a = k ? &not_copied : &copied;
+        cr_expect(a->s != computed.s && a->speed != computed.speed, "its own arrays");
+        cr_expect_eq(a->n_intervals, computed.n_intervals);
+        cr_expect(a->perimeter == computed.perimeter && a->dt_grid == computed.dt_grid &&
+                  a->eps == computed.eps);
+        cr_expect_eq(memcmp(a->s, computed.s, bytes), 0);
+        cr_expect_eq(memcmp(a->speed, computed.speed, bytes), 0);
+    }
+    cr_expect(other.perimeter != computed.perimeter);
+    tribo_arclength_free(&computed);
+    tribo_arclength_free(&other);
+    tribo_arclength_free(&copied);
+    tribo_arclength_free(&not_copied);
 }

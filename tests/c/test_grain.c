@@ -17,7 +17,7 @@ static tribo_charging banded(double eps, int n)
     tribo_charging c;
     const unsigned every_model = (1u << TRIBO_SEGMENTS_COUNT) - 1u;
     cr_assert_eq(tribo_charging_init(&c, TRIBO_CHARGE_MODELS, TRIBO_SEGMENTS_COUNT, every_model, eps,
-                                     n, 1),
+                                     n, 1, NULL),
                  0);
     return c;
 }

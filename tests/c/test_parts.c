@@ -92,7 +92,7 @@ static tribo_model *make_with_constant(int integrator)
                                .charge_selection = 7 /* all three */,
                                .integrator = tribo_integrator_of_kind(integrator)};
     char err[512];
-    tribo_model *m = tribo_create_from_parts(&s, &parts, err, sizeof err);
+    tribo_model *m = tribo_create_from_parts(&s, &parts, NULL, err, sizeof err);
     cr_assert(m, "%s", err);
     return m;
 }
@@ -195,7 +195,7 @@ Test(parts, a_failed_restart_reaches_the_caller)
     parts.integrator = &ops;
     char err[512];
     fail_restart = 0;
-    tribo_model *m = tribo_create_from_parts(&s, &parts, err, sizeof err);
+    tribo_model *m = tribo_create_from_parts(&s, &parts, NULL, err, sizeof err);
     cr_assert(m, "%s", err);
     cr_assert_eq(tribo_advance(m, 1.0), TRIBO_OK);
     fail_restart = 1;
@@ -204,7 +204,7 @@ Test(parts, a_failed_restart_reaches_the_caller)
     cr_expect_eq(tribo_set_external_force(m, 0.1, 0.0), TRIBO_ERR_INTEGRATOR);
     cr_expect_eq(tribo_reset(m), TRIBO_ERR_INTEGRATOR);
     /* and at creation, which resets */
-    cr_expect_null(tribo_create_from_parts(&s, &parts, err, sizeof err));
+    cr_expect_null(tribo_create_from_parts(&s, &parts, NULL, err, sizeof err));
     cr_expect_str_eq(err, "restart refused (test)");
     fail_restart = 0;
     tribo_free(m);
@@ -218,7 +218,7 @@ Test(parts, an_unknown_integrator_kind_is_refused)
     s.integrator = 7; /* past the table's range too: set directly */
     const tribo_parts parts = tribo_registry_parts(&s);
     char err[512];
-    cr_expect_null(tribo_create_from_parts(&s, &parts, err, sizeof err));
+    cr_expect_null(tribo_create_from_parts(&s, &parts, NULL, err, sizeof err));
     cr_expect(strstr(err, "integrator"), "%s", err);
 }
 
@@ -228,6 +228,6 @@ Test(parts, a_selection_beyond_the_model_set_is_refused)
     const tribo_parts parts = {.charge_models = MODELS, .n_charge_models = 3,
                                .charge_selection = 8};
     char err[512];
-    cr_expect_null(tribo_create_from_parts(&s, &parts, err, sizeof err));
+    cr_expect_null(tribo_create_from_parts(&s, &parts, NULL, err, sizeof err));
     cr_expect_str_eq(err, "charge models selected (bits 0x8) beyond the 3 of the set");
 }

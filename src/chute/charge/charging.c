@@ -24,7 +24,8 @@ static int alloc_geometry(tribo_band_geometry *g, int n)
 }
 
 int tribo_charging_init(tribo_charging *c, const tribo_charge_model *const *models, int n_models,
-                        unsigned selection, double eps, int n, int keep_bands)
+                        unsigned selection, double eps, int n, int keep_bands,
+                        const tribo_arclength *like_arc)
 {
     memset(c, 0, sizeof *c);
     if (n_models > TRIBO_CHARGE_MAX_MODELS)
@@ -47,7 +48,7 @@ int tribo_charging_init(tribo_charging *c, const tribo_charge_model *const *mode
     if (!c->any_selected)
         return 0;
     c->keep_bands = keep_bands;
-    if (tribo_arclength_init(&c->arc, eps) != 0)
+    if (tribo_arclength_init(&c->arc, eps, like_arc) != 0)
         goto fail;
     c->segments_per_length = (double)n / c->arc.perimeter;
     c->segment_length = c->arc.perimeter / (double)n;

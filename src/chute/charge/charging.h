@@ -114,10 +114,12 @@ typedef struct tribo_charging {
 typedef enum { TRIBO_CHARGE_COMMIT, TRIBO_CHARGE_PENDING } tribo_charge_destination;
 
 /* Set up the models[0..n_models) (selected by bit i of `selection`) over n segments of
-   the ellipse of roundness eps, with the grain's bands where keep_bands (§8c). Returns 0, -1
-   if out of memory, or -2 if the set does not fit a point (TRIBO_CHARGE_MAX_*). */
+   the ellipse of roundness eps, with the grain's bands where keep_bands (§8c); the boundary's
+   arc-length table copied from like_arc where that is the table of the same eps (NULL: none).
+   Returns 0, -1 if out of memory, or -2 if the set does not fit a point (TRIBO_CHARGE_MAX_*). */
 int tribo_charging_init(tribo_charging *c, const tribo_charge_model *const *models, int n_models,
-                        unsigned selection, double eps, int n, int keep_bands);
+                        unsigned selection, double eps, int n, int keep_bands,
+                        const tribo_arclength *like_arc);
 void tribo_charging_free(tribo_charging *c);
 /* All segment charges to 0 (§7), the bands empty at the scene's initial density (§8c), and
    the caches emptied. */
