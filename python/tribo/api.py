@@ -25,7 +25,8 @@ from .fmu import FmuImage
 from .fmu.locate import find_fmu
 from .fmu.names import ParameterError, output_names
 from .fmu.parameters import check_values
-from .impact.episode import DEFAULT_LIMIT, Grid
+from .impact.defaults import DEFAULT_LIMIT
+from .impact.episode import Grid
 from .impact.map import EPISODES, ImpactMap, MapJob
 from .line.grain import check_separator, load_images, run_line_grain
 from .calibration.runner import CalibrationJob

@@ -5,7 +5,8 @@ measured data (docs/calibration.md).
     observables  a single impact (Delta q, A_max), repeated impacts on fresh wall spots, a
                  chute's exit stream (mass-weighted q/m, its spread, the mass that stays);
                  batches of short runs in one FMU instance
-    data         the measured data's CSV files (impacts, chute runs): columns, checks
+    columns      the measured data's CSV files' columns: units, ranges, defaults
+    data         the measured data's CSV files (impacts, chute runs) read and checked
     fit          the fit: sigma0 and whichever of charging_time and eta the data determine,
                  uncertainties, what the data do not determine
     plot         the figure of data against model

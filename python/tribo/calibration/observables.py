@@ -48,7 +48,8 @@ from ..fmu.charge_models import charge_models, switches
 from ..fmu.locate import find_fmu
 from ..fmu.names import failure, to_fmu
 from ..fmu.parameters import check_values
-from ..impact.episode import DEFAULT_LIMIT, check_axis, episode_parameters
+from ..impact.defaults import DEFAULT_LIMIT
+from ..impact.episode import check_axis, episode_parameters
 from ..materials import table_of, with_pair
 from ..populations.feed import (DEFAULT_CHUTE, STEPS_PER_RUN, Feed, draw, particle_parameters)
 from ..populations.summary import stream_statistics

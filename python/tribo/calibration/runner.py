@@ -36,7 +36,7 @@ from ..fmu.charge_models import charge_models, switches
 from ..fmu.locate import find_fmu
 from ..fmu.names import format_number, start_value
 from ..fmu.parameters import check_values
-from ..impact.episode import DEFAULT_LIMIT
+from ..impact.defaults import DEFAULT_LIMIT
 from ..materials import CHARGING_KEYS, table_of
 from ..populations.distributions import parse
 from ..populations.feed import DEFAULT_CHUTE, FEED_VARIABLES, Feed, draw, particle_parameters

@@ -35,9 +35,8 @@ tribo population (a local cluster in this process, or --scheduler, or --serial).
 
 import os
 
-from ..calibration.data import columns_text
-from ..calibration.runner import CalibrationJob
-from ..impact.episode import DEFAULT_LIMIT
+from ..calibration.columns import columns_text
+from ..impact.defaults import DEFAULT_LIMIT
 from .common import add_si_job_options, name_value, run_job
 
 
@@ -60,7 +59,10 @@ def add_arguments(p) -> None:
     add_si_job_options(p, os.path.join("out", "calibration"))
 
 
-def job_of(args) -> CalibrationJob:
+def job_of(args):
+    # the job's modules (and numpy, pandas, scipy, fmpy) once it runs: --help and a mistake in
+    # the options need none of them (common.py)
+    from ..calibration.runner import CalibrationJob
     fit = None if args.fit is None else [n for n in args.fit.split(",") if n.strip()]
     return CalibrationJob(args.particle, args.wall, args.impacts, args.chutes,
                           charge_model=args.charge_model, fit=fit, settings=dict(args.set),

@@ -6,12 +6,11 @@ one line."""
 import argparse
 import sys
 
-from ..batch.executors import executor_for
-from ..batch.grid import parse_values
-from ..batch.job import execute, kept
-from ..materials import with_pair
-from ..populations.feed import DEFAULT_CHUTE, FEED_UNITS, FEED_VARIABLES, Feed
-from ..populations.summary import END_COLUMNS
+from ..populations.feed_variables import DEFAULT_CHUTE, FEED_UNITS, FEED_VARIABLES
+
+# The jobs' modules, and the libraries they load (numpy, pandas, fmpy, Dask), are imported in
+# the functions that run a job, not here: the options are made of constants alone, so that
+# --help and a mistake in the options are answered at once.
 
 # what a mistake in the input raises (every error class of the package is one of these, with
 # a message of one line): the command says it in one line and exits 2
@@ -39,6 +38,7 @@ def name_value(text: str) -> tuple:
 
 def value_list(text: str) -> list:
     """argparse type: values as a sweep's --param takes them (grid.parse_values)."""
+    from ..batch.grid import parse_values  # the job's libraries, only for an option given
     try:
         return parse_values(text)
     except ValueError as e:
@@ -105,9 +105,11 @@ def add_class_options(p: argparse.ArgumentParser) -> None:
                    help="edges of the size classes, m (default: 4 equal classes over the range)")
 
 
-def feed_of(args, measured=None) -> Feed:
+def feed_of(args, measured=None):
     """The feed the options of add_feed_options, add_chute_options, --set and --materials
     describe (measured: rows read from --measured, where the command takes it)."""
+    from ..materials import with_pair  # the job's libraries, once it runs (see the imports)
+    from ..populations.feed import Feed  # the same
     distributions = {n: getattr(args, n) for n in FEED_VARIABLES if getattr(args, n) is not None}
     return Feed(args.particle, args.wall, distributions,
                 {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg},
@@ -158,6 +160,7 @@ def add_execution_options(p: argparse.ArgumentParser) -> None:
 def executor_of(args):
     """The executor the options ask for (ValueError for an address Dask does not take).
     Nothing starts until it is entered."""
+    from ..batch.executors import executor_for  # the job's libraries, once it runs
     if args.workers is not None and args.workers < 1:
         raise ValueError(f"--workers {args.workers}: at least 1")
     return executor_for(args.serial, args.scheduler, args.workers, args.processes,
@@ -169,6 +172,7 @@ def run_job(args, make_job, tell) -> int:
     args.out (batch/job.py), saying what happens; then `tell(job, report)` gives the lines
     that report it. A mistake is one line on stderr (exit 2), Ctrl-C one line saying what is
     kept (exit 130), failed runs exit 1."""
+    from ..batch.job import execute, kept  # the job's libraries, once it runs
     job = None
     try:
         job = make_job(args)
@@ -197,6 +201,7 @@ def run_job(args, make_job, tell) -> int:
 def qm_table(summary) -> str:
     """A population's summary (populations/summary.py) as a text table, q/m in µC/kg; the
     counts of how the grains ended are said apart (ends_text)."""
+    from ..populations.summary import END_COLUMNS  # loaded by the job that made the summary
     table = summary.drop(columns=END_COLUMNS)
     for c in table.columns[5:]:
         if c not in ("n", "stayed"):

@@ -31,7 +31,6 @@ charge gain gain_<model> for an uncharged grain, C) and liggghts/.
 
 import os
 
-from ..dem import DemJob
 from .common import (add_chute_options, add_class_options, add_feed_options, add_si_job_options,
                      feed_of, name_value, numbers, positive_number, qm_table, run_job)
 
@@ -59,7 +58,10 @@ def add_arguments(p) -> None:
     add_si_job_options(p, os.path.join("out", "dem"))
 
 
-def job_of(args) -> DemJob:
+def job_of(args):
+    # the job's modules (and numpy, pandas, fmpy, scipy) once it runs: --help and a mistake in
+    # the options need none of them (common.py)
+    from ..dem import DemJob
     return DemJob(feed_of(args), args.particles, args.seed, args.t_end, args.fmu,
                   feed_rate=args.feed_rate, lanes=args.lanes, ranks=args.ranks,
                   vibration=_vibration(args.vibration),

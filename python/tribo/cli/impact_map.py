@@ -34,9 +34,7 @@ Dask: as tribo sweep (a local cluster in this process, or --scheduler).
 
 import os
 
-from ..impact.episode import DEFAULT_LIMIT, Grid
-from ..impact.map import MapJob, ends_text
-from ..materials import with_pair
+from ..impact.defaults import DEFAULT_LIMIT
 from .common import add_si_job_options, name_value, run_job, value_list
 
 
@@ -59,7 +57,12 @@ def add_arguments(p) -> None:
     add_si_job_options(p, os.path.join("out", "impact_map"), max_runs="episodes")
 
 
-def job_of(args) -> MapJob:
+def job_of(args):
+    # the job's modules (and numpy, pandas, fmpy) once it runs: --help and a mistake in the
+    # options need none of them (common.py)
+    from ..impact.episode import Grid
+    from ..impact.map import MapJob  # the same
+    from ..materials import with_pair  # the same
     grid = Grid.of(speed=args.speed, angle_deg=args.angle_deg, phi0_deg=args.phi0_deg,
                    epsilon=args.epsilon)
     return MapJob(grid, args.particle, args.wall,
@@ -69,6 +72,7 @@ def job_of(args) -> MapJob:
 
 
 def told(job, report) -> list[str]:
+    from ..impact.map import ends_text  # loaded by the job that made the report
     lines = [f"impact map: {report.executed} run, {report.skipped} already in the file, "
              f"{len(report.failed)} failed; {report.total} episodes"]
     if report.table is not None:

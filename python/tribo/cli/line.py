@@ -33,12 +33,8 @@ import math
 import os
 
 from ..batch.specs import check_count
-from ..fmu.names import format_number
-from ..line.grain import LineError, check_separator, load_images, run_line_grain
-from ..line.mixture import (DEFAULT_FEED_WIDTH, DEFAULT_PAIR, Line, LineJob, check_line,
-                            line_specs, stayed_text)
-from ..materials import material
-from ..populations.feed import DEFAULT_CHUTE
+from ..line.defaults import DEFAULT_FEED_WIDTH, DEFAULT_PAIR
+from ..populations.feed_variables import DEFAULT_CHUTE
 from .common import (INPUT_ERRORS, add_job_options, add_materials_option, add_out_option, fail,
                      name_value, one_line, run_job)
 
@@ -115,10 +111,15 @@ def chute_of(args) -> dict:
 def check_finite(args, names) -> None:
     for name in names:
         if not math.isfinite(getattr(args, name)):
-            raise LineError(f"--{name.replace('_', '-')} {getattr(args, name)}: a finite number")
+            raise ValueError(f"--{name.replace('_', '-')} {getattr(args, name)}: a finite number")
 
 
 def run_grain(args) -> int:
+    # the job's modules (and numpy, pandas, fmpy) once it runs: --help and a mistake in the
+    # options need none of them (common.py)
+    from ..fmu.names import format_number
+    from ..line.grain import check_separator, load_images, run_line_grain  # the same
+    from ..line.mixture import Line, check_line, line_specs  # the same
     check_finite(args, ("size", "epsilon", "phi0_deg", "x_entry", "voltage"))
     line = Line((args.particle,), args.wall, distributions={"epsilon": args.epsilon, "size": args.size,
                                                           "phi0_deg": args.phi0_deg},
@@ -155,11 +156,12 @@ def run_grain(args) -> int:
     return 0
 
 
-def job_of(args) -> LineJob:
+def job_of(args):
+    from ..line.mixture import Line, LineJob  # the job's modules once it runs (run_grain)
     voltages = voltages_of(args.voltages) if args.mode == "sweep" else [args.voltage]
     bad = [v for v in voltages if not math.isfinite(v)]
     if bad:
-        raise LineError(f"voltage {bad[0]}: a finite number of V")
+        raise ValueError(f"voltage {bad[0]}: a finite number of V")
     check_finite(args, ("fraction", "feed_width", "splitter"))
     line = Line(tuple(p.strip() for p in args.particles.split(",")), args.wall, args.fraction,
                 chute=chute_of(args), settings=dict(args.set), separator=dict(args.separator),
@@ -167,12 +169,14 @@ def job_of(args) -> LineJob:
                 splitter=args.splitter, materials=args.materials)
     line.check()
     if len(line.particles) != 2:
-        raise LineError(f"--particles {args.particles}: two materials A,B")
+        raise ValueError(f"--particles {args.particles}: two materials A,B")
     return LineJob("mixture", line, args.grains, args.seed, args.t_end, voltages, args.fmu,
                    args.separator_fmu, figure=not args.no_plot)
 
 
 def told(job, report) -> list[str]:
+    from ..line.mixture import stayed_text  # loaded by the job that made the report
+    from ..materials import material  # the same
     lines = [f"line: {report.executed} grains run, {report.skipped} already in the file, "
              f"{len(report.failed)} failed"]
     if report.table is not None:

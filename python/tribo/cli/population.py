@@ -38,9 +38,6 @@ process, or --scheduler).
 
 import os
 
-from ..populations.feed import read_measured
-from ..populations.runner import PopulationJob
-from ..populations.summary import ends_text
 from .common import (add_chute_options, add_class_options, add_feed_options, add_si_job_options,
                      feed_of, name_value, qm_table, run_job)
 
@@ -57,7 +54,11 @@ def add_arguments(p) -> None:
     add_si_job_options(p, os.path.join("out", "population"), max_runs="particles")
 
 
-def job_of(args) -> PopulationJob:
+def job_of(args):
+    # the job's modules (and numpy, pandas, fmpy) once it runs: --help and a mistake in the
+    # options need none of them (common.py)
+    from ..populations.feed import read_measured
+    from ..populations.runner import PopulationJob  # the same
     measured = read_measured(args.measured) if args.measured else None
     return PopulationJob(feed_of(args, measured), args.particles, args.seed, args.t_end, args.fmu,
                          figure=not args.no_plot, shape_edges=args.shape_classes,
@@ -65,6 +66,7 @@ def job_of(args) -> PopulationJob:
 
 
 def told(job, report) -> list[str]:
+    from ..populations.summary import ends_text  # loaded by the job that made the report
     lines = [f"population: {report.executed} run, {report.skipped} already in the file, "
              f"{len(report.failed)} failed; {len(report.results)} of {report.total} done"]
     if report.summary is not None:

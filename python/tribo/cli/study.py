@@ -22,8 +22,6 @@ import os
 import shlex
 from dataclasses import replace
 
-from ..fmu.locate import CHECKOUT
-from ..study.runner import FULL, REDUCED, StudyJob
 from .common import add_execution_options, add_out_option, numbers, run_job
 
 
@@ -63,6 +61,9 @@ def add_arguments(p) -> None:
 
 
 def settings_of(args):
+    # the job's modules (and numpy, pandas, fmpy, matplotlib) once it runs: --help and a
+    # mistake in the options need none of them (common.py)
+    from ..study.runner import FULL, REDUCED
     settings = FULL if args.full else REDUCED
     tolerances = tuple((n, v) for n, v in (("rtol", args.rtol), ("atol", args.atol)) if v is not None)
     overrides = {k: v for k, v in (("epsilons", args.epsilons), ("t_end", args.t_end),
@@ -74,12 +75,14 @@ def settings_of(args):
 
 def command_line(prog: str, argv: list[str]) -> str:
     """The command as run, paths inside the checkout relative to it (for study.md)."""
+    from ..fmu.locate import CHECKOUT  # the FMU driver's package: once a job runs (settings_of)
     arguments = [os.path.relpath(a, CHECKOUT) if a.startswith(CHECKOUT + os.sep) else a
                  for a in argv]
     return " ".join([prog] + [shlex.quote(a) for a in arguments])
 
 
-def job_of(args) -> StudyJob:
+def job_of(args):
+    from ..study.runner import StudyJob  # the job's modules once it runs (settings_of)
     # the folder's default and --fresh follow --full and --resume (run_job reads them here)
     args.out = args.out or os.path.join("out", "study-full" if args.full else "study")
     args.fresh = not args.resume

@@ -44,8 +44,6 @@ listen on all interfaces unless --dashboard-address says otherwise, even with
 
 import os
 
-from ..batch.grid import SweepJob, parse_param
-from ..batch.summary import ends_text
 from .common import add_job_options, add_out_option, run_job
 
 
@@ -66,13 +64,17 @@ def add_arguments(p) -> None:
     p.add_argument("--no-plot", action="store_true", help="no figure")
 
 
-def job_of(args) -> SweepJob:
+def job_of(args):
+    # the job's modules (and numpy, pandas, fmpy) once it runs: --help and a mistake in the
+    # options need none of them (common.py)
+    from ..batch.grid import SweepJob, parse_param
     return SweepJob([parse_param(text) for text in args.param], t_end=args.t_end,
                     record_interval=args.record_interval, base=args.base, tie=args.tie,
                     fmu=args.fmu, series=args.series, figure=not args.no_plot)
 
 
 def told(job, report) -> list[str]:
+    from ..batch.summary import ends_text  # loaded by the job that made the report
     lines = [f"sweep: {report.executed} executed, {report.skipped} already in the file, "
              f"{len(report.failed)} failed; {len(report.results)} of {report.total} runs done"]
     if len(report.results):

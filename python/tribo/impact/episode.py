@@ -51,7 +51,6 @@ MOTION_COLUMNS = ["rebound_u", "rebound_v", "rebound_speed", "rebound_angle_deg"
                   "rebound_omega", "contact_time", "lifted_off", "end_reason", "time_end", "t_star"]
 # tribo.EndReason of an episode (run_end = first_liftoff); 0: still in contact at the limit
 LIFTED_OFF, AT_REST, AT_LIMIT = 2, 3, 0
-DEFAULT_LIMIT = 200.0  # contact periods' worth of t* before an episode counts as sustained
 
 
 class ImpactError(ValueError):

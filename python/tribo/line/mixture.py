@@ -63,15 +63,13 @@ from ..fmu.parameters import check_values
 from ..materials import Materials, material, pair_sigma0, table_of, with_pair
 from ..populations.feed import (DEFAULT_CHUTE, END_AT_REST, Feed, FeedError, draw,
                                particle_parameters)
+from .defaults import DEFAULT_FEED_WIDTH, DEFAULT_PAIR, DEFAULT_WALL
 from .grain import (LineError, LineImages, charge_model_settings, check_separator,
                     chute_params_of, load_images, result_columns, run_line_grain)
 
 PARTICLES, LANDINGS, TABLE, BINS, FIGURE, METADATA = ("particles.csv", "landings.csv", "line.csv",
                                                       "bins.csv", "line.png", "line.json")
 LANDINGS_DIR = "landings"
-DEFAULT_PAIR = ("PE", "nylon")  # on steel: sigma0 -1e-5 and +1e-5 C/m2 (materials.toml)
-DEFAULT_WALL = "steel"
-DEFAULT_FEED_WIDTH = 0.01  # m, the feed slot across the gap
 STEPS_PER_RUN = 100  # the chute's record_interval is t_end / 100 in its key (as a population's)
 WORK_LIMIT = 2**31 - 1
 
