@@ -2,8 +2,8 @@
 # Every test: set up (if needed), then the C unit tests (Release, and again under
 # AddressSanitizer + UndefinedBehaviorSanitizer) and the Python tests, with the fuzz suite
 # (tests/fuzz: the Release FMUs and the sanitizer build's; a longer campaign is
-# scripts/fuzz.sh). 9.5 to 12 minutes on a fresh clone of 2 idle cores, as the machine's speed
-# varies (docs/platforms.md).
+# scripts/fuzz.sh). About 9 minutes on a fresh clone of 2 idle cores, up to a fifth more as the
+# machine's speed varies (docs/platforms.md).
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 TRIBO_SETUP_SANITIZE=1 "$ROOT/scripts/setup.sh"
