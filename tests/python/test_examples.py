@@ -138,17 +138,18 @@ def test_the_docs_show_the_subcommands_not_the_aliases():
 GRID = re.compile(r"^(\w+=)?(-?[\d.]+(?:e-?\d+)?):(-?[\d.]+(?:e-?\d+)?):(\d+)$")
 
 
-def shrink(sub: str, argv: list[str], scheduler: str) -> list[str]:
+def shrink(sub: str, argv: list[str], scheduler) -> list[str]:
     """An example at a small size: grids a:b:n of 2 values, 3 particles of 0.5 s, 3 grains
     on a 5 cm chute, sweeps to tau = 20, the study on one roundness to tau = 20, the DEM's
-    grains on a 5 cm chute with its moduli at a hundredth, the cluster address the test's."""
+    grains on a 5 cm chute with its moduli at a hundredth, the cluster address the test's
+    (scheduler(), which starts the cluster the first time it is asked)."""
     out = []
     args = list(argv)
     while args:
         a = args.pop(0)
         if a == "--scheduler":
             args.pop(0)
-            out += ["--scheduler", scheduler]
+            out += ["--scheduler", scheduler()]
         elif a in ("-n", "--particles", "--grains") and not (sub == "line" and a == "--particles"):
             args.pop(0)
             out += [a, "3"]
@@ -204,8 +205,10 @@ def scheduler(tmp_path_factory):
                 p.kill()
 
 
-def run_example(tmp_path, scheduler, line):
-    """A command line of `tribo`, shrunk, in a fresh folder: it succeeds without a traceback."""
+def run_example(tmp_path, request, line):
+    """A command line of `tribo`, shrunk, in a fresh folder: it succeeds without a traceback.
+    The test's Dask cluster is started for the first example that names one (--scheduler),
+    not for every example."""
     sub, *argv = shlex.split(line, comments=True)[1:]
     if "--measured" in argv:  # the example's sieve data: a column per feed variable measured
         (tmp_path / argv[argv.index("--measured") + 1]).write_text(
@@ -222,7 +225,7 @@ def run_example(tmp_path, scheduler, line):
         if not path.exists():
             path.parent.mkdir(parents=True, exist_ok=True)
             path.write_text("[sigma0.steel]\nPE = -1.5e-5\n")
-    argv = shrink(sub, argv, scheduler)
+    argv = shrink(sub, argv, lambda: request.getfixturevalue("scheduler"))
     done = subprocess.run([command("tribo"), sub, *argv], cwd=tmp_path, capture_output=True,
                           text=True, timeout=300)
     assert done.returncode == 0, f"tribo {sub} {' '.join(argv)}:\n{done.stderr[-3000:]}"
@@ -230,8 +233,8 @@ def run_example(tmp_path, scheduler, line):
 
 
 @pytest.mark.parametrize("sub, line", EXAMPLES, ids=[line for _, line in EXAMPLES])
-def test_each_help_example_runs(tmp_path, scheduler, sub, line):
-    run_example(tmp_path, scheduler, line)
+def test_each_help_example_runs(tmp_path, request, sub, line):
+    run_example(tmp_path, request, line)
 
 
 # the documented command lines that are not also --help examples (those run above, the
@@ -243,5 +246,5 @@ TO_RUN = sorted(line for line in {line for _, line in DOCUMENTED}
 
 
 @pytest.mark.parametrize("line", TO_RUN, ids=TO_RUN)
-def test_each_documented_command_runs(tmp_path, scheduler, line):
-    run_example(tmp_path, scheduler, line)
+def test_each_documented_command_runs(tmp_path, request, line):
+    run_example(tmp_path, request, line)
