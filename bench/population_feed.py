@@ -12,7 +12,8 @@ import sys
 from tribo.fmu import FmuImage
 from tribo.fmu.locate import find_fmu
 from tribo.fmu.names import to_fmu
-from tribo.populations.feed import FEED_VARIABLES, Feed, specs_of
+from tribo.populations.feed import Feed, specs_of
+from tribo.populations.feed_variables import FEED_VARIABLES
 
 
 def main(argv):

@@ -30,9 +30,11 @@ from .impact.episode import Grid
 from .impact.map import EPISODES, ImpactMap, MapJob
 from .line.grain import check_separator, load_images, run_line_grain
 from .calibration.runner import CalibrationJob
-from .line.mixture import DEFAULT_PAIR, Line, LineJob, check_line, line_specs
+from .line.defaults import DEFAULT_PAIR
+from .line.mixture import Line, LineJob, check_line, line_specs
 from .materials import pair_values, with_pair
-from .populations.feed import DEFAULT_CHUTE, Feed, check_measured, read_measured
+from .populations.feed import Feed, check_measured, read_measured
+from .populations.feed_variables import DEFAULT_CHUTE
 from .populations.runner import PARTICLES, PopulationJob
 
 

@@ -51,7 +51,8 @@ from ..fmu.parameters import check_values
 from ..impact.defaults import DEFAULT_LIMIT
 from ..impact.episode import check_axis, episode_parameters
 from ..materials import table_of, with_pair
-from ..populations.feed import (DEFAULT_CHUTE, STEPS_PER_RUN, Feed, draw, particle_parameters)
+from ..populations.feed import STEPS_PER_RUN, Feed, draw, particle_parameters
+from ..populations.feed_variables import DEFAULT_CHUTE
 from ..populations.summary import stream_statistics
 
 # what an impact's or a grain's run reads at its end (the charge model's charge is added)

@@ -39,7 +39,8 @@ from ..fmu.parameters import check_values
 from ..impact.defaults import DEFAULT_LIMIT
 from ..materials import CHARGING_KEYS, table_of
 from ..populations.distributions import parse
-from ..populations.feed import DEFAULT_CHUTE, FEED_VARIABLES, Feed, draw, particle_parameters
+from ..populations.feed import Feed, draw, particle_parameters
+from ..populations.feed_variables import DEFAULT_CHUTE, FEED_VARIABLES
 from .data import DataError, combined_sign, read
 from .fit import (DEFAULT_FIT, PARAMETERS, Evaluator, FitError, Point, Problem, fit_runs,
                   fit_structured)

@@ -61,8 +61,8 @@ from ..batch.sweep import keys_of, read_series, run_sweep
 from ..fmu.names import start_value
 from ..fmu.parameters import check_values
 from ..materials import Materials, material, pair_sigma0, table_of, with_pair
-from ..populations.feed import (DEFAULT_CHUTE, END_AT_REST, Feed, FeedError, draw,
-                               particle_parameters)
+from ..populations.feed import END_AT_REST, Feed, FeedError, draw, particle_parameters
+from ..populations.feed_variables import DEFAULT_CHUTE
 from .defaults import DEFAULT_FEED_WIDTH, DEFAULT_PAIR, DEFAULT_WALL
 from .grain import (LineError, LineImages, charge_model_settings, check_separator,
                     chute_params_of, load_images, result_columns, run_line_grain)
