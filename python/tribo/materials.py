@@ -36,6 +36,7 @@ from importlib import resources
 
 from .fmu.instance import PARAMETER_CAUSALITIES, model_description
 from .fmu.locate import find_fmu
+from .input_files import read_input
 
 
 
@@ -155,11 +156,7 @@ def load(path: str) -> Materials:
     text). MaterialError, one line naming the file and the entry, for a file that cannot be
     read, an unknown section or key, a material not in the package's table, a value that is
     not a finite number in its range, or a |sigma0| above the breakdown limit."""
-    try:
-        with open(path, "rb") as f:
-            data = f.read()
-    except OSError as e:
-        raise MaterialError(f"cannot read the materials file {path}: {e.strerror or e}") from None
+    data = read_input(path, MaterialError, "materials file")
     try:
         given = tomllib.loads(data.decode("utf-8"))
     except (UnicodeDecodeError, tomllib.TOMLDecodeError) as e:

@@ -92,3 +92,27 @@ def test_a_bad_materials_file_is_one_line_from_every_command(tmp_path, capsys):
         err = capsys.readouterr().err.strip()
         assert len(err.splitlines()) == 1 and "bad.toml" in err and "PE = -1.0" in err, err
         assert not out.exists()
+
+
+@pytest.mark.parametrize("path, reason", [
+    ("/dev/zero", "not a regular file"), ("/dev/null", "not a regular file"),
+    ("FOLDER", "a folder, not a file"), ("MISSING", "no such file"), ("HUGE", "MiB, above the")])
+def test_a_materials_or_data_path_that_is_no_file_is_refused_at_once_with_its_reason(
+        tmp_path, capsys, path, reason):
+    # /dev/zero was read until memory ran out; a device and a folder were "no such file"
+    huge = tmp_path / "huge.csv"
+    with open(huge, "wb") as f:  # sparse: no disk used
+        f.truncate(65 * 2**20)
+    path = {"FOLDER": str(tmp_path), "MISSING": str(tmp_path / "missing.toml"),
+            "HUGE": str(huge)}.get(path, path)
+    good = tmp_path / "impacts.csv"
+    good.write_text("speed,angle_deg,size,epsilon,charge\n1,90,1e-3,1,-1e-14\n2,60,1e-3,0.8,-2e-14\n")
+    for argv in (["population", "-n", "2", "--materials", path],
+                 ["calibrate", "--impacts", str(good), "--materials", path],
+                 ["calibrate", "--impacts", path],
+                 ["population", "-n", "2", "--measured", path]):
+        out = tmp_path / "out"
+        assert tribo_command(argv + ["--serial", "--out", str(out)]) == 2
+        err = capsys.readouterr().err.strip()
+        assert len(err.splitlines()) == 1 and path in err and reason in err, err
+        assert not out.exists()

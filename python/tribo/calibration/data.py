@@ -24,6 +24,7 @@ charges of both signs (a pair charges with one polarity).
 """
 
 import hashlib
+import io
 import math
 import os
 from dataclasses import dataclass
@@ -32,6 +33,7 @@ import numpy as np
 import pandas as pd
 
 from ..fmu.names import format_number
+from ..input_files import read_input
 from ..populations.distributions import parse
 from .columns import CHUTE_COLUMNS, FEED_COLUMNS, IMPACT_COLUMNS, WHOLE, columns_text
 
@@ -61,13 +63,13 @@ def read(kind: str, data) -> Data:
         frame, source = data.astype(object).where(data.notna(), ""), f"the {kind} given"
     else:
         source = os.fspath(data)
-        if not os.path.isfile(source):
-            raise DataError(f"{source}: no such file ({kind})")
-        if os.path.getsize(source) == 0:
+        text = read_input(source, DataError, f"the {kind} file")
+        if not text:
             raise DataError(f"{source}: empty file (expected a header row and a row per point: "
                             f"{columns_text(kind)})")
         try:
-            frame = pd.read_csv(source, dtype=str, keep_default_na=False, skipinitialspace=True)
+            frame = pd.read_csv(io.BytesIO(text), dtype=str, keep_default_na=False,
+                                skipinitialspace=True)
         except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as e:
             raise DataError(f"{source}: cannot read it as CSV ({str(e).splitlines()[0]})") from None
     frame.columns = [str(c).strip() for c in frame.columns]

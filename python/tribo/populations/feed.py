@@ -34,6 +34,7 @@ drop's first landing included); the fraction of the time in each motion class.
 """
 
 import hashlib
+import io
 import math
 import time
 from dataclasses import dataclass, field
@@ -46,6 +47,7 @@ from ..batch.specs import RunSpec, check_count
 from ..batch.summary import MOTION_CLASSES
 from ..fmu import FmuImage
 from ..fmu.charge_models import charge_models, per_model
+from ..input_files import read_input
 from ..materials import material, pair_values
 from .distributions import Distribution, parse
 from .feed_variables import DEFAULT_CHUTE, DEFAULT_DISTRIBUTIONS, FEED_VARIABLES
@@ -140,9 +142,10 @@ class Feed:
 
 def read_measured(path: str) -> pd.DataFrame:
     """A CSV of measured values: a column per feed variable it gives (others refused)."""
+    text = read_input(path, FeedError, "the measured values")
     try:
-        df = pd.read_csv(path)
-    except (OSError, pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as e:
+        df = pd.read_csv(io.BytesIO(text))
+    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as e:
         raise FeedError(f"cannot read the measured values {path}: {str(e).splitlines()[0]}") from None
     return check_measured(df, path)
 
