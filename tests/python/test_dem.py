@@ -107,12 +107,57 @@ def test_a_second_run_only_charges_again(dilute, maps):
     (["--epsilon", "1", "--lanes", "3"], "lanes"),
     (["--epsilon", "1", "--vibration", "0.05,50"], "vibration"),
     (["--epsilon", "1", "--vibration", "5e-4"], "--vibration"),
+    (["--t-end", "1e308"], "t_end = 1e+308"),  # was an OverflowError in a started folder
 ])
 def test_bad_input_is_one_line_naming_it(tmp_path, argv, names):
     done = run_dem(tmp_path, "-n", "3", *argv, "--out", "o")
     assert done.returncode == 2
     assert "Traceback" not in done.stderr and len(done.stderr.strip().splitlines()) == 1
     assert names in done.stderr
+    assert not (tmp_path / "o").exists()
+
+
+def test_the_commands_default_feed_is_the_spheres_it_runs():
+    from tribo.cli.dem import job_of
+    from tribo.cli.main import parser
+    argv = ["dem", "-n", "3"]
+    job = job_of(parser(argv).parse_args(argv))
+    runner._spheres(job.feed)  # refused the default feed (epsilon uniform:0.3:1) before
+    assert job.feed.resolved()["epsilon"].text() == "1"
+
+
+@needs_liggghts
+def test_the_progress_comes_while_liggghts_runs_on_one_rank(tmp_path, monkeypatch):
+    # through a pipe LIGGGHTS' screen was block-buffered: the bar stood at 0 % for the whole
+    # run and every thermo line came as it ended. Each update of the bar here notes how many
+    # of the run's pieces the log (flushed as it goes) has finished by then.
+    chute, size = Chute(), np.array([1e-3])
+    entry = entries(chute, size, np.array([0.01]), np.array([0.0]), np.array([0.0]), None, None)
+    text, steps = script.write_input(chute, entry, size, script.Contact(1e9, 0.4, 2e11, 0.3, 950,
+                                                                        0.5, 0.3, 0.01),
+                                     dt=1e-6, sample_every=5, t_end=0.3, exit_every=100,
+                                     progress_every=15000, near=1e-3, slowest=1e-3,
+                                     contacts=False)
+    (tmp_path / script.INPUT).write_text(text)
+    (tmp_path / script.PLATE).write_text(chute.stl(entry.width))
+    log, seen = tmp_path / script.LOG, []
+
+    class Bar:
+        def __init__(self, *args, initial=0, **kwargs):
+            self.n = initial
+
+        def update(self, k):
+            self.n += k
+            seen.append(log.read_text(errors="replace").count("Loop time"))
+
+        def close(self):
+            pass
+
+    monkeypatch.setattr(engine, "tqdm", Bar)
+    engine.run(str(tmp_path), script.INPUT, script.LOG, steps)
+    pieces = log.read_text(errors="replace").count("Loop time")
+    # block-buffered, the first came after some 16 pieces of 20 (4 kB of screen)
+    assert pieces >= 10 and seen and seen[0] <= 1, (seen, pieces)
 
 
 def test_the_charge_carried_approaches_saturation_as_the_condenser_law():

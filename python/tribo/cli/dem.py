@@ -2,14 +2,14 @@
 separate process), each grain-wall impact charged by the project's impact map; the exit
 stream written as a population's (docs/dem.md).
 
-    tribo dem -n 1000 --epsilon 1 --out out/dem
-    tribo dem -n 2000 --epsilon 1 --feed-rate 40 --lanes 5 --ranks 2 --out out/dem-stream
-    tribo dem -n 50 --epsilon 1 --size uniform:6e-4:1e-3 --stiffness-scale 0.01 --out out/dem-soft
-    tribo dem -n 100 --epsilon 1 --vibration 5e-4,50 --out out/dem-vibrating
+    tribo dem -n 1000 --out out/dem
+    tribo dem -n 2000 --feed-rate 40 --lanes 5 --ranks 2 --out out/dem-stream
+    tribo dem -n 50 --size uniform:6e-4:1e-3 --stiffness-scale 0.01 --out out/dem-soft
+    tribo dem -n 100 --vibration 5e-4,50 --out out/dem-vibrating
 
 The feed is a population's (tribo population --help: --size, --drop-height, ... and the
-materials), its grains spheres: --epsilon 1 (LIGGGHTS holds spheres here; ellipses are not
-represented) and no spin at the drop. Without --feed-rate the grains are in the dilute
+materials), its grains spheres: --epsilon 1, the default here (LIGGGHTS holds spheres here;
+ellipses are not represented) and no spin at the drop. Without --feed-rate the grains are in the dilute
 limit: each in its own lane across a plate wide enough for all, dropped at once, so that
 none meets another; with it, grains/s dropped one after another into --lanes lanes (5 by
 default) closer than a grain, three drop points along each, so that they collide
@@ -31,12 +31,16 @@ charge gain gain_<model> for an uncharged grain, C) and liggghts/.
 
 import os
 
+SPHERES = "1"  # --epsilon: LIGGGHTS holds spheres here
+
 from .common import (add_chute_options, add_class_options, add_feed_options, add_si_job_options,
                      feed_of, name_value, numbers, positive_number, qm_table, run_job)
 
 
 def add_arguments(p) -> None:
     add_feed_options(p, "grains")
+    # the grains are spheres here: the feed that runs is the command's default
+    p.set_defaults(epsilon=SPHERES)
     add_chute_options(p)
     p.add_argument("--set", type=name_value, action="append", default=[], metavar="NAME=VALUE",
                    help="any other SI parameter by the package's names (mu=0.5, ...)")

@@ -34,7 +34,9 @@ def command(ranks: int) -> list[str]:
         raise EngineError("liggghts: not found (Debian 12: apt-get install liggghts; "
                           "scripts/setup.sh installs it)")
     if ranks == 1:
-        return ["liggghts"]
+        # its screen is a pipe here, which the C library fills in blocks: line-buffered, the
+        # progress comes as it runs (Open MPI forwards a rank's lines as they come)
+        return (["stdbuf", "-oL"] if shutil.which("stdbuf") else []) + ["liggghts"]
     if shutil.which("mpirun") is None:
         raise EngineError(f"ranks = {ranks}: mpirun not found (it comes with liggghts' "
                           f"Open MPI)")
@@ -74,6 +76,9 @@ def run(folder: str, input_name: str, log_name: str, steps: int, ranks: int = 1,
             on_stop(_cpu(before))
             raise
         code = proc.wait()
+        if code == 0:  # the run ends once every grain has left: its steps are all it took
+            bar.total = bar.n
+            bar.refresh()
     finally:
         bar.close()
     cpu = _cpu(before)

@@ -125,6 +125,7 @@ class DemJob(Job):
         self.drawn = draw(self.feed, self.n, self.seed)
         self.params = particle_parameters(self.feed, self.drawn, {"cylinder_length": depth})
         check_values(self.image, {k: [p[k] for p in self.params] for k in self.params[0]})
+        self._check_horizon()
         self.entry = entries(self.chute, self.drawn["size"].to_numpy(), self.drawn["drop_height"],
                              self.drawn["drop_speed"], self.drawn["drop_angle_deg"],
                              self.feed_rate, self.lanes, self.lane_spacing)
@@ -135,6 +136,27 @@ class DemJob(Job):
         specs = [RunSpec(p, float(self.t_end), float(self.t_end) / STEPS_PER_RUN) for p in self.params]
         self.keys = [run_key(s, self.sha256) for s in specs]
         self.models = charge_models(md)
+
+    def _contact(self, restitution: float) -> script.Contact:
+        """LIGGGHTS' contact law of the feed's pair (script.py) with `restitution`."""
+        p0, md = self.params[0], self.image.model_description()
+        return script.Contact(
+            p0["youngs_modulus_particle"] * self.stiffness_scale, p0["poisson_ratio_particle"],
+            p0["youngs_modulus_wall"] * self.stiffness_scale, p0["poisson_ratio_wall"],
+            p0["density"], restitution, p0.get("mu", start_value(md, "mu")),
+            p0.get("mu_roll", start_value(md, "mu_roll")))
+
+    def _check_horizon(self) -> None:
+        """DemError, before anything runs, for a horizon of more steps than LIGGGHTS runs:
+        the time step is at most a fraction of the smallest grain's Rayleigh time
+        (script.time_step), which the restitution does not change."""
+        smallest = float(np.min(self.drawn["size"]))
+        longest_step = script.RAYLEIGH_FRACTION * script.rayleigh_time(smallest, self._contact(0.5))
+        if self.t_end / longest_step > script.MAX_STEPS:
+            raise DemError(f"t_end = {self.t_end:g}: the horizon in s, at most "
+                           f"{script.MAX_STEPS * longest_step:.3g} s here: at a time step of "
+                           f"{longest_step:.3g} s or less it is above the {script.MAX_STEPS} "
+                           f"steps LIGGGHTS runs")
 
     def setup(self) -> dict:
         return {"n": self.n, "seed": self.seed, "t_end_s": self.t_end, "feed": self.feed.describe(),
@@ -165,11 +187,7 @@ class DemJob(Job):
         # the model's own restitution, friction and rolling resistance (script.py)
         first = float(np.median(np.sqrt(2 * 9.81 * math.cos(math.radians(self.chute.tilt_deg))
                                         * self.drawn["drop_height"])))
-        contact = script.Contact(
-            p0["youngs_modulus_particle"] * self.stiffness_scale, p0["poisson_ratio_particle"],
-            p0["youngs_modulus_wall"] * self.stiffness_scale, p0["poisson_ratio_wall"],
-            p0["density"], min(max(charger.restitution(first), 0.05), 0.95),
-            p0.get("mu", start_value(md, "mu")), p0.get("mu_roll", start_value(md, "mu_roll")))
+        contact = self._contact(min(max(charger.restitution(first), 0.05), 0.95))
         g = 9.81
         # the fastest impact: a free fall from the drop to the chute's end, onto a plate
         # coming up at its vibration's fastest

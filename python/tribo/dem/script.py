@@ -42,6 +42,10 @@ EXIT_COLUMNS = ["id", "x", "y", "z", "vx", "vy", "vz", "omegay"]
 RAYLEIGH_FRACTION = 0.1
 STEPS_PER_CONTACT = 40  # the time step: the fastest impact's Hertz contact time over this
 SAMPLES_PER_CONTACT = 3  # the contacts' sampling: at least this many samples per contact
+# the most steps a run takes: LIGGGHTS' `run N` takes N up to 2^31 - 1 (a run is cut into
+# pieces of a two-hundredth of its steps, so this leaves a factor of 200 for the step
+# being shorter than the Rayleigh bound the horizon is checked with)
+MAX_STEPS = 2**31 - 1
 
 
 @dataclass(frozen=True)
