@@ -151,6 +151,7 @@ def test_a_bad_grid_is_one_line(axes, says):
 
 @pytest.mark.parametrize("argv, says", [
     (["--speed", "1", "--angle-deg", "90", "--limit", "0"], "time limit"),
+    (["--speed", "1", "--angle-deg", "90", "--limit", "1e308"], "at most 1e+12"),
     (["--speed", "1:5", "--angle-deg", "90"], "expected a:b:n"),
     (["--speed", "1", "--angle-deg", "90", "--wall", "wood"], "unknown wall material 'wood'"),
     (["--speed", "1", "--angle-deg", "90", "--set", "size=-1"], "size = -1 is invalid: the valid range is 2e-07 <= size <= 2"),

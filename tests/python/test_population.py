@@ -100,12 +100,27 @@ def test_the_summary_is_the_direct_computation():
     (["-n", "3", "--set", "tilt=0.6"], "the package takes this parameter as tilt_deg"),
     (["-n", "3", "--set", "epsilon=0.5"], "epsilon is a feed variable"),
     (["-n", "3", "--set", "chute_length=-0.3"], "chute_length = -0.3 is invalid"),
+    # refused once every particle had run, or every run failed (issue 42)
+    (["-n", "3", "--shape-classes", "5,1"], "--shape-classes: 5,1: at least two finite numbers"),
+    (["-n", "3", "--size-classes", "1e-3"], "--size-classes: 0.001: at least two"),
+    (["-n", "3", "--t-end", "1e308"], "t_end = 1e+308 s: at most"),
 ])
 def test_bad_input_is_one_line_before_anything_runs(tmp_path, capsys, argv, says):
-    assert tribo_command(["population", *argv, "--out", str(tmp_path / "p"), "--serial"]) == 2
+    try:
+        status = tribo_command(["population", *argv, "--out", str(tmp_path / "p"), "--serial"])
+    except SystemExit as e:  # argparse's own errors
+        status = e.code
+    assert status == 2
     err = capsys.readouterr().err
     assert says in err and len(err.strip().splitlines()) == 1, err
     assert not (tmp_path / "p" / "particles.csv").exists()
+
+
+def test_bad_class_edges_are_refused_by_the_api_before_any_run(tmp_path):
+    with pytest.raises(ValueError, match="size class edges 0.002,0.001: at least two"):
+        tribo.population(3, shape_edges=[0.3, 1], size_edges=[2e-3, 1e-3], serial=True,
+                         out=str(tmp_path / "p"))
+    assert not (tmp_path / "p").exists()
 
 
 def test_measured_values_with_an_unknown_column_are_one_line(tmp_path, capsys):

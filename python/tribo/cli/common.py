@@ -97,11 +97,20 @@ def add_chute_options(p: argparse.ArgumentParser) -> None:
                         f"{DEFAULT_CHUTE['tilt_deg']:g})")
 
 
+def class_edges(text: str) -> tuple:
+    """argparse type: class edges, numbers separated by commas, increasing."""
+    from ..populations.summary import checked_edges  # the job's libraries, for an option given
+    try:
+        return tuple(checked_edges(numbers(text), ""))
+    except ValueError as e:
+        raise argparse.ArgumentTypeError(str(e)) from None
+
+
 def add_class_options(p: argparse.ArgumentParser) -> None:
     """--shape-classes and --size-classes: the edges of a summary's classes."""
-    p.add_argument("--shape-classes", type=numbers, metavar="E0,E1,...",
+    p.add_argument("--shape-classes", type=class_edges, metavar="E0,E1,...",
                    help="edges of the shape classes (default: 4 equal classes over the range)")
-    p.add_argument("--size-classes", type=numbers, metavar="S0,S1,...",
+    p.add_argument("--size-classes", type=class_edges, metavar="S0,S1,...",
                    help="edges of the size classes, m (default: 4 equal classes over the range)")
 
 

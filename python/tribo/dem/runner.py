@@ -40,7 +40,7 @@ from ..fmu.names import format_number, start_value
 from ..fmu.parameters import check_values
 from ..populations.feed import (STEPS_PER_RUN, Feed, draw, particle_parameters, result_columns)
 from ..populations.runner import FIGURE, METADATA, PARTICLES, SUMMARY
-from ..populations.summary import summarize_population
+from ..populations.summary import check_class_edges, summarize_population
 from . import contacts, engine, script
 from .charging import Charger, band_charge, charges
 from .device import Chute, DeviceError, entries
@@ -116,6 +116,7 @@ class DemJob(Job):
             raise DemError(f"lanes = {self.lanes!r}: the lanes of a fed stream, taken with a "
                            f"feed rate only (the dilute limit gives each grain its own)")
         _spheres(self.feed)
+        check_class_edges(self.shape_edges, self.size_edges)
         amplitude, frequency = self.vibration or (0.0, 0.0)
         self.chute = Chute(**self.feed.describe()["chute"], amplitude=amplitude,
                            frequency=frequency)

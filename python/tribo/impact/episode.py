@@ -38,6 +38,7 @@ from ..fmu import FmuImage, Instance
 from ..fmu.charge_models import charge_models, per_model
 from ..fmu.names import failure, to_fmu
 from ..materials import pair_values
+from ..model_time import check_limit
 
 AXES = ("speed", "angle_deg", "phi0_deg", "epsilon")
 AXIS_UNITS = {"speed": "m/s", "angle_deg": "deg from the plate's surface (90: head-on)",
@@ -115,8 +116,7 @@ def episode_specs(grid: Grid, particle: str, wall: str, settings: dict, limit: f
                   omega0: float = 0.0) -> list[RunSpec]:
     """One run per grid point, in the grid's order (speed slowest, epsilon fastest). Its
     t_end is the time limit in units of t* (the FMU's, which depends on the point)."""
-    if not (math.isfinite(limit) and limit > 0):
-        raise ImpactError(f"the time limit must be a positive number of t*, got {limit!r}")
+    check_limit(limit, "the time limit", ImpactError)
     base = dict(pair_values(particle, wall, sigma0="sigma0" not in settings), **settings)
     return [RunSpec(episode_parameters(base, *point, omega0=omega0), float(limit), float(limit))
             for point in grid.points()]

@@ -41,14 +41,17 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
+from fmpy.fmi1 import FMICallException
 
 from ..batch.particle import RunResult, run_to_end
 from ..batch.specs import RunSpec, check_count
 from ..batch.summary import MOTION_CLASSES
-from ..fmu import FmuImage
+from ..fmu import FmuImage, Instance
 from ..fmu.charge_models import charge_models, per_model
+from ..fmu.names import to_fmu
 from ..input_files import read_input
 from ..materials import material, pair_values
+from ..model_time import check_horizon as check_horizon_of
 from .distributions import Distribution, parse
 from .feed_variables import DEFAULT_CHUTE, DEFAULT_DISTRIBUTIONS, FEED_VARIABLES
 
@@ -200,6 +203,31 @@ def specs_of(feed: Feed, n: int, seed: int, t_end: float, defaults: dict | None 
         raise FeedError(f"the horizon t_end must be a positive number of seconds, got {t_end!r}")
     return [RunSpec(p, float(t_end), float(t_end) / STEPS_PER_RUN)
             for p in particle_parameters(feed, draw(feed, n, seed), defaults)]
+
+
+def check_horizon(image: FmuImage, specs: list[RunSpec]) -> None:
+    """FeedError, before any run, for a horizon the model cannot resolve (model_time.py):
+    one of more than model_time.TIME_MAX of the quickest grain's t*. t* = sqrt(m'/k') with m' = rho pi
+    a^2 epsilon (model.md section 2, src/si/si.c): the grains of a feed share their
+    materials and settings, so the quickest is the one of the least size^2 epsilon, and its
+    t* is read from the FMU."""
+    if not specs:
+        return
+    quickest = min(specs, key=lambda s: s.params["size"] ** 2 * s.params["epsilon"])
+    instance = Instance(image, name="tribo_horizon")
+    try:
+        instance.set_parameters(to_fmu(image.model_description(), quickest.params))
+        if instance.version == 2:
+            instance.fmu.setupExperiment(startTime=0.0)
+            instance.fmu.enterInitializationMode()
+        else:
+            instance.fmu.enterInitializationMode(startTime=0.0)
+        t_star = float(instance.get("t_star"))
+    except FMICallException:  # a set-up the FMU refuses: its runs say why
+        return
+    finally:
+        instance.free()
+    check_horizon_of(quickest.t_end, t_star, "the horizon t_end", FeedError)
 
 
 def run_particle(image: FmuImage, spec: RunSpec) -> RunResult:

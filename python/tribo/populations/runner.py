@@ -22,8 +22,8 @@ from ..fmu.charge_models import charge_models
 from ..fmu.locate import find_fmu
 from ..fmu.names import format_number, start_value
 from ..fmu.parameters import check_values
-from .feed import Feed, result_columns, run_particle, specs_of
-from .summary import ends_text, summarize_population
+from .feed import Feed, check_horizon, result_columns, run_particle, specs_of
+from .summary import check_class_edges, ends_text, summarize_population
 
 PARTICLES, SUMMARY, FIGURE, METADATA = "particles.csv", "summary.csv", "population.png", "population.json"
 
@@ -48,6 +48,7 @@ def prepare_population(feed: Feed, n: int, seed: int, t_end: float, image: FmuIm
     depth = start_value(image.model_description(), "cylinder_length")
     specs = specs_of(feed, n, seed, t_end, {"cylinder_length": depth})
     check_values(image, values_of(specs))
+    check_horizon(image, specs)
     return specs
 
 
@@ -109,6 +110,7 @@ class PopulationJob(Job):
         self.keys = []
 
     def prepare(self) -> None:
+        check_class_edges(self.shape_edges, self.size_edges)
         self.image = FmuImage.load(find_fmu(self.fmu, "si"))
         self.specs = prepare_population(self.feed, self.n, self.seed, self.t_end, self.image)
         self.sha256 = self.image.sha256

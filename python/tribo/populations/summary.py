@@ -34,13 +34,31 @@ END_AT_REST = 3  # tribo.EndReason at_rest (populations/feed.py)
 CLASSES = 4  # equal-width classes over the population's range, unless edges are given
 
 
+def checked_edges(edges, what: str = "class edges") -> np.ndarray:
+    """Class edges given (`what` names them in the message): at least two finite numbers,
+    increasing; ValueError, one line, otherwise. Checked before any run (a job's prepare,
+    the commands' option), not once every grain has run."""
+    try:
+        values = np.asarray([float(e) for e in edges])
+    except (TypeError, ValueError):
+        raise ValueError(f"{what} {edges!r}: numbers".strip()) from None
+    if len(values) < 2 or not np.all(np.isfinite(values)) or not np.all(np.diff(values) > 0):
+        shown = ",".join(f"{v:g}" for v in values)
+        raise ValueError(f"{what} {shown}: at least two finite numbers, increasing".strip())
+    return values
+
+
+def check_class_edges(shape_edges, size_edges) -> None:
+    """A job's shape and size class edges, where given, checked (checked_edges)."""
+    for what, edges in (("shape class edges", shape_edges), ("size class edges", size_edges)):
+        if edges is not None:
+            checked_edges(edges, what)
+
+
 def class_edges(values: pd.Series, edges=None) -> np.ndarray:
     """The class edges: those given, or CLASSES equal-width classes over the values' range."""
     if edges is not None:
-        edges = np.asarray([float(e) for e in edges])
-        if len(edges) < 2 or not np.all(np.diff(edges) > 0) or not np.all(np.isfinite(edges)):
-            raise ValueError(f"class edges {list(edges)}: at least two finite numbers, increasing")
-        return edges
+        return checked_edges(edges)
     lo, hi = float(values.min()), float(values.max())
     return np.linspace(lo, hi, CLASSES + 1) if hi > lo else np.array([lo, lo + max(abs(lo), 1.0) * 1e-9])
 
