@@ -43,3 +43,10 @@ def read_input(path: str, error, what: str, limit: int = MAX_INPUT_BYTES) -> byt
                 return data
             problem = f"above the {limit / 2**20:.0f} MiB an input file may hold"
     raise error(f"{what} {path}: {problem}")
+
+
+def shown(text, limit: int = 60) -> str:
+    """A text of the user's as a message shows it: at most `limit` characters (a column
+    name of 100 MB would be a message of 100 MB)."""
+    text = str(text)
+    return text if len(text) <= limit else f"{text[:limit]}... ({len(text)} characters)"

@@ -36,7 +36,7 @@ from importlib import resources
 
 from .fmu.instance import PARAMETER_CAUSALITIES, model_description
 from .fmu.locate import find_fmu
-from .input_files import read_input
+from .input_files import read_input, shown
 
 
 
@@ -162,7 +162,37 @@ def load(path: str) -> Materials:
     except (UnicodeDecodeError, tomllib.TOMLDecodeError) as e:
         raise MaterialError(f"materials file {path}: not TOML ({str(e).splitlines()[0]})") from None
     table = _merged(copy.deepcopy(_table()), given, path)
+    _check_declared(table, given, path)
     return Materials(table, os.path.abspath(path), hashlib.sha256(data).hexdigest())
+
+
+# a material's constants as the SI FMU's parameters of each role (its declared ranges)
+ROLE_PARAMETERS = {"density": {"particle": "density"},
+                   "youngs_modulus": {"particle": "youngs_modulus_particle",
+                                      "wall": "youngs_modulus_wall"},
+                   "poisson_ratio": {"particle": "poisson_ratio_particle",
+                                     "wall": "poisson_ratio_wall"}}
+
+
+def _check_declared(table: dict, given: dict, path: str) -> None:
+    """The file's material constants within the SI FMU's declared ranges, refused naming the
+    file and the entry (the FMU would refuse them later under its parameter's name alone);
+    where the build has no SI FMU, its jobs cannot run and say so themselves."""
+    try:
+        variables = {v.name: v for v in model_description(find_fmu(None, variant="si")).modelVariables}
+    except (OSError, ValueError):
+        return
+    for key, row in given.get("material", {}).items():
+        for k, by_role in ROLE_PARAMETERS.items():
+            for role in table["material"][key]["roles"]:
+                v = variables.get(by_role.get(role, ""))
+                if k not in row or v is None or v.min is None or v.max is None:
+                    continue
+                if not float(v.min) <= float(row[k]) <= float(v.max):
+                    raise MaterialError(f"materials file {path}: [material.{key}] {k} = "
+                                        f"{row[k]!r}: outside the range the model takes as a "
+                                        f"{role}'s, [{float(v.min):g}, {float(v.max):g}] "
+                                        f"({v.unit or v.declaredType and v.declaredType.unit or '1'})")
 
 
 def table_of(materials=None) -> Materials:
@@ -191,10 +221,10 @@ def _merged(table: dict, given: dict, path: str) -> dict:
     """The package's table with the file's entries over it, each checked."""
     unknown = [k for k in given if k not in SECTIONS]
     if unknown:
-        raise MaterialError(f"materials file {path}: unknown section [{unknown[0]}] (the "
+        raise MaterialError(f"materials file {path}: unknown section [{shown(unknown[0])}] (the "
                             f"sections are {', '.join(SECTIONS)})")
     for key, row in given.get("material", {}).items():
-        where = f"materials file {path}: [material.{key}]"
+        where = f"materials file {path}: [material.{shown(key)}]"
         if key not in table["material"]:
             raise MaterialError(f"{where}: not a material of the package's table (known: "
                                 f"{', '.join(table['material'])}); a file gives new values to "
@@ -203,7 +233,7 @@ def _merged(table: dict, given: dict, path: str) -> dict:
             raise MaterialError(f"{where}: a table of {', '.join(MATERIAL_KEYS)}")
         bad = [k for k in row if k not in MATERIAL_KEYS]
         if bad:
-            raise MaterialError(f"{where}: unknown key {bad[0]} (known: {', '.join(MATERIAL_KEYS)})")
+            raise MaterialError(f"{where}: unknown key {shown(bad[0])} (known: {', '.join(MATERIAL_KEYS)})")
         for k, limits in (("youngs_modulus", (0, math.inf, True)), ("poisson_ratio", (0, 0.5, False)),
                           ("density", (0, math.inf, True))):
             if k in row:
@@ -235,14 +265,14 @@ def _merged(table: dict, given: dict, path: str) -> dict:
                 raise MaterialError(f"{where}: a table of {', '.join(CHARGING_KEYS)}")
             bad = [k for k in values if k not in CHARGING_KEYS]
             if bad:
-                raise MaterialError(f"{where}: unknown key {bad[0]} (known: {', '.join(CHARGING_KEYS)})")
+                raise MaterialError(f"{where}: unknown key {shown(bad[0])} (known: {', '.join(CHARGING_KEYS)})")
             for k, v in values.items():
                 _number(v, f"{where} {k}", 0)
             table.setdefault("charging", {}).setdefault(wall, {})[particle] = dict(values)
     interface = given.get("interface", {})
     bad = [k for k in interface if k not in INTERFACE_KEYS]
     if bad:
-        raise MaterialError(f"materials file {path}: [interface] unknown key {bad[0]} (known: "
+        raise MaterialError(f"materials file {path}: [interface] unknown key {shown(bad[0])} (known: "
                             f"{', '.join(INTERFACE_KEYS)})")
     for k, v in interface.items():
         table["interface"][k] = _number(v, f"materials file {path}: [interface] {k}", 0, open_low=True)
@@ -257,16 +287,16 @@ def _pair_table(table: dict, wall: str, row, path: str, section: str) -> None:
     m = table["material"].get(wall)
     if m is None or "wall" not in m["roles"]:
         walls = [k for k, v in table["material"].items() if "wall" in v["roles"]]
-        raise MaterialError(f"materials file {path}: [{section}.{wall}]: unknown wall material "
-                            f"{wall!r}; known: {', '.join(walls)}")
+        raise MaterialError(f"materials file {path}: [{section}.{shown(wall)}]: unknown wall "
+                            f"material; known: {', '.join(walls)}")
 
 
 def _pair_names(table: dict, particle: str, wall: str, path: str, section: str) -> None:
     m = table["material"].get(particle)
     if m is None or "particle" not in m["roles"]:
         known = [k for k, v in table["material"].items() if "particle" in v["roles"]]
-        raise MaterialError(f"materials file {path}: [{section}.{wall}] {particle}: unknown "
-                            f"particle material {particle!r}; known: {', '.join(known)}")
+        raise MaterialError(f"materials file {path}: [{section}.{wall}] {shown(particle)}: "
+                            f"unknown particle material; known: {', '.join(known)}")
 
 
 def particles(materials=None) -> list[str]:

@@ -304,6 +304,19 @@ GOOD = "speed,angle_deg,size,epsilon,charge\n1,90,1e-3,1,-1e-14\n2,60,1e-3,0.8,-
     (GOOD.replace("-2e-14", "0"), ["row 3", "charge = 0"]),
     ("speed,angle_deg,size,epsilon,charge\n1,90,1e-3,1,-1e-14\n",
      ["1 point(s) for 2 parameters", "--fit sigma0"]),
+    # accepted and fitted before (issue 42): a charge no grain holds, charges typed in pC,
+    # an initial charge refused under a derived FMU parameter's name, a row of more fields
+    # than the header blamed on the column its values moved to, a name of a megabyte
+    (GOOD.replace("-2e-14", "-1e308"), ["row 3, charge = -1e+308 C", "holds at most"]),
+    (GOOD.replace("-1e-14", "-1.2").replace("-2e-14", "-2.5"),
+     ["row 2, charge = -1.2 C", "typed in pC? -1.2 pC is -1.2e-12 C"]),
+    (GOOD.replace("charge\n", "charge,initial_charge\n").replace("-1e-14\n", "-1e-14,1e300\n")
+     .replace("-2e-14\n", "-2e-14,0\n"), ["row 2, initial_charge = 1e+300 C", "holds at most"]),
+    (GOOD.replace("2,60,", "7,2,60,"), ["row 3 has 6 fields, the header 5"]),
+    (GOOD.replace("charge\n", "charge," + "x" * 10**5 + "\n").replace("-1e-14\n", "-1e-14,1\n")
+     .replace("-2e-14\n", "-2e-14,1\n"), ["unknown column 'xxxx", "(100002 characters)"]),
+    (GOOD.replace("charge\n", "charge," + "x" * 2**20 + "\n").replace("-1e-14\n", "-1e-14,1\n")
+     .replace("-2e-14\n", "-2e-14,1\n"), ["cannot read it as CSV", "field larger than"]),
 ])
 def test_bad_impacts_are_one_line_and_nothing_is_written(tmp_path, capsys, impacts, words):
     path = tmp_path / "impacts.csv"
@@ -312,6 +325,7 @@ def test_bad_impacts_are_one_line_and_nothing_is_written(tmp_path, capsys, impac
     assert tribo_command(["calibrate", "--impacts", str(path), "--serial", "--out", str(out)]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and err.startswith("tribo calibrate: error:"), err
+    assert len(err) < 1000, err[:1000]
     for w in words:
         assert w in err, err
     assert not out.exists()
@@ -335,6 +349,10 @@ def test_bad_impacts_are_one_line_and_nothing_is_written(tmp_path, capsys, impac
      ["unknown particle material 'steel'"]),
     ("chute_length,tilt_deg,q_per_m\n0.3,30,-1e-7\n0.2,30,-1e-7\n", ["--set", "mu=-1"],
      ["mu"]),
+    ("chute_length,tilt_deg,q_per_m\n0.3,30,-0.5\n0.2,30,-0.4\n", [],
+     ["row 2, q_per_m = -0.5 C/kg", "typed in µC/kg? -0.5 µC/kg is -5e-07 C/kg"]),
+    ("chute_length,tilt_deg,q_per_m\n0.3,30,-1e-7\n0.2,30,-1e-7\n", ["--materials", "BAD"],
+     ["bad.toml: [material.PE] density = 1e-300: outside the range"]),
 ])
 def test_bad_chute_runs_and_options_are_one_line_and_nothing_is_written(tmp_path, capsys, chutes,
                                                                        extra, words):
@@ -342,7 +360,9 @@ def test_bad_chute_runs_and_options_are_one_line_and_nothing_is_written(tmp_path
     path.write_text(chutes)
     impacts = tmp_path / "impacts.csv"
     impacts.write_text(GOOD)
-    extra = [str(impacts) if e == "IMPACTS" else e for e in extra]
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[material.PE]\ndensity = 1e-300\n")
+    extra = [{"IMPACTS": str(impacts), "BAD": str(bad)}.get(e, e) for e in extra]
     out = tmp_path / "out"
     assert tribo_command(["calibrate", "--chutes", str(path), *extra, "--serial",
                           "--out", str(out)]) == 2

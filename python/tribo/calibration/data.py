@@ -23,6 +23,7 @@ lies outside its range (negative where only positive values are measured), a zer
 charges of both signs (a pair charges with one polarity).
 """
 
+import csv
 import hashlib
 import io
 import math
@@ -33,7 +34,7 @@ import numpy as np
 import pandas as pd
 
 from ..fmu.names import format_number
-from ..input_files import read_input
+from ..input_files import read_input, shown
 from ..populations.distributions import parse
 from .columns import CHUTE_COLUMNS, FEED_COLUMNS, IMPACT_COLUMNS, WHOLE, columns_text
 
@@ -67,15 +68,29 @@ def read(kind: str, data) -> Data:
         if not text:
             raise DataError(f"{source}: empty file (expected a header row and a row per point: "
                             f"{columns_text(kind)})")
-        try:
-            frame = pd.read_csv(io.BytesIO(text), dtype=str, keep_default_na=False,
-                                skipinitialspace=True)
-        except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as e:
-            raise DataError(f"{source}: cannot read it as CSV ({str(e).splitlines()[0]})") from None
+        frame = _table(text, source)
     frame.columns = [str(c).strip() for c in frame.columns]
     frame = checked(kind, frame, source)
     text = frame.to_csv(index=False, float_format="%.17g").encode()
     return Data(kind, frame, source, hashlib.sha256(text).hexdigest())
+
+
+def _table(text: bytes, source: str) -> pd.DataFrame:
+    """A CSV's cells as text, every row as many as the header's (pandas would take a row of
+    more as one whose first cells are an index, and blame the columns its values move to)."""
+    try:
+        rows = list(csv.reader(io.StringIO(text.decode("utf-8-sig")), skipinitialspace=True))
+    except (UnicodeDecodeError, csv.Error) as e:
+        raise DataError(f"{source}: cannot read it as CSV ({shown(str(e).splitlines()[0])})") from None
+    rows = [r for r in rows if r]  # blank lines
+    if not rows:
+        raise DataError(f"{source}: no header row")
+    header = rows[0]
+    for i, row in enumerate(rows[1:]):
+        if len(row) != len(header):
+            raise DataError(f"{source}: row {i + 2} has {len(row)} fields, the header "
+                            f"{len(header)} ({shown(','.join(header))})")
+    return pd.DataFrame(rows[1:], columns=header, dtype=str)
 
 
 def checked(kind: str, frame: pd.DataFrame, source: str) -> pd.DataFrame:
@@ -84,11 +99,11 @@ def checked(kind: str, frame: pd.DataFrame, source: str) -> pd.DataFrame:
     known = list(numeric) + list(feed)
     unknown = [c for c in frame.columns if c not in known]
     if unknown:
-        raise DataError(f"{source}: unknown column {unknown[0]!r} (the {kind}' columns: "
+        raise DataError(f"{source}: unknown column {shown(repr(unknown[0]))} (the {kind}' columns: "
                         f"{columns_text(kind)})")
     duplicated = [c for c in frame.columns if list(frame.columns).count(c) > 1]
     if duplicated:
-        raise DataError(f"{source}: column {duplicated[0]!r} given twice")
+        raise DataError(f"{source}: column {shown(repr(duplicated[0]))} given twice")
     missing = [n for n, c in numeric.items() if c[1] and n not in frame.columns]
     if missing:
         raise DataError(f"{source}: missing column {missing[0]!r} (the {kind}' columns: "
@@ -119,7 +134,7 @@ def checked(kind: str, frame: pd.DataFrame, source: str) -> pd.DataFrame:
                     try:
                         parse(name, text)
                     except ValueError as e:
-                        raise DataError(f"{source}: row {i + 2}, {name}: {e}") from None
+                        raise DataError(f"{source}: row {i + 2}, {name}: {shown(e, 200)}") from None
                 texts.append(text)
             out[name] = texts
     value = "charge" if kind == "impacts" else "q_per_m"
@@ -144,7 +159,7 @@ def _number(text, name, unit, low, high, open_low, source, i, *, optional, defau
     try:
         value = float(text)
     except ValueError:
-        raise DataError(f"{where} = {text!r}: not a number ({unit})") from None
+        raise DataError(f"{where} = {shown(repr(text))}: not a number ({unit})") from None
     if not math.isfinite(value):
         raise DataError(f"{where} = {text}: not a finite number ({unit})")
     if value < low or (open_low and value == low) or value > high:

@@ -41,6 +41,7 @@ from ..materials import CHARGING_KEYS, table_of
 from ..populations.distributions import parse
 from ..populations.feed import Feed, draw, particle_parameters
 from ..populations.feed_variables import DEFAULT_CHUTE, FEED_VARIABLES
+from .bounds import check_charges
 from .data import DataError, combined_sign, read
 from .fit import (DEFAULT_FIT, PARAMETERS, Evaluator, FitError, Point, Problem, fit_runs,
                   fit_structured)
@@ -139,6 +140,7 @@ class CalibrationJob(Job):
             raise FitError(f"{len(points)} point(s) for {len(self.fit_names)} parameters "
                            f"({', '.join(self.fit_names)}): give more points, or fit fewer "
                            f"(fit=('sigma0',), --fit sigma0)")
+        check_charges(points, limit)
         values = {}
         for p in points:
             for run in p.runs:
