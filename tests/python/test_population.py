@@ -104,6 +104,9 @@ def test_the_summary_is_the_direct_computation():
     (["-n", "3", "--shape-classes", "5,1"], "--shape-classes: 5,1: at least two finite numbers"),
     (["-n", "3", "--size-classes", "1e-3"], "--size-classes: 0.001: at least two"),
     (["-n", "3", "--t-end", "1e308"], "t_end = 1e+308 s: at most"),
+    # ran without a word (issue 42)
+    (["-n", "3", "--size", "1"], "size = 1 m: the grain is as long as the chute"),
+    (["-n", "3", "--size", "uniform:1e-3:0.1", "--chute-length", "0.05"], "chute_length = 0.05 m"),
 ])
 def test_bad_input_is_one_line_before_anything_runs(tmp_path, capsys, argv, says):
     try:

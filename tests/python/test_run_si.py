@@ -91,3 +91,22 @@ def test_a_grain_that_settles_ends_its_run_at_rest_in_the_last_row():
     assert last["time"] == pytest.approx(last["rest_time"], rel=1e-12)
     assert last["time"] < 10.0 and 0 <= last["x"] < 0.3
     assert (df["at_rest"].iloc[:-1] == 0).all()  # it rests from the last row on
+
+
+def test_the_outputs_si_md_names_are_the_fmus():
+    # si.md said run_si gives a grain's `mass`, which no output is (issue 42): each name in
+    # its paragraph on the charge outputs is an output or a parameter of the SI FMU
+    import os
+    import re
+
+    from tribo.fmu.locate import find_fmu
+    from tribo.fmu.names import output_names, parameter_names
+    from tribo.materials import model_description
+    from tribo_fmu import ROOT
+    with open(os.path.join(ROOT, "docs", "si.md"), encoding="utf-8") as f:
+        text = f.read()
+    paragraph = text[text.index("**Charge outputs.**"):].split("\n\n")[0]
+    md = model_description(find_fmu(None, variant="si"))
+    known = set(output_names(md)) | set(parameter_names(md))
+    names = {n.replace("<name>", "static") for n in re.findall(r"`([a-z_<>]+)`", paragraph)}
+    assert len(names) >= 8 and names <= known, names - known

@@ -2,8 +2,8 @@
 sigma0 and whichever of the charging time t0 (and eta, with the sliding model) the data
 determine, each with its uncertainty, and a materials file the other commands take.
 
-    tribo calibrate --impacts impacts.csv --particle PE --wall steel --out out/calibration
-    tribo calibrate --impacts impacts.csv --chutes chutes.csv --workers 2 --out out/cal-pe
+    tribo calibrate --impacts examples/data/impacts.csv --particle PE --wall steel --out out/calibration
+    tribo calibrate --impacts examples/data/impacts.csv --chutes examples/data/chutes.csv --workers 2 --out out/cal-pe
     tribo population -n 200 --materials out/calibration/materials.toml --out out/calibrated
 
 --impacts CSV: a row per single impact, columns speed (m/s), angle_deg (degrees to the

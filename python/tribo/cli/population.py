@@ -4,7 +4,7 @@ particles drawn from a feed with a seed, one row per particle, the q/m summary a
     tribo population -n 1000 --seed 1 --out out/population
     tribo population -n 200 --particle PP --wall glass --epsilon uniform:0.5:1 \\
         --size lognormal:1e-3:0.3 --chute-length 0.5 --tilt-deg 35 --out out/pp-glass
-    tribo population -n 500 --measured sieve.csv --out out/sieve   # measured rows, drawn
+    tribo population -n 500 --measured examples/data/sieve.csv --out out/sieve  # measured rows
 
 The feed variables (tribo/populations/feed.py) take a number or a distribution: uniform:LOW:HIGH,
 normal:MEAN:SD, lognormal:MEDIAN:SIGMA, choice:V1,V2,...; --measured CSV gives columns of
