@@ -162,7 +162,7 @@ def test_out_means_a_folder_for_every_command(tmp_path, fmu_file, name, args):
 def test_the_api_keeps_to_the_same_folders(tmp_path):
     out = str(tmp_path / "api")
     tribo.population(2, seed=1, chute={"chute_length": 0.02}, t_end=1.0, out=out, serial=True)
-    with pytest.raises(FolderError, match=r"holds a population of another set-up \(n 2 -> 3"):
-        tribo.population(3, seed=1, chute={"chute_length": 0.02}, t_end=1.0, out=out, serial=True)
+    with pytest.raises(FolderError, match=r"holds a population of another set-up \(seed 1 -> 2"):
+        tribo.population(2, seed=2, chute={"chute_length": 0.02}, t_end=1.0, out=out, serial=True)
     with pytest.raises(FolderError, match="holds the results of tribo population"):
         tribo.sweep({"epsilon": [0.5], "n_segments": [64]}, t_end=5.0, out=out, serial=True)

@@ -14,8 +14,11 @@ replacement, so that values measured together stay together) for each of
     drop_speed      speed at the drop (m/s), in the direction drop_angle_deg
     drop_angle_deg  from the vertical, positive towards down-slope (degrees)
 
-The draw uses numpy's generator seeded with `seed`, the variables in that order: the same
-feed and seed give the same particles. Each particle is a run of the SI FMU (no unit
+The draw takes the grains in blocks of DRAW_BLOCK, each block from numpy's generator
+seeded with the seed's child of that block (numpy.random.SeedSequence(seed, spawn_key=
+(block,))), the variables in that order: the same feed and seed give the same particles,
+and the first n of them are the same whatever n, so that a population of more grains is
+the one of fewer and more (`-n 2000` on a folder of 1000 runs the 1000 new ones). Each particle is a run of the SI FMU (no unit
 conversion here: the FMU maps the SI set-up onto the model) from the drop to the chute's
 exit or the horizon, keyed like a sweep's run (batch.specs.run_key), so that a population is
 resumable like a sweep (batch.sweep.run_sweep).
@@ -94,6 +97,10 @@ STEPS_PER_RUN = 100
 # the FMU's work limit per step, raised to its maximum: a particle that rocks down the chute
 # takes many more steps than one that bounces, and the horizon bounds the work anyway
 WORK_LIMIT = 2**31 - 1
+
+
+# the draw's grains come in blocks of this many, each block from its own generator (draw)
+DRAW_BLOCK = 1024
 
 
 class FeedError(ValueError):
@@ -176,16 +183,21 @@ def draw(feed: Feed, n: int, seed: int) -> pd.DataFrame:
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
         raise FeedError(f"the seed must be a whole number >= 0, got {seed!r}")
     distributions = feed.resolved()
-    rng = np.random.default_rng(seed)
     measured = feed.measured
-    rows = rng.integers(0, len(measured), n) if measured is not None else None
-    columns = {}
-    for name in FEED_VARIABLES:
-        if measured is not None and name in measured.columns:
-            columns[name] = measured[name].to_numpy(dtype=float)[rows]
-        else:
-            columns[name] = distributions[name].draw(rng, n)
-    return pd.DataFrame(columns)
+    blocks = []
+    for block in range(-(-int(n) // DRAW_BLOCK)):
+        # each block of grains from a generator of its own (the seed's child `block`), drawn
+        # whole: the first n grains are the same whatever n, so a population extends
+        rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(block,)))
+        rows = rng.integers(0, len(measured), DRAW_BLOCK) if measured is not None else None
+        columns = {}
+        for name in FEED_VARIABLES:
+            if measured is not None and name in measured.columns:
+                columns[name] = measured[name].to_numpy(dtype=float)[rows]
+            else:
+                columns[name] = distributions[name].draw(rng, DRAW_BLOCK)
+        blocks.append(pd.DataFrame(columns))
+    return pd.concat(blocks, ignore_index=True).iloc[:n].reset_index(drop=True)
 
 
 def particle_parameters(feed: Feed, drawn: pd.DataFrame, defaults: dict | None = None) -> list[dict]:

@@ -37,8 +37,10 @@ class PopulationReport(Report):
 
 
 def population_setup(feed: Feed, n: int, seed: int, t_end: float) -> dict:
-    """What makes a population this one (an output folder's record, batch/folder.py)."""
-    return {"n": n, "seed": seed, "t_end_s": t_end, "feed": feed.describe()}
+    """What makes a population this one (an output folder's record, batch/folder.py): not
+    n, since the first n grains of a draw are the same whatever n (feed.draw), so that a
+    folder takes more grains, or the first of its own."""
+    return {"seed": seed, "t_end_s": t_end, "feed": feed.describe()}
 
 
 def prepare_population(feed: Feed, n: int, seed: int, t_end: float, image: FmuImage):
