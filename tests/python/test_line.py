@@ -277,3 +277,25 @@ def test_grains_that_stay_on_the_chute_are_counted_apart_in_the_line(tmp_path, c
                      if line.get_label() == f"{m} stayed on the chute")
         assert share.get_ydata()[0] == pytest.approx(table[f"not_exited_{m}"] / table[f"fed_{m}"])
     assert_legends_cover_no_data(fig)
+
+
+def test_a_sweep_says_how_far_from_no_separation_and_a_missing_material_warns_nothing(tmp_path,
+                                                                                       capsys):
+    import warnings
+
+    from tribo.cli.main import main as tribo_command
+    argv = ["line", "sweep", "--voltages", "5e3,40e3", "--chute-length", "0.05", "--serial",
+            "--no-progress", "--no-plot"]
+    with warnings.catch_warnings():
+        # one grain: the material that drew none gave numpy's 0/0 RuntimeWarning (issue 42)
+        warnings.simplefilter("error", RuntimeWarning)
+        assert tribo_command(argv + ["-n", "1", "--out", str(tmp_path / "one")]) == 0
+    said = capsys.readouterr().out
+    assert "0 for a random split of the feed" in said and "none: a material drew no grain" in said
+    assert tribo_command(argv + ["-n", "4", "--out", str(tmp_path / "four")]) == 0
+    said = capsys.readouterr().out
+    table = pd.read_csv(tmp_path / "four" / "line.csv")
+    recoveries = table["recovery_PE"] + table["recovery_nylon"]
+    assert (table["separation"] == recoveries - 1).all()
+    fed = table["fed_PE"][0] + table["fed_nylon"][0]
+    assert f"(PE {table['fed_PE'][0] / fed:.3g}, nylon {table['fed_nylon'][0] / fed:.3g})" in said

@@ -181,15 +181,23 @@ def told(job, report) -> list[str]:
              f"{len(report.failed)} failed"]
     if report.table is not None:
         cols = ["voltage"] + [c for c in report.table.columns
-                              if c.startswith(("grade_", "recovery_"))]
+                              if c.startswith(("grade_", "recovery_"))] + ["separation"]
         materials = [material(p, "particle").key for p in job.line.particles]
         first = report.table.iloc[0]
+        fed = sum(first[f"fed_{m}"] for m in materials)
+        shares = ", ".join(f"{m} {first[f'fed_{m}'] / fed:.3g}" for m in materials) if fed > 0 else ""
         if sum(first[f"not_exited_{m}"] for m in materials) > 0:
             stayed = (f"line: {stayed_text(first, materials, job.t_end)}: these do not enter "
                       f"the separator (not collected: counted in the recovery's fed mass)")
         else:
             stayed = "line: every grain left the chute"
+        best = report.table.loc[report.table["separation"].idxmax()] \
+            if report.table["separation"].notna().any() else None
         lines += [report.table[cols].to_string(index=False, float_format=lambda v: f"{v:.4g}"),
+                  f"line: separation = the recoveries' sum less 1: 0 for a random split of the "
+                  f"feed, whose grades are the feed's mass shares ({shares}), 1 for a complete "
+                  f"one; " + (f"{best['separation']:.3g} at {best['voltage']:g} V, the most"
+                              if best is not None else "none: a material drew no grain"),
                   stayed, f"line: wrote {', '.join(report.files)}"]
     return lines
 

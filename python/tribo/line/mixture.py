@@ -24,7 +24,7 @@ all have run, the folder gets
     line.csv       a row per voltage: the mass fed, in each product, on each plate, airborne,
                    not out of the chute (at rest on it, or still on it at the horizon), per
                    material, and the number of grains fed, at rest and at the horizon; a
-                   mixture's grade and recovery of each product
+                   mixture's grade and recovery of each product and its separation
     bins.csv       the mass per voltage, bin and material
     line.png       a sweep's figure (grade and recovery against the voltage)
     line.json      the set-up
@@ -37,7 +37,9 @@ positive grain drifts to -x (docs/separator.md): the material whose sigma0 again
 is positive is the target of the -x product, the other of the +x one (mirrored for U < 0).
 grade = target's mass in its product / the product's mass; recovery = target's mass in its
 product / the target's fed mass (grains that do not leave the chute, or are still falling
-at the separator's horizon, count as fed and not collected).
+at the separator's horizon, count as fed and not collected). separation = the two
+recoveries' sum less 1: 0 for a random split of the feed (whose grades are the feed's mass
+shares, near 0.5 for an even mixture), 1 for a complete one.
 
 A grain that does not leave the chute never enters the separator: it came to rest on the
 chute (its run ended there, docs/model.md section 3c) or was still on it at the chute's
@@ -381,7 +383,13 @@ def tally(landings: pd.DataFrame, line: Line, n_bins: int) -> tuple[pd.DataFrame
                 row[f"product_{m}_side"] = -1 if side == "neg_side" else 1
                 row[f"product_{m}_mass"] = product
                 row[f"grade_{m}"] = row[f"{side}_{m}"] / product if product > 0 else math.nan
-                row[f"recovery_{m}"] = row[f"{side}_{m}"] / row[f"fed_{m}"]
+                # a material that drew no grain has no recovery (not a 0/0 warning)
+                row[f"recovery_{m}"] = (row[f"{side}_{m}"] / row[f"fed_{m}"]
+                                        if row[f"fed_{m}"] > 0 else math.nan)
+            # how far from no separation: a random split of the feed recovers each material
+            # in the share of the mass its product takes, so the two recoveries sum to 1 (its
+            # grades are the feed's shares); a complete one recovers both whole: 1
+            row["separation"] = sum(row[f"recovery_{m}"] for m in materials) - 1.0
         rows.append(row)
     return pd.DataFrame(rows), pd.DataFrame(bin_rows)
 
