@@ -2,8 +2,20 @@
 # Set-up shared by the README's commands, safe to re-run: installs what is missing
 # (Debian packages, the Python venv when requirements.txt changed) and builds.
 # Nothing is reinstalled when nothing changed.
-set -euo pipefail
+set -eEuo pipefail  # -E: the ERR trap below in functions too
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+# what the installs and builds print goes to this log, progress lines to the terminal; a
+# failure shows the log's end
+mkdir -p "$ROOT/build"
+export SETUP_LOG="$ROOT/build/setup.log"
+: > "$SETUP_LOG"
+failed() {
+  echo "setup: failed; the end of $SETUP_LOG:" >&2
+  tail -n 30 "$SETUP_LOG" >&2
+}
+trap 'failed' ERR
+# shellcheck source=apt.sh
+. "$ROOT/scripts/apt.sh"
 
 # dpkg-dev: dpkg-source, for SUNDIALS' source package (scripts/sundials.sh)
 APT_PACKAGES=(build-essential cmake ninja-build pkg-config libsundials-dev libcriterion-dev
@@ -18,11 +30,9 @@ for p in "${APT_PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if ((${#missing[@]})); then
-  SUDO=""
-  [ "$(id -u)" -eq 0 ] || SUDO=sudo
-  echo "setup: installing ${missing[*]}"
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
+  echo "setup: installing ${missing[*]} (log: build/setup.log)"
+  apt_run update -qq
+  DEBIAN_FRONTEND=noninteractive apt_run install -y -qq "${missing[@]}"
 fi
 
 # Debian's python3 (not whatever python3 is first on PATH), so that a fresh Debian 12
@@ -94,9 +104,11 @@ build() { # build <dir> <cmake args...>
   local args=(-DTRIBO_PYTHON="$VENV/bin/python"
               -DSUNDIALS_DIR="$ROOT/build-sundials/native/lib/cmake/sundials" "$@")
   if ! configured "$dir" "${args[@]}"; then
-    cmake -S "$ROOT" -B "$ROOT/$dir" -G Ninja "${args[@]}" >/dev/null
+    cmake -S "$ROOT" -B "$ROOT/$dir" -G Ninja "${args[@]}" >>"$SETUP_LOG" 2>&1
   fi
-  cmake --build "$ROOT/$dir"
+  # ninja's lines (one per file) into the log, a line here
+  echo "setup: building $dir (log: build/setup.log)"
+  cmake --build "$ROOT/$dir" >>"$SETUP_LOG" 2>&1
 }
 # -Werror: a warning fails the build (CI runs this)
 build build -DCMAKE_BUILD_TYPE=Release -DTRIBO_WERROR=ON
@@ -105,3 +117,4 @@ if [ "${TRIBO_SETUP_SANITIZE:-0}" = 1 ]; then
   build build-sanitize -DCMAKE_BUILD_TYPE=Debug -DTRIBO_SANITIZE=ON -DTRIBO_BUILD_FMU=ON -DTRIBO_WERROR=ON
 fi
 venv_waited "$venv_rest" "the pinned requirements and the package"
+trap - ERR

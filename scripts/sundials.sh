@@ -34,9 +34,13 @@ sundials_source() {
   local options=(-o Dir::Etc::SourceList=/dev/null -o Dir::Etc::SourceParts="$apt/parts"
                  -o Dir::State::Lists="$apt/lists" -o Dir::Cache="$apt/cache"
                  -o APT::Sandbox::User=root)
-  apt-get "${options[@]}" update -qq
-  (cd "$dir/package" && apt-get "${options[@]}" source --download-only -qq "sundials=$version")
-  dpkg-source -x "$dir/package"/sundials_*.dsc "$dir/src" >/dev/null
+  # into SETUP_LOG (setup.sh's): apt's gpgv and dpkg-source's signature warnings (no
+  # keyring for Debian's source signatures here; apt checks the sources' hashes)
+  local log=${SETUP_LOG:-/dev/null}
+  apt-get "${options[@]}" update -qq >>"$log" 2>&1
+  (cd "$dir/package" && apt-get "${options[@]}" source --download-only -qq \
+     "sundials=$version") >>"$log" 2>&1
+  dpkg-source -x "$dir/package"/sundials_*.dsc "$dir/src" >>"$log" 2>&1
   echo "$version" > "$dir/src/.version"
 }
 
@@ -53,8 +57,8 @@ sundials_build() {
     -DBUILD_SHARED_LIBS=OFF -DBUILD_STATIC_LIBS=ON \
     -DBUILD_ARKODE=OFF -DBUILD_CVODES=OFF -DBUILD_IDA=OFF -DBUILD_IDAS=OFF -DBUILD_KINSOL=OFF \
     -DBUILD_CVODE=ON -DEXAMPLES_ENABLE_C=OFF -DEXAMPLES_INSTALL=OFF -DSUNDIALS_INDEX_SIZE=64 \
-    -DCMAKE_INSTALL_PREFIX="$prefix" "$@" >/dev/null
-  cmake --build "$build" >/dev/null
+    -DCMAKE_INSTALL_PREFIX="$prefix" "$@" >>"${SETUP_LOG:-/dev/null}" 2>&1
+  cmake --build "$build" >>"${SETUP_LOG:-/dev/null}" 2>&1
   cmake --install "$build" > "$build/install.log" 2>&1 || { cat "$build/install.log" >&2; return 1; }
   echo "$version" > "$prefix/.version"
 }

@@ -28,6 +28,8 @@ RUN_COLUMNS = ["t_end", "record_interval", "fmu_sha256"]
 RESULTS, FIGURE, SERIES = "results.csv", "results.png", "series"
 TIMING_COLUMNS = ["cpu_s", "wall_s"]  # differ from one execution of a run to the next
 
+PROGRESS_DELAY = 2.0  # s before a progress bar shows (tqdm's delay)
+
 
 def sweep_columns(specs: list[RunSpec], results: list[str], constants: dict | None = None) -> list[str]:
     """The results file's header: the key, the constants (e.g. the materials), the
@@ -90,8 +92,9 @@ def run_sweep(specs: list[RunSpec], image, results_path: str, executor, *,
     if max_runs is not None:
         todo = todo[:max_runs]
 
+    # a bar shows once the runs have taken PROGRESS_DELAY s: a study's short phases draw none
     with tqdm(total=len(todo), desc=desc, unit="run", disable=not progress or not todo,
-              dynamic_ncols=True) as bar:
+              dynamic_ncols=True, delay=PROGRESS_DELAY) as bar:
         for i, outcome in executor.run(run, image, [spec_of[k] for k in todo]):
             key, spec = todo[i], spec_of[todo[i]]
             bar.update()
