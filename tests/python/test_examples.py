@@ -24,7 +24,7 @@ import pytest
 from study_support import PYTHON, command
 from tribo_fmu import ROOT
 
-SUBCOMMANDS = ["study", "sweep", "population", "impact-map", "line", "calibrate", "dem"]
+SUBCOMMANDS = ["study", "sweep", "population", "grain", "impact-map", "line", "calibrate", "dem"]
 ALIASES = ["tribo-study", "tribo-sweep", "tribo-population", "tribo-impact-map", "tribo-line"]
 
 
@@ -177,7 +177,7 @@ def shrink(sub: str, argv: list[str], scheduler) -> list[str]:
         out += ["--epsilons", "1.0", "--t-end", "20", "--transition-width", "0.5"]
     if sub == "dem" and "--stiffness-scale" not in out:  # LIGGGHTS' time step 6.3 times
         out += ["--stiffness-scale", "0.01"]
-    return out + ["--no-progress"]
+    return out + ([] if sub == "grain" else ["--no-progress"])  # one grain shows no progress
 
 
 EXAMPLES = [(sub, line) for sub in SUBCOMMANDS for line in help_examples(sub)]

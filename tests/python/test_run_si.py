@@ -3,6 +3,7 @@
 import subprocess
 import sys
 
+import numpy as np
 import pandas as pd
 import pytest
 
@@ -110,3 +111,27 @@ def test_the_outputs_si_md_names_are_the_fmus():
     known = set(output_names(md)) | set(parameter_names(md))
     names = {n.replace("<name>", "static") for n in re.findall(r"`([a-z_<>]+)`", paragraph)}
     assert len(names) >= 8 and names <= known, names - known
+
+
+def test_tribo_grain_prints_the_q_per_m_run_si_gives(capsys):
+    # one grain's q/m from the command line (only tribo.run_si gave it): the same run
+    from tribo.cli.main import main as tribo_command
+    values = dict(size=2e-3, epsilon=0.8, chute_length=0.2, tilt_deg=40, drop_height=0.02)
+    assert tribo_command(["grain", "--particle", "PP", "--wall", "aluminium",
+                          *[f"--{k.replace('_', '-')}={v:g}" for k, v in values.items()]]) == 0
+    said = capsys.readouterr().out.splitlines()
+    last = tribo.run_si("PP", "aluminium", record_interval=None, **values).iloc[-1]
+    assert said[0].endswith(f"left the chute at {last['exit_time']:.4g} s at "
+                            f"{float(np.hypot(last['u'], last['v'])):.4g} m/s after "
+                            f"{int(last['impacts'])} impact(s)"), said
+    for model in ("static", "sliding"):
+        assert any(line.startswith(f"grain: {model} model: q = {last[f'charge_{model}']:.4g} C, "
+                                   f"q/m = {last[f'charge_to_mass_{model}']:.4g} C/kg")
+                   for line in said), said
+
+
+def test_tribo_grain_meets_a_mistake_with_one_line(capsys):
+    from tribo.cli.main import main as tribo_command
+    assert tribo_command(["grain", "--size", "1"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("tribo grain: error: size = 1 m") and len(err.splitlines()) == 1

@@ -20,6 +20,7 @@ from .parsing import OneLineParser, described
 SUBCOMMANDS = {
     "population": ("population",
                    "particles drawn from a feed, down the chute (SI FMU): q/m statistics and figure"),
+    "grain": ("grain", "one grain down the chute (SI FMU): how its run ended and its q/m"),
     "line": ("line", "grains down the SI chute and through the separator: one grain, a mixture, "
                      "a voltage sweep"),
     "impact-map": ("impact_map", "the charge one wall impact transfers, over speed, angle, "
