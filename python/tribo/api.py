@@ -180,7 +180,9 @@ def population(n: int, *, seed: int = 0, particle: str = "PE", wall: str = "stee
     elif measured is not None:
         measured = check_measured(measured)
     feed = Feed(particle, wall, dict(distributions or {}), dict(DEFAULT_CHUTE, **(chute or {})),
-                settings, measured)
+                settings, measured,
+                materials=os.fspath(materials) if isinstance(materials, (str, os.PathLike))
+                else None)
     job = PopulationJob(feed, n, seed, t_end, fmu, shape_edges=shape_edges, size_edges=size_edges)
     report = execute(job, out, executor_for(serial, scheduler, workers, processes), fresh=fresh,
                      progress=progress)

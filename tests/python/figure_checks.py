@@ -50,3 +50,18 @@ def assert_legends_cover_no_data(fig) -> None:
             assert not len(covered), (f"the legend {[t.get_text() for t in lg.get_texts()]} covers "
                                       f"{len(covered)} plotted points of the panel "
                                       f"{ax.get_title()!r}")
+
+
+def assert_tick_labels_apart(fig) -> None:
+    """No two tick labels of an axis overlap (a log axis over less than a decade labelled
+    its minor ticks, 3×10⁻³4×10⁻³6×10⁻³, one over the next)."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            boxes = [t.get_window_extent(renderer) for t in axis.get_ticklabels(minor=False)
+                     + axis.get_ticklabels(minor=True) if t.get_visible() and t.get_text()]
+            for i, a in enumerate(boxes):
+                for b in boxes[i + 1:]:
+                    assert not a.overlaps(b), (ax.get_title(), axis.axis_name,
+                                               [t.get_text() for t in axis.get_ticklabels()])

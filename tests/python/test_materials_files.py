@@ -50,7 +50,10 @@ def test_a_population_and_its_command_take_the_file(doubled, tmp_path, capsys):
     assert list(rows["charge_static"]) == list(file.results["charge_static"])
     # the folder's record holds the values: the same folder with the table's is another set-up
     with open(tmp_path / "command" / "tribo.json") as f:
-        assert json.load(f)["setup"]["feed"]["settings"]["sigma0"] == -2e-5
+        feed = json.load(f)["setup"]["feed"]
+        assert feed["settings"]["sigma0"] == -2e-5
+        # and the file, which the figure's title names (it did not: issue 42)
+        assert feed["materials"] == doubled and file.results is not None
     assert tribo_command(["population", "-n", "3", "--seed", "5", "--chute-length", "0.02",
                           "--t-end", "1", "--serial", "--no-progress",
                           "--out", str(tmp_path / "command")]) == 2

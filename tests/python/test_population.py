@@ -15,7 +15,7 @@ from tribo.populations import plot as population_plot
 from tribo.populations.feed import Feed, FeedError, draw, particle_parameters
 from tribo.populations.runner import run_population
 from tribo.populations.summary import statistics, stream_statistics, summarize_population
-from figure_checks import assert_legends_cover_no_data
+from figure_checks import assert_legends_cover_no_data, assert_tick_labels_apart
 
 # a short chute: each particle a few impacts, ~0.05 s of CPU
 SHORT = {"chute_length": 0.02}
@@ -61,7 +61,8 @@ def test_a_population_extends_running_only_the_new_grains(tmp_path, capsys):
             "--no-progress", "--out", out]
     assert tribo_command(argv + ["-n", "3"]) == 0
     first = pd.read_csv(os.path.join(out, "particles.csv"))
-    capsys.readouterr()
+    # the table is in µC/kg, the files in C/kg: the line says both (it said the first)
+    assert "q/m (µC/kg here; summary.csv and particles.csv hold C/kg;" in capsys.readouterr().out
     assert tribo_command(argv + ["-n", "5"]) == 0  # refused "another set-up" before
     assert "2 run, 3 already in the file" in capsys.readouterr().out
     rows = pd.read_csv(os.path.join(out, "particles.csv"))
@@ -214,6 +215,56 @@ def test_the_figures_mean_and_percentiles_are_the_summarys():
     # the CSV's 5th percentile of a negative q/m is the largest magnitude: its line is
     # right of the 95th's on the magnitude axis
     assert lines["5th percentile"].get_xdata()[0] > lines["95th percentile"].get_xdata()[0]
+
+
+@pytest.mark.parametrize("narrow", [False, True])
+def test_no_tick_labels_overlap_on_any_range(narrow):
+    # a 3 mm grain's q/m spans less than a decade: its axes labelled minor ticks one over
+    # the next (issue 42)
+    results = synthetic_population(60, seed=2)
+    if narrow:
+        for c in ("charge_to_mass_static", "charge_to_mass_sliding", "charge_static",
+                  "charge_sliding"):
+            results[c] = results[c].iloc[0] * np.linspace(1.0, 1.8, len(results))
+        results["size"] = np.linspace(3e-3, 3.4e-3, len(results))
+    assert_tick_labels_apart(figure_of(results))
+
+
+def test_panels_of_no_information_are_left_out_saying_why():
+    # spheres of one size leaving at one speed: the roundness, size and exit speed panels
+    # were empty, or plotted 1e-10 m/s of noise on an offset axis
+    results = synthetic_population(30, seed=5).assign(epsilon=1.0, size=1e-3)
+    results["exit_speed"] = 1.37 + 1e-10 * np.arange(len(results))
+    fig = figure_of(results)
+    assert len(fig.axes) == 2  # the histogram of each model
+    title = fig._suptitle.get_text()
+    for why in ("q/m against roundness (every grain roundness ε 1)",
+                "q/m against size (every grain size 0.001 m)",
+                "exit speed against charge (every grain left at 1.37 m/s)"):
+        assert f"left out, no information: {why}" in title, title
+    only_size = synthetic_population(30, seed=5).assign(epsilon=1.0)
+    titles = [ax.get_title() for ax in figure_of(only_size).axes]
+    assert "q/m against size" in titles and "q/m against roundness" not in titles
+
+
+def test_the_figure_draws_the_streams_mass_weighted_mean():
+    # the number to design on was the one the figure did not draw (issue 42)
+    results = synthetic_population(80, seed=6)
+    results["exited"], results["density"] = 1, 950.0
+    summary = summarize_population(results, ("static", "sliding"))
+    fig = population_plot.population_figure(results, summary)
+    row = summary[(summary.grouping == "all") & (summary.model == "static")].iloc[0]
+    assert np.isfinite(row["stream_mean"]) and row["stream_mean"] != row["mean"]
+    line = next(line for line in fig.axes[0].get_lines() if line.get_label().startswith("stream mean"))
+    assert line.get_xdata()[0] == pytest.approx(abs(row["stream_mean"]) * 1e6, rel=1e-12)
+    assert f"{row['stream_mean'] * 1e6:.3g} µC/kg" in line.get_label()
+
+
+def test_the_title_says_the_materials_file_and_the_vibrating_chute():
+    described = {"particle": "PE", "wall": "steel", "materials": "/x/out/cal/materials.toml",
+                 "vibration": (5e-4, 50.0)}
+    title = population_plot.population_title(described, 10, 1, "at the exit")
+    assert title.endswith("; materials from materials.toml, the chute vibrating 0.5 mm at 50 Hz")
 
 
 def test_the_figure_draws_the_summary_it_is_given():

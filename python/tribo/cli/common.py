@@ -122,7 +122,8 @@ def feed_of(args, measured=None):
     distributions = {n: getattr(args, n) for n in FEED_VARIABLES if getattr(args, n) is not None}
     return Feed(args.particle, args.wall, distributions,
                 {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg},
-                with_pair(args.particle, args.wall, dict(args.set), args.materials), measured)
+                with_pair(args.particle, args.wall, dict(args.set), args.materials), measured,
+                materials=args.materials)
 
 
 def add_si_job_options(p: argparse.ArgumentParser, out: str, *, max_runs: str | None = None) -> None:
@@ -205,6 +206,10 @@ def run_job(args, make_job, tell) -> int:
     for line in report.notes + tell(job, report):
         print(line)
     return 1 if report.failed else 0
+
+
+# what the console's q/m table says of its unit: the files hold C/kg
+QM_UNITS_SAID = "µC/kg here; summary.csv and particles.csv hold C/kg"
 
 
 def qm_table(summary) -> str:

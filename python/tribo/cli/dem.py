@@ -33,8 +33,9 @@ import os
 
 SPHERES = "1"  # --epsilon: LIGGGHTS holds spheres here
 
-from .common import (add_chute_options, add_class_options, add_feed_options, add_si_job_options,
-                     feed_of, name_value, numbers, positive_number, qm_table, run_job)
+from .common import (QM_UNITS_SAID, add_chute_options, add_class_options, add_feed_options,
+                     add_si_job_options, feed_of, name_value, numbers, positive_number, qm_table,
+                     run_job)
 
 
 def add_arguments(p) -> None:
@@ -94,7 +95,7 @@ def told(job, report) -> list[str]:
                  f"({int(found['sustained'].sum()) if len(found) else 0} ending in sustained "
                  f"contact); CPU: LIGGGHTS {report.dem_cpu_s:.3g} s, charging "
                  f"{report.charging_cpu_s:.3g} s ({100 * share:.2g} % of LIGGGHTS')")
-    lines += ["q/m (µC/kg; stream_mean and stream_std: mass-weighted, of the grains that "
+    lines += [f"q/m ({QM_UNITS_SAID}; stream_mean and stream_std: mass-weighted, of the grains that "
               "left the chute; stayed: the mass fraction that did not leave; docs/dem.md):",
               qm_table(report.summary),
               f"dem: {int(report.summary.iloc[0]['n_exited'])} of {len(report.results)} grains "

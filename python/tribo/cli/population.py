@@ -38,8 +38,8 @@ process, or --scheduler).
 
 import os
 
-from .common import (add_chute_options, add_class_options, add_feed_options, add_si_job_options,
-                     feed_of, name_value, qm_table, run_job)
+from .common import (QM_UNITS_SAID, add_chute_options, add_class_options, add_feed_options,
+                     add_si_job_options, feed_of, name_value, qm_table, run_job)
 
 
 def add_arguments(p) -> None:
@@ -70,7 +70,7 @@ def told(job, report) -> list[str]:
     lines = [f"population: {report.executed} run, {report.skipped} already in the file, "
              f"{len(report.failed)} failed; {len(report.results)} of {report.total} done"]
     if report.summary is not None:
-        lines += ["q/m (µC/kg; size classes in m; stream_mean and stream_std: mass-weighted, "
+        lines += [f"q/m ({QM_UNITS_SAID}; size classes in m; stream_mean and stream_std: mass-weighted, "
                   "of the grains that left the chute, what a Faraday cup there reads; stayed: "
                   "the mass fraction that did not leave; the median is the typical grain: "
                   "docs/populations.md):",

@@ -323,13 +323,13 @@ class DemJob(Job):
                            impacts=found, dem_cpu_s=dem["cpu_s"], charging_cpu_s=charging_cpu)
         if self.figure:
             # matplotlib only when a figure is drawn: `import tribo.dem` stays without it
-            from ..populations.plot import write_population_figure
+            from ..populations.plot import population_title, write_population_figure
             chute = described["chute"]
             how = ("dilute" if self.feed_rate is None else f"{format_number(self.feed_rate)} grains/s")
-            title = (f"DEM (LIGGGHTS, spheres, {how}): {n} grains of {described['particle']} on "
-                     f"{described['wall']} (seed {self.seed}), at the exit of a "
-                     f"{format_number(chute['chute_length'])} m chute tilted "
-                     f"{format_number(chute['tilt_deg'])}°")
+            title = population_title(
+                dict(described, vibration=self.vibration), n, self.seed,
+                f"at the exit of a {format_number(chute['chute_length'])} m chute tilted "
+                f"{format_number(chute['tilt_deg'])}°", head=f"DEM (LIGGGHTS, spheres, {how}): ")
             report.files.append(write_population_figure(rows, summary, os.path.join(out, FIGURE),
                                                         title))
         return report

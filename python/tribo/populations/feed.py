@@ -117,6 +117,9 @@ class Feed:
     chute: dict = field(default_factory=lambda: dict(DEFAULT_CHUTE))  # the defaults for those not given
     settings: dict = field(default_factory=dict)  # any other SI parameter by name
     measured: pd.DataFrame | None = None  # columns among FEED_VARIABLES
+    # the materials file the pair's values in `settings` came from, where one did: said in
+    # the record and the figure's title
+    materials: str | None = None
 
     def resolved(self) -> dict:
         """feed variable -> Distribution (the defaults for those not given)."""
@@ -144,6 +147,8 @@ class Feed:
                "measured_columns": measured,
                "distributions": {n: d.text() for n, d in self.resolved().items()
                                  if n not in measured}}
+        if self.materials is not None:
+            out["materials"] = str(self.materials)
         if self.measured is not None:  # the values themselves, by their digest
             text = self.measured.to_csv(index=False, float_format="%.17g").encode()
             out["measured_sha256"] = hashlib.sha256(text).hexdigest()

@@ -82,7 +82,7 @@ def run_population(feed: Feed, n: int, seed: int, t_end: float, image: FmuImage,
         report.files.append(os.path.join(out, SUMMARY))
         if figure:
             # matplotlib only when a figure is drawn: `import tribo` stays without it
-            from .plot import write_population_figure
+            from .plot import population_title, write_population_figure
             chute = described["chute"]
             overall = report.summary.iloc[0]
             where = (f"at the exit of a {format_number(chute['chute_length'])} m chute tilted "
@@ -91,8 +91,7 @@ def run_population(feed: Feed, n: int, seed: int, t_end: float, image: FmuImage,
                 where = (f"on a {format_number(chute['chute_length'])} m chute tilted "
                          f"{format_number(chute['tilt_deg'])}°, q/m where each run ended: "
                          f"{ends_text(overall, t_end)}")
-            title = (f"{n} particles of {described['particle']} on {described['wall']} (seed "
-                     f"{seed}), {where}")
+            title = population_title(described, n, seed, where)
             report.files.append(write_population_figure(report.results, report.summary,
                                                         os.path.join(out, FIGURE), title))
     return report
