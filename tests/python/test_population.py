@@ -439,3 +439,24 @@ def test_rows_that_do_not_say_why_a_grain_stayed_are_counted_as_far_as_they_go()
     # an at_rest column alone tells the two apart
     told = summarize_population(rows.assign(at_rest=[0, 1, 0]), ("static",)).iloc[0]
     assert (told["n_at_rest"], told["n_at_horizon"]) == (1, 0)
+
+
+def test_failed_runs_are_said_on_stderr_and_a_work_limit_set_is_taken(tmp_path, capsys,
+                                                                      monkeypatch):
+    argv = ["population", "-n", "2", "--chute-length", "0.02", "--t-end", "1", "--serial",
+            "--no-progress", "--no-plot"]
+    # --set work_limit was a TypeError traceback ("multiple values for keyword argument")
+    assert tribo_command(argv + ["--set", "work_limit=1000", "--out", str(tmp_path / "w")]) == 0
+    assert (pd.read_csv(tmp_path / "w" / "particles.csv")["work_limit"] == 1000).all()
+    capsys.readouterr()
+    # every run failing: rc 1 with the reason on stdout alone before (issue 42)
+    import tribo.populations.runner as runner
+
+    def failing(image, spec):
+        raise RuntimeError("the FMU failed in the step from time 0: a reason")
+
+    monkeypatch.setattr(runner, "run_particle", failing)
+    assert tribo_command(argv + ["--out", str(tmp_path / "f")]) == 1
+    err = capsys.readouterr().err.strip()
+    assert err == ("tribo population: error: 2 particle(s) failed, e.g.: the FMU failed in the "
+                   "step from time 0: a reason"), err

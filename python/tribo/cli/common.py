@@ -205,7 +205,11 @@ def run_job(args, make_job, tell) -> int:
         return 130
     for line in report.notes + tell(job, report):
         print(line)
-    return 1 if report.failed else 0
+    if report.failed:  # said on stderr too, where a script looks for what went wrong
+        _, error = report.failed[0]
+        return fail(args.prog, f"{len(report.failed)} {getattr(job, 'noun', 'run')}(s) failed, "
+                               f"e.g.: {one_line(error)}", 1)
+    return 0
 
 
 # what the console's q/m table says of its unit: the files hold C/kg

@@ -209,8 +209,9 @@ def particle_parameters(feed: Feed, drawn: pd.DataFrame, defaults: dict | None =
     """The SI FMU's parameters of each drawn particle, by the package's names; `defaults`
     (e.g. the FMU's cylinder depth) unless the feed sets them."""
     settings = {**(defaults or {}), **dict(DEFAULT_CHUTE, **feed.chute), **feed.settings}
-    base = dict(pair_values(feed.particle, feed.wall, sigma0="sigma0" not in settings),
-                work_limit=WORK_LIMIT, **settings)
+    # a setting wins over the work limit too (it was a TypeError, "multiple values")
+    base = {**pair_values(feed.particle, feed.wall, sigma0="sigma0" not in settings),
+            "work_limit": WORK_LIMIT, **settings}
     if "size" in drawn.columns and "chute_length" in base and len(drawn):
         check_fits(float(drawn["size"].max()), float(base["chute_length"]))
     return [dict(base, **{name: float(value) for name, value in zip(drawn.columns, row)})
