@@ -150,6 +150,9 @@ def test_the_progress_comes_while_liggghts_runs_on_one_rank(tmp_path, monkeypatc
             self.n += k
             seen.append(log.read_text(errors="replace").count("Loop time"))
 
+        def refresh(self):
+            pass
+
         def close(self):
             pass
 
