@@ -21,6 +21,11 @@ from .common import INPUT_ERRORS, add_materials_option, fail, feed_of, name_valu
 # 1 mm grain of roundness 0.6 lying flat
 GRAIN_DEFAULTS = {"epsilon": 0.6, "size": 1e-3, "phi0_deg": 0.0, "omega0": 0.0,
                   "drop_height": 0.01, "drop_speed": 0.0, "drop_angle_deg": 0.0}
+# what each is (populations/feed.py's text), before its unit (FEED_UNITS)
+MEANINGS = {"epsilon": "roundness", "size": "size,", "phi0_deg": "orientation of the long axis at "
+            "the drop,", "omega0": "spin at the drop,", "drop_height": "height of the lowest "
+            "point above the chute,", "drop_speed": "speed at the drop,",
+            "drop_angle_deg": "direction of the drop speed,"}
 
 
 def add_arguments(p) -> None:
@@ -29,7 +34,8 @@ def add_arguments(p) -> None:
     for name in FEED_VARIABLES:
         p.add_argument(f"--{name.replace('_', '-')}", dest=name, type=float,
                        default=GRAIN_DEFAULTS[name],
-                       help=f"{FEED_UNITS[name]} (default {GRAIN_DEFAULTS[name]:g})")
+                       help=f"{MEANINGS[name]} {FEED_UNITS[name]} (default "
+                            f"{GRAIN_DEFAULTS[name]:g})")
     p.add_argument("--chute-length", type=float, default=DEFAULT_CHUTE["chute_length"],
                    help=f"length of the chute, m (default {DEFAULT_CHUTE['chute_length']:g})")
     p.add_argument("--tilt-deg", type=float, default=DEFAULT_CHUTE["tilt_deg"],
