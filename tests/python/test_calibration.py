@@ -414,3 +414,21 @@ def test_the_command_writes_a_materials_file_a_population_and_the_line_take(imag
     assert tribo_command(["calibrate", "--impacts", str(tmp_path / "impacts.csv"), "--fit",
                           "sigma0", "--serial", "--no-progress", "--out", str(out)]) == 2
     assert "another set-up" in capsys.readouterr().err
+
+
+def test_the_example_data_are_what_make_data_makes(tmp_path):
+    # the files the documented commands name (examples/data/): made by the model as
+    # make_data.py says, so that they stay the model's as it changes
+    import importlib.util
+
+    from tribo_fmu import ROOT
+    folder = os.path.join(ROOT, "examples", "data")
+    spec = importlib.util.spec_from_file_location("make_data", os.path.join(folder, "make_data.py"))
+    make_data = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(make_data)
+    rng = np.random.default_rng(7)
+    for name, made in (("impacts", make_data.impacts(rng)),
+                       ("chutes", make_data.chutes(rng, str(tmp_path))),
+                       ("sieve", make_data.sieve())):
+        pd.testing.assert_frame_equal(pd.read_csv(os.path.join(folder, f"{name}.csv")),
+                                      made.reset_index(drop=True), check_dtype=False)
