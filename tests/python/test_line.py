@@ -299,3 +299,15 @@ def test_a_sweep_says_how_far_from_no_separation_and_a_missing_material_warns_no
     assert (table["separation"] == recoveries - 1).all()
     fed = table["fed_PE"][0] + table["fed_nylon"][0]
     assert f"(PE {table['fed_PE'][0] / fed:.3g}, nylon {table['fed_nylon'][0] / fed:.3g})" in said
+
+
+@pytest.mark.parametrize("mode", ["grain", "mixture"])
+def test_a_horizon_the_model_cannot_resolve_is_one_line_before_any_run(tmp_path, capsys, mode):
+    # every grain's run failed at its first step, in a started folder (issue 42)
+    from tribo.cli.main import main as tribo_command
+    out = tmp_path / "l"
+    assert tribo_command(["line", mode, "-n", "2", "--t-end", "1e308", "--serial",
+                          "--no-progress", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "t_end = 1e+308 s: at most" in err and len(err.strip().splitlines()) == 1, err
+    assert not out.exists()

@@ -63,7 +63,8 @@ from ..batch.sweep import keys_of, read_series, run_sweep
 from ..fmu.names import start_value
 from ..fmu.parameters import check_values
 from ..materials import Materials, material, pair_sigma0, table_of, with_pair
-from ..populations.feed import END_AT_REST, Feed, FeedError, draw, particle_parameters
+from ..populations.feed import (END_AT_REST, Feed, FeedError, check_horizon, draw,
+                                particle_parameters)
 from ..populations.feed_variables import DEFAULT_CHUTE
 from .defaults import DEFAULT_FEED_WIDTH, DEFAULT_PAIR, DEFAULT_WALL
 from .grain import (LineError, LineImages, charge_model_settings, check_separator,
@@ -204,6 +205,8 @@ def check_line(line: Line, specs: list[RunSpec], images: LineImages) -> None:
             if name != "x_entry":
                 values.setdefault(name, {})[value] = None
     check_values(images.chute, {k: list(v) for k, v in values.items()})
+    # the chute's horizon the model resolves (every run failed at its first step beyond)
+    check_horizon(images.chute, [RunSpec(chute_params_of(s.params), s.t_end) for s in specs])
     sizes = [s.params["size"] for s in specs]
     check_separator(images.separator, dict(images.settings, x_entry=line.feed_width / 2),
                     images.voltages, sizes)
