@@ -3,7 +3,7 @@ limit (docs/model.md section 8b), sigma_bd A_s for an impact's grain (its charge
 charge it carried before) and sigma_bd A_s / m for the grains of a chute run (the stream's
 q/m is a mean of theirs). A charge above that is a mistake in the file, most often its
 unit: the files are in C and C/kg, and charges measured in pC typed as they are read
-(-1.2 for -1.2 pC) were fitted as -1.2 C, "12.9 decades" off. The message says which unit
+(-1.2 for -1.2 pC) would be fitted as -1.2 C, decades off. The message says which unit
 would make the value one a grain can hold."""
 
 import math

@@ -9,9 +9,9 @@ stream written as a population's (docs/dem.md).
 
 The feed is a population's (tribo population --help: --size, --drop-height, ... and the
 materials), its grains spheres: --epsilon 1, the default here (LIGGGHTS holds spheres here;
-ellipses are not represented) and no spin at the drop. Without --feed-rate the grains are in the dilute
-limit: each in its own lane across a plate wide enough for all, dropped at once, so that
-none meets another; with it, grains/s dropped one after another into --lanes lanes (5 by
+ellipses are not represented) and no spin at the drop. Without --feed-rate the grains are
+in the dilute limit: each in its own lane across a plate wide enough for all, dropped at
+once, so that none meets another; with it, grains/s dropped one after another into --lanes lanes (5 by
 default) closer than a grain, three drop points along each, so that they collide
 (LIGGGHTS moves them through it; grain-grain contacts transfer no charge).
 

@@ -18,10 +18,11 @@ The draw takes the grains in blocks of DRAW_BLOCK, each block from numpy's gener
 seeded with the seed's child of that block (numpy.random.SeedSequence(seed, spawn_key=
 (block,))), the variables in that order: the same feed and seed give the same particles,
 and the first n of them are the same whatever n, so that a population of more grains is
-the one of fewer and more (`-n 2000` on a folder of 1000 runs the 1000 new ones). Each particle is a run of the SI FMU (no unit
-conversion here: the FMU maps the SI set-up onto the model) from the drop to the chute's
-exit or the horizon, keyed like a sweep's run (batch.specs.run_key), so that a population is
-resumable like a sweep (batch.sweep.run_sweep).
+the one of fewer and more (`-n 2000` on a folder of 1000 runs the 1000 new ones). Each
+particle is a run of the SI FMU (no unit conversion here: the FMU maps the SI set-up onto
+the model) from the drop to the chute's exit or the horizon, keyed like a sweep's run
+(batch.specs.run_key), so that a population is resumable like a sweep
+(batch.sweep.run_sweep).
 
 Per particle (`result_columns`), after the materials and every parameter of its run (the
 feed variables, the chute, the materials' constants): whether and when it left the chute;
@@ -209,7 +210,7 @@ def particle_parameters(feed: Feed, drawn: pd.DataFrame, defaults: dict | None =
     """The SI FMU's parameters of each drawn particle, by the package's names; `defaults`
     (e.g. the FMU's cylinder depth) unless the feed sets them."""
     settings = {**(defaults or {}), **dict(DEFAULT_CHUTE, **feed.chute), **feed.settings}
-    # a setting wins over the work limit too (it was a TypeError, "multiple values")
+    # a setting wins over the work limit too
     base = {**pair_values(feed.particle, feed.wall, sigma0="sigma0" not in settings),
             "work_limit": WORK_LIMIT, **settings}
     if "size" in drawn.columns and "chute_length" in base and len(drawn):
@@ -219,8 +220,8 @@ def particle_parameters(feed: Feed, drawn: pd.DataFrame, defaults: dict | None =
 
 
 def check_fits(size: float, chute_length: float) -> None:
-    """FeedError for a grain as long as its chute or longer: it lands across the chute's end
-    (the FMU takes each value alone, and ran a 1 m grain down 0.3 m without a word)."""
+    """FeedError for a grain as long as its chute or longer: it would land across the chute's
+    end (the FMU checks each value alone, not the one against the other)."""
     if 0 < chute_length <= size:  # a length that is no length: the FMU's refusal says it
         raise FeedError(f"size = {size:g} m: the grain is as long as the chute it runs down "
                         f"(chute_length = {chute_length:g} m) or longer; a grain's long "
@@ -236,10 +237,10 @@ def specs_of(feed: Feed, n: int, seed: int, t_end: float, defaults: dict | None 
 
 def check_horizon(image: FmuImage, specs: list[RunSpec]) -> None:
     """FeedError, before any run, for a horizon the model cannot resolve (model_time.py):
-    one of more than model_time.TIME_MAX of the quickest grain's t*. t* = sqrt(m'/k') with m' = rho pi
-    a^2 epsilon (model.md section 2, src/si/si.c): the grains of a feed share their
-    materials and settings, so the quickest is the one of the least size^2 epsilon, and its
-    t* is read from the FMU."""
+    one of more than model_time.TIME_MAX of the quickest grain's t*. t* = sqrt(m'/k') with
+    m' = rho pi a^2 epsilon (model.md section 8, src/si/si.c): the grains of a feed share
+    their materials and settings, so the quickest is the one of the least size^2 epsilon,
+    and its t* is read from the FMU."""
     if not specs:
         return
     quickest = min(specs, key=lambda s: s.params["size"] ** 2 * s.params["epsilon"])
