@@ -245,6 +245,13 @@ def test_panels_of_no_information_are_left_out_saying_why():
     only_size = synthetic_population(30, seed=5).assign(epsilon=1.0)
     titles = [ax.get_title() for ax in figure_of(only_size).axes]
     assert "q/m against size" in titles and "q/m against roundness" not in titles
+    # speeds that differ in the fifth digit: drawn, written out without an offset
+    close = synthetic_population(30, seed=5)
+    close["exit_speed"] = 1.42 + 1e-5 * np.arange(len(close))
+    fig = figure_of(close)
+    fig.canvas.draw()
+    speed = next(ax for ax in fig.axes if ax.get_title() == "exit speed against charge")
+    assert speed.yaxis.get_offset_text().get_text() == ""
 
 
 def test_the_figure_draws_the_streams_mass_weighted_mean():

@@ -120,6 +120,8 @@ def _scatter(ax, groups, colours, x, y, xlabel, ylabel, title, logx=False, logy=
     if logy:
         ax.set_yscale("log")
         readable_log(ax.yaxis)
+    else:  # values that differ in their last digits, written out: no offset to add
+        ax.ticklabel_format(axis="y", useOffset=False)
     legend(ax, outside=True)
 
 
