@@ -34,13 +34,15 @@ sundials_source() {
   local options=(-o Dir::Etc::SourceList=/dev/null -o Dir::Etc::SourceParts="$apt/parts"
                  -o Dir::State::Lists="$apt/lists" -o Dir::Cache="$apt/cache"
                  -o APT::Sandbox::User=root)
-  # into SETUP_LOG (setup.sh's): apt's gpgv and dpkg-source's signature warnings (no
-  # keyring for Debian's source signatures here; apt checks the sources' hashes)
-  local log=${SETUP_LOG:-/dev/null}
-  apt-get "${options[@]}" update -qq >>"$log" 2>&1
-  (cd "$dir/package" && apt-get "${options[@]}" source --download-only -qq \
-     "sundials=$version") >>"$log" 2>&1
-  dpkg-source -x "$dir/package"/sundials_*.dsc "$dir/src" >>"$log" 2>&1
+  # into SETUP_LOG (setup.sh's; else a log of its own): apt's gpgv and dpkg-source's
+  # signature warnings (no keyring for Debian's source signatures here; apt checks the
+  # sources' hashes); the log's end said where a step fails
+  local log=${SETUP_LOG:-$dir/fetch.log}
+  { apt-get "${options[@]}" update -qq &&
+    (cd "$dir/package" && apt-get "${options[@]}" source --download-only -qq "sundials=$version") &&
+    dpkg-source -x "$dir/package"/sundials_*.dsc "$dir/src"; } >>"$log" 2>&1 ||
+    { echo "sundials: fetching the sources failed; the end of $log:" >&2; tail -n 20 "$log" >&2
+      return 1; }
   echo "$version" > "$dir/src/.version"
 }
 
@@ -52,13 +54,16 @@ sundials_build() {
     return 0
   fi
   echo "sundials: building CVODE $version into $prefix"
+  local log=${SETUP_LOG:-$build.log}
   rm -rf "$build" "$prefix"
   cmake -S "$src" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_LIBDIR=lib \
     -DBUILD_SHARED_LIBS=OFF -DBUILD_STATIC_LIBS=ON \
     -DBUILD_ARKODE=OFF -DBUILD_CVODES=OFF -DBUILD_IDA=OFF -DBUILD_IDAS=OFF -DBUILD_KINSOL=OFF \
     -DBUILD_CVODE=ON -DEXAMPLES_ENABLE_C=OFF -DEXAMPLES_INSTALL=OFF -DSUNDIALS_INDEX_SIZE=64 \
-    -DCMAKE_INSTALL_PREFIX="$prefix" "$@" >>"${SETUP_LOG:-/dev/null}" 2>&1
-  cmake --build "$build" >>"${SETUP_LOG:-/dev/null}" 2>&1
+    -DCMAKE_INSTALL_PREFIX="$prefix" "$@" >>"$log" 2>&1 &&
+  cmake --build "$build" >>"$log" 2>&1 ||
+    { echo "sundials: building CVODE failed; the end of $log:" >&2; tail -n 20 "$log" >&2
+      return 1; }
   cmake --install "$build" > "$build/install.log" 2>&1 || { cat "$build/install.log" >&2; return 1; }
   echo "$version" > "$prefix/.version"
 }
