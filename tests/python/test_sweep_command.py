@@ -147,9 +147,11 @@ def test_a_scheduler_without_workers_is_one_line_within_the_timeout(fmu_file, tm
     (["--param", "beta=0.5"], ["beta: the package takes this parameter as beta_deg"]),
     (["--param", "beta_deg=90"], ["beta_deg = 90 is invalid: the valid range is 0 <= beta_deg < 90"]),
     (["--param", "epsilon=-0.30"], ["epsilon = -0.3 is invalid"]),
+    # the count was written out in 309 digits
+    (["--param", "epsilon=0.5", "--t-end", "1e308"], ["1e+308 points to record"]),
 ], ids=["integer", "range", "negative", "text", "unknown", "t_end 0", "t_end -5", "t_end nan",
         "t_end interval", "t_end text", "address", "timeout", "no param", "radians", "degrees",
-        "as typed"])
+        "as typed", "t_end huge"])
 def test_bad_values_are_one_line_before_anything_starts(fmu_file, tmp_path, args, words):
     done, elapsed = sweep(*args, "--fmu", fmu_file(3), "--out", str(tmp_path / "r"))
     assert_one_line_error(done, *words)

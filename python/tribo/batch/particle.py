@@ -75,8 +75,8 @@ def communication_points(t_end: float, interval: float) -> np.ndarray:
     if n < 1 or abs(n * interval - t_end) > 1e-9 * max(1.0, t_end):
         raise ValueError(f"t_end = {t_end:g} is not a whole number of record intervals ({interval:g})")
     if n + 1 > MAX_POINTS:
-        raise ValueError(f"t_end / record interval = {n} points to record, more than {MAX_POINTS}: "
-                         f"take a longer record interval")
+        raise ValueError(f"t_end / record interval = {n:.3g} points to record, more than "
+                         f"{MAX_POINTS}: take a longer record interval")
     times = np.arange(n + 1) * interval
     times[-1] = t_end
     return times
