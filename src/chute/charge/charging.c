@@ -551,15 +551,25 @@ static void charge_values(tribo_charge_slot *slot, const tribo_scene *s, const t
                             : saturate(values + sl->at[i], NULL, sl->count[i], target, cap, lost);
         return;
     }
-    double delta = 0.0;
+    double delta = 0.0, before = 0.0;
+    if (isfinite(cap))
+        for (int i = 0; i < sl->n; i++)
+            before += tribo_sum(values + sl->at[i], sl->count[i]);
     for (int i = 0; i < sl->n; i++)
         delta += slot->model->charge(slot->cache, s, f, values + sl->at[i], sl->count[i]);
     if (isfinite(cap)) { /* (without a limit, nothing more: the paper's model, bit for bit) */
-        double taken = 0.0;
+        double taken = 0.0, after = 0.0;
         for (int i = 0; i < sl->n; i++)
             taken += hold_at_cap(values + sl->at[i], sl->count[i], cap);
-        delta -= taken;
         *lost += taken;
+        if (taken != 0.0) {
+            /* the sum's change from the held values themselves: the model's change less what
+               the cap took rounds at the scale the values reach unheld, which a small Sigma_bd
+               (1e-14 and below) makes all of the held values' sum */
+            for (int i = 0; i < sl->n; i++)
+                after += tribo_sum(values + sl->at[i], sl->count[i]);
+            delta = after - before;
+        }
     }
     *sum += delta;
 }
