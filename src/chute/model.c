@@ -35,8 +35,10 @@ void tribo_derive_params(tribo_model *m)
     d->inv_inertia = 4.0 / (1.0 + d->eps2); /* model.md §4 */
     d->v_reg = s->v_reg;
     d->damping_point = s->damping_point;
-    d->rtol = s->rtol;
-    d->atol = s->atol;
+    /* the tolerances CVODE and the event logic work to: the scene's, at most the loosest
+       the event logic takes (model.md §3, "Tolerances") */
+    d->rtol = fmin(s->rtol, TRIBO_RTOL_LOOSEST);
+    d->atol = fmin(s->atol, TRIBO_ATOL_LOOSEST);
     d->chute_length = s->chute_length;
     d->end_at_liftoff = s->run_end == TRIBO_RUN_END_FIRST_LIFTOFF;
     d->rigid_stick = s->stick_model == TRIBO_STICK_RIGID;
@@ -385,7 +387,7 @@ tribo_status tribo_charge_sweep(tribo_model *m, const tribo_contact_probe *probe
     const int models = selected_models(m);
     const double cell_cost = TRIBO_SWEEP_CELL_COST * values_work(m, 1, models, models) /
                              (models * segment_work(m));
-    if (tribo_charging_sweep(&m->charging, &m->scene, &counted, a, b, m->scene.rtol, m->scene.atol,
+    if (tribo_charging_sweep(&m->charging, &m->scene, &counted, a, b, m->dyn.rtol, m->dyn.atol,
                              p->y + TRIBO_NMOTION, p->charge_globals, sink, &target,
                              TRIBO_SWEEP_BUDGET, cell_cost, reached) != 0)
         return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
