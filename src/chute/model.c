@@ -43,6 +43,11 @@ void tribo_derive_params(tribo_model *m)
     d->end_at_liftoff = s->run_end == TRIBO_RUN_END_FIRST_LIFTOFF;
     d->rigid_stick = s->stick_model == TRIBO_STICK_RIGID;
     d->mu_roll = s->mu_roll;
+    /* the drop's first impact: its speed and a fall of gap0 / cos(beta) at Gamma (model.md
+       §7; gap0 = 0: the drop speed, exactly) */
+    const double fall = s->gap0 > 0.0 ? 2.0 * s->Gamma * s->gap0 / cos(beta) : 0.0;
+    m->motion_scales = tribo_motion_scales_of(s->Gamma, sqrt(s->drop_speed * s->drop_speed + fall));
+    m->motion_decay_h = NAN; /* (the decay of the window before, if another) */
 }
 
 /* The initial point of the scene (model.md §7 by default); its contact is evaluated by the
@@ -204,9 +209,9 @@ void tribo_book_interval(tribo_model *m, const tribo_point *from, tribo_point *t
         return;
     if (m->motion_decay_h != h) {
         m->motion_decay_h = h;
-        m->motion_decay = exp(-h / TRIBO_MOTION_WINDOW);
+        m->motion_decay = exp(-h / m->motion_scales.window);
     }
-    tribo_motion_update(&to->motion, h, m->motion_decay, in_contact,
+    tribo_motion_update(&to->motion, &m->motion_scales, h, m->motion_decay, in_contact,
                         to->y[TRIBO_IPHI] - from->y[TRIBO_IPHI]);
 
     /* rho_c only where there is a contact: this runs on every step */

@@ -49,7 +49,8 @@ struct tribo_model {
     void *integrator_data;
 
     tribo_stats stats;
-    double motion_decay_h, motion_decay; /* exp(-h / TRIBO_MOTION_WINDOW) for the last h */
+    tribo_motion_scales motion_scales;   /* the classifier's, at the scene's Gamma */
+    double motion_decay_h, motion_decay; /* exp(-h / its window) for the last h */
     tribo_log_fn log;
     void *log_user;
     char error[512];
