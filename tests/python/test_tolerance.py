@@ -123,14 +123,8 @@ def test_a_loose_tolerance_runs_at_the_loosest_the_event_logic_takes(
     CVODE is given: the run is the core's at those, bit for bit (rtol 0.1 or 0.5, an
     importer's tolerance of 0.05 or 0.5, or atol 5e-3 once ended in an "event cascade" or
     crept on by 1e-6 per FMI 3.0 doStep)."""
-    s = Slave(fmu_dir(version), version)  # (a step that spends the work limit: Discard)
-    s.set(**SMALL, **params)
-    if version == 2:
-        s.fmu.setupExperiment(tolerance=tolerance, startTime=0.0)
-        s.fmu.enterInitializationMode()
-    else:
-        s.fmu.enterInitializationMode(tolerance=tolerance, startTime=0.0)
-    s.fmu.exitInitializationMode()
+    s = run_with_tolerance(fmu_dir, version, tolerance, **params)
+    s.t = 0.0
     times = TIMES + [40.0, 80.0]
     got = []
     for t in times:  # each step whole (not continued past a spent work limit: no livelock)
