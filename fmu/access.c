@@ -337,8 +337,12 @@ static int apply_value(fmu_instance *inst, const char *fn, const fmu_variable *v
                 fmu_error(inst, "%s: %s", fn, fmu_front_last_error(inst->core));
                 return 0;
             }
-        } else if (tribo_param_read(&inst->scene, p) != value) {
-            inst->model_outdated = 1;
+        } else {
+            /* by their bits: -0.0 == +0.0, and a core made with the one holds it where the
+               scene, and so the state, hold the other */
+            const double held = tribo_param_read(&inst->scene, p);
+            if (memcmp(&held, &value, sizeof value) != 0)
+                inst->model_outdated = 1;
         }
         tribo_param_write(&inst->scene, p, value);
         fmu_note_parameter_set(inst, p);

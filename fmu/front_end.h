@@ -15,6 +15,8 @@
  *   front_end_separator.c  the separator FMUs: the free-fall separator's core
  *                          (src/separator/separator.h, docs/model.md §10) and its table
  *                          (src/separator/separator_quantities.def)
+ *   front_end_identity.c   what the dimensionless and the separator's front ends share: the
+ *                          importer's values passed on as they are
  *
  * The front end holds no physics: it calls a core and, for the SI FMUs, the core's mapping
  * (si.h). The instance layer sees a core only through these functions (fmu_core is the

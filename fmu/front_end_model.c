@@ -1,8 +1,6 @@
 /* front_end_model.c: the dimensionless FMUs' front end (front_end.h): the core's own table,
-   every value passed on as it is. */
+   every value passed on as it is (front_end_identity.c). */
 #include "front_end_chute.h"
-
-#include <string.h>
 
 const char fmu_front_prefix[] = "tribo";
 const char fmu_front_table_file[] = "src/chute/quantities.def";
@@ -33,33 +31,6 @@ const char *fmu_front_notice(const fmu_derived *d)
 }
 
 tribo_scene *fmu_front_model_scene(fmu_derived *d) { return &d->model; }
-
-tribo_status fmu_front_tunable(const fmu_derived *d, const tribo_param_info *p, double value,
-                               const char **model_name, double *model_value, char *msg,
-                               size_t msg_size)
-{
-    (void)d;
-    *model_name = p->name;
-    *model_value = value;
-    return tribo_param_check(p, value, msg, msg_size);
-}
-
-tribo_status fmu_front_model_inputs(const fmu_derived *d, const double values[],
-                                    double model_values[], char *msg, size_t msg_size)
-{
-    (void)d;
-    if (tribo_params_check(tribo_input_table(NULL), TRIBO_INPUT_COUNT, values, msg, msg_size) !=
-        TRIBO_OK)
-        return TRIBO_ERR_INVALID_ARGUMENT;
-    memcpy(model_values, values, TRIBO_INPUT_COUNT * sizeof values[0]);
-    return TRIBO_OK;
-}
-
-double fmu_front_time_unit(const fmu_derived *d)
-{
-    (void)d;
-    return 1.0;
-}
 
 double fmu_front_get(const fmu_derived *d, fmu_core *core, int quantity)
 {

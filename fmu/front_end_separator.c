@@ -1,12 +1,11 @@
 /* front_end_separator.c: the separator FMUs' front end (front_end.h): the free-fall
    separator's core (src/separator/separator.h, docs/model.md §10) and its table
    (src/separator/separator_quantities.def), in SI units like the core, every value passed on as it
-   is. */
+   is (front_end_identity.c; every parameter is fixed, so a tunable would be the core's own). */
 #include "front_end.h"
 
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
 
 /* The separator, and what its run's end means to the importer: the core's own message is
    about failures, and the end is none. */
@@ -55,34 +54,6 @@ const char *fmu_front_notice(const fmu_derived *d)
 {
     (void)d;
     return NULL;
-}
-
-/* Every parameter is fixed (the table's); a tunable would be the core's own. */
-tribo_status fmu_front_tunable(const fmu_derived *d, const tribo_param_info *p, double value,
-                               const char **model_name, double *model_value, char *msg,
-                               size_t msg_size)
-{
-    (void)d;
-    *model_name = p->name;
-    *model_value = value;
-    return tribo_param_check(p, value, msg, msg_size);
-}
-
-tribo_status fmu_front_model_inputs(const fmu_derived *d, const double values[],
-                                    double model_values[], char *msg, size_t msg_size)
-{
-    (void)d;
-    if (tribo_params_check(tribo_separator_input_table(NULL), TRIBO_SEPARATOR_INPUT_COUNT, values,
-                           msg, msg_size) != TRIBO_OK)
-        return TRIBO_ERR_INVALID_ARGUMENT;
-    memcpy(model_values, values, TRIBO_SEPARATOR_INPUT_COUNT * sizeof values[0]);
-    return TRIBO_OK;
-}
-
-double fmu_front_time_unit(const fmu_derived *d)
-{
-    (void)d;
-    return 1.0;
 }
 
 double fmu_front_get(const fmu_derived *d, fmu_core *core, int quantity)

@@ -196,13 +196,20 @@ static fmu_status check_tolerance(fmu_instance *inst, const char *fn, double tol
 {
     const tribo_param_info *rtol = fmu_front_param_find("rtol"), *atol = fmu_front_param_find("atol");
     char msg[512];
-    if (tribo_param_check(rtol, tolerance, msg, sizeof msg) != TRIBO_OK ||
-        tribo_param_check(atol, atol->start * (tolerance / rtol->start), msg, sizeof msg) != TRIBO_OK)
-        return fmu_error(inst,
-                         "%s: tolerance = %.17g is invalid: it sets CVODE's rtol (and atol = rtol "
-                         "/ %g): %s",
-                         fn, tolerance, rtol->start / atol->start, msg);
-    return FMU_OK;
+    if (tribo_param_check(rtol, tolerance, msg, sizeof msg) == TRIBO_OK &&
+        tribo_param_check(atol, atol->start * (tolerance / rtol->start), msg, sizeof msg) == TRIBO_OK)
+        return FMU_OK;
+    /* what the tolerance would have set, so that the reason reads true */
+    const double ratio = rtol->start / atol->start;
+    const char *sets = inst->rtol_set && inst->atol_set
+                           ? "neither of CVODE's rtol and atol (both were set explicitly)"
+                       : inst->rtol_set ? "CVODE's atol (rtol was set explicitly)"
+                       : inst->atol_set ? "CVODE's rtol (atol was set explicitly)"
+                                        : "CVODE's rtol, and atol";
+    return fmu_error(inst,
+                     "%s: tolerance = %.17g is invalid: it would set %s; an importer's tolerance "
+                     "must be one rtol can take, and tolerance / %g one atol can: %s",
+                     fn, tolerance, sets, ratio, msg);
 }
 
 static void use_tolerance(fmu_instance *inst, const char *fn, double tolerance)

@@ -35,12 +35,19 @@ void tribo_derive_params(tribo_model *m)
     d->inv_inertia = 4.0 / (1.0 + d->eps2); /* model.md §4 */
     d->v_reg = s->v_reg;
     d->damping_point = s->damping_point;
-    d->rtol = s->rtol;
-    d->atol = s->atol;
+    /* the tolerances CVODE and the event logic work to: the scene's, at most the loosest
+       the event logic takes (model.md §3, "Tolerances") */
+    d->rtol = fmin(s->rtol, TRIBO_RTOL_LOOSEST);
+    d->atol = fmin(s->atol, TRIBO_ATOL_LOOSEST);
     d->chute_length = s->chute_length;
     d->end_at_liftoff = s->run_end == TRIBO_RUN_END_FIRST_LIFTOFF;
     d->rigid_stick = s->stick_model == TRIBO_STICK_RIGID;
     d->mu_roll = s->mu_roll;
+    /* the drop's first impact: its speed and a fall of gap0 / cos(beta) at Gamma (model.md
+       §7; gap0 = 0: the drop speed, exactly) */
+    const double fall = s->gap0 > 0.0 ? 2.0 * s->Gamma * s->gap0 / cos(beta) : 0.0;
+    m->motion_scales = tribo_motion_scales_of(s->Gamma, sqrt(s->drop_speed * s->drop_speed + fall));
+    m->motion_decay_h = NAN; /* (the decay of the window before, if another) */
 }
 
 /* The initial point of the scene (model.md §7 by default); its contact is evaluated by the
@@ -202,9 +209,9 @@ void tribo_book_interval(tribo_model *m, const tribo_point *from, tribo_point *t
         return;
     if (m->motion_decay_h != h) {
         m->motion_decay_h = h;
-        m->motion_decay = exp(-h / TRIBO_MOTION_WINDOW);
+        m->motion_decay = exp(-h / m->motion_scales.window);
     }
-    tribo_motion_update(&to->motion, h, m->motion_decay, in_contact,
+    tribo_motion_update(&to->motion, &m->motion_scales, h, m->motion_decay, in_contact,
                         to->y[TRIBO_IPHI] - from->y[TRIBO_IPHI]);
 
     /* rho_c only where there is a contact: this runs on every step */
@@ -385,7 +392,7 @@ tribo_status tribo_charge_sweep(tribo_model *m, const tribo_contact_probe *probe
     const int models = selected_models(m);
     const double cell_cost = TRIBO_SWEEP_CELL_COST * values_work(m, 1, models, models) /
                              (models * segment_work(m));
-    if (tribo_charging_sweep(&m->charging, &m->scene, &counted, a, b, m->scene.rtol, m->scene.atol,
+    if (tribo_charging_sweep(&m->charging, &m->scene, &counted, a, b, m->dyn.rtol, m->dyn.atol,
                              p->y + TRIBO_NMOTION, p->charge_globals, sink, &target,
                              TRIBO_SWEEP_BUDGET, cell_cost, reached) != 0)
         return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");

@@ -10,6 +10,15 @@
 #include "motion.h"
 #include "tribo.h"
 
+/* The loosest tolerances CVODE and the event logic work to (model.md §3, "Tolerances"): a
+   scene's rtol or atol above them runs at them. Within 10 (rtol |v| + atol) a state cannot
+   tell which side of a switch it is on (dynamics.h); from rtol 0.05 to 0.1, or atol 1e-3
+   (the indentation's scale at the paper's Gamma = 1e-3), the force law switched for ever at
+   one instant or crept by 1e-6 per doStep (measured; rtol 1e-2 with atol 1e-4 ran every
+   set-up tried): 100 times below the first failures. */
+#define TRIBO_RTOL_LOOSEST 1e-3
+#define TRIBO_ATOL_LOOSEST 1e-5
+
 struct tribo_model {
     tribo_scene scene;           /* validated; tunables hold their current values */
     tribo_dyn_params dyn;        /* derived from the scene and the inputs */
@@ -40,7 +49,8 @@ struct tribo_model {
     void *integrator_data;
 
     tribo_stats stats;
-    double motion_decay_h, motion_decay; /* exp(-h / TRIBO_MOTION_WINDOW) for the last h */
+    tribo_motion_scales motion_scales;   /* the classifier's, at the scene's Gamma */
+    double motion_decay_h, motion_decay; /* exp(-h / its window) for the last h */
     tribo_log_fn log;
     void *log_user;
     char error[512];

@@ -27,9 +27,19 @@ typedef struct tribo_motion {
     long long impacts;       /* contacts made after a flight */
 } tribo_motion;
 
-/* Window of the averages: long enough to span the flights between the paper's bounces
-   (tens of time units) so that bouncing is not taken for flight. */
+/* Window of the averages at the paper's set-up (Gamma = 1e-3, dropped at 0.025): long
+   enough to span the flights between its bounces (tens of time units) so that bouncing is
+   not taken for flight. */
 #define TRIBO_MOTION_WINDOW 20.0
+
+/* The window of the averages and the contact share below which the motion is flight, for a
+   scene's Gamma and the speed of its drop's first impact (model.md, "Derived outputs"): the
+   paper's at the paper's set-up, scaled to another's gravity time and bounces. */
+typedef struct tribo_motion_scales {
+    double window, no_contact;
+} tribo_motion_scales;
+
+tribo_motion_scales tribo_motion_scales_of(double Gamma, double impact_speed);
 
 /* The contact model (line contact of a rigid curvature against a linear spring) assumes a
    small indentation: delta_y <= this fraction of both the semi-minor axis (epsilon) and
@@ -38,8 +48,9 @@ typedef struct tribo_motion {
 #define TRIBO_INDENTATION_LIMIT 0.1
 
 /* Update the history over an interval of length h ending at a state with the given
-   contact, over which phi moved by dphi. decay = exp(-h / window). */
-void tribo_motion_update(tribo_motion *m, double h, double decay, int in_contact, double dphi);
+   contact, over which phi moved by dphi. decay = exp(-h / sc->window). */
+void tribo_motion_update(tribo_motion *m, const tribo_motion_scales *sc, double h, double decay,
+                         int in_contact, double dphi);
 
 /* The fraction of the time t so far spent in a class. */
 static inline double tribo_motion_fraction(const tribo_motion *m, tribo_motion_class c, double t)

@@ -104,3 +104,27 @@ def test_corrupt_or_foreign_states_are_refused(fmu_dir, version):
     assert s.get("n_segments") == 128
     # and the instance survived the refusals
     assert time == 1.0 and s.get("time") == 1.0
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+@pytest.mark.parametrize("geometry", [0, 1], ids=["cylinder", "spheroid"])
+def test_states_under_a_tiny_breakdown_limit_restore(fmu_dir, version, geometry):
+    """A breakdown limit Sigma_bd far below the saturation (1e-300 .. 1e-14: held values a
+    tiny fraction of what the rate laws reach) keeps each model's running sum that of its
+    held values: a state the FMU gave back is taken back and continues bit for bit, and the
+    static charge Q_static (the running sum's mean) is the segments' mean. (The sum once
+    rounded at the unheld scale, up to 1e16 times the held values: every state refused.)"""
+    for limit in (1e-300, 1e-100, 1e-30, 1e-14):
+        s = started(fmu_dir, version, 1, Sigma_bd=limit, grain_geometry=geometry,
+                    charge_model_static=1, charge_model_sliding=1)
+        state = s.get_state()
+        first = s.run(LATER, ["X", "Q_static", "Q_sliding"])
+        s.set_state(s.deserialize(s.serialize(state)))
+        s.t = 1.0
+        assert s.run(LATER, ["X", "Q_static", "Q_sliding"]) == first, limit
+        assert s.errors() == [], (limit, s.errors())
+        if version == 3:
+            # the sum of 64 values of one sign rounds within 64 ulps of their mean
+            values = s.get("segment_charge_static")
+            assert s.get("Q_static") == pytest.approx(sum(values) / len(values), rel=1e-14)
+            assert max(values) > 0.0

@@ -268,12 +268,13 @@ static void destroy(void *data)
    selected, so that the motion does not depend on the selection. The dissipated and
    external work are the mechanics' own book-keeping (smooth within a phase) and are held to
    the tolerances like the motion, so that the energy balance of model.md §6 is. */
-static int set_tolerances(cvode_integrator *c, const tribo_scene *scene)
+static int set_tolerances(cvode_integrator *c)
 {
-    N_VConst(scene->atol, c->abstol);
+    /* the dynamics' tolerances: the scene's, at most the loosest the event logic takes */
+    N_VConst(c->dyn->atol, c->abstol);
     for (int i = TRIBO_NMOTION; i < c->n; i++)
         N_VGetArrayPointer(c->abstol)[i] = 1e30;
-    return CVodeSVtolerances(c->mem, scene->rtol, c->abstol) == CV_SUCCESS;
+    return CVodeSVtolerances(c->mem, c->dyn->rtol, c->abstol) == CV_SUCCESS;
 }
 
 /* Whether a call of the set-up failed (`ok` false); the first that did is kept for the
@@ -308,7 +309,7 @@ static tribo_status create(tribo_model *m, void **data)
     if (failed(c, CVodeSetErrHandlerFn(c->mem, error_handler, c) == CV_SUCCESS,
                "CVodeSetErrHandlerFn") ||
         failed(c, CVodeInit(c->mem, rhs, 0.0, c->y) == CV_SUCCESS, "CVodeInit") ||
-        failed(c, set_tolerances(c, scene), "CVodeSVtolerances") ||
+        failed(c, set_tolerances(c), "CVodeSVtolerances") ||
         failed(c, CVodeSetUserData(c->mem, c) == CV_SUCCESS, "CVodeSetUserData") ||
         failed(c, CVodeRootInit(c->mem, N_ROOTS, roots) == CV_SUCCESS, "CVodeRootInit") ||
         failed(c, CVodeSetNoInactiveRootWarn(c->mem) == CV_SUCCESS, "CVodeSetNoInactiveRootWarn") ||
@@ -873,9 +874,9 @@ static tribo_status state_load(tribo_model *m, void *data, const unsigned char *
     if (!saved_valid(c, &s) || !(s.t_restart <= t) || !(s.last_event_t <= t) ||
         (!s.open && t_out != t))
         return tribo_fail(m, TRIBO_ERR_STATE, "the CVODE state is corrupt");
-    if (!set_tolerances(c, tribo_get_scene(m)))
+    if (!set_tolerances(c))
         return tribo_fail(m, TRIBO_ERR_STATE, "CVODE refused the tolerances rtol = %g, atol = %g: %s",
-                          tribo_get_scene(m)->rtol, tribo_get_scene(m)->atol, c->message);
+                          c->dyn->rtol, c->dyn->atol, c->message);
     phase ph;
     ph.contact = s.contact ? TRIBO_CONTACT_ON : TRIBO_CONTACT_OFF;
     ph.normal = (tribo_normal_rule)s.normal;
