@@ -41,6 +41,12 @@ void tribo_derive_params(tribo_model *m)
     d->end_at_liftoff = s->run_end == TRIBO_RUN_END_FIRST_LIFTOFF;
     d->rigid_stick = s->stick_model == TRIBO_STICK_RIGID;
     d->mu_roll = s->mu_roll;
+    /* model.md §9b: the plate's stroke; vib_slot is the instance's (set with its state) */
+    d->vib_accel = s->vib_accel;
+    d->vib_omega = s->vib_omega;
+    d->vib_phase = s->vib_phase;
+    d->vib_cos = cos(s->vib_angle);
+    d->vib_sin = sin(s->vib_angle);
 }
 
 /* The initial point of the scene (model.md §7 by default); its contact is evaluated by the
@@ -469,6 +475,8 @@ tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts
         return NULL;
     }
     m->n_state = TRIBO_NMOTION + m->charging.n_quadratures;
+    if (tribo_vibrating(&m->dyn)) /* W_vib, last (dynamics.h; model.md §9b) */
+        m->dyn.vib_slot = m->n_state++;
     m->integrator = integrator;
     if (integrator->create(m, &m->integrator_data) != TRIBO_OK || tribo_reset(m) != TRIBO_OK) {
         report(err, err_size, m->error[0] ? m->error : "out of memory");
