@@ -61,6 +61,25 @@ def fail(prog: str, message: str, status: int = 2) -> int:
     return status
 
 
+def vibration(text: str) -> dict:
+    """argparse type: AMPLITUDE,FREQUENCY[,ANGLE_DEG], the chute's vibration (docs/feeder.md)
+    as the SI FMU's parameters by the package's names; the FMU checks their ranges."""
+    values = numbers(text)
+    if len(values) not in (2, 3):
+        raise argparse.ArgumentTypeError(
+            f"{text!r}: expected AMPLITUDE,FREQUENCY[,ANGLE_DEG] (m, Hz, degrees)")
+    names = ("vibration_amplitude", "vibration_frequency", "vibration_angle_deg")
+    return dict(zip(names, values))
+
+
+def add_vibration_option(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--vibration", type=vibration, default={},
+                   metavar="AMPLITUDE,FREQUENCY[,ANGLE_DEG]",
+                   help="a vibrating chute, a vibratory feeder: the stroke's amplitude (m), "
+                        "frequency (Hz) and angle from the chute (degrees, default 90: along its "
+                        "normal; docs/feeder.md)")
+
+
 def add_out_option(p: argparse.ArgumentParser, default: str | None) -> None:
     shown = f" (default {default})" if default else ""
     p.add_argument("--out", default=default, metavar="FOLDER",
@@ -89,12 +108,13 @@ def add_feed_options(p: argparse.ArgumentParser, what: str) -> None:
 
 
 def add_chute_options(p: argparse.ArgumentParser) -> None:
-    """--chute-length (m) and --tilt-deg, the reference chute's by default."""
+    """--chute-length (m) and --tilt-deg, the reference chute's by default, and --vibration."""
     p.add_argument("--chute-length", type=float, default=DEFAULT_CHUTE["chute_length"],
                    help=f"length of the chute, m (default {DEFAULT_CHUTE['chute_length']:g})")
     p.add_argument("--tilt-deg", type=float, default=DEFAULT_CHUTE["tilt_deg"],
                    help=f"tilt of the chute from the horizontal, degrees (default "
                         f"{DEFAULT_CHUTE['tilt_deg']:g})")
+    add_vibration_option(p)
 
 
 def add_class_options(p: argparse.ArgumentParser) -> None:
@@ -112,7 +132,7 @@ def feed_of(args, measured=None):
     from ..populations.feed import Feed  # the same
     distributions = {n: getattr(args, n) for n in FEED_VARIABLES if getattr(args, n) is not None}
     return Feed(args.particle, args.wall, distributions,
-                {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg},
+                {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg, **args.vibration},
                 with_pair(args.particle, args.wall, dict(args.set), args.materials), measured)
 
 
