@@ -73,11 +73,17 @@ def vibration(text: str) -> dict:
 
 
 def add_vibration_option(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--vibration", type=vibration, default={},
+    """--vibration, the SI chute's (vibration_of reads it)."""
+    p.add_argument("--vibration", type=vibration, default={}, dest="chute_vibration",
                    metavar="AMPLITUDE,FREQUENCY[,ANGLE_DEG]",
                    help="a vibrating chute, a vibratory feeder: the stroke's amplitude (m), "
                         "frequency (Hz) and angle from the chute (degrees, default 90: along its "
                         "normal; docs/feeder.md)")
+
+
+def vibration_of(args) -> dict:
+    """The chute's vibration given by --vibration (add_vibration_option), or none."""
+    return getattr(args, "chute_vibration", {})
 
 
 def add_out_option(p: argparse.ArgumentParser, default: str | None) -> None:
@@ -108,13 +114,12 @@ def add_feed_options(p: argparse.ArgumentParser, what: str) -> None:
 
 
 def add_chute_options(p: argparse.ArgumentParser) -> None:
-    """--chute-length (m) and --tilt-deg, the reference chute's by default, and --vibration."""
+    """--chute-length (m) and --tilt-deg, the reference chute's by default."""
     p.add_argument("--chute-length", type=float, default=DEFAULT_CHUTE["chute_length"],
                    help=f"length of the chute, m (default {DEFAULT_CHUTE['chute_length']:g})")
     p.add_argument("--tilt-deg", type=float, default=DEFAULT_CHUTE["tilt_deg"],
                    help=f"tilt of the chute from the horizontal, degrees (default "
                         f"{DEFAULT_CHUTE['tilt_deg']:g})")
-    add_vibration_option(p)
 
 
 def add_class_options(p: argparse.ArgumentParser) -> None:
@@ -132,7 +137,7 @@ def feed_of(args, measured=None):
     from ..populations.feed import Feed  # the same
     distributions = {n: getattr(args, n) for n in FEED_VARIABLES if getattr(args, n) is not None}
     return Feed(args.particle, args.wall, distributions,
-                {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg, **args.vibration},
+                {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg, **vibration_of(args)},
                 with_pair(args.particle, args.wall, dict(args.set), args.materials), measured)
 
 

@@ -36,7 +36,7 @@ from ..batch.specs import check_count
 from ..line.defaults import DEFAULT_FEED_WIDTH, DEFAULT_PAIR
 from ..populations.feed_variables import DEFAULT_CHUTE
 from .common import (INPUT_ERRORS, add_job_options, add_materials_option, add_out_option,
-                     add_vibration_option, fail, name_value, one_line, run_job)
+                     add_vibration_option, fail, name_value, one_line, run_job, vibration_of)
 
 VOLTAGE_DEFAULT = 30e3
 
@@ -106,7 +106,7 @@ def add_arguments(p) -> None:
 
 
 def chute_of(args) -> dict:
-    return {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg, **args.vibration}
+    return {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg, **vibration_of(args)}
 
 
 def check_finite(args, names) -> None:

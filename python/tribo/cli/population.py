@@ -39,13 +39,14 @@ process, or --scheduler).
 import os
 
 from .common import (add_chute_options, add_class_options, add_feed_options, add_si_job_options,
-                     feed_of, name_value, qm_table, run_job)
+                     add_vibration_option, feed_of, name_value, qm_table, run_job)
 
 
 def add_arguments(p) -> None:
     add_feed_options(p, "particles")
     p.add_argument("--measured", metavar="CSV", help="measured values, a column per feed variable")
     add_chute_options(p)
+    add_vibration_option(p)
     p.add_argument("--set", type=name_value, action="append", default=[], metavar="NAME=VALUE",
                    help="any other SI parameter by the package's names (mu=0.5, "
                         "cylinder_length=2e-3, n_segments=500, ...)")
