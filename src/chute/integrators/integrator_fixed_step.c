@@ -79,6 +79,7 @@ static int normal_substeps(const tribo_dyn_params *dp, const tribo_point *p, dou
         return 1;
     const double force_max = dy_max * (1.0 + dp->nu);
     double gain = 1.0, accel, vn;
+    /* the loads: gravity, the input and a vibrating plate's inertial force (model.md §9b) */
     if (dp->damping_point == TRIBO_DAMPING_CENTRE) {
         accel = dp->Gamma + fabs(dp->F_N) + dp->vib_accel + force_max;
         vn = y[TRIBO_IV];
