@@ -208,6 +208,30 @@ static double safe_step(double delta, double rate, double curvature, const bound
     return d;
 }
 
+/* On a vibrating plate, the step a lowest point at the plate (within the rounding of its
+   clearance) that moves away only by its third derivative can take (model.md §9b): a grain the
+   plate lifted off, whose indentation, rate and second derivative are 0 but for rounding. Its
+   indentation stays below delta + r+ u + c+ u^2 / 2 + c' u^3 / 6 + B4 u^4 / 24 (r+, c+ the rate
+   and second derivative where positive), and the last two terms stay negative for u < 4 |c'| /
+   B4: the step is the largest within which the first three stay within the clearance's
+   rounding, and within nine tenths of that. (Without it the search crawls away by roundings of
+   the time, while the cubic separation stays below the rounding.) 0 where the third derivative
+   does not move the point away. */
+static double escape_step(const clearance *c, const bounds *b, double rounding)
+{
+    if (!(c->curvature_rate < 0.0))
+        return 0.0;
+    const double away = b->B4 > 0.0 ? 3.6 * -c->curvature_rate / b->B4 : INFINITY;
+    const double rate = fmax(c->rate, 0.0), curvature = fmax(c->curvature, 0.0);
+    const double room = fmax(rounding - fmax(c->delta, 0.0), 0.0);
+    double within = INFINITY;
+    if (curvature > 0.0)
+        within = (sqrt(rate * rate + 2.0 * curvature * room) - rate) / curvature;
+    else if (rate > 0.0)
+        within = room / rate;
+    return fmin(away, within);
+}
+
 /* The first s >= s_from where X reaches the chute's end L (INFINITY if none): the smaller
    positive root of X0 + U0 s + a s^2 / 2 = L, in the form that keeps its digits. */
 static double exit_time(const tribo_flight *f, const tribo_dyn_params *p, double s_from)
@@ -291,7 +315,7 @@ double tribo_flight_end_of(const tribo_flight *f, const tribo_dyn_params *p, dou
            approaches it (vn below minus its rounding), or rests on it pressed in (delta''
            > 0); a touch that moves away is not one (model.md §3b) */
         const double rounding = 8.0 * DBL_EPSILON * (fabs(c.Y) + c.h);
-        double delta = c.delta;
+        double delta = c.delta, escape = 0.0;
         if (delta >= -rounding) {
             const double vn = -c.rate, vn_rounding = tribo_velocity_rounding(p, c.V, c.spin);
             if (vn < -vn_rounding ||
@@ -301,6 +325,8 @@ double tribo_flight_end_of(const tribo_flight *f, const tribo_dyn_params *p, dou
                 break;
             }
             delta = fmin(delta, 0.0);
+            if (vibrating)
+                escape = escape_step(&c, &b, rounding);
         }
         if (find_exit && c.X >= p->chute_length) {
             s_end = s;
@@ -310,7 +336,8 @@ double tribo_flight_end_of(const tribo_flight *f, const tribo_dyn_params *p, dou
         /* at least a rounding of the time, so that a touch that moves away is passed */
         const double least = 4.0 * DBL_EPSILON * (fabs(f->t0 + s) + 1.0);
         b.slope = c.curvature_rate;
-        double step = safe_step(delta, c.rate, c.curvature, &b, s_end - s, least);
+        double step = fmax(safe_step(delta, c.rate, c.curvature, &b, s_end - s, least),
+                           fmin(escape, s_end - s));
         if (find_exit)
             step = fmin(step, fmax(quadratic_root(c.X - p->chute_length, c.U, M_exit), least));
         s += step;
