@@ -260,6 +260,23 @@ static void rk4_free(const tribo_dyn_params *p, double t, double *z, double h)
         z[i] += h / 6.0 * (k[0][i] + 2.0 * (k[1][i] + k[2][i]) + k[3][i]);
 }
 
+/* The flight f from y0 at t0 searched (flight.h) up to t0 + H, `budget` looks a piece: the time
+   it ends, *why, and the looks it took in *looks. */
+static double flight_end(tribo_flight *f, const tribo_dyn_params *p, double t0, const double *y0,
+                         double H, long budget, tribo_flight_end *why, long *looks)
+{
+    tribo_flight_start(f, p, t0, y0, TRIBO_NMOTION + 1);
+    *why = TRIBO_FLIGHT_GOES_ON;
+    double t = t0;
+    long used;
+    *looks = 0;
+    while (*why == TRIBO_FLIGHT_GOES_ON && t < t0 + H && *looks < 1000000) {
+        t = tribo_flight_end_of(f, p, t, t0 + H, budget, why, &used);
+        *looks += used;
+    }
+    return t;
+}
+
 static double indentation_of(const tribo_dyn_params *p, const double *z)
 {
     tribo_pose g;
@@ -314,14 +331,9 @@ Test(vibration, the_flights_landing_is_the_first_one_a_dense_integration_finds)
 
         /* the flight's landing within the horizon */
         tribo_flight f;
-        tribo_flight_start(&f, &p, t0, y0, TRIBO_NMOTION + 1);
-        tribo_flight_end why = TRIBO_FLIGHT_GOES_ON;
-        double t = t0;
-        long used, looks = 0;
-        while (why == TRIBO_FLIGHT_GOES_ON && t < t0 + H && looks < 1000000) {
-            t = tribo_flight_end_of(&f, &p, t, t0 + H, 1000, &why, &used);
-            looks += used;
-        }
+        tribo_flight_end why;
+        long looks;
+        const double t = flight_end(&f, &p, t0, y0, H, 1000, &why, &looks);
         cr_assert(why != TRIBO_FLIGHT_GOES_ON || t >= t0 + H, "set-up %d: the search stalled", k);
         const double s_flight = why == TRIBO_FLIGHT_CONTACT ? t - t0 : INFINITY;
 
@@ -524,16 +536,11 @@ Test(vibration, a_flight_from_a_liftoff_leaves_the_plate_in_few_looks)
         y0[TRIBO_IGAP] = 0.0;
         y0[TRIBO_IV] = -g.cx * Om;
         y0[TRIBO_IU] = uniform(&x, -1e-5, 1e-5);
-        tribo_flight f;
-        tribo_flight_start(&f, &p, t0, y0, TRIBO_NMOTION + 1);
         const double H = 2.0 * 2.0 * M_PI / p.vib_omega;
-        tribo_flight_end why = TRIBO_FLIGHT_GOES_ON;
-        double t = t0;
-        long used, looks = 0;
-        while (why == TRIBO_FLIGHT_GOES_ON && t < t0 + H && looks < 1000000) {
-            t = tribo_flight_end_of(&f, &p, t, t0 + H, 64, &why, &used);
-            looks += used;
-        }
+        tribo_flight f;
+        tribo_flight_end why;
+        long looks;
+        const double t = flight_end(&f, &p, t0, y0, H, 64, &why, &looks);
         worst = looks > worst ? looks : worst;
         cr_assert(looks <= 2000, "start %d: %ld looks (eps %g, Omega %g)", k, looks, p.eps, Om);
         if (why != TRIBO_FLIGHT_CONTACT)
