@@ -5,6 +5,8 @@ particles drawn from a feed with a seed, one row per particle, the q/m summary a
     tribo population -n 200 --particle PP --wall glass --epsilon uniform:0.5:1 \\
         --size lognormal:1e-3:0.3 --chute-length 0.5 --tilt-deg 35 --out out/pp-glass
     tribo population -n 500 --measured sieve.csv --out out/sieve   # measured rows, drawn
+    tribo population -n 200 --chute-length 0.5 --tilt-deg 0 --vibration 5e-4,50,30 \\
+        --t-end 30 --out out/feeder   # a level vibratory feeder: 0.5 mm, 50 Hz, 30 degrees
 
 The feed variables (tribo/populations/feed.py) take a number or a distribution: uniform:LOW:HIGH,
 normal:MEAN:SD, lognormal:MEDIAN:SIGMA, choice:V1,V2,...; --measured CSV gives columns of
