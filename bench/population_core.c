@@ -27,7 +27,8 @@ static int by_value(const void *a, const void *b)
 }
 
 /* One grain: its CPU seconds, or a negative number where its set-up is refused. */
-static double run_grain(const char *line, const char *extra, double horizon, int *failed)
+static double run_grain(const char *line, const char *extra, double horizon, int *failed,
+                        double *impacts)
 {
     char err[1024];
     tribo_si_scene si;
@@ -48,6 +49,7 @@ static double run_grain(const char *line, const char *extra, double horizon, int
     const tribo_status st = tribo_advance_fully(m, horizon / d.t_star);
     const double spent = cpu_seconds() - start;
     *failed = st != TRIBO_OK && st != TRIBO_ENDED;
+    *impacts += tribo_get(m, TRIBO_QUANTITY_IMPACTS);
     tribo_free(m);
     return spent;
 }
@@ -68,9 +70,10 @@ int main(int argc, char **argv)
     static char line[1 << 14];
     double *cost = NULL;
     int n = 0, capacity = 0, failed = 0;
+    double impacts = 0.0;
     while (fgets(line, sizeof line, f)) {
         int fail = 0;
-        const double c = run_grain(line, extra, horizon, &fail);
+        const double c = run_grain(line, extra, horizon, &fail, &impacts);
         if (c < 0.0) {
             fclose(f);
             free(cost);
@@ -94,8 +97,10 @@ int main(int argc, char **argv)
     for (int i = 0; i < n; i++)
         total += cost[i];
     qsort(cost, (size_t)n, sizeof *cost, by_value);
-    printf("grains %d  CPU %.2f s  median %.2f ms  slowest %.3f s  failed %d\n", n, total,
-           n ? 1e3 * cost[n / 2] : 0.0, n ? cost[n - 1] : 0.0, failed);
+    printf("grains %d  CPU %.2f s  median %.2f ms  slowest %.3f s  failed %d  impacts %.0f  "
+           "CPU per impact %.4f ms\n",
+           n, total, n ? 1e3 * cost[n / 2] : 0.0, n ? cost[n - 1] : 0.0, failed, impacts,
+           impacts > 0.0 ? 1e3 * total / impacts : 0.0);
     free(cost);
     return failed ? 3 : 0;
 }

@@ -13,6 +13,23 @@ static double limit_rate(const tribo_dyn_params *p, const tribo_contact_eval *ev
     return factor > 0.0 && (ev->delta_y > 0.0 || ddy > 0.0) ? p->mu * factor * ddy : 0.0;
 }
 
+const tribo_dyn_params *tribo_dyn_at(const tribo_dyn_params *p, double tau, tribo_dyn_params *at)
+{
+    if (!tribo_vibrating(p))
+        return p;
+    /* model.md §9b: (F_T_vib, F_N_vib) = Lambda_v sin(w_v tau + phi_v) (cos psi_v, sin psi_v) */
+    const double phase = p->vib_omega * tau + p->vib_phase;
+    const double force = p->vib_accel * sin(phase);
+    const double rate = p->vib_accel * p->vib_omega * cos(phase);
+    *at = *p;
+    at->tau = tau;
+    at->vib_t = force * p->vib_cos;
+    at->vib_n = force * p->vib_sin;
+    at->vib_rate_t = rate * p->vib_cos;
+    at->vib_rate_n = rate * p->vib_sin;
+    return at;
+}
+
 void tribo_contact_inverse_mass(const tribo_dyn_params *p, const tribo_pose *g, double w[3])
 {
     w[0] = 1.0 + g->cx * g->cx * p->inv_inertia;
@@ -32,8 +49,8 @@ static double rigid_system(const tribo_dyn_params *p, const tribo_force_law *law
                            double Omega, double *psi_n, double *psi_t)
 {
     if (law->roll == TRIBO_ROLL_LOCK) {
-        *psi_n = p->g_n - p->F_N;
-        *psi_t = -(p->g_t + p->F_T);
+        *psi_n = p->g_n - tribo_force_n(p);
+        *psi_t = -(p->g_t + tribo_force_t(p));
         return 1.0;
     }
     double w[3];
@@ -41,8 +58,8 @@ static double rigid_system(const tribo_dyn_params *p, const tribo_force_law *law
     const double arm = tribo_normal_arm(p, law, g);
     const double w_nn = 1.0 + g->cx * arm * p->inv_inertia, w_tn = arm * g->h * p->inv_inertia;
     const double spin2 = Omega * Omega;
-    const double b_n = p->g_n - p->F_N - tribo_pose_kappa(p->eps2, g) * spin2;
-    const double b_t = g->cx * spin2 - (p->g_t + p->F_T);
+    const double b_n = p->g_n - tribo_force_n(p) - tribo_pose_kappa(p->eps2, g) * spin2;
+    const double b_t = g->cx * spin2 - (p->g_t + tribo_force_t(p));
     const double det = w_nn * w[2] - w[1] * w_tn;
     *psi_n = (w[2] * b_n - w[1] * b_t) / det;
     *psi_t = (w_nn * b_t - w_tn * b_n) / det;
@@ -85,17 +102,17 @@ double tribo_lock_force(const tribo_dyn_params *p, const tribo_force_law *law, c
     }
     if (p->damping_point == TRIBO_DAMPING_CENTRE) {
         *A = 1.0;
-        return p->g_n - p->F_N; /* V held at 0: the normal force balances the normal load */
+        return p->g_n - tribo_force_n(p); /* V held at 0: the normal force balances the normal load */
     }
     if (law->roll == TRIBO_ROLL_LOCK) {
         /* Omega and dOmega/dtau held at 0 (model.md §3c): vn = V, and dV/dtau = 0 */
         *A = 1.0;
-        return p->g_n - p->F_N;
+        return p->g_n - tribo_force_n(p);
     }
     /* model.md §3: dvn/dtau = Psi_N (1 + cx c/I) + (cx h / I) Psi_T - (Gamma cos(beta) - F_N)
        + kappa Omega^2 = 0, c the normal force's lever arm (§3c) */
     const double Om = y[TRIBO_IOMEGA];
-    const double load = p->g_n - p->F_N - tribo_pose_kappa(p->eps2, g) * Om * Om;
+    const double load = p->g_n - tribo_force_n(p) - tribo_pose_kappa(p->eps2, g) * Om * Om;
     const double stick_factor = 1.0 + g->cx * tribo_normal_arm(p, law, g) * p->inv_inertia;
     const double coupling = g->cx * g->h * p->inv_inertia;
     if (law->tangent == TRIBO_TANGENT_SLIP) {
@@ -120,8 +137,10 @@ static double lock_limit_rate(const tribo_dyn_params *p, const tribo_force_law *
     const double Om = y[TRIBO_IOMEGA], sigma = law->slip_sign, arm = tribo_normal_arm(p, law, g);
     const double kappa = tribo_pose_kappa(p->eps2, g);
     const double spin_rate = p->inv_inertia * psi_star * (arm - p->mu * sigma * g->h);
+    /* on a vibrating plate the load also follows the inertial force (model.md §9b) */
     const double load_rate = -(tribo_pose_kappa_slope(g, kappa) * Om * Om * Om +
-                               2.0 * kappa * Om * spin_rate);
+                               2.0 * kappa * Om * spin_rate) -
+                             p->vib_rate_n;
     const double A_rate = p->inv_inertia *
                           ((g->cx + arm) * kappa - p->mu * sigma * (kappa * g->h - g->cx * g->cx)) * Om;
     return p->mu * (load_rate - psi_star * A_rate) / A;
@@ -232,8 +251,8 @@ void tribo_dynamics_rhs(const tribo_dyn_params *p, const tribo_force_law *law, c
     dydt[TRIBO_IGAP] = lock ? (centre ? ev->pose.cx * Om : -creep_rate) : V + ev->pose.cx * Om;
     dydt[TRIBO_IPHI] = Om;
     /* model.md §4 */
-    dydt[TRIBO_IU] = p->g_t + p->F_T + ev->psi_t;
-    dydt[TRIBO_IV] = lock && centre ? 0.0 : -p->g_n + p->F_N + ev->psi_n;
+    dydt[TRIBO_IU] = p->g_t + tribo_force_t(p) + ev->psi_t;
+    dydt[TRIBO_IV] = lock && centre ? 0.0 : -p->g_n + tribo_force_n(p) + ev->psi_n;
     dydt[TRIBO_IOMEGA] = p->inv_inertia * (ev->pose.h * ev->psi_t + ev->pose.cx * ev->psi_n);
     /* model.md §3c: the rolling torque, and its power -mu_r Psi_N |Omega| <= 0 lost from E (in
        the rolling lock Omega is held at 0, and it does no work) */
@@ -284,7 +303,9 @@ double tribo_lock_force_rate(const tribo_dyn_params *p, const tribo_force_law *l
     /* a step that turns the particle by 1e-5 rad and changes its spin by 1e-5 of its scale:
        the central difference is then exact to ~1e-10 of Psi_N*'s scale of change */
     const double Om = y[TRIBO_IOMEGA];
-    const double d = 1e-5 / (fabs(Om) + sqrt(fabs(f[TRIBO_IOMEGA])) + 1e-300);
+    double d = 1e-5 / (fabs(Om) + sqrt(fabs(f[TRIBO_IOMEGA])) + 1e-300);
+    if (tribo_vibrating(p)) /* and moves the plate's phase by at most 1e-5 rad */
+        d = fmin(d, 1e-5 / p->vib_omega);
     double z[2][TRIBO_NMOTION], psi[2];
     for (int k = 0; k < 2; k++) {
         memcpy(z[k], y, sizeof z[k]); /* y may be CVODE's vector: the motion and no more */
@@ -294,7 +315,9 @@ double tribo_lock_force_rate(const tribo_dyn_params *p, const tribo_force_law *l
         tribo_pose g;
         tribo_pose_at(p->eps2, z[k][TRIBO_IPHI], &g);
         double A;
-        psi[k] = tribo_lock_force(p, &lock, &g, z[k], &A);
+        /* on a vibrating plate the load moves with the time too (model.md §9b) */
+        tribo_dyn_params at;
+        psi[k] = tribo_lock_force(tribo_dyn_at(p, p->tau + step, &at), &lock, &g, z[k], &A);
     }
     return (psi[0] - psi[1]) / (2.0 * d);
 }

@@ -28,8 +28,10 @@ enum {
     TRIBO_NMOTION  /* the charge models' quadratures follow, from here          */
 };
 
-/* Room for the motion and every registered charge model's quadratures. */
-#define TRIBO_NSTATE_MAX (TRIBO_NMOTION + TRIBO_CHARGE_MAX_QUADRATURES)
+/* Room for the motion, every registered charge model's quadratures and, on a vibrating plate,
+   the work of the plate's inertial force W_vib (model.md §9b), last: a component of its own
+   only there, so that a still plate's state (and CVODE's error norm over it) is unchanged. */
+#define TRIBO_NSTATE_MAX (TRIBO_NMOTION + TRIBO_CHARGE_MAX_QUADRATURES + 1)
 
 /* Everything the right-hand side needs, derived once from the scene. */
 typedef struct tribo_dyn_params {
@@ -47,7 +49,48 @@ typedef struct tribo_dyn_params {
     int rigid_stick;     /* stick_model = rigid: a stick in a contact-point lock is a
                             constraint (model.md §3b) */
     double mu_roll;      /* rolling resistance (model.md §3c) */
+    /* the plate's vibration (model.md §9b): the inertial force vib_accel sin(vib_omega tau +
+       vib_phase) (vib_cos, vib_sin) in the plate's frame; vib_accel = 0 a still plate */
+    double vib_accel, vib_omega, vib_phase, vib_cos, vib_sin;
+    int vib_slot;        /* the index of W_vib in the state; 0 on a still plate (none) */
+    /* the dynamics at one time (tribo_dyn_at): tau, the inertial force then and its rate;
+       0 on a still plate */
+    double tau, vib_t, vib_n, vib_rate_t, vib_rate_n;
 } tribo_dyn_params;
+
+/* Whether the plate vibrates (model.md §9b): the forces then depend on the time. */
+static inline int tribo_vibrating(const tribo_dyn_params *p) { return p->vib_accel > 0.0; }
+
+/* The dynamics at time tau (model.md §9b): p itself on a still plate, else a copy in *at with
+   the plate's inertial force at tau. Every evaluation of the forces on a vibrating plate (the
+   right-hand side, the locks, the switches, the phase after an event) takes the dynamics of
+   its time; the flight reads the vibration from p and its own time. */
+const tribo_dyn_params *tribo_dyn_at(const tribo_dyn_params *p, double tau, tribo_dyn_params *at);
+
+/* The external force on the grain, along and normal to the plate: the inputs and the plate's
+   inertial force (model.md §3, §9b). The one place they are summed: every law that reads the
+   external force (§3's locks, §3b's rigid stick, §3c's rolling lock, §4) reads it here. */
+static inline double tribo_force_t(const tribo_dyn_params *p) { return p->F_T + p->vib_t; }
+static inline double tribo_force_n(const tribo_dyn_params *p) { return p->F_N + p->vib_n; }
+
+/* The power of the plate's inertial force on the grain at y, dW_vib/dtau (model.md §9b). */
+static inline double tribo_vibration_power(const tribo_dyn_params *p, const double *y)
+{
+    return p->vib_t * y[TRIBO_IU] + p->vib_n * y[TRIBO_IV];
+}
+
+/* Whether the lowest point, at rest on the plate (delta = 0, vn = 0), is pressed in: its
+   indentation's second derivative `curvature` = h''(phi) Omega^2 + Gamma cos(beta) - F_N is
+   positive. On a vibrating plate the load passes 0 smoothly where the grain lifts off (model.md
+   §9b): within 1e-9 of the load's scale of 0 (the rounding of a located switch) its rate
+   decides, so that a lift-off is not taken for a contact at once. */
+static inline int tribo_pressed_in(const tribo_dyn_params *p, double curvature, double rate)
+{
+    if (!tribo_vibrating(p))
+        return curvature > 0.0;
+    const double scale = 1e-9 * (p->g_n + fabs(p->F_N) + p->vib_accel * fabs(p->vib_sin));
+    return curvature > scale || (curvature >= -scale && rate > 0.0);
+}
 
 /* The rounding of a velocity a + b (V + cx Omega, say) in a state an event-driven integrator
    holds to its tolerances: within it a state cannot tell which way the velocity points. */

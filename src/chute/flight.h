@@ -16,13 +16,16 @@ typedef struct tribo_flight {
     double t0;
     double y0[TRIBO_NSTATE_MAX];
     int n;            /* components of the state in use */
-    double a_t, a_n;  /* the centre's acceleration along and normal to the plate */
+    double a_t, a_n;  /* the centre's acceleration along and normal to the plate under the
+                         steady loads (gravity and the inputs) */
+    /* on a vibrating plate (model.md §9b) the inertial force adds a sinusoid: its phase at t0 */
+    double vib_sin0, vib_cos0;
 } tribo_flight;
 
 void tribo_flight_start(tribo_flight *f, const tribo_dyn_params *p, double t0, const double *y0, int n);
 
-/* The state at time t (every component: the motion, G, the work done by the inputs; the
-   contact's and the charges' do not change in flight). */
+/* The state at time t (every component: the motion, G, the work done by the inputs and by the
+   plate's inertial force; the contact's and the charges' do not change in flight). */
 void tribo_flight_state(const tribo_flight *f, const tribo_dyn_params *p, double t, double *y);
 
 /* How a flight's piece ends. */
@@ -40,7 +43,9 @@ typedef enum {
    from it). Returns the piece's end time; *why says which; *used receives the evaluations
    spent. The search cannot miss a contact: between evaluations it steps only as far as the
    clearance's second derivative, bounded by (1 - eps^2)/eps Omega^2 + Gamma cos(beta) -
-   F_N, allows the lowest point to stay off the plate. */
+   F_N (+ Lambda_v |sin psi_v| on a vibrating plate, model.md §9b), allows the lowest point to
+   stay off the plate; on a vibrating plate the exit too is found so, its bound on the centre's
+   acceleration along the plate Gamma sin(beta) + F_T + Lambda_v |cos psi_v|. */
 double tribo_flight_end_of(const tribo_flight *f, const tribo_dyn_params *p, double t_from,
                            double t_max, long budget, tribo_flight_end *why, long *used);
 

@@ -75,9 +75,11 @@ void tribo_switch_functions(const tribo_dyn_params *p, const tribo_force_law *la
     tribo_contact_at(p, law, y, &ev);
     const double dy = -y[TRIBO_IGAP];
     if (law->normal == TRIBO_NORMAL_CREEP) {
-        /* the indentation on the band's edge reaches 0 (lift-off), or stops moving the way the
-           creep goes: the load turns back into the band */
-        g[TRIBO_SWITCH_CONTACT] = ev.delta_y;
+        /* the indentation on the band's edge reaches 0 (lift-off: taken before its clamp at 0,
+           so that the root is seen where the load passes 0, as a vibrating plate's does,
+           model.md §9b), or stops moving the way the creep goes: the load turns back into the
+           band */
+        g[TRIBO_SWITCH_CONTACT] = ev.psi_n / (1.0 - p->nu * law->normal_sign);
         g[TRIBO_SWITCH_NORMAL_A] = -law->normal_sign * tribo_lock_force_rate(p, law, y);
     }
     if (tribo_locked(law)) {
@@ -572,7 +574,15 @@ static void confirm_lock(const tribo_dyn_params *p, double *y, tribo_force_law *
 static int pressed_in(const tribo_dyn_params *p, const double *y)
 {
     const double Om = y[TRIBO_IOMEGA];
-    return h_curvature(p, y[TRIBO_IPHI]) * Om * Om + (p->g_n - p->F_N) > 0.0;
+    const double curvature = h_curvature(p, y[TRIBO_IPHI]) * Om * Om + (p->g_n - tribo_force_n(p));
+    if (!tribo_vibrating(p))
+        return tribo_pressed_in(p, curvature, 0.0);
+    /* its rate, h''' Omega^3 - dF_N/dtau (h''' = -dkappa/dphi; model.md §9b) */
+    tribo_pose g;
+    tribo_pose_at(p->eps2, y[TRIBO_IPHI], &g);
+    const double kappa = tribo_pose_kappa(p->eps2, &g);
+    const double rate = -tribo_pose_kappa_slope(&g, kappa) * Om * Om * Om - p->vib_rate_n;
+    return tribo_pressed_in(p, curvature, rate);
 }
 
 /* Whether a sign phase starts at rest at y: its damped velocity within its rounding of 0, and

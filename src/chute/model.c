@@ -48,6 +48,12 @@ void tribo_derive_params(tribo_model *m)
     const double fall = s->gap0 > 0.0 ? 2.0 * s->Gamma * s->gap0 / cos(beta) : 0.0;
     m->motion_scales = tribo_motion_scales_of(s->Gamma, sqrt(s->drop_speed * s->drop_speed + fall));
     m->motion_decay_h = NAN; /* (the decay of the window before, if another) */
+    /* model.md §9b: the plate's stroke; vib_slot is the instance's (set with its state) */
+    d->vib_accel = s->vib_accel;
+    d->vib_omega = s->vib_omega;
+    d->vib_phase = s->vib_phase;
+    d->vib_cos = cos(s->vib_angle);
+    d->vib_sin = sin(s->vib_angle);
 }
 
 /* The initial point of the scene (model.md §7 by default); its contact is evaluated by the
@@ -476,6 +482,8 @@ tribo_model *tribo_create_from_parts(const tribo_scene *scene, const tribo_parts
         return NULL;
     }
     m->n_state = TRIBO_NMOTION + m->charging.n_quadratures;
+    if (tribo_vibrating(&m->dyn)) /* W_vib, last (dynamics.h; model.md §9b) */
+        m->dyn.vib_slot = m->n_state++;
     m->integrator = integrator;
     if (integrator->create(m, &m->integrator_data) != TRIBO_OK || tribo_reset(m) != TRIBO_OK) {
         report(err, err_size, m->error[0] ? m->error : "out of memory");

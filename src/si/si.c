@@ -278,6 +278,37 @@ static tribo_status check_initial_charge(const tribo_si_scene *si, char *msg, si
     return TRIBO_ERR_INVALID_ARGUMENT;
 }
 
+/* The plate's vibration in the model's units (model.md §9b): w_v = 2 pi f t_star and Lambda_v =
+   (A/a) w_v^2, where the chute vibrates (A > 0); a still chute keeps the model's defaults. */
+static tribo_status derive_vibration(const tribo_si_scene *si, tribo_si_derived *d, char *msg,
+                                     size_t msg_size)
+{
+    const double A = si->vibration_amplitude, f = si->vibration_frequency;
+    if (A == 0.0)
+        return TRIBO_OK;
+    if (!(f > 0.0)) {
+        if (msg && msg_size)
+            snprintf(msg, msg_size,
+                     "vibration_frequency = %.6g Hz is invalid with vibration_amplitude = %.6g m: "
+                     "a chute that vibrates needs a frequency above 0 (valid range (0, 1e6] Hz; "
+                     "docs/model.md §9b)",
+                     f, A);
+        return TRIBO_ERR_INVALID_ARGUMENT;
+    }
+    const double omega = 2.0 * M_PI * f * d->t_star, accel = A / d->a * omega * omega;
+    char made_of[400];
+    snprintf(made_of, sizeof made_of,
+             "vibration_amplitude = %.6g m, vibration_frequency = %.6g Hz, semi_major_axis = %.6g m "
+             "and the set-up's t_star = %.6g s",
+             A, f, d->a, d->t_star);
+    tribo_status st = check_derived(tribo_param_find("vib_omega"), omega, made_of, msg, msg_size);
+    if (st == TRIBO_OK)
+        st = check_derived(tribo_param_find("vib_accel"), accel, made_of, msg, msg_size);
+    d->scene.vib_omega = omega;
+    d->scene.vib_accel = accel;
+    return st;
+}
+
 tribo_status tribo_si_derive(const tribo_si_scene *si, tribo_si_derived *d, char *msg,
                              size_t msg_size)
 {
@@ -348,6 +379,8 @@ tribo_status tribo_si_derive(const tribo_si_scene *si, tribo_si_derived *d, char
         describe_inputs(made_of, sizeof made_of, si, d, "gravity", SPEED);
         return check_derived(gamma, d->scene.Gamma, made_of, msg, msg_size);
     }
+    if ((st = derive_vibration(si, d, msg, msg_size)) != TRIBO_OK)
+        return st;
     if ((st = tribo_scene_validate(&d->scene, msg, msg_size)) != TRIBO_OK)
         return st;
     return charge_to_mass_model_included(si, d, msg, msg_size);

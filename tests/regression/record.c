@@ -56,6 +56,13 @@ static int model_of_output(tribo_quantity q)
     }
 }
 
+/* Whether an output belongs to the vibrating plate (model.md §9b): on a still plate it reads 0
+   and is not recorded, so that the record of the still plate is the one it was. */
+static int vibration_output(tribo_quantity q)
+{
+    return q == TRIBO_QUANTITY_WORK_VIBRATION || q == TRIBO_QUANTITY_THROW_NUMBER;
+}
+
 static void print_outputs(const char *run, tribo_model *m, int last)
 {
     const double t = tribo_get(m, TRIBO_QUANTITY_TIME);
@@ -63,6 +70,8 @@ static void print_outputs(const char *run, tribo_model *m, int last)
     for (int q = 0; q < TRIBO_QUANTITY_COUNT; q++) {
         const int model = model_of_output((tribo_quantity)q);
         if (model >= 0 && !tribo_includes_charge_model(m, (tribo_segment_charge)model))
+            continue;
+        if (vibration_output((tribo_quantity)q) && tribo_get_scene(m)->vib_accel == 0.0)
             continue;
         const double v = tribo_get(m, (tribo_quantity)q);
         h = fnv1a(&v, sizeof v, h);

@@ -61,6 +61,31 @@ def fail(prog: str, message: str, status: int = 2) -> int:
     return status
 
 
+def vibration(text: str) -> dict:
+    """argparse type: AMPLITUDE,FREQUENCY[,ANGLE_DEG], the chute's vibration (docs/feeder.md)
+    as the SI FMU's parameters by the package's names; the FMU checks their ranges."""
+    values = numbers(text)
+    if len(values) not in (2, 3):
+        raise argparse.ArgumentTypeError(
+            f"{text!r}: expected AMPLITUDE,FREQUENCY[,ANGLE_DEG] (m, Hz, degrees)")
+    names = ("vibration_amplitude", "vibration_frequency", "vibration_angle_deg")
+    return dict(zip(names, values))
+
+
+def add_vibration_option(p: argparse.ArgumentParser) -> None:
+    """--vibration, the SI chute's (vibration_of reads it)."""
+    p.add_argument("--vibration", type=vibration, default={}, dest="chute_vibration",
+                   metavar="AMPLITUDE,FREQUENCY[,ANGLE_DEG]",
+                   help="a vibrating chute, a vibratory feeder: the stroke's amplitude (m), "
+                        "frequency (Hz) and angle from the chute (degrees, default 90: along its "
+                        "normal; docs/feeder.md)")
+
+
+def vibration_of(args) -> dict:
+    """The chute's vibration given by --vibration (add_vibration_option), or none."""
+    return getattr(args, "chute_vibration", {})
+
+
 def add_out_option(p: argparse.ArgumentParser, default: str | None) -> None:
     shown = f" (default {default})" if default else ""
     p.add_argument("--out", default=default, metavar="FOLDER",
@@ -121,7 +146,7 @@ def feed_of(args, measured=None):
     from ..populations.feed import Feed  # the same
     distributions = {n: getattr(args, n) for n in FEED_VARIABLES if getattr(args, n) is not None}
     return Feed(args.particle, args.wall, distributions,
-                {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg},
+                {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg, **vibration_of(args)},
                 with_pair(args.particle, args.wall, dict(args.set), args.materials), measured,
                 materials=args.materials)
 

@@ -35,8 +35,8 @@ import os
 from ..batch.specs import check_count
 from ..line.defaults import DEFAULT_FEED_WIDTH, DEFAULT_PAIR
 from ..populations.feed_variables import DEFAULT_CHUTE
-from .common import (INPUT_ERRORS, add_job_options, add_materials_option, add_out_option, fail,
-                     name_value, one_line, run_job)
+from .common import (INPUT_ERRORS, add_job_options, add_materials_option, add_out_option,
+                     add_vibration_option, fail, name_value, one_line, run_job, vibration_of)
 
 VOLTAGE_DEFAULT = 30e3
 
@@ -90,6 +90,7 @@ def add_arguments(p) -> None:
                    help=f"m (default {DEFAULT_CHUTE['chute_length']:g})")
     p.add_argument("--tilt-deg", type=float, default=DEFAULT_CHUTE["tilt_deg"],
                    help=f"degrees (default {DEFAULT_CHUTE['tilt_deg']:g})")
+    add_vibration_option(p)
     p.add_argument("--set", type=name_value, action="append", default=[], metavar="NAME=VALUE",
                    help="any other SI chute parameter by the package's names")
     p.add_argument("--separator", type=name_value, action="append", default=[],
@@ -105,7 +106,7 @@ def add_arguments(p) -> None:
 
 
 def chute_of(args) -> dict:
-    return {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg}
+    return {"chute_length": args.chute_length, "tilt_deg": args.tilt_deg, **vibration_of(args)}
 
 
 def check_finite(args, names) -> None:

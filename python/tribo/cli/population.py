@@ -5,6 +5,8 @@ particles drawn from a feed with a seed, one row per particle, the q/m summary a
     tribo population -n 200 --particle PP --wall glass --epsilon uniform:0.5:1 \\
         --size lognormal:1e-3:0.3 --chute-length 0.5 --tilt-deg 35 --out out/pp-glass
     tribo population -n 500 --measured examples/data/sieve.csv --out out/sieve  # measured rows
+    tribo population -n 200 --chute-length 0.5 --tilt-deg 0 --vibration 5e-4,50,30 \\
+        --t-end 30 --out out/feeder   # a level vibratory feeder: 0.5 mm, 50 Hz, 30 degrees
 
 The feed variables (tribo/populations/feed.py) take a number or a distribution: uniform:LOW:HIGH,
 normal:MEAN:SD, lognormal:MEDIAN:SIGMA, choice:V1,V2,...; --measured CSV gives columns of
@@ -39,13 +41,15 @@ process, or --scheduler).
 import os
 
 from .common import (QM_UNITS_SAID, add_chute_options, add_class_options, add_feed_options,
-                     add_si_job_options, feed_of, name_value, qm_table, run_job)
+                     add_si_job_options, add_vibration_option, feed_of, name_value, qm_table,
+                     run_job)
 
 
 def add_arguments(p) -> None:
     add_feed_options(p, "particles")
     p.add_argument("--measured", metavar="CSV", help="measured values, a column per feed variable")
     add_chute_options(p)
+    add_vibration_option(p)
     p.add_argument("--set", type=name_value, action="append", default=[], metavar="NAME=VALUE",
                    help="any other SI parameter by the package's names (mu=0.5, "
                         "cylinder_length=2e-3, n_segments=500, ...)")

@@ -117,24 +117,35 @@ typedef struct cvode_integrator {
 
 /* ---- the phase's right-hand side and root functions ---------------------------------- */
 
+/* The dynamics at time t: the instance's, with the plate's inertial force then on a vibrating
+   plate (model.md §9b). */
+static const tribo_dyn_params *dyn_at(const cvode_integrator *c, double t, tribo_dyn_params *at)
+{
+    return tribo_dyn_at(c->dyn, t, at);
+}
+
 static int roots(sunrealtype t, N_Vector y, sunrealtype *g, void *user)
 {
-    (void)t;
     cvode_integrator *c = user;
-    tribo_switch_functions(c->dyn, &c->phase, N_VGetArrayPointer(y), g);
+    tribo_dyn_params at;
+    tribo_switch_functions(dyn_at(c, t, &at), &c->phase, N_VGetArrayPointer(y), g);
     return 0;
 }
 
 static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *user)
 {
-    (void)t;
     cvode_integrator *c = user;
     double *dydt = N_VGetArrayPointer(ydot);
-    tribo_dynamics_rhs(c->dyn, &c->phase, N_VGetArrayPointer(y), dydt, NULL);
+    const double *state = N_VGetArrayPointer(y);
+    tribo_dyn_params at;
+    const tribo_dyn_params *p = dyn_at(c, t, &at);
+    tribo_dynamics_rhs(p, &c->phase, state, dydt, NULL);
     /* the charge models' quadratures are integrated by the charging sweep, so that they
        do not steer the steps: here they are constant */
     for (int i = TRIBO_NMOTION; i < c->n; i++)
         dydt[i] = 0.0;
+    if (p->vib_slot)
+        dydt[p->vib_slot] = tribo_vibration_power(p, state);
     if (!c->replaying) {
         tribo_count(c->m, TRIBO_COUNT_RHS_EVALS, 1);
         tribo_work(c->m, c->rhs_work);
@@ -161,8 +172,9 @@ static void error_handler(int code, const char *module, const char *function, ch
    quasi-static value -Psi_T*, the energy that stretch stores booked with it, so that
    E + work_dissipated does not change by it (the constraint forces do no work). Putting a
    point back twice changes nothing. The centre dashpot's lock holds Y and V exactly
-   (dY/dtau = dV/dtau = 0), and G = Y - h(phi). */
-static void hold_phase(const cvode_integrator *c, double *y)
+   (dY/dtau = dV/dtau = 0), and G = Y - h(phi). t: the time of y (the forces of a vibrating
+   plate's rigid stick are those then). */
+static void hold_phase(const cvode_integrator *c, double t, double *y)
 {
     if (!tribo_touching(&c->phase) || !tribo_locked(&c->phase))
         return;
@@ -182,7 +194,8 @@ static void hold_phase(const cvode_integrator *c, double *y)
         return;
     }
     tribo_contact_eval ev;
-    tribo_contact_at(c->dyn, &c->phase, y, &ev);
+    tribo_dyn_params at;
+    tribo_contact_at(dyn_at(c, t, &at), &c->phase, y, &ev);
     if (c->phase.normal == TRIBO_NORMAL_CREEP)
         y[TRIBO_IGAP] = -ev.delta_y;
     y[TRIBO_IY] = g.h + y[TRIBO_IGAP];
@@ -199,10 +212,11 @@ static void hold_phase(const cvode_integrator *c, double *y)
    switch functions are sampled within each step (find_grazing_switch): a step of that
    length leaves nothing between the samples. A physical particle has a tiny Gamma (1e-8 for
    a 1 mm polymer grain on steel): a step of 1 would then take ~1e6 steps to cross a chute
-   the slow motion crosses in ~1e3 (model.md §8, §9). */
+   the slow motion crosses in ~1e3 (model.md §8, §9). A vibrating plate's inertial force is
+   one of those loads (model.md §9b). */
 static double slow_step(const tribo_dyn_params *p)
 {
-    return fmax(1.0, sqrt(1e-3 / (p->Gamma + fabs(p->F_T) + fabs(p->F_N))));
+    return fmax(1.0, sqrt(1e-3 / (p->Gamma + fabs(p->F_T) + fabs(p->F_N) + p->vib_accel)));
 }
 
 /* (Re)start at (t, y) in phase ph: a flight in closed form, a contact with CVODE. */
@@ -273,7 +287,8 @@ static int set_tolerances(cvode_integrator *c)
     /* the dynamics' tolerances: the scene's, at most the loosest the event logic takes */
     N_VConst(c->dyn->atol, c->abstol);
     for (int i = TRIBO_NMOTION; i < c->n; i++)
-        N_VGetArrayPointer(c->abstol)[i] = 1e30;
+        if (i != c->dyn->vib_slot) /* W_vib is the mechanics' own, like W_ext (model.md §9b) */
+            N_VGetArrayPointer(c->abstol)[i] = 1e30;
     return CVodeSVtolerances(c->mem, c->dyn->rtol, c->abstol) == CV_SUCCESS;
 }
 
@@ -341,6 +356,13 @@ fail:
 }
 
 /* ---- stepping -------------------------------------------------------------------------------- */
+
+/* The bytes of the charge models' quadratures in a state (the sweep's, which CVODE holds
+   constant), after the motion; W_vib, last on a vibrating plate, is CVODE's. */
+static size_t charge_quadratures(const cvode_integrator *c)
+{
+    return (size_t)(c->n - TRIBO_NMOTION - (c->dyn->vib_slot ? 1 : 0)) * sizeof(double);
+}
 
 static void describe_state(const cvode_integrator *c, const double *y, char *buf, size_t n)
 {
@@ -434,7 +456,7 @@ static tribo_status take_step(cvode_integrator *c)
     c->open = 1;
     c->t_end = t_ret;
     memcpy(c->y_end, N_VGetArrayPointer(c->y), (size_t)c->n * sizeof(double));
-    hold_phase(c, c->y_end);
+    hold_phase(c, t_ret, c->y_end);
     c->ends_at_root = flag == CV_ROOT_RETURN;
     if (c->ends_at_root)
         CVodeGetRootInfo(c->mem, c->roots);
@@ -482,7 +504,8 @@ static void switch_functions(cvode_integrator *c, double t, double *g)
 {
     double y[TRIBO_NSTATE_MAX];
     dense(c, t, y);
-    tribo_switch_functions(c->dyn, &c->phase, y, g);
+    tribo_dyn_params at;
+    tribo_switch_functions(dyn_at(c, t, &at), &c->phase, y, g);
 }
 
 /* Returns how many times it looked at the switch functions. */
@@ -522,7 +545,7 @@ static int find_grazing_switch(cvode_integrator *c, double t_start)
         }
         c->t_end = b;
         dense(c, b, c->y_end);
-        hold_phase(c, c->y_end);
+        hold_phase(c, b, c->y_end);
         c->ends_at_root = 1;
         for (int i = 0; i < N_ROOTS; i++)
             c->roots[i] = i == found ? dir[i] : 0;
@@ -587,7 +610,7 @@ static void end_step_early(cvode_integrator *c, double t)
 {
     c->t_end = t;
     dense(c, t, c->y_end);
-    hold_phase(c, c->y_end);
+    hold_phase(c, t, c->y_end);
     c->ends_at_root = 0;
     for (int i = 0; i < N_ROOTS; i++)
         c->roots[i] = 0;
@@ -600,8 +623,9 @@ static void fill_point(cvode_integrator *c, tribo_point *p, double t, const doub
 {
     p->t = t;
     memcpy(p->y, y, sizeof p->y);
-    hold_phase(c, p->y);
-    tribo_contact_at(c->dyn, &c->phase, p->y, &p->contact);
+    hold_phase(c, t, p->y);
+    tribo_dyn_params at;
+    tribo_contact_at(dyn_at(c, t, &at), &c->phase, p->y, &p->contact);
     if (tribo_touching(&c->phase)) {
         /* the phase decides contact, also where rounding makes delta_y = -1e-17 */
         p->contact.in_contact = 1;
@@ -630,7 +654,7 @@ static tribo_status close_step(cvode_integrator *c)
 {
     tribo_model *m = c->m;
     const tribo_point *committed = tribo_committed(m);
-    const size_t quadratures = (size_t)(c->n - TRIBO_NMOTION) * sizeof(double);
+    const size_t quadratures = charge_quadratures(c);
     tribo_point next;
     memcpy(next.charge_globals, committed->charge_globals, sizeof next.charge_globals);
     /* the quadratures are the sweep's, not CVODE's (it holds them constant) */
@@ -687,7 +711,8 @@ static tribo_status close_step(cvode_integrator *c)
         return fail_at(c, t, c->y_end, "too many events in a row without a regular step");
     double y[TRIBO_NSTATE_MAX];
     memcpy(y, c->y_end, sizeof y);
-    const phase ph = tribo_phase_after(c->dyn, &c->phase, y, c->roots);
+    tribo_dyn_params at;
+    const phase ph = tribo_phase_after(dyn_at(c, t, &at), &c->phase, y, c->roots);
     const int lift_off = tribo_touching(&c->phase) && !tribo_touching(&ph);
     tribo_count(m, TRIBO_COUNT_EVENTS, 1);
     st = restart_at(c, t, y, &ph);
@@ -698,7 +723,9 @@ static tribo_status close_step(cvode_integrator *c)
         c->ending = TRIBO_STOP_LIFTOFF;
         return TRIBO_ENDED;
     }
-    if (tribo_at_rest(&ph)) { /* for ever, under constant inputs (model.md §3c) */
+    if (tribo_at_rest(&ph) && !tribo_vibrating(c->dyn)) {
+        /* for ever, under constant inputs (model.md §3c); never on a vibrating plate, whose
+           load is not constant (§9b) */
         c->ending = TRIBO_STOP_REST;
         return TRIBO_ENDED;
     }
@@ -712,7 +739,8 @@ static tribo_status restart(tribo_model *m, void *data)
     double y[TRIBO_NSTATE_MAX];
     memcpy(y, committed->y, sizeof y);
     /* the phase follows from the state alone */
-    const phase ph = tribo_phase_after(c->dyn, &TRIBO_PHASE_FLIGHT, y, NULL);
+    tribo_dyn_params at;
+    const phase ph = tribo_phase_after(dyn_at(c, committed->t, &at), &TRIBO_PHASE_FLIGHT, y, NULL);
     c->events_at_instant = 0;
     c->events_in_a_row = 0;
     c->last_event_t = -INFINITY;
@@ -738,7 +766,7 @@ next_step:
         if (t <= tribo_committed(m)->t)
             break;
         /* (re)started at rest: the run ends there (model.md §3c) */
-        if (!c->open && tribo_at_rest(&c->phase))
+        if (!c->open && tribo_at_rest(&c->phase) && !tribo_vibrating(c->dyn))
             return tribo_stop_early(m, TRIBO_STOP_REST);
         if (tribo_work_spent(m))
             return tribo_stop_early(m, TRIBO_STOP_WORK_LIMIT);
@@ -761,8 +789,7 @@ next_step:
     }
     double y[TRIBO_NSTATE_MAX];
     dense(c, t, y);
-    memcpy(y + TRIBO_NMOTION, committed->y + TRIBO_NMOTION,
-           (size_t)(c->n - TRIBO_NMOTION) * sizeof(double));
+    memcpy(y + TRIBO_NMOTION, committed->y + TRIBO_NMOTION, charge_quadratures(c));
     memcpy(out.charge_globals, committed->charge_globals, sizeof out.charge_globals);
     fill_point(c, &out, t, y, committed, 0);
     double reached;
@@ -915,7 +942,7 @@ static tribo_status state_load(tribo_model *m, void *data, const unsigned char *
        (fill_point), which in the rigid stick can move the last bit */
     double y_at[TRIBO_NSTATE_MAX];
     memcpy(y_at, s.open ? y_before : y_reached, sizeof y_at);
-    hold_phase(c, y_at);
+    hold_phase(c, at, y_at);
     int same = at == t && (!s.open || (s.steps_since_restart > 0 && t_out <= reached));
     for (int i = 0; same && i < TRIBO_NMOTION; i++)
         same = i == TRIBO_IDX || y_at[i] == tribo_committed(m)->y[i];

@@ -79,8 +79,9 @@ static int normal_substeps(const tribo_dyn_params *dp, const tribo_point *p, dou
         return 1;
     const double force_max = dy_max * (1.0 + dp->nu);
     double gain = 1.0, accel, vn;
+    /* the loads: gravity, the input and a vibrating plate's inertial force (model.md §9b) */
     if (dp->damping_point == TRIBO_DAMPING_CENTRE) {
-        accel = dp->Gamma + fabs(dp->F_N) + force_max;
+        accel = dp->Gamma + fabs(dp->F_N) + dp->vib_accel + force_max;
         vn = y[TRIBO_IV];
     } else {
         /* over every orientation |cx| <= 1 - eps, h <= 1 and |kappa| <= 2 (1 - eps) / eps, so
@@ -89,7 +90,8 @@ static int normal_substeps(const tribo_dyn_params *dp, const tribo_point *p, dou
         const double kappa_max = 2.0 * (1.0 - dp->eps) / dp->eps;
         const double arm = fmin(1.0 - dp->eps, fabs(c->pose.cx) + h * kappa_max * spin);
         gain = 1.0 + dp->inv_inertia * arm * (arm + dp->mu);
-        accel = dp->Gamma + fabs(dp->F_N) + force_max * gain + kappa_max * spin * spin;
+        accel = dp->Gamma + fabs(dp->F_N) + dp->vib_accel + force_max * gain +
+                kappa_max * spin * spin;
         vn = tribo_damped_velocity(dp, &c->pose, y);
     }
     const double v_min = fmax(0.0, fabs(vn) - accel * h) / dp->v_reg;
@@ -121,30 +123,35 @@ static int substeps_needed(const tribo_dyn_params *dp, const tribo_point *p, dou
     const int normal = normal_substeps(dp, p, h);
     return roll > normal ? roll : normal;
 }
-/* dy/dtau: the motion, and the charge models' quadratures integrated with it. */
-static void rhs(const tribo_model *m, const double *y, double *dydt)
+/* dy/dtau at time t: the motion, the charge models' quadratures integrated with it and, on a
+   vibrating plate, the work of its inertial force (model.md §9b). */
+static void rhs(const tribo_model *m, double t, const double *y, double *dydt)
 {
     tribo_contact_eval ev;
-    tribo_dynamics_rhs(tribo_dynamics(m), &LAW, y, dydt, &ev);
+    tribo_dyn_params at;
+    const tribo_dyn_params *p = tribo_dyn_at(tribo_dynamics(m), t, &at);
+    tribo_dynamics_rhs(p, &LAW, y, dydt, &ev);
     tribo_quadrature_rates(m, &ev, dydt + TRIBO_NMOTION);
+    if (p->vib_slot)
+        dydt[p->vib_slot] = tribo_vibration_power(p, y);
 }
 
-static void rk4(tribo_model *m, double *y, double h)
+static void rk4(tribo_model *m, double t, double *y, double h)
 {
     const int n = tribo_state_length(m);
     double k1[TRIBO_NSTATE_MAX], k2[TRIBO_NSTATE_MAX], k3[TRIBO_NSTATE_MAX], k4[TRIBO_NSTATE_MAX];
     double tmp[TRIBO_NSTATE_MAX];
 
-    rhs(m, y, k1);
+    rhs(m, t, y, k1);
     for (int i = 0; i < n; i++)
         tmp[i] = y[i] + 0.5 * h * k1[i];
-    rhs(m, tmp, k2);
+    rhs(m, t + 0.5 * h, tmp, k2);
     for (int i = 0; i < n; i++)
         tmp[i] = y[i] + 0.5 * h * k2[i];
-    rhs(m, tmp, k3);
+    rhs(m, t + 0.5 * h, tmp, k3);
     for (int i = 0; i < n; i++)
         tmp[i] = y[i] + h * k3[i];
-    rhs(m, tmp, k4);
+    rhs(m, t + h, tmp, k4);
     for (int i = 0; i < n; i++)
         y[i] += h / 6.0 * (k1[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
     tribo_count(m, TRIBO_COUNT_RHS_EVALS, 4);
@@ -152,10 +159,12 @@ static void rk4(tribo_model *m, double *y, double h)
 
 /* Hold the stretch within the Coulomb limit (model.md §3); in flight the limit is 0, so the
    stretch is 0 when contact is regained. The spring energy the clamp removes is
-   dissipated by friction. Fills ev; returns the stretch before the clamp. */
-static double clamp_stretch(const tribo_dyn_params *dp, double *y, tribo_contact_eval *ev)
+   dissipated by friction. Fills ev (with the forces at time t); returns the stretch before the
+   clamp. */
+static double clamp_stretch(const tribo_dyn_params *dp, double t, double *y, tribo_contact_eval *ev)
 {
-    tribo_contact_at(dp, &LAW, y, ev);
+    tribo_dyn_params at;
+    tribo_contact_at(tribo_dyn_at(dp, t, &at), &LAW, y, ev);
     const double dx = y[TRIBO_IDX];
     const double dx_held = tribo_clamp(dx, ev->limit);
     y[TRIBO_IDX] = dx_held;
@@ -175,15 +184,15 @@ static void step(tribo_model *m, const tribo_point *p, double h, tribo_point *ne
     const int n = substeps_needed(dp, p, h);
     tribo_contact_eval *ev = &next->contact;
     for (int k = 1; k < n; k++) {
-        rk4(m, next->y, h / n);
-        clamp_stretch(dp, next->y, ev);
+        rk4(m, p->t + (k - 1) * (h / n), next->y, h / n);
+        clamp_stretch(dp, p->t + k * (h / n), next->y, ev);
     }
-    rk4(m, next->y, h / n);
+    rk4(m, p->t + (n - 1) * (h / n), next->y, h / n);
     if (n > 1)
         tribo_count(m, TRIBO_COUNT_SUBSTEPS, n - 1);
     tribo_work(m, TRIBO_WORK_FIXED_STEP * n);
 
-    const double dx = clamp_stretch(dp, next->y, ev);
+    const double dx = clamp_stretch(dp, next->t, next->y, ev);
     next->slipping = ev->in_contact && fabs(dx) >= ev->limit && (ev->limit > 0.0 || ev->vs != 0.0);
 
     tribo_book_interval(m, p, next, commit);
@@ -302,7 +311,8 @@ static tribo_status restart(tribo_model *m, void *data)
     f->t_base = p.t;
     f->k = 0;
     /* the contact under this integrator's law (substeps_needed reads it) */
-    tribo_contact_at(tribo_dynamics(m), &LAW, p.y, &p.contact);
+    tribo_dyn_params at;
+    tribo_contact_at(tribo_dyn_at(tribo_dynamics(m), p.t, &at), &LAW, p.y, &p.contact);
     tribo_commit(m, &p);
     return TRIBO_OK;
 }
