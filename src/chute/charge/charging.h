@@ -141,7 +141,7 @@ typedef enum { TRIBO_CHARGE_COMMIT, TRIBO_CHARGE_PENDING } tribo_charge_destinat
 
 /* The Paschen limit of a region of radius L (units of a) in the sliding model's unit of
    density (§8e). */
-double tribo_charging_region_limit(const tribo_charging *c, const tribo_scene *s, double radius);
+double tribo_charging_region_limit(tribo_charging *c, const tribo_scene *s, double radius);
 
 /* The Paschen limit's constants for the scene (§8e), where it acts (breakdown_model =
    paschen, with the grain's bands): the table of the gas's gamma over the regions up to the
