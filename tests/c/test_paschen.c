@@ -12,6 +12,7 @@
 #include "model.h"
 #include "paschen.h"
 #include "si.h"
+#include "si_support.h"
 #include "support.h"
 
 /* Air (§8e): A, B, p, gamma, and eps0. */
@@ -223,17 +224,6 @@ Test(paschen, episodes_hold_their_bands_and_the_grain_holds_its_limit)
 
 /* ---- impacts in SI units ----------------------------------------------------------------- */
 
-static tribo_si_derived derived(const char *settings)
-{
-    tribo_si_scene si;
-    tribo_si_scene_defaults(&si);
-    char err[512];
-    cr_assert_eq(tribo_si_scene_apply(&si, settings, err, sizeof err), TRIBO_OK, "%s", err);
-    tribo_si_derived d;
-    cr_assert_eq(tribo_si_derive(&si, &d, err, sizeof err), TRIBO_OK, "%s", err);
-    return d;
-}
-
 /* One impact of a PE spheroid of semi-axis a (m), eps and orientation phi0 head-on on a level
    steel wall at v: the run ends at the lift-off, the largest indentation found on the way (at
    4000 output points over the contact: the peak to 1e-7). */
@@ -360,13 +350,8 @@ Test(paschen, a_chute_run_keeps_every_band_within_its_episodes_limit)
                           k, s, i, fabs(b[i]), g->limit[i] / unit);
         }
         episodes = (int)m->committed.motion.touchdowns;
-        if (k == 100) {
-            size_t size;
-            unsigned char *bytes = saved_state(m, &size);
-            loaded = make(&d.scene);
-            cr_assert_eq(tribo_state_load(loaded, bytes, size), TRIBO_OK, "%s", tribo_last_error(loaded));
-            free(bytes);
-        }
+        if (k == 100)
+            loaded = loaded_copy(m, &d.scene);
         if (st == TRIBO_ENDED)
             break;
     }
