@@ -110,7 +110,7 @@ Test(grain, a_band_that_widens_keeps_its_charge)
     const double A_s = tribo_spheroid_area(0.7);
     double before[TRIBO_SEGMENTS_COUNT];
     for (int k = 0; k < TRIBO_SEGMENTS_COUNT; k++) {
-        const double init = tribo_charging_initial_value(c.slot[k].model, &P);
+        const double init = tribo_charging_initial_value(&c, c.slot[k].model, &P);
         before[k] = init * (A_s - charged_area(&c)) + tribo_compensated_value(&c.band_charge[k]);
     }
     const double area = charged_area(&c);
@@ -118,7 +118,7 @@ Test(grain, a_band_that_widens_keeps_its_charge)
     tribo_charging_apply(&c, &P, &wide, TRIBO_CHARGE_COMMIT);
     cr_assert_gt(charged_area(&c), 3.0 * area);
     for (int k = 0; k < TRIBO_SEGMENTS_COUNT; k++) {
-        const double init = tribo_charging_initial_value(c.slot[k].model, &P);
+        const double init = tribo_charging_initial_value(&c, c.slot[k].model, &P);
         const double after = init * (A_s - charged_area(&c)) + tribo_compensated_value(&c.band_charge[k]);
         cr_expect_float_eq(after, before[k], 1e-14 * fabs(before[k]), "%s: %.17g, was %.17g",
                            c.slot[k].model->name, after, before[k]);

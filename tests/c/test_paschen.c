@@ -149,7 +149,7 @@ static tribo_contact_sample patch_at(const tribo_charging *c, double phi, double
 /* The static model's grain charge Q (units of sigma0 a^2) and what it lost. */
 static double grain_q(const tribo_charging *c, const tribo_scene *s, int k)
 {
-    const double init = tribo_charging_initial_value(c->slot[k].model, s);
+    const double init = tribo_charging_initial_value(c, c->slot[k].model, s);
     return init * (tribo_spheroid_area(1.0) - tribo_compensated_value(&c->area)) +
            tribo_compensated_value(&c->band_charge[k]);
 }
@@ -159,7 +159,8 @@ static double grain_q(const tribo_charging *c, const tribo_scene *s, int k)
    episode ends at most at the episode's limit, and where the episode is its largest patch's,
    the first patches' bands come down to it; the grain's charge never passes its limit and
    reaches it; at every sample the change of the charge plus what was lost is the transfer
-   the rate law made (saturation minus the band's density after the widening, times its area). */
+   the rate law made (saturation minus the band's density after the widening, times its area);
+   a surface arriving above the grain's limit keeps that limit. */
 Test(paschen, episodes_hold_their_bands_and_the_grain_holds_its_limit)
 {
     const int n = 400;
@@ -171,6 +172,10 @@ Test(paschen, episodes_hold_their_bands_and_the_grain_holds_its_limit)
     tribo_charging_reset(&c, &P);
     const double A_s = tribo_spheroid_area(1.0);
     const double q_max = c.grain_limit; /* the static model's unit is Sigma0 = 1 */
+    /* a surface arriving above the grain's limit keeps the limit */
+    P.Sigma_init = 10.0 * q_max / A_s;
+    tribo_charging_reset(&c, &P);
+    cr_expect_float_eq(grain_q(&c, &P, 0), q_max, 1e-12 * q_max);
     P.Sigma_init = 0.99 * q_max / A_s;
     tribo_charging_reset(&c, &P);
     cr_assert(c.paschen);
@@ -180,7 +185,7 @@ Test(paschen, episodes_hold_their_bands_and_the_grain_holds_its_limit)
         const double phi = 0.37 * e;
         for (int k = 1; k <= 5; k++) {
             const tribo_contact_sample smp = patch_at(&c, phi, 2e-4 * k, e);
-            const double init = tribo_charging_initial_value(c.slot[0].model, &P);
+            const double init = tribo_charging_initial_value(&c, c.slot[0].model, &P);
             for (int i = 0; i < n; i++) {
                 old[i] = c.slot[0].bands[i];
                 area_old[i] = c.bands.hi[i] > c.bands.lo[i]

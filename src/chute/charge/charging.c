@@ -99,12 +99,15 @@ void tribo_charging_free(tribo_charging *c)
     c->window_cap = 0;
 }
 
-double tribo_charging_initial_value(const tribo_charge_model *model, const tribo_scene *s)
+double tribo_charging_initial_value(const tribo_charging *c, const tribo_charge_model *model,
+                                    const tribo_scene *s)
 {
     if (!model->density_unit || s->Sigma_init == 0.0)
         return 0.0;
-    /* a surface arriving above what air holds keeps what it holds (§8b) */
-    const double unit = model->density_unit(s), cap = s->Sigma_bd / unit;
+    /* a surface arriving above what air holds keeps what it holds (§8b; §8e: the grain's own
+       limit, where it acts) */
+    const double unit = model->density_unit(s);
+    const double cap = tribo_min(s->Sigma_bd, c->surface_limit) / unit;
     return tribo_min(tribo_max(s->Sigma_init / unit, -cap), cap);
 }
 
@@ -121,7 +124,7 @@ static void empty_bands(tribo_charging *c, const tribo_scene *s)
         tribo_charge_slot *slot = &c->slot[k];
         if (!slot->bands)
             continue;
-        const double init = tribo_charging_initial_value(slot->model, s);
+        const double init = tribo_charging_initial_value(c, slot->model, s);
         for (int i = 0; i < c->n; i++)
             slot->bands[i] = init;
     }
@@ -135,6 +138,7 @@ double tribo_charging_region_limit(tribo_charging *c, const tribo_scene *s, doub
 void tribo_charging_setup_gas(tribo_charging *c, const tribo_scene *s)
 {
     c->paschen = c->keep_bands && s->breakdown_model == TRIBO_BREAKDOWN_PASCHEN;
+    c->surface_limit = INFINITY;
     if (!c->paschen)
         return;
     /* a grounded wall's image halves the region's size (the pair form: L/2 -> L) */
@@ -143,17 +147,17 @@ void tribo_charging_setup_gas(tribo_charging *c, const tribo_scene *s)
     const double radius = sqrt(area / (4.0 * M_PI));
     tribo_paschen_build(&c->table, s->secondary_emission, c->region_scale * radius);
     c->grain_limit = tribo_charging_region_limit(c, s, radius) * area;
+    c->surface_limit = c->grain_limit / area;
 }
 
 /* No episode under way, the grain at its initial charge (§8e). */
 static void reset_gas(tribo_charging *c, const tribo_scene *s)
 {
-    tribo_charging_setup_gas(c, s);
     c->gas = (tribo_gas_state){.limit = INFINITY};
     const double area = tribo_spheroid_area(c->arc.eps);
     for (int k = 0; k < c->n_models && c->paschen; k++)
         if (c->slot[k].bands)
-            c->gas.grain[k] = tribo_charging_initial_value(c->slot[k].model, s) * area;
+            c->gas.grain[k] = tribo_charging_initial_value(c, c->slot[k].model, s) * area;
 }
 
 void tribo_charging_reset(tribo_charging *c, const tribo_scene *s)
@@ -167,6 +171,7 @@ void tribo_charging_reset(tribo_charging *c, const tribo_scene *s)
         c->sum[i] = c->lost[i] = c->band_charge[i] = c->band_lost[i] = (tribo_compensated){0};
     }
     c->area = (tribo_compensated){0};
+    tribo_charging_setup_gas(c, s);
     if (c->keep_bands && c->bands.width)
         empty_bands(c, s);
     reset_gas(c, s);
@@ -572,7 +577,7 @@ static void widen_bands(tribo_charging *c, const tribo_scene *s, const tribo_con
     const double seg = c->segment_length;
     double init[TRIBO_CHARGE_MAX_MODELS];
     for (int m = 0; m < c->n_models; m++)
-        init[m] = r->bands[m] ? tribo_charging_initial_value(c->slot[m].model, s) : 0.0;
+        init[m] = r->bands[m] ? tribo_charging_initial_value(c, c->slot[m].model, s) : 0.0;
     for (long j = 0; j < count; j++) {
         const long i = at + j;
         const double k = (double)(k0 + j);
@@ -648,9 +653,9 @@ static void charge_values(tribo_charge_slot *slot, const tribo_scene *s, const t
    the patch widened them). */
 static void charge_bands(tribo_charge_slot *slot, const tribo_scene *s, const tribo_charge_forcing *f,
                          double *bands, const slices *sl, const double *before, const double *after,
-                         const double *targets, double cap, double *charge, double *lost)
+                         const double *targets, double init, double cap, double *charge,
+                         double *lost)
 {
-    const double init = tribo_charging_initial_value(slot->model, s);
     for (int i = 0; i < sl->n; i++) {
         double *b = bands + sl->at[i];
         const long count = sl->count[i];
@@ -848,18 +853,18 @@ static long charge_run(tribo_charging *c, const tribo_scene *s, const tribo_cont
                                         sample->globals_end + slot->globals_at, &c->decay};
         const double cap = slot_cap(slot, s);
         charge_values(slot, s, &f, r->values[m], &sl, targets[m], cap, &t->sum[m], &t->lost[m]);
+        const double init = r->bands[m] ? tribo_charging_initial_value(c, slot->model, s) : 0.0;
         if (r->bands[m] && paschen && slot->model->density_unit) {
             double *old = c->scratch + 2 * count;
             for (int i = 0; i < sl.n; i++)
                 memcpy(old + sl.k0[i], r->bands[m] + sl.at[i], (size_t)sl.count[i] * sizeof *old);
             const double unit = slot->model->density_unit(s);
-            charge_bands(slot, s, &f, r->bands[m], &sl, before, after, targets[m],
+            charge_bands(slot, s, &f, r->bands[m], &sl, before, after, targets[m], init,
                          r->gas->limit / unit, &t->band_charge[m], &t->band_lost[m]);
-            const double init = tribo_charging_initial_value(slot->model, s);
             hold_grain(c, unit, r, &sl, m, t->band_charge[m] - band0[m] - init * (t->area - area0),
                        old, after, t);
         } else if (r->bands[m]) {
-            charge_bands(slot, s, &f, r->bands[m], &sl, before, after, targets[m], cap,
+            charge_bands(slot, s, &f, r->bands[m], &sl, before, after, targets[m], init, cap,
                          &t->band_charge[m], &t->band_lost[m]);
         }
         updates += count;
