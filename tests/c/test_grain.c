@@ -9,6 +9,7 @@
 #include "charge_registry.h"
 #include "charging.h"
 #include "si.h"
+#include "si_support.h"
 #include "support.h"
 
 /* Every model of the registry over n segments of the ellipse eps, with the grain's bands. */
@@ -109,7 +110,7 @@ Test(grain, a_band_that_widens_keeps_its_charge)
     const double A_s = tribo_spheroid_area(0.7);
     double before[TRIBO_SEGMENTS_COUNT];
     for (int k = 0; k < TRIBO_SEGMENTS_COUNT; k++) {
-        const double init = tribo_charging_initial_value(c.slot[k].model, &P);
+        const double init = tribo_charging_initial_value(&c, c.slot[k].model, &P);
         before[k] = init * (A_s - charged_area(&c)) + tribo_compensated_value(&c.band_charge[k]);
     }
     const double area = charged_area(&c);
@@ -117,7 +118,7 @@ Test(grain, a_band_that_widens_keeps_its_charge)
     tribo_charging_apply(&c, &P, &wide, TRIBO_CHARGE_COMMIT);
     cr_assert_gt(charged_area(&c), 3.0 * area);
     for (int k = 0; k < TRIBO_SEGMENTS_COUNT; k++) {
-        const double init = tribo_charging_initial_value(c.slot[k].model, &P);
+        const double init = tribo_charging_initial_value(&c, c.slot[k].model, &P);
         const double after = init * (A_s - charged_area(&c)) + tribo_compensated_value(&c.band_charge[k]);
         cr_expect_float_eq(after, before[k], 1e-14 * fabs(before[k]), "%s: %.17g, was %.17g",
                            c.slot[k].model->name, after, before[k]);
@@ -126,17 +127,6 @@ Test(grain, a_band_that_widens_keeps_its_charge)
 }
 
 /* ---- the grain in SI units ------------------------------------------------------------------ */
-
-static tribo_si_derived derived(const char *settings)
-{
-    tribo_si_scene si;
-    tribo_si_scene_defaults(&si);
-    char err[512];
-    cr_assert_eq(tribo_si_scene_apply(&si, settings, err, sizeof err), TRIBO_OK, "%s", err);
-    tribo_si_derived d;
-    cr_assert_eq(tribo_si_derive(&si, &d, err, sizeof err), TRIBO_OK, "%s", err);
-    return d;
-}
 
 /* One impact of a 2 mm PE sphere head-on on a level steel wall at speed v: the first
    lift-off ends the run. Returns the instance there. */
@@ -175,7 +165,9 @@ Test(grain, an_impact_charges_sigma0_times_its_charged_area)
 
 /* The impact charge follows the largest patch, linear in the indentation, which the linear
    contact makes linear in the normal speed: between 0.5 and 8 m/s it doubles with the speed,
-   up to the staircase of the bands (measured: 1.970 to 1.988 per doubling at 2000 segments). */
+   up to the weight's share of the indentation (measured at |sigma0| = 1e-5, below every
+   patch's Paschen limit, with the bands' mean widths of §8e: 1.99997 to 1.999996 per
+   doubling; revision 4's staircase of bands gave 1.970 to 1.988). */
 Test(grain, the_impact_charge_grows_linearly_with_the_normal_speed)
 {
     double previous = 0.0;
@@ -184,7 +176,8 @@ Test(grain, the_impact_charge_grows_linearly_with_the_normal_speed)
         tribo_model *m = impact(&d, v, "");
         const double q = fabs(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_CHARGE_STATIC));
         if (previous > 0.0)
-            cr_expect(q / previous > 1.96 && q / previous < 2.0, "v %g: ratio %.6f", v, q / previous);
+            cr_expect(q / previous > 1.9999 && q / previous < 2.0, "v %g: ratio %.8f", v,
+                      q / previous);
         previous = q;
         tribo_free(m);
     }
@@ -206,7 +199,9 @@ Test(grain, instantaneous_transfer_is_the_limit_of_short_charging_times)
         snprintf(more, sizeof more, "charging_time=%.17g", t0);
         m = impact(&d, 1.0, more);
         const double error = fabs(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_CHARGE_STATIC) / limit - 1.0);
-        cr_expect(error <= previous, "t0 %g: error %.3g after %.3g", t0, error, previous);
+        /* (to rounding: the bands' mean widths, §8e, leave it a few 1e-16 off at the end) */
+        cr_expect(error <= previous || error <= 1e-15, "t0 %g: error %.3g after %.3g", t0, error,
+                  previous);
         if (t0 <= 1.1e-9)
             cr_expect(error <= 1e-12, "t0 %g: error %.3g", t0, error);
         previous = error;
@@ -254,11 +249,7 @@ Test(grain, the_bands_run_independently_of_the_times_asked_for_and_survive_a_sta
         const tribo_status s = tribo_advance_fully(many, end * k / 400.0);
         cr_assert(s == TRIBO_OK || s == TRIBO_ENDED, "%s", tribo_last_error(many));
         if (k == 200) {
-            size_t size;
-            unsigned char *bytes = saved_state(many, &size);
-            loaded = make(&d.scene);
-            cr_assert_eq(tribo_state_load(loaded, bytes, size), TRIBO_OK, "%s", tribo_last_error(loaded));
-            free(bytes);
+            loaded = loaded_copy(many, &d.scene);
             cr_assert(same_outputs(loaded, many));
         }
         if (s == TRIBO_ENDED)

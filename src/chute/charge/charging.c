@@ -11,7 +11,8 @@ static void free_geometry(tribo_band_geometry *g)
     free(g->width);
     free(g->lo);
     free(g->hi);
-    g->width = g->lo = g->hi = NULL;
+    free(g->limit);
+    g->width = g->lo = g->hi = g->limit = NULL;
 }
 
 static int alloc_geometry(tribo_band_geometry *g, int n)
@@ -20,7 +21,8 @@ static int alloc_geometry(tribo_band_geometry *g, int n)
     g->width = malloc(bytes);
     g->lo = malloc(bytes);
     g->hi = malloc(bytes);
-    return g->width && g->lo && g->hi ? 0 : -1;
+    g->limit = malloc(bytes);
+    return g->width && g->lo && g->hi && g->limit ? 0 : -1;
 }
 
 int tribo_charging_init(tribo_charging *c, const tribo_charge_model *const *models, int n_models,
@@ -65,7 +67,7 @@ int tribo_charging_init(tribo_charging *c, const tribo_charge_model *const *mode
         if (slot->model->cache_size && !(slot->cache = malloc(slot->model->cache_size)))
             goto fail;
     }
-    if (keep_bands && (alloc_geometry(&c->bands, n) != 0 || !(c->scratch = malloc(2 * bytes))))
+    if (keep_bands && (alloc_geometry(&c->bands, n) != 0 || !(c->scratch = malloc(3 * bytes))))
         goto fail;
     if (!(c->targets = malloc((size_t)n_models * bytes)))
         goto fail;
@@ -97,12 +99,15 @@ void tribo_charging_free(tribo_charging *c)
     c->window_cap = 0;
 }
 
-double tribo_charging_initial_value(const tribo_charge_model *model, const tribo_scene *s)
+double tribo_charging_initial_value(const tribo_charging *c, const tribo_charge_model *model,
+                                    const tribo_scene *s)
 {
     if (!model->density_unit || s->Sigma_init == 0.0)
         return 0.0;
-    /* a surface arriving above what air holds keeps what it holds (§8b) */
-    const double unit = model->density_unit(s), cap = s->Sigma_bd / unit;
+    /* a surface arriving above what air holds keeps what it holds (§8b; §8e: the grain's own
+       limit, where it acts) */
+    const double unit = model->density_unit(s);
+    const double cap = tribo_min(s->Sigma_bd, c->surface_limit) / unit;
     return tribo_min(tribo_max(s->Sigma_init / unit, -cap), cap);
 }
 
@@ -113,15 +118,46 @@ static void empty_bands(tribo_charging *c, const tribo_scene *s)
         c->bands.width[i] = 0.0;
         c->bands.lo[i] = 1.0;
         c->bands.hi[i] = 0.0;
+        c->bands.limit[i] = INFINITY;
     }
     for (int k = 0; k < c->n_models; k++) {
         tribo_charge_slot *slot = &c->slot[k];
         if (!slot->bands)
             continue;
-        const double init = tribo_charging_initial_value(slot->model, s);
+        const double init = tribo_charging_initial_value(c, slot->model, s);
         for (int i = 0; i < c->n; i++)
             slot->bands[i] = init;
     }
+}
+
+double tribo_charging_region_limit(tribo_charging *c, const tribo_scene *s, double radius)
+{
+    return s->Sigma_paschen * tribo_paschen_limit(&c->table, c->region_scale * radius);
+}
+
+void tribo_charging_setup_gas(tribo_charging *c, const tribo_scene *s)
+{
+    c->paschen = c->keep_bands && s->breakdown_model == TRIBO_BREAKDOWN_PASCHEN;
+    c->surface_limit = INFINITY;
+    if (!c->paschen)
+        return;
+    /* a grounded wall's image halves the region's size (the pair form: L/2 -> L) */
+    c->region_scale = s->paschen_gap_scale * (s->wall_conducting ? 0.5 : 1.0);
+    const double area = tribo_spheroid_area(c->arc.eps);
+    const double radius = sqrt(area / (4.0 * M_PI));
+    tribo_paschen_build(&c->table, s->secondary_emission, c->region_scale * radius);
+    c->grain_limit = tribo_charging_region_limit(c, s, radius) * area;
+    c->surface_limit = c->grain_limit / area;
+}
+
+/* No episode under way, the grain at its initial charge (§8e). */
+static void reset_gas(tribo_charging *c, const tribo_scene *s)
+{
+    c->gas = (tribo_gas_state){.limit = INFINITY};
+    const double area = tribo_spheroid_area(c->arc.eps);
+    for (int k = 0; k < c->n_models && c->paschen; k++)
+        if (c->slot[k].bands)
+            c->gas.grain[k] = tribo_charging_initial_value(c, c->slot[k].model, s) * area;
 }
 
 void tribo_charging_reset(tribo_charging *c, const tribo_scene *s)
@@ -135,8 +171,10 @@ void tribo_charging_reset(tribo_charging *c, const tribo_scene *s)
         c->sum[i] = c->lost[i] = c->band_charge[i] = c->band_lost[i] = (tribo_compensated){0};
     }
     c->area = (tribo_compensated){0};
+    tribo_charging_setup_gas(c, s);
     if (c->keep_bands && c->bands.width)
         empty_bands(c, s);
+    reset_gas(c, s);
     memset(&c->decay, 0, sizeof c->decay);
 }
 
@@ -258,6 +296,8 @@ static long segment_run(const tribo_contact_sample *sample, long *first)
    output copies, or a window of them. */
 typedef struct ring {
     long len;
+    int wraps; /* the whole ring (a window shorter than it: no run wraps) */
+    tribo_gas_state *gas; /* the gas's state the samples meet (§8e) */
     double *values[TRIBO_CHARGE_MAX_MODELS];
     double *bands[TRIBO_CHARGE_MAX_MODELS]; /* NULL without bands */
     tribo_band_geometry geometry;
@@ -489,6 +529,76 @@ static double half_width_over(const tribo_contact_sample *sample, double k)
     return sqrt(w2);
 }
 
+/* The slices of a sample's largest patch point over consecutive segments (§8e): the integral
+   of the unit ellipse's half-chord, (u sqrt(1 - u^2) + asin u) / 2, at each segment boundary,
+   kept for the next segment, which shares it; the full width the sample's patch reaches. */
+typedef struct slicer {
+    const tribo_patch_point *largest;
+    double full;
+    double k_next, chord_next; /* the boundary last reached, and its integral */
+} slicer;
+
+static slicer slicer_of(const tribo_contact_sample *sample)
+{
+    const tribo_patch_point *p = sample->patch;
+    int largest = 0;
+    double full = 0.0;
+    for (int i = 0; i < sample->n_patch; i++) {
+        const double w = 2.0 * p[i].depth * p[i].half;
+        if (w * p[i].half > full * p[largest].half)
+            largest = i;
+        full = tribo_max(full, w);
+    }
+    return (slicer){&p[largest], full, NAN, 0.0};
+}
+
+/* The half-chord's integral up to boundary x (segments) of the patch point's ellipse. */
+static double chord_to(const tribo_patch_point *p, double x)
+{
+    const double u = (x - p->centre) / p->half;
+    if (!(u > -1.0))
+        return -M_PI / 4.0;
+    if (!(u < 1.0))
+        return M_PI / 4.0;
+    return 0.5 * (u * sqrt(1.0 - u * u) + asin(u));
+}
+
+/* The area (segments^2) of the largest point's ellipse over segment k's arc [k, k + 1]. */
+static double slice_area(slicer *sl, double k)
+{
+    const tribo_patch_point *p = sl->largest;
+    if (!(p->half > 0.0))
+        return 0.0;
+    const double lo = k == sl->k_next ? sl->chord_next : chord_to(p, k);
+    const double hi = chord_to(p, k + 1.0);
+    sl->k_next = k + 1.0;
+    sl->chord_next = hi;
+    return 2.0 * p->depth * p->half * p->half * (hi - lo);
+}
+
+/* The patch's mean width (segments) over the part [k + a, k + b] of segment k it covers in a
+   sample, so that the band's area W L is the patch's own over the segment (§8e's refinement
+   of §8c's band, where the patch is not much longer than a segment): the slice of its largest
+   point (the sample's points are a short stretch of a smooth contact: the largest holds the
+   others, exactly so where the patch grows or shrinks in place, as in an impact), or, where
+   the centre's path crosses the segment, that and the strip of the full width it sweeps
+   there; at most the full width. */
+static double mean_width_over(const tribo_contact_sample *sample, slicer *sl, double k, double a,
+                              double b)
+{
+    const tribo_patch_point *p = sample->patch;
+    const double slice = slice_area(sl, k);
+    double area = slice;
+    for (int i = 0; i + 1 < sample->n_patch; i++) {
+        const double lo = tribo_min(p[i].centre, p[i + 1].centre);
+        const double hi = tribo_max(p[i].centre, p[i + 1].centre);
+        const double inside = tribo_min(hi, k + 1.0) - tribo_max(lo, k);
+        if (inside > 0.0)
+            area = tribo_max(area, slice + sl->full * inside);
+    }
+    return tribo_min(area / (b - a), sl->full);
+}
+
 /* The bands of segments at[0..count) of the ring, offsets k0.. from the sample's first: each
    widened and lengthened by the patch (§8c), each model's band density diluted where its area
    grew (the new part at the initial density). The areas (a^2) before and after go to
@@ -508,7 +618,8 @@ static void widen_bands(tribo_charging *c, const tribo_scene *s, const tribo_con
     const double seg = c->segment_length;
     double init[TRIBO_CHARGE_MAX_MODELS];
     for (int m = 0; m < c->n_models; m++)
-        init[m] = r->bands[m] ? tribo_charging_initial_value(c->slot[m].model, s) : 0.0;
+        init[m] = r->bands[m] ? tribo_charging_initial_value(c, c->slot[m].model, s) : 0.0;
+    slicer slices = slicer_of(sample);
     for (long j = 0; j < count; j++) {
         const long i = at + j;
         const double k = (double)(k0 + j);
@@ -522,7 +633,9 @@ static void widen_bands(tribo_charging *c, const tribo_scene *s, const tribo_con
             if (b > a) { /* (a run's end segment may be touched only to rounding) */
                 *lo = tribo_min(*lo, a);
                 *hi = tribo_max(*hi, b);
-                const double w = whole_ring ? bound : 2.0 * half_width_over(sample, k);
+                const double w = whole_ring  ? bound
+                                 : c->paschen ? mean_width_over(sample, &slices, k, a, b)
+                                              : 2.0 * half_width_over(sample, k);
                 *W = tribo_max(*W, w * seg);
             }
         }
@@ -592,9 +705,9 @@ static void charge_values(tribo_charge_slot *slot, const tribo_scene *s, const t
    the patch widened them). */
 static void charge_bands(tribo_charge_slot *slot, const tribo_scene *s, const tribo_charge_forcing *f,
                          double *bands, const slices *sl, const double *before, const double *after,
-                         const double *targets, double cap, double *charge, double *lost)
+                         const double *targets, double init, double cap, double *charge,
+                         double *lost)
 {
-    const double init = tribo_charging_initial_value(slot->model, s);
     for (int i = 0; i < sl->n; i++) {
         double *b = bands + sl->at[i];
         const long count = sl->count[i];
@@ -620,12 +733,151 @@ static void charge_bands(tribo_charge_slot *slot, const tribo_scene *s, const tr
     }
 }
 
+/* ---- the Paschen limit (§8e) ------------------------------------------------------------ */
+
+/* The episode's run of bands joined by the run [first, first + count) of a ring. */
+static void join_run(tribo_gas_state *g, const ring *r, long first, long count)
+{
+    if (g->count == 0) {
+        g->first = first;
+        g->count = count;
+        return;
+    }
+    const long len = r->len;
+    if (g->count >= len)
+        return;
+    long offset = first - g->first;
+    if (r->wraps) { /* the nearer way round */
+        offset %= len;
+        if (offset < 0)
+            offset += len;
+        if (offset > len / 2)
+            offset -= len;
+    }
+    const long lo = offset < 0 ? offset : 0;
+    const long hi = offset + count > g->count ? offset + count : g->count;
+    if (hi - lo >= len) {
+        g->first = 0;
+        g->count = len;
+        return;
+    }
+    g->first += lo;
+    if (g->first < 0)
+        g->first += len;
+    g->count = hi - lo;
+}
+
+/* Every band of ring indices [first, first + count) (around the ring) at most limit
+   (sliding model's unit) and marked with it; what came down, per model, into t. */
+static void bring_down(tribo_charging *c, const tribo_scene *s, const ring *r, long first,
+                       long count, double limit, tribo_charge_totals *t)
+{
+    const double seg = c->segment_length;
+    const tribo_band_geometry *geo = &r->geometry;
+    for (long j = 0; j < count; j++) {
+        const long i = (first + j) % r->len;
+        geo->limit[i] = limit;
+        const double area = geo->hi[i] > geo->lo[i] ? geo->width[i] * (geo->hi[i] - geo->lo[i]) * seg : 0.0;
+        for (int m = 0; m < c->n_models; m++) {
+            double *b = r->bands[m];
+            if (!b || !c->slot[m].model->density_unit)
+                continue;
+            const double cap = limit / c->slot[m].model->density_unit(s);
+            if (fabs(b[i]) > cap) {
+                const double held = b[i] > 0.0 ? cap : -cap;
+                t->band_charge[m] -= (b[i] - held) * area;
+                t->band_lost[m] += (b[i] - held) * area;
+                b[i] = held;
+            }
+        }
+    }
+}
+
+/* The episode a sample belongs to (§8e): a new one starts with no region; the sample's run
+   joins it; where the sample's largest patch, as the equal-area radius sqrt(Sc S_perp) =
+   Sc sqrt(h), widens the region, its limit falls and every other band of the episode comes
+   down to it (the run's own are charged within it next, their transfer's excess lost there).
+   Returns the bands so visited. */
+static long meet_episode(tribo_charging *c, const tribo_scene *s, const tribo_contact_sample *sample,
+                         const ring *r, long first, long count, tribo_charge_totals *t)
+{
+    tribo_gas_state *g = r->gas;
+    if (sample->episode != g->episode) {
+        g->episode = sample->episode;
+        g->radius = 0.0;
+        g->limit = INFINITY;
+        g->count = 0;
+    }
+    join_run(g, r, first, count);
+    double r2 = 0.0; /* (Sc^2 h in segments^2: one root, where the region grows) */
+    for (int i = 0; i < sample->n_patch; i++)
+        r2 = tribo_max(r2, sample->patch[i].half * sample->patch[i].half * sample->patch[i].depth);
+    const double radius = sqrt(r2) * c->segment_length;
+    long visited = 0;
+    if (radius > g->radius) {
+        g->radius = radius;
+        g->limit = tribo_charging_region_limit(c, s, radius);
+        /* the run lies in the episode's: [g->first + ahead, + count) */
+        long ahead = first - g->first;
+        if (ahead < 0)
+            ahead += r->len;
+        bring_down(c, s, r, g->first, ahead, g->limit, t);
+        bring_down(c, s, r, (first + count) % r->len, g->count - ahead - count, g->limit, t);
+        visited = g->count - count;
+    }
+    for (long j = 0; j < count; j++)
+        r->geometry.limit[(first + j) % r->len] = g->limit;
+    return visited;
+}
+
+/* The grain's limit (§8e) on model m after a sample: its charge Q, moved by the sample's
+   change of the band charges (less the initial density's share of the area it widened, which
+   the uncharged surface gave up), at most grain_limit; the excess is taken back from the
+   sample's bands in proportion to what each of them gained (old[]: their densities before
+   it), and lost. */
+static void hold_grain(const tribo_charging *c, double unit, const ring *r, const slices *sl,
+                       int m, double change, const double *old, const double *weights,
+                       tribo_charge_totals *t)
+{
+    tribo_gas_state *g = r->gas;
+    const double q = g->grain[m] + change, limit = c->grain_limit / unit;
+    g->grain[m] = q;
+    if (!(fabs(q) > limit))
+        return;
+    const double sign = q > 0.0 ? 1.0 : -1.0;
+    /* (only from the bands that gained: one the sample brought down stays within its limit) */
+    double gained = 0.0;
+    for (int i = 0; i < sl->n; i++)
+        for (long j = 0; j < sl->count[i]; j++) {
+            const long k = sl->k0[i] + j;
+            gained += tribo_max(0.0, sign * (r->bands[m][sl->at[i] + j] - old[k])) * weights[k];
+        }
+    if (!(gained > 0.0))
+        return;
+    const double f = tribo_min(1.0, (fabs(q) - limit) / gained);
+    for (int i = 0; i < sl->n; i++)
+        for (long j = 0; j < sl->count[i]; j++) {
+            double *b = &r->bands[m][sl->at[i] + j];
+            *b -= f * sign * tribo_max(0.0, sign * (*b - old[sl->k0[i] + j]));
+        }
+    const double taken = sign * f * gained;
+    t->band_charge[m] -= taken;
+    t->band_lost[m] += taken;
+    g->grain[m] = q - taken;
+}
+
 /* Charge a sample's run of count segments from ring index first; adds what it changed to t.
    Returns the number of segment values updated. */
 static long charge_run(tribo_charging *c, const tribo_scene *s, const tribo_contact_sample *sample,
                        const ring *r, long first, long count, tribo_charge_totals *t)
 {
     const slices sl = slices_of(r, first, count);
+    /* the sample's own change of the totals, for the grain's limit (§8e) */
+    const int paschen = c->paschen && r->geometry.width;
+    const double area0 = t->area;
+    double band0[TRIBO_CHARGE_MAX_MODELS];
+    for (int m = 0; m < c->n_models; m++)
+        band0[m] = t->band_charge[m];
     double *before = NULL, *after = NULL;
     if (r->geometry.width) {
         before = c->scratch;
@@ -642,6 +894,8 @@ static long charge_run(tribo_charging *c, const tribo_scene *s, const tribo_cont
         leave_targets(c, s, sample, count, 0, targets);
     }
     long updates = 0;
+    if (paschen)
+        updates += meet_episode(c, s, sample, r, first, count, t);
     for (int m = 0; m < c->n_models; m++) {
         tribo_charge_slot *slot = &c->slot[m];
         if (!r->values[m])
@@ -651,9 +905,20 @@ static long charge_run(tribo_charging *c, const tribo_scene *s, const tribo_cont
                                         sample->globals_end + slot->globals_at, &c->decay};
         const double cap = slot_cap(slot, s);
         charge_values(slot, s, &f, r->values[m], &sl, targets[m], cap, &t->sum[m], &t->lost[m]);
-        if (r->bands[m])
-            charge_bands(slot, s, &f, r->bands[m], &sl, before, after, targets[m], cap,
+        const double init = r->bands[m] ? tribo_charging_initial_value(c, slot->model, s) : 0.0;
+        if (r->bands[m] && paschen && slot->model->density_unit) {
+            double *old = c->scratch + 2 * count;
+            for (int i = 0; i < sl.n; i++)
+                memcpy(old + sl.k0[i], r->bands[m] + sl.at[i], (size_t)sl.count[i] * sizeof *old);
+            const double unit = slot->model->density_unit(s);
+            charge_bands(slot, s, &f, r->bands[m], &sl, before, after, targets[m], init,
+                         r->gas->limit / unit, &t->band_charge[m], &t->band_lost[m]);
+            hold_grain(c, unit, r, &sl, m, t->band_charge[m] - band0[m] - init * (t->area - area0),
+                       old, after, t);
+        } else if (r->bands[m]) {
+            charge_bands(slot, s, &f, r->bands[m], &sl, before, after, targets[m], init, cap,
                          &t->band_charge[m], &t->band_lost[m]);
+        }
         updates += count;
     }
     return updates;
@@ -662,7 +927,8 @@ static long charge_run(tribo_charging *c, const tribo_scene *s, const tribo_cont
 /* The instance's arrays (committed, or their output copies) as a ring. */
 static ring ring_of(tribo_charging *c, tribo_charge_destination where)
 {
-    ring r = {.len = c->n};
+    ring r = {.len = c->n, .wraps = 1,
+              .gas = where == TRIBO_CHARGE_COMMIT ? &c->gas : &c->gas_out};
     for (int m = 0; m < c->n_models; m++) {
         const tribo_charge_slot *slot = &c->slot[m];
         if (!slot->selected)
@@ -689,8 +955,16 @@ double tribo_charging_capped_area(const tribo_charging *c, const tribo_charge_sl
                                   const tribo_scene *s, const double *bands,
                                   const tribo_band_geometry *g)
 {
-    const double cap = cap_of(slot, s);
     double area = 0.0;
+    if (c->paschen && slot->model->density_unit) {
+        /* each band at the limit of the episode that last touched it (§8e) */
+        const double unit = slot->model->density_unit(s);
+        for (long i = 0; i < c->n; i++)
+            if (fabs(bands[i]) >= g->limit[i] / unit && g->hi[i] > g->lo[i])
+                area += g->width[i] * (g->hi[i] - g->lo[i]) * c->segment_length;
+        return area;
+    }
+    const double cap = cap_of(slot, s);
     if (isfinite(cap))
         for (long i = 0; i < c->n; i++)
             if (fabs(bands[i]) >= cap && g->hi[i] > g->lo[i])
@@ -751,8 +1025,10 @@ int tribo_charging_copy_out(tribo_charging *c)
     }
     if (copy_array(&c->bands_out.width, c->bands.width, c->n) ||
         copy_array(&c->bands_out.lo, c->bands.lo, c->n) ||
-        copy_array(&c->bands_out.hi, c->bands.hi, c->n))
+        copy_array(&c->bands_out.hi, c->bands.hi, c->n) ||
+        copy_array(&c->bands_out.limit, c->bands.limit, c->n))
         return -1;
+    c->gas_out = c->gas;
     return 0;
 }
 
@@ -765,11 +1041,16 @@ int tribo_charging_pending_totals(tribo_charging *c, const tribo_scene *s,
 {
     const long n = c->n;
     long anchor = -1, lo = 0, hi = 0; /* the window [anchor + lo, anchor + hi), unwrapped */
-    for (size_t i = 0; i < n_samples; i++) {
-        long first;
-        const long count = segment_run(&samples[i], &first);
+    /* with the Paschen limit, the episode's bands too: a sample may bring them down (§8e) */
+    const int episode = c->paschen && c->gas.count > 0;
+    int any_sample = 0;
+    for (size_t i = 0; i < n_samples + (size_t)episode; i++) {
+        long first = 0;
+        const long count = i == n_samples ? (first = c->gas.first, c->gas.count)
+                                          : segment_run(&samples[i], &first);
         if (!count)
             continue;
+        any_sample |= i < n_samples;
         if (anchor < 0) {
             anchor = first;
             hi = count;
@@ -784,7 +1065,7 @@ int tribo_charging_pending_totals(tribo_charging *c, const tribo_scene *s,
         hi = offset + count > hi ? offset + count : hi;
     }
     memset(totals, 0, sizeof *totals);
-    if (anchor < 0)
+    if (!any_sample)
         return 0;
     const long len = hi - lo < n ? hi - lo : n;
     long start = len < n ? (anchor + lo) % n : 0;
@@ -795,7 +1076,7 @@ int tribo_charging_pending_totals(tribo_charging *c, const tribo_scene *s,
     for (int m = 0; m < c->n_models; m++)
         arrays += (c->slot[m].segments != NULL) + (c->slot[m].bands != NULL);
     if (c->keep_bands)
-        arrays += 3;
+        arrays += 3 + (c->paschen != 0);
     if (c->window_cap < arrays * (size_t)len) {
         double *w = realloc(c->window, arrays * (size_t)len * sizeof *w);
         if (!w)
@@ -803,7 +1084,13 @@ int tribo_charging_pending_totals(tribo_charging *c, const tribo_scene *s,
         c->window = w;
         c->window_cap = arrays * (size_t)len;
     }
-    ring r = {.len = len};
+    tribo_gas_state gas = c->gas;
+    if (episode) { /* the episode's run in the window's indices */
+        gas.first = (gas.first - start) % n;
+        if (gas.first < 0)
+            gas.first += n;
+    }
+    ring r = {.len = len, .wraps = len == n, .gas = &gas};
     double *next = c->window;
     const long head = len < n - start ? len : n - start;
 #define WINDOW_OF(dst, src)                                                                      \
@@ -823,6 +1110,8 @@ int tribo_charging_pending_totals(tribo_charging *c, const tribo_scene *s,
         WINDOW_OF(r.geometry.width, c->bands.width);
         WINDOW_OF(r.geometry.lo, c->bands.lo);
         WINDOW_OF(r.geometry.hi, c->bands.hi);
+        if (c->paschen)
+            WINDOW_OF(r.geometry.limit, c->bands.limit);
     }
 #undef WINDOW_OF
     for (size_t i = 0; i < n_samples; i++) {
