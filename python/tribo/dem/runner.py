@@ -6,7 +6,8 @@ by the project's impact map (charging.py); the exit stream written as a populati
     <out>/particles.csv   a row per grain, a population's columns (populations/feed.py:
                           the materials, every parameter of its run, exited, exit_time,
                           u, v, exit_speed, omega, charge_<model>, charge_to_mass_<model>,
-                          capped_fraction_<model> (0: no breakdown, charging.py),
+                          capped_fraction_<model> (empty: the DEM's grain has no
+                          segments), charge_lost_<model> (C, to the gas: charging.py),
                           contact_fraction, impacts, fraction_<motion> (empty: LIGGGHTS does
                           not classify the motion), cpu_s and wall_s (the coupled run's
                           per grain), and its key, as the population's grain of the same
@@ -42,7 +43,7 @@ from ..populations.feed import (STEPS_PER_RUN, Feed, draw, particle_parameters, 
 from ..populations.runner import FIGURE, METADATA, PARTICLES, SUMMARY
 from ..populations.summary import check_class_edges, summarize_population
 from . import contacts, engine, script
-from .charging import Charger, band_charge, charges
+from .charging import Charger, GasLimits, band, charges
 from .device import Chute, DeviceError, entries
 
 IMPACTS = "impacts.csv"
@@ -218,8 +219,9 @@ class DemJob(Job):
         modulus = script.effective_modulus(p0["youngs_modulus_particle"],
                                            p0["poisson_ratio_particle"],
                                            p0["youngs_modulus_wall"], p0["poisson_ratio_wall"])
-        band = band_charge(size, p0["density"], modulus, self.chute.tilt_deg, sigma0)
-        charged = charges(charger, found, size, sigma0, band)
+        limits = GasLimits.of(md, p0)
+        rolled = band(size, p0["density"], modulus, self.chute.tilt_deg, sigma0, limits)
+        charged = charges(charger, found, size, sigma0, limits, rolled)
         for model in charger.models:
             grains = found["grain"].to_numpy(dtype=np.int64)
             found[f"gain_{model}"] = charger.charge(
@@ -296,13 +298,17 @@ class DemJob(Job):
         left_by_end = left["exited"].to_numpy() == 1
         result.update({"end_reason": np.where(left_by_end, 1.0, np.nan),
                        "at_rest": np.where(left_by_end, 0.0, np.nan)})
+        lost = {}
         for model in self.models:
-            q = charged.get(model, np.full(n, np.nan))
+            q, lost[model] = charged.get(model, (np.full(n, np.nan), np.full(n, np.nan)))
             result[f"charge_{model}"] = q
             result[f"charge_to_mass_{model}"] = q / mass
-            result[f"capped_fraction_{model}"] = 0.0
+            # the share of a grain's boundary at its limit has no meaning without segments
+            result[f"capped_fraction_{model}"] = np.nan
         for c in columns:  # the population's columns, those it has
             rows[c] = result[c]
+        for model in self.models:  # and the DEM's own: the charge lost to the gas (charging.py)
+            rows[f"charge_lost_{model}"] = lost[model]
         total_cpu = dem["cpu_s"] + charging_cpu
         rows["cpu_s"] = total_cpu / n
         rows["wall_s"] = wall / n
