@@ -290,6 +290,8 @@ def charges(charger: Charger, found: pd.DataFrame, size: np.ndarray, sigma0: flo
     at = np.zeros(0, dtype=np.int64)
     if rolled_band is not None and len(grain):
         sustained = found["sustained"].to_numpy()[order] != 0
+        if "wall" in found:  # the plate's (a feeder's side walls are not rolled on)
+            sustained &= found["wall"].to_numpy()[order] == 0
         first = np.flatnonzero(sustained)
         first = first[np.r_[True, grain[first][1:] != grain[first][:-1]]] if len(first) else first
         at = first + 1  # inserted after it

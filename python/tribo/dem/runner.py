@@ -50,6 +50,7 @@ IMPACTS = "impacts.csv"
 STOPPED = "stopped.json"  # a run stopped by a signal: its settings, CPU so far, parts run
 RUN_FOLDER = "liggghts"
 SLOWEST = 1e-3  # m/s: contacts slower along the normal are not written (contacts.py)
+PLATE_WALL, SIDE_WALL = 0, 1  # impacts.csv's `wall`: the plate's impact or a side wall's
 
 
 class DemError(ValueError):
@@ -83,8 +84,9 @@ def _spheres(feed: Feed) -> None:
 class DemJob(Job):
     """n grains of `feed` (spheres) through the chute in LIGGGHTS, charged by the impact
     map (the module's text). feed_rate None: the dilute limit (a lane each, all dropped at
-    once); else grains/s into `lanes` lanes. vibration (amplitude m, frequency Hz): the
-    plate vibrates along its normal (device.py). ranks: LIGGGHTS' MPI ranks. stiffness_scale:
+    once); else grains/s into `lanes` lanes. vibration (amplitude m, frequency Hz[, the
+    stroke's angle from the plate in degrees, 90 by default: along its normal]): a feeder,
+    the plate and its side walls moved along the stroke (device.py). ranks: LIGGGHTS' MPI ranks. stiffness_scale:
     the Young's moduli LIGGGHTS takes, as a fraction of the materials' (a larger time step;
     the charges are the map's, at the impact speeds). maps: the folder the impact maps are
     kept in."""
@@ -100,6 +102,8 @@ class DemJob(Job):
         self.feed, self.n, self.seed, self.t_end, self.fmu = feed, n, seed, t_end, fmu
         self.feed_rate, self.lanes, self.lane_spacing = feed_rate, lanes, lane_spacing
         self.vibration = tuple(vibration) if vibration else None
+        if self.vibration is not None and len(self.vibration) == 2:
+            self.vibration += (90.0,)
         self.ranks, self.stiffness_scale, self.maps = ranks, stiffness_scale, maps
         self.figure, self.shape_edges, self.size_edges = figure, shape_edges, size_edges
         self.keys = []
@@ -118,9 +122,13 @@ class DemJob(Job):
                            f"feed rate only (the dilute limit gives each grain its own)")
         _spheres(self.feed)
         check_class_edges(self.shape_edges, self.size_edges)
-        amplitude, frequency = self.vibration or (0.0, 0.0)
-        self.chute = Chute(**self.feed.describe()["chute"], amplitude=amplitude,
-                           frequency=frequency)
+        if self.vibration is not None and len(self.vibration) != 3:
+            raise DemError(f"vibration = {self.vibration!r}: the amplitude (m), the frequency "
+                           f"(Hz) and the stroke's angle from the plate (degrees)")
+        amplitude, frequency, angle = self.vibration or (0.0, 0.0, 90.0)
+        chute = self.feed.describe()["chute"]
+        self.chute = Chute(chute["chute_length"], chute["tilt_deg"], amplitude=amplitude,
+                           frequency=frequency, angle_deg=angle)
         self.image = FmuImage.load(find_fmu(self.fmu, "si"))
         md = self.image.model_description()
         depth = start_value(md, "cylinder_length")
@@ -206,13 +214,22 @@ class DemJob(Job):
                "friction": contact.friction, "rolling_friction": contact.rolling_friction,
                "youngs_modulus_particle": contact.youngs_particle,
                "youngs_modulus_wall": contact.youngs_wall, "ranks": self.ranks}
+        if self.chute.amplitude:  # a feeder: its stroke, and its side walls
+            run["vibration"] = list(self.vibration)
         previous = _read(done_path)
         if previous is None or previous.get("run") != run:
             previous = self._simulate(folder, run, size, contact, progress, wall0)
         cpu0 = time.process_time()
-        found = contacts.impacts(os.path.join(folder, script.CONTACTS), dt, every,
-                                 tuple(9.81 * c for c in self.chute.gravity_vector),
-                                 self.n, wall=self.chute)
+        gravity = tuple(9.81 * c for c in self.chute.gravity_vector)
+        found = contacts.impacts(os.path.join(folder, script.CONTACTS), dt, every, gravity,
+                                 self.n, wall=self.chute).assign(wall=PLATE_WALL)
+        if self.chute.amplitude:  # the feeder's side walls: charged alike, counted apart
+            sides = contacts.Wall(gravity, self.chute, side=True,
+                                  half_width=self.entry.width / 2, others=True)
+            found = pd.concat([found, contacts.impacts(
+                os.path.join(folder, script.SIDE_CONTACTS), dt, every, gravity, self.n,
+                wall=sides).assign(wall=SIDE_WALL)], ignore_index=True).sort_values(
+                ["grain", "time"], kind="stable").reset_index(drop=True)
         left = contacts.exits(os.path.join(folder, script.EXITS), dt, self.chute.chute_length, self.n)
         sigma0 = float(p0["sigma0"])
         # the materials' own moduli (not LIGGGHTS' scaled ones): the model's indentation
@@ -238,9 +255,10 @@ class DemJob(Job):
         signal with the same settings (engine.py), else from the start; its record."""
         stopped_path = os.path.join(folder, STOPPED)
         stopped = _read(stopped_path)
-        # a vibrating plate is not resumed: its mesh's motion restarts with the input
+        # (a feeder's too: the restart file holds its meshes where they were and the time of
+        # their motion, which goes on from there)
         restart = (_restart(folder) if stopped is not None and stopped.get("run") == run
-                   and not self.chute.amplitude else None)
+                   else None)
         if restart is None:  # from the start: what an earlier run left goes
             if os.path.isdir(folder):
                 shutil.rmtree(folder)
@@ -257,7 +275,11 @@ class DemJob(Job):
         with open(os.path.join(folder, input_name), "w") as f:
             f.write(text)
         with open(os.path.join(folder, script.PLATE), "w") as f:
-            f.write(self.chute.stl(self.entry.width))
+            f.write(self.chute.stl(self.entry.width, self.chute.start(float(np.max(size)))))
+        if self.chute.amplitude:
+            with open(os.path.join(folder, script.SIDES), "w") as f:
+                f.write(self.chute.sides_stl(self.entry.width, script.box_top(self.entry, size),
+                                             self.chute.start(float(np.max(size)))))
 
         def on_stop(cpu):
             with open(stopped_path, "w") as f:
@@ -275,6 +297,7 @@ class DemJob(Job):
 
     def _rows(self, out, found, left, charged, size, dem, charging_cpu, wall) -> DemReport:
         n = self.n
+        plate = found[found["wall"] == PLATE_WALL]
         mass = math.pi / 6.0 * self.drawn["size"].to_numpy() ** 3 * float(self.params[0]["density"])
         end = np.where(left["exited"] == 1, left["exit_time"], self.t_end)
         rows = pd.DataFrame(self.params)
@@ -290,8 +313,8 @@ class DemJob(Job):
         result.update({"exited": left["exited"].to_numpy(), "exit_time": left["exit_time"].to_numpy(),
                        "time_end": end, "u": left["u"].to_numpy(), "v": left["v"].to_numpy(),
                        "exit_speed": left["exit_speed"].to_numpy(), "omega": left["omega"].to_numpy(),
-                       "contact_fraction": contacts.contact_time(found, n) / end,
-                       "impacts": contacts.count(found, n), "assumption_warnings": 0})
+                       "contact_fraction": contacts.contact_time(plate, n) / end,
+                       "impacts": contacts.count(plate, n), "assumption_warnings": 0})
         # how a grain's run ended, where the population's rows say it (populations/feed.py):
         # one that left by the chute's end ended there (1); of one that did not, LIGGGHTS
         # does not say whether it rests, rolls or fell off the plate's side: left empty
@@ -309,6 +332,8 @@ class DemJob(Job):
             rows[c] = result[c]
         for model in self.models:  # and the DEM's own: the charge lost to the gas (charging.py)
             rows[f"charge_lost_{model}"] = lost[model]
+        if self.chute.amplitude:  # a feeder's side walls' impacts, counted apart
+            rows["side_impacts"] = contacts.count(found[found["wall"] == SIDE_WALL], n)
         total_cpu = dem["cpu_s"] + charging_cpu
         rows["cpu_s"] = total_cpu / n
         rows["wall_s"] = wall / n
