@@ -107,6 +107,10 @@ def test_a_second_run_only_charges_again(dilute, maps):
     (["--epsilon", "1", "--lanes", "3"], "lanes"),
     (["--epsilon", "1", "--vibration", "0.05,50"], "vibration"),
     (["--epsilon", "1", "--vibration", "5e-4"], "--vibration"),
+    (["--epsilon", "1", "--vibration", "5e-4,50,30,1"], "--vibration"),
+    (["--epsilon", "1", "--vibration", "5e-4,50,0"], "vibration angle = 0"),
+    (["--epsilon", "1", "--vibration", "5e-4,50,120"], "vibration angle = 120"),
+    (["--epsilon", "1", "--tilt-deg", "0"], "tilt_deg = 0"),
     (["--t-end", "1e308"], "t_end = 1e+308"),  # was an OverflowError in a started folder
 ])
 def test_bad_input_is_one_line_naming_it(tmp_path, argv, names):

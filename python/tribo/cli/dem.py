@@ -26,8 +26,11 @@ local cluster in this process, --scheduler, or --serial).
 
 Writes into --out: particles.csv, summary.csv, population.png and population.json as a
 population (tribo population --help), impacts.csv (a row per grain-wall impact: grain,
-time, normal_speed, tangential_speed, angle_deg, duration, sustained, from_flight, and its
-charge gain gain_<model> for an uncharged grain, C) and liggghts/.
+time, normal_speed, tangential_speed, angle_deg, duration, sustained, from_flight, wall (0
+the plate, 1 a feeder's side wall), and its charge gain gain_<model> for an uncharged grain,
+C) and liggghts/. --vibration makes the chute a vibratory feeder: the plate and its side
+walls move along the stroke; a stroke inclined forward conveys the grains on a level
+plate (--tilt-deg 0).
 """
 
 import os

@@ -12,8 +12,10 @@ by the project's impact map (charging.py); the exit stream written as a populati
                           not classify the motion), cpu_s and wall_s (the coupled run's
                           per grain), and its key, as the population's grain of the same
                           draw has it
-    <out>/impacts.csv     a row per impact (contacts.py's columns, and its charge gain by
-                          each model for an uncharged grain, C)
+    <out>/impacts.csv     a row per impact (contacts.py's columns, the wall it met: 0 the
+                          plate, 1 a feeder's side wall, and its charge gain by each model
+                          for an uncharged grain, C); particles.csv's `impacts` count the
+                          plate's, a feeder's `side_impacts` the side walls'.
     <out>/summary.csv, population.png, population.json   as a population's
     <out>/liggghts/       the LIGGGHTS run: its input, the plate's STL, its outputs and log
 
@@ -357,10 +359,14 @@ class DemJob(Job):
             from ..populations.plot import population_title, write_population_figure
             chute = described["chute"]
             how = ("dilute" if self.feed_rate is None else f"{format_number(self.feed_rate)} grains/s")
+            # the title names the amplitude and frequency; the stroke's angle is said here
+            stroke = (f", its stroke at {format_number(self.vibration[2])}° to it"
+                      if self.vibration and self.vibration[2] != 90 else "")
             title = population_title(
-                dict(described, vibration=self.vibration), n, self.seed,
-                f"at the exit of a {format_number(chute['chute_length'])} m chute tilted "
-                f"{format_number(chute['tilt_deg'])}°", head=f"DEM (LIGGGHTS, spheres, {how}): ")
+                dict(described, vibration=self.vibration[:2] if self.vibration else None), n,
+                self.seed, f"at the exit of a {format_number(chute['chute_length'])} m chute "
+                f"tilted {format_number(chute['tilt_deg'])}°{stroke}",
+                head=f"DEM (LIGGGHTS, spheres, {how}): ")
             report.files.append(write_population_figure(rows, summary, os.path.join(out, FIGURE),
                                                         title))
         return report

@@ -20,6 +20,8 @@ Outputs (the run's folder):
     contacts.dump  every sample_every steps, each grain near the plate and moving along its
                    normal: the step, its id, position, velocity, radius, and the wall's
                    normal force on it (LIGGGHTS' wall contact: nonzero while touching)
+    side_contacts.dump   a feeder's (a vibrating chute's): the same near its side walls,
+                   moving across the chute, with the walls' force across it
     exits.dump     every exit_every steps, the grains whose centre has passed the chute's
                    end (x > chute_length): id, position, velocity, spin
     log.liggghts   LIGGGHTS' log; its thermo lines (step, grains in the box) show progress
