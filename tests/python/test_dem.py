@@ -342,7 +342,7 @@ def test_impacts_read_in_a_stream_are_those_of_the_dump_read_whole(tmp_path, mon
     monkeypatch.setattr(contacts, "BLOCK", 1 << 30)
     whole = read()
     assert len(whole) > 500 and (whole["from_flight"] == 1).any()
-    for block in (300, 5000, 70000, len(path.read_text()) - 10):
+    for block in (3000, 70000, len(path.read_text()) - 10):  # 3000: less than a frame
         monkeypatch.setattr(contacts, "BLOCK", block)
         pd.testing.assert_frame_equal(read(), whole)
 
@@ -493,7 +493,8 @@ def test_a_vibrating_chute_is_met_relative_to_its_motion(tmp_path, maps):
 
 def _path_along(folder) -> tuple[float, float]:
     """The grain's first and last x (m) in the contacts' samples of a one-grain run."""
-    d = contacts.read_dump_frames(str(folder / "liggghts" / script.CONTACTS), script.CONTACT_COLUMNS)
+    d = contacts.read_dump_frames(str(folder / "liggghts" / script.CONTACTS),
+                                  script.CONTACT_COLUMNS)
     d = d.sort_values("step")
     return float(d["x"].iloc[0]), float(d["x"].iloc[-1])
 

@@ -88,10 +88,10 @@ class DemJob(Job):
     map (the module's text). feed_rate None: the dilute limit (a lane each, all dropped at
     once); else grains/s into `lanes` lanes. vibration (amplitude m, frequency Hz[, the
     stroke's angle from the plate in degrees, 90 by default: along its normal]): a feeder,
-    the plate and its side walls moved along the stroke (device.py). ranks: LIGGGHTS' MPI ranks. stiffness_scale:
-    the Young's moduli LIGGGHTS takes, as a fraction of the materials' (a larger time step;
-    the charges are the map's, at the impact speeds). maps: the folder the impact maps are
-    kept in."""
+    the plate and its side walls moved along the stroke (device.py). ranks: LIGGGHTS' MPI
+    ranks. stiffness_scale: the Young's moduli LIGGGHTS takes, as a fraction of the
+    materials' (a larger time step; the charges are the map's, at the impact speeds). maps:
+    the folder the impact maps are kept in."""
 
     kind, noun, results_file = "dem", "grain", PARTICLES
 
@@ -257,8 +257,8 @@ class DemJob(Job):
         signal with the same settings (engine.py), else from the start; its record."""
         stopped_path = os.path.join(folder, STOPPED)
         stopped = _read(stopped_path)
-        # (a feeder's too: the restart file holds its meshes where they were and the time of
-        # their motion, which goes on from there)
+        # a feeder's run too: its restart file holds the meshes where they were and the time
+        # of their motion, which goes on from there
         restart = (_restart(folder) if stopped is not None and stopped.get("run") == run
                    else None)
         if restart is None:  # from the start: what an earlier run left goes

@@ -213,7 +213,8 @@ def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *
                   f"dump_modify contacts thresh v_near == 1 thresh v_normal_speed > {_number(slowest)}"]
         append += [] if restart is None else ["dump_modify contacts append yes"]
     if contacts and chute.amplitude:
-        lines += [f"variable near_side atom ({_number(half)}-abs(y)-c_radius<{_number(near)})*{along}",
+        lines += [f"variable near_side atom ({_number(half)}-abs(y)-c_radius<{_number(near)})"
+                  f"*{along}",
                   "variable side_speed atom abs(vy)",
                   f"dump side_contacts all custom {sample_every} {SIDE_CONTACTS} "
                   + " ".join(SIDE_COLUMNS),
