@@ -23,7 +23,7 @@ import tribo
 from study_support import command
 from tribo.dem import contacts, engine, runner, script
 from tribo.dem.charging import GasLimits, account
-from tribo.dem.device import Chute, DeviceError, entries, highest_rate
+from tribo.dem.device import Chute, DeviceError, Entry, entries, highest_rate
 
 needs_liggghts = pytest.mark.skipif(shutil.which("liggghts") is None,
                                     reason="LIGGGHTS is not installed (scripts/setup.sh installs it)")
@@ -522,3 +522,39 @@ def test_a_level_feeder_conveys_a_sphere_only_along_an_inclined_stroke(tmp_path,
     else:
         assert rows["exited"].iloc[0] == 0
         assert abs(last - first) < 1e-9 and abs(first) < 1e-9
+
+
+@needs_liggghts
+def test_a_grain_thrown_across_a_feeder_meets_its_side_walls(tmp_path):
+    # one sphere of 1 mm, frictionless, on a feeder 4 mm wide (0.5 mm at 50 Hz along the
+    # normal, tilt 10 degrees), thrown across it at 0.2 m/s: nothing slows it across the
+    # chute until it meets the side wall 1.5 mm away (its hops on the plate do not, without
+    # friction), so that side wall's first impact is at 0.2 m/s, the next one, on the other
+    # side, at 0.2 times LIGGGHTS' restitution (0.7 asked; its damping gives about that);
+    # the plate's hop is read apart, from its own dump
+    chute = Chute(0.02, 10.0, amplitude=5e-4, frequency=50.0)
+    size = np.array([1e-3])
+    entry = Entry(np.array([[0.005, 0.0, 5e-4 + 1e-4]]), np.array([[0.0, 0.2, 0.0]]),
+                         np.zeros(1), 4e-3)
+    law = script.Contact(1e7, 0.4, 2e9, 0.3, 950.0, 0.7, 0.0, 0.0)
+    dt, every = 1e-6, 10
+    text, steps = script.write_input(chute, entry, size, law, dt=dt, sample_every=every,
+                                     t_end=0.04, exit_every=100, progress_every=4000,
+                                     near=2e-4, slowest=1e-3)
+    (tmp_path / script.INPUT).write_text(text)
+    (tmp_path / script.PLATE).write_text(chute.stl(entry.width, chute.start(1e-3)))
+    (tmp_path / script.SIDES).write_text(chute.sides_stl(entry.width, 0.02, chute.start(1e-3)))
+    engine.run(str(tmp_path), script.INPUT, script.LOG, steps, progress=False)
+    gravity = tuple(9.81 * c for c in chute.gravity_vector)
+    sides = contacts.Wall(gravity, chute, side=True, half_width=2e-3, others=True)
+    hits = contacts.impacts(str(tmp_path / script.SIDE_CONTACTS), dt, every, gravity, 1,
+                            wall=sides)
+    hops = contacts.impacts(str(tmp_path / script.CONTACTS), dt, every, gravity, 1, wall=chute)
+    assert len(hits) >= 2 and len(hops) >= 1  # measured: 2 and 1 (a hop lasts some 40 ms)
+    assert hits["normal_speed"].iloc[0] == pytest.approx(0.2, rel=1e-3)
+    assert hits["time"].iloc[0] == pytest.approx(1.5e-3 / 0.2, rel=1e-2)
+    assert 0.6 < hits["normal_speed"].iloc[1] / hits["normal_speed"].iloc[0] < 0.8
+    # the stroke moves the sides along themselves: a hit's tangential speed is the grain's
+    # along the wall (its hop's and gravity's, under 0.4 m/s in 40 ms) less the wall's (0.16
+    # m/s at most, 5e-4 x 2 pi 50)
+    assert (hits["tangential_speed"] < 0.16 + 0.4).all(), hits["tangential_speed"]
