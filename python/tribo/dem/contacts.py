@@ -107,10 +107,11 @@ class Wall:
             return (d["z"].to_numpy() - r, d["vz"].to_numpy(), d["vx"].to_numpy(),
                     d["vy"].to_numpy(), -g[2], (g[0], g[1]))
         # the side a grain is near: the one on its own side of the axis; its normal inwards
+        # (gravity, in the plate's x-z plane, has no component across the chute)
         y = d["y"].to_numpy()
         inward = np.where(y > 0, -1.0, 1.0)
         return (self.half_width - np.abs(y) - r, inward * d["vy"].to_numpy(),
-                d["vx"].to_numpy(), d["vz"].to_numpy(), 0.0 * g[1], (g[0], g[2]))
+                d["vx"].to_numpy(), d["vz"].to_numpy(), 0.0, (g[0], g[2]))
 
 
 def impacts(path: str, dt: float, sample_every: int, gravity: tuple, n: int,
@@ -187,8 +188,8 @@ def _block_impacts(path, d, dt, sample_every, wall: Wall, last_step: int, final:
     prev = np.maximum(starts - 1, 0)
     # free flight from the sample before to the contact (g_n > 0 towards the wall)
     v_prev = -vn[prev]
-    normal = np.where(flight, np.sqrt(np.maximum(v_prev ** 2 + 2.0 * g_n * np.maximum(gap[prev], 0.0),
-                                                 0.0)), -vn[starts])
+    normal = np.where(flight, np.sqrt(np.maximum(
+        v_prev ** 2 + 2.0 * g_n * np.maximum(gap[prev], 0.0), 0.0)), -vn[starts])
     # the flight's time (without gravity towards the wall, a side's: its gap at its speed)
     if g_n > 0:
         wait = np.where(flight, (normal - v_prev) / g_n, 0.0)
