@@ -288,11 +288,12 @@ def test_a_side_wall_impact_is_read_across_the_chute_relative_to_the_moving_wall
         t = step * dt
         y = y_hit + 0.3 * (t - t_hit)
         touching = y > y_hit
+        # the walls' force across the chute and along the plate's normal (not touching it)
         rows.append((step, [(1, 0.01, y, 0.002, 0.2, 0.3 if not touching else 0.1, 0.1, 1e-3,
-                             5e-4 if touching else 0.0)]))
-    rows.append((110, [(1, 0.01, y_hit - 1e-5, 0.002, 0.2, -0.25, 0.1, 1e-3, 0.0)]))
-    path = tmp_path / script.SIDE_CONTACTS
-    _dump(path, rows, script.SIDE_COLUMNS)
+                             5e-4 if touching else 0.0, 0.0)]))
+    rows.append((110, [(1, 0.01, y_hit - 1e-5, 0.002, 0.2, -0.25, 0.1, 1e-3, 0.0, 0.0)]))
+    path = tmp_path / script.CONTACTS
+    _dump(path, rows, script.FEEDER_COLUMNS)
     wall = contacts.Wall((0.0, 0.0, -9.81), chute, side=True, half_width=5e-3, others=True)
     found = contacts.impacts(str(path), dt, every, (0.0, 0.0, -9.81), 1, wall=wall)
     assert len(found) == 1
@@ -306,9 +307,9 @@ def test_a_side_wall_impact_is_read_across_the_chute_relative_to_the_moving_wall
         math.hypot(0.2 - vx, 0.1 - 9.81 * 1e-5 - vz), rel=1e-9)
     assert row["from_flight"] == 1 and row["sustained"] == 0
     # the same grain on the other side, mirrored: the same impact
-    mirrored = [(step, [(1, x, -y, z, vx_, -vy, vz_, r, -f) for (_, x, y, z, vx_, vy, vz_, r, f)
-                        in frame]) for step, frame in rows]
-    _dump(path, mirrored, script.SIDE_COLUMNS)
+    mirrored = [(step, [(1, x, -y, z, vx_, -vy, vz_, r, -f, fz)
+                        for (_, x, y, z, vx_, vy, vz_, r, f, fz) in frame]) for step, frame in rows]
+    _dump(path, mirrored, script.FEEDER_COLUMNS)
     again = contacts.impacts(str(path), dt, every, (0.0, 0.0, -9.81), 1, wall=wall)
     pd.testing.assert_frame_equal(again, found)
 
@@ -334,10 +335,10 @@ def test_impacts_read_in_a_stream_are_those_of_the_dump_read_whole(tmp_path, mon
             z = 1e-3 + (-2e-7 if touching else rng.uniform(1e-6, 5e-5))
             rows.append((g, rng.uniform(0, 0.05), 0.0, z + float(chute.wall_z(step * 1e-5)),
                          rng.normal(0, 0.2), rng.normal(0, 0.05), rng.normal(0, 0.2), 1e-3,
-                         rng.uniform(1e-6, 1e-4) if touching else 0.0))
+                         0.0, rng.uniform(1e-6, 1e-4) if touching else 0.0))
         frames.append((step, rows))
     path = tmp_path / script.CONTACTS
-    _dump(path, frames, script.CONTACT_COLUMNS)
+    _dump(path, frames, script.FEEDER_COLUMNS)
     read = lambda: contacts.impacts(str(path), 1e-5, 5, (1.7, 0.0, -9.66), 30, wall=chute)
     monkeypatch.setattr(contacts, "BLOCK", 1 << 30)
     whole = read()
@@ -494,7 +495,7 @@ def test_a_vibrating_chute_is_met_relative_to_its_motion(tmp_path, maps):
 def _path_along(folder) -> tuple[float, float]:
     """The grain's first and last x (m) in the contacts' samples of a one-grain run."""
     d = contacts.read_dump_frames(str(folder / "liggghts" / script.CONTACTS),
-                                  script.CONTACT_COLUMNS)
+                                  script.FEEDER_COLUMNS)
     d = d.sort_values("step")
     return float(d["x"].iloc[0]), float(d["x"].iloc[-1])
 
@@ -547,7 +548,7 @@ def test_a_grain_thrown_across_a_feeder_meets_its_side_walls(tmp_path):
     engine.run(str(tmp_path), script.INPUT, script.LOG, steps, progress=False)
     gravity = tuple(9.81 * c for c in chute.gravity_vector)
     sides = contacts.Wall(gravity, chute, side=True, half_width=2e-3, others=True)
-    hits = contacts.impacts(str(tmp_path / script.SIDE_CONTACTS), dt, every, gravity, 1,
+    hits = contacts.impacts(str(tmp_path / script.CONTACTS), dt, every, gravity, 1,
                             wall=sides)
     hops = contacts.impacts(str(tmp_path / script.CONTACTS), dt, every, gravity, 1, wall=chute)
     assert len(hits) >= 2 and len(hops) >= 1  # measured: 2 and 1 (a hop lasts some 40 ms)

@@ -6,7 +6,10 @@ impact's Hertz contact time, script.py), each grain whose gap to the plate is be
 exceeds `slowest`; the wall's normal force on it says whether it touches. So every impact
 has at least one sample in flight just before it and several in contact: none is missed,
 and one that lasts less than a sample interval would be one the time step does not
-resolve. side_contacts.dump holds the same for a feeder's side walls, across the chute.
+resolve. A feeder's holds the same for its side walls too, across the chute: a grain near
+the plate or a side wall, with the force along both normals (LIGGGHTS' one wall fix sums
+the plate's and the sides': a sample touches a wall where that wall's component is nonzero
+and the grain's gap to it is below TOUCHING).
 
 **Against the moving wall.** Each sample is read in the wall's own axes (`Wall`): its gap
 to the wall and its velocity along the wall's normal and along the wall, each less the
@@ -45,7 +48,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from .script import CONTACT_COLUMNS, EXIT_COLUMNS, SIDE_COLUMNS
+from .script import CONTACT_COLUMNS, EXIT_COLUMNS, FEEDER_COLUMNS
 
 SETTLED = 1e-2  # m/s: a contact left slower than this along the normal is sustained
 IMPACT_COLUMNS = ["grain", "time", "normal_speed", "tangential_speed", "angle_deg",
@@ -75,7 +78,13 @@ class Wall:
 
     @property
     def columns(self) -> list[str]:
-        return SIDE_COLUMNS if self.side else CONTACT_COLUMNS
+        """The dump's columns (script.py): a feeder's (`others`) or a still chute's."""
+        return FEEDER_COLUMNS if self.others else CONTACT_COLUMNS
+
+    @property
+    def force(self) -> str:
+        """The column of the walls' force along this one's normal."""
+        return "f_force_walls[2]" if self.side else "f_force_walls[3]"
 
     def moving(self) -> bool:
         return self.chute is not None and bool(getattr(self.chute, "amplitude", 0))
@@ -116,8 +125,8 @@ class Wall:
 
 def impacts(path: str, dt: float, sample_every: int, gravity: tuple, n: int,
             wall=None) -> pd.DataFrame:
-    """The impacts (the module's text) of contacts.dump (or side_contacts.dump, `wall` a
-    Wall of side=True), a run of time step dt (s) sampled every sample_every steps, gravity
+    """The impacts (the module's text) of contacts.dump against the plate (or a feeder's side
+    walls, `wall` a Wall of side=True), a run of time step dt (s) sampled every sample_every steps, gravity
     (g_x, g_y, g_z) in m/s2 in the plate's frame, grains 1..n; `wall` a Wall, or the chute
     (device.Chute) whose plate it is, or None (a still plate). Sorted by grain and time."""
     if not isinstance(wall, Wall):
@@ -143,7 +152,7 @@ def impacts(path: str, dt: float, sample_every: int, gravity: tuple, n: int,
 def _block_impacts(path, d, dt, sample_every, wall: Wall, last_step: int, final: bool):
     """The impacts of the contacts that have ended among samples `d` (the samples carried
     and a block's), and the samples a later block needs (the module's text)."""
-    force = wall.columns[-1]
+    force = wall.force
     d = d.sort_values(["id", "step"], kind="stable").reset_index(drop=True)
     grain = d["id"].to_numpy(dtype=np.int64)
     step = d["step"].to_numpy(dtype=np.int64)

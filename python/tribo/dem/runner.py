@@ -229,7 +229,7 @@ class DemJob(Job):
             sides = contacts.Wall(gravity, self.chute, side=True,
                                   half_width=self.entry.width / 2, others=True)
             found = pd.concat([found, contacts.impacts(
-                os.path.join(folder, script.SIDE_CONTACTS), dt, every, gravity, self.n,
+                os.path.join(folder, script.CONTACTS), dt, every, gravity, self.n,
                 wall=sides).assign(wall=SIDE_WALL)], ignore_index=True).sort_values(
                 ["grain", "time"], kind="stable").reset_index(drop=True)
         left = contacts.exits(os.path.join(folder, script.EXITS), dt, self.chute.chute_length, self.n)

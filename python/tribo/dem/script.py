@@ -20,8 +20,8 @@ Outputs (the run's folder):
     contacts.dump  every sample_every steps, each grain near the plate and moving along its
                    normal: the step, its id, position, velocity, radius, and the wall's
                    normal force on it (LIGGGHTS' wall contact: nonzero while touching)
-    side_contacts.dump   a feeder's (a vibrating chute's): the same near its side walls,
-                   moving across the chute, with the walls' force across it
+                   (a feeder's: near the plate or near a side wall, moving across the
+                   chute, with the walls' force across it too, to 10 digits)
     exits.dump     every exit_every steps, the grains whose centre has passed the chute's
                    end (x > chute_length): id, position, velocity, spin
     log.liggghts   LIGGGHTS' log; its thermo lines (step, grains in the box) show progress
@@ -35,17 +35,16 @@ import numpy as np
 from .device import Chute, Entry
 
 INPUT, PLATE, SIDES, LOG = "in.liggghts", "plate.stl", "sides.stl", "log.liggghts"
-CONTACTS, SIDE_CONTACTS, EXITS = "contacts.dump", "side_contacts.dump", "exits.dump"
+CONTACTS, EXITS = "contacts.dump", "exits.dump"
 # the columns contacts.dump holds (each frame headed by its step): the grain's id, centre, velocity and radius,
 # and the normal component of the force the wall exerts on it (fix wall/gran's
 # store_force: nonzero while the grain touches the wall)
 CONTACT_COLUMNS = ["id", "x", "y", "z", "vx", "vy", "vz", "radius", "f_force_walls[3]"]
-# side_contacts.dump's: the same, the force across the chute (the side walls' normal)
-SIDE_COLUMNS = CONTACT_COLUMNS[:-1] + ["f_force_walls[2]"]
-# side_contacts.dump's numbers to 10 digits: a grain's gap to a side wall centimetres off
-# the axis is read to a nanometre (the default 6 digits: to 0.1 um, more than a contact's
-# indentation)
-SIDE_FORMAT = "%d " + " ".join(["%.10g"] * (len(SIDE_COLUMNS) - 1))
+# a feeder's contacts.dump: also the force across the chute (the side walls' normal)
+FEEDER_COLUMNS = CONTACT_COLUMNS[:-1] + ["f_force_walls[2]", "f_force_walls[3]"]
+# its numbers to 10 digits: a grain's gap to a side wall centimetres off the axis is read
+# to a nanometre (the default 6 digits: to 0.1 um, more than a contact's indentation)
+FEEDER_FORMAT = "%d " + " ".join(["%.10g"] * (len(FEEDER_COLUMNS) - 1))
 EXIT_COLUMNS = ["id", "x", "y", "z", "vx", "vy", "vz", "omegay"]
 # a tenth of the smallest grain's Rayleigh time: LIGGGHTS warns above a fifth of it
 RAYLEIGH_FRACTION = 0.1
@@ -207,20 +206,25 @@ def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *
         lines += ["compute radius all property/atom radius",
                   f"variable wall equal {wall}", f"variable wall_speed equal {wall_speed}",
                   f"variable near atom (z-c_radius-v_wall<{_number(near)})*{along}",
-                  "variable normal_speed atom abs(vz-v_wall_speed)",
-                  f"dump contacts all custom {sample_every} {CONTACTS} "
-                  + " ".join(CONTACT_COLUMNS),
-                  f"dump_modify contacts thresh v_near == 1 thresh v_normal_speed > {_number(slowest)}"]
+                  "variable normal_speed atom abs(vz-v_wall_speed)"]
+        if not chute.amplitude:
+            lines += [f"dump contacts all custom {sample_every} {CONTACTS} "
+                      + " ".join(CONTACT_COLUMNS),
+                      f"dump_modify contacts thresh v_near == 1 thresh v_normal_speed > "
+                      f"{_number(slowest)}"]
+        else:
+            # a feeder's one dump for the plate and the side walls (a dump's frames are
+            # most of its cost, most of them empty: one set of them)
+            lines += [f"variable near_side atom ({_number(half)}-abs(y)-c_radius<{_number(near)})"
+                      f"*{along}",
+                      "variable side_speed atom abs(vy)",
+                      f"variable written atom v_near*(v_normal_speed>{_number(slowest)})"
+                      f"+v_near_side*(v_side_speed>{_number(slowest)})",
+                      f"dump contacts all custom {sample_every} {CONTACTS} "
+                      + " ".join(FEEDER_COLUMNS),
+                      "dump_modify contacts thresh v_written > 0",
+                      f'dump_modify contacts format "{FEEDER_FORMAT}"']
         append += [] if restart is None else ["dump_modify contacts append yes"]
-    if contacts and chute.amplitude:
-        lines += [f"variable near_side atom ({_number(half)}-abs(y)-c_radius<{_number(near)})"
-                  f"*{along}",
-                  "variable side_speed atom abs(vy)",
-                  f"dump side_contacts all custom {sample_every} {SIDE_CONTACTS} "
-                  + " ".join(SIDE_COLUMNS),
-                  f"dump_modify side_contacts thresh v_near_side == 1 thresh v_side_speed > "
-                  f"{_number(slowest)}", f'dump_modify side_contacts format "{SIDE_FORMAT}"']
-        append += [] if restart is None else ["dump_modify side_contacts append yes"]
     lines += append
     # each grain enters at its step: a `run` to it, then the grain
     start = np.rint(entry.time / dt).astype(np.int64)
