@@ -404,8 +404,24 @@ def test_a_run_stopped_by_ctrl_c_resumes_from_liggghts_restart_file(tmp_path, ma
     dt = json.loads((log.parent / engine.DONE).read_text())["run"]["dt"]
     impacts = [pd.read_csv(tmp_path / f / "impacts.csv") for f in ("whole", "cut")]
     before = impacts[0]["time"] < step * dt
-    assert len(impacts[0]) == len(impacts[1]) and before.any() and not before.all()
+    assert before.any() and not before.all()
+    assert (impacts[1]["time"] < step * dt).sum() == before.sum()
     assert impacts[0][before].equals(impacts[1][before])
+    if device:
+        # a feeder's hops amplify a rounding difference hop after hop (a ball bouncing on a
+        # vibrating plate is chaotic): measured over 15 cuts, in two a grain's hops parted
+        # some 0.3 s after the cut (39 impacts against 36). What shows that the stroke's
+        # phase goes on is each grain's next impact after the cut: at the uninterrupted
+        # run's time and speed (a stroke started over would move it by up to a period,
+        # 20 ms); the same to the bit in the three cuts looked at (both that parted among
+        # them), held to 1e-5
+        for grain in range(3):
+            nxt = [f[(f["grain"] == grain) & (f["time"] >= step * dt)].iloc[0] for f in impacts]
+            for c in ("time", "normal_speed", "tangential_speed"):
+                assert nxt[1][c] == pytest.approx(nxt[0][c], rel=1e-5), (grain, c)
+        assert (a["exited"] == 1).all() and (b["exited"] == 1).all()
+        return
+    assert len(impacts[0]) == len(impacts[1])
     # after it, the same impacts, and the same grains to rounding amplified: LIGGGHTS
     # rebuilds its neighbour lists at a restart, so its sums may round differently, and the
     # contact law's switches (stick and slip, the rolling torque's sign) can make such a
