@@ -16,7 +16,7 @@ the plate and its side walls along a stroke at `angle_deg` to the plate's down-s
 (90: along its normal), A sin(2 pi f t) (cos psi, sin psi) in the plate's axes (LIGGGHTS'
 `fix move/mesh ... wiggle`): a grain meets it many times, and a stroke inclined forward
 throws it forward at each hop, conveying it on a level plate too (tilt 0, taken only
-vibrating). The **side walls** along the plate (`sides_stl`), as high as the drops, hold the
+vibrating). The **side walls** along the plate (`sides_stl`), as high as the box, hold the
 grains on it; their impacts are charged like the plate's and counted apart.
 
 The plate is as wide as the grains' lanes need: in the dilute limit each grain has its
