@@ -6,6 +6,7 @@ stream written as a population's (docs/dem.md).
     tribo dem -n 2000 --feed-rate 40 --lanes 5 --ranks 2 --out out/dem-stream
     tribo dem -n 50 --size uniform:6e-4:1e-3 --stiffness-scale 0.01 --out out/dem-soft
     tribo dem -n 100 --vibration 5e-4,50 --out out/dem-vibrating
+    tribo dem -n 20 --vibration 5e-4,50,30 --tilt-deg 0 --chute-length 0.05 --out out/dem-feeder
 
 The feed is a population's (tribo population --help: --size, --drop-height, ... and the
 materials), its grains spheres: --epsilon 1, the default here (LIGGGHTS holds spheres here;
@@ -25,8 +26,11 @@ local cluster in this process, --scheduler, or --serial).
 
 Writes into --out: particles.csv, summary.csv, population.png and population.json as a
 population (tribo population --help), impacts.csv (a row per grain-wall impact: grain,
-time, normal_speed, tangential_speed, angle_deg, duration, sustained, from_flight, and its
-charge gain gain_<model> for an uncharged grain, C) and liggghts/.
+time, normal_speed, tangential_speed, angle_deg, duration, sustained, from_flight, wall (0
+the plate, 1 a feeder's side wall), and its charge gain gain_<model> for an uncharged grain,
+C) and liggghts/. --vibration makes the chute a vibratory feeder: the plate and its side
+walls move along the stroke; a stroke inclined forward conveys the grains on a level
+plate (--tilt-deg 0).
 """
 
 import os
@@ -50,9 +54,11 @@ def add_arguments(p) -> None:
     p.add_argument("--feed-rate", type=positive_number, metavar="PER_S",
                    help="grains/s dropped one after another (default: the dilute limit)")
     p.add_argument("--lanes", type=int, help="lanes of a fed stream (default 5)")
-    p.add_argument("--vibration", type=numbers, metavar="A,F",
-                   help="the plate vibrates along its normal: amplitude A in m, frequency F "
-                        "in Hz (a vibrating chute: each grain meets it many times)")
+    p.add_argument("--vibration", type=numbers, metavar="AMPLITUDE,FREQUENCY[,ANGLE_DEG]",
+                   help="a vibratory feeder: the plate and its side walls move along a stroke "
+                        "of that amplitude (m) and frequency (Hz) at ANGLE_DEG to the plate "
+                        "(default 90: along its normal; 20-45 convey); --tilt-deg 0 for a "
+                        "level one")
     p.add_argument("--ranks", type=int, default=1, help="LIGGGHTS' MPI ranks (default 1)")
     p.add_argument("--stiffness-scale", type=float, default=1.0, metavar="F",
                    help="the Young's moduli LIGGGHTS takes, as a fraction of the materials' "
@@ -78,9 +84,10 @@ def job_of(args):
 def _vibration(values):
     if values is None:
         return None
-    if len(values) != 2:
-        raise ValueError(f"--vibration {','.join(f'{v:g}' for v in values)}: two numbers, "
-                         f"the amplitude in m and the frequency in Hz")
+    if len(values) not in (2, 3):
+        raise ValueError(f"--vibration {','.join(f'{v:g}' for v in values)}: two or three "
+                         f"numbers, the amplitude in m, the frequency in Hz and the stroke's "
+                         f"angle from the plate in degrees (default 90)")
     return values
 
 

@@ -11,8 +11,13 @@ plane, and a grain has left the chute when its centre passes x = chute_length (t
 FMU's exit, section 9). The plate is an STL mesh of two triangles: LIGGGHTS reports the
 contacts of mesh walls (`compute wall/gran/local`), not of its primitive walls.
 
-A **vibrating chute** (amplitude > 0) moves the plate along its normal, A sin(2 pi f t):
-a grain meets it many times as it goes down (LIGGGHTS' `fix move/mesh ... wiggle`).
+A **vibrating chute**, a vibratory feeder (amplitude > 0, docs/model.md section 9b), moves
+the plate and its side walls along a stroke at `angle_deg` to the plate's down-slope axis
+(90: along its normal), A sin(2 pi f t) (cos psi, sin psi) in the plate's axes (LIGGGHTS'
+`fix move/mesh ... wiggle`): a grain meets it many times, and a stroke inclined forward
+throws it forward at each hop, conveying it on a level plate too (tilt 0, taken only
+vibrating). The **side walls** along the plate (`sides_stl`), as high as the box, hold the
+grains on it; their impacts are charged like the plate's and counted apart.
 
 The plate is as wide as the grains' lanes need: in the dilute limit each grain has its
 own lane, `lane_spacing` apart (wide enough that no two can meet: a sphere rolls and
@@ -76,29 +81,55 @@ class Chute:
 
     chute_length: float = 0.3
     tilt_deg: float = 30.0
-    amplitude: float = 0.0  # m: the plate's vibration along its normal (0: at rest)
+    amplitude: float = 0.0  # m: the plate's stroke (0: at rest)
     frequency: float = 0.0  # Hz
+    angle_deg: float = 90.0  # the stroke's angle from the plate's down-slope axis (90: its normal)
 
     def __post_init__(self):
         _positive("chute_length", self.chute_length, "m")
-        if not (isinstance(self.tilt_deg, (int, float)) and 0 < self.tilt_deg < 90):
+        if not (isinstance(self.tilt_deg, (int, float)) and 0 <= self.tilt_deg < 90):
             raise DeviceError(f"tilt_deg = {self.tilt_deg!r}: the chute's tilt from the "
-                              f"horizontal, degrees, in (0, 90)")
+                              f"horizontal, degrees, in [0, 90)")
         if self.amplitude:
             _positive("vibration amplitude", self.amplitude, "m, below 0.01")
             _positive("vibration frequency", self.frequency, "Hz, up to 1000")
             if self.amplitude >= 0.01 or self.frequency > 1000:
                 raise DeviceError(f"vibration {self.amplitude:g} m at {self.frequency:g} Hz: "
                                   f"an amplitude below 0.01 m, a frequency up to 1000 Hz")
+            if not (isinstance(self.angle_deg, (int, float)) and 0 < self.angle_deg <= 90):
+                raise DeviceError(f"vibration angle = {self.angle_deg!r}: the stroke's angle "
+                                  f"from the plate, degrees, in (0, 90]")
+        elif self.tilt_deg == 0:
+            raise DeviceError("tilt_deg = 0: a level chute conveys only when it vibrates "
+                              "(give --vibration, or a tilt in (0, 90) degrees)")
+
+    @property
+    def stroke(self) -> tuple:
+        """The stroke's amplitude along the plate's axes (x down-slope, z its normal), m:
+        A (cos psi, sin psi) (docs/model.md section 9b)."""
+        psi = math.radians(self.angle_deg)
+        # exactly along the normal at 90 degrees (cos 90 degrees is 6e-17, not 0)
+        return (0.0 if self.angle_deg == 90 else self.amplitude * math.cos(psi),
+                self.amplitude * math.sin(psi))
+
+    def displacement(self, t):
+        """The plate's displacement (x, z) at time t (s): the stroke times sin(2 pi f t), the
+        LIGGGHTS `wiggle` of the meshes from t = 0."""
+        s = np.sin(2.0 * math.pi * self.frequency * np.asarray(t, dtype=float))
+        return self.stroke[0] * s, self.stroke[1] * s
+
+    def velocity(self, t):
+        """The plate's velocity (x, z) at time t (s)."""
+        w = 2.0 * math.pi * self.frequency
+        c = w * np.cos(w * np.asarray(t, dtype=float))
+        return self.stroke[0] * c, self.stroke[1] * c
 
     def wall_z(self, t):
-        """The plate's height along its normal at time t (s): A sin(2 pi f t), the
-        LIGGGHTS `wiggle` of the mesh from t = 0."""
-        return self.amplitude * np.sin(2.0 * math.pi * self.frequency * np.asarray(t, dtype=float))
+        """The plate's height along its normal at time t (s)."""
+        return self.displacement(t)[1]
 
     def wall_vz(self, t):
-        w = 2.0 * math.pi * self.frequency
-        return self.amplitude * w * np.cos(w * np.asarray(t, dtype=float))
+        return self.velocity(t)[1]
 
     @property
     def gravity_vector(self) -> tuple:
@@ -113,16 +144,40 @@ class Chute:
         s = np.asarray(speed, dtype=float)
         return np.stack([s * np.sin(a), np.zeros_like(s), -s * np.cos(a)], axis=-1)
 
-    def stl(self, width: float) -> str:
-        """The plate, x in [0, L], y in [-width/2, width/2], z = 0, normal +z, as ASCII STL."""
-        L, h = self.chute_length, width / 2.0
-        corners = [(0.0, -h), (L, -h), (L, h), (0.0, h)]
-        lines = ["solid plate"]
+    def start(self, biggest: float) -> float:
+        """Where the plate begins (m): at the drop point, x = 0, or behind it by the
+        stroke along the plate and a grain, so that a feeder's plate is under every grain it
+        drops whatever its phase."""
+        return -(abs(self.stroke[0]) + biggest) if self.amplitude else 0.0
+
+    def stl(self, width: float, start: float = 0.0) -> str:
+        """The plate, x in [start, L], y in [-width/2, width/2], z = 0, normal +z, as ASCII
+        STL."""
+        L, h, x0 = self.chute_length, width / 2.0, start
+        return _stl("plate", [((x0, -h, 0.0), (L, -h, 0.0), (L, h, 0.0), (x0, h, 0.0))])
+
+    def sides_stl(self, width: float, height: float, start: float = 0.0) -> str:
+        """The side walls along the plate, y = -width/2 and y = width/2, x in [start, L], z
+        in [0, height], facing into the chute, as ASCII STL."""
+        L, h, x0 = self.chute_length, width / 2.0, start
+        return _stl("sides", [((x0, -h, 0.0), (x0, -h, height), (L, -h, height), (L, -h, 0.0)),
+                              ((x0, h, 0.0), (L, h, 0.0), (L, h, height), (x0, h, height))])
+
+
+def _stl(name: str, quads) -> str:
+    """Rectangles (four corners each, anticlockwise seen from the side they face) as two
+    triangles each, in ASCII STL."""
+    lines = [f"solid {name}"]
+    for corners in quads:
+        a, b, c = (np.array(corners[i]) for i in (0, 1, 2))
+        normal = np.cross(b - a, c - a)
+        normal = normal / np.linalg.norm(normal)
         for tri in ((0, 1, 2), (0, 2, 3)):
-            lines += ["  facet normal 0 0 1", "    outer loop"]
-            lines += [f"      vertex {corners[i][0]:.9g} {corners[i][1]:.9g} 0" for i in tri]
+            lines += ["  facet normal " + " ".join(f"{v:.9g}" for v in normal + 0.0),
+                      "    outer loop"]
+            lines += ["      vertex " + " ".join(f"{v:.9g}" for v in corners[i]) for i in tri]
             lines += ["    endloop", "  endfacet"]
-        return "\n".join(lines + ["endsolid plate", ""])
+    return "\n".join(lines + [f"endsolid {name}", ""])
 
 
 @dataclass(frozen=True)

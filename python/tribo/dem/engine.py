@@ -58,7 +58,7 @@ def run(folder: str, input_name: str, log_name: str, steps: int, ranks: int = 1,
     started = time.perf_counter()
     try:
         proc = subprocess.Popen(argv, cwd=folder, stdout=subprocess.PIPE,
-                                stderr=subprocess.STDOUT, text=True, bufsize=1)
+                                stderr=subprocess.STDOUT, text=True, errors="replace", bufsize=1)
         try:
             for line in proc.stdout:
                 m = THERMO.match(line)

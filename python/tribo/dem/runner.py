@@ -6,13 +6,16 @@ by the project's impact map (charging.py); the exit stream written as a populati
     <out>/particles.csv   a row per grain, a population's columns (populations/feed.py:
                           the materials, every parameter of its run, exited, exit_time,
                           u, v, exit_speed, omega, charge_<model>, charge_to_mass_<model>,
-                          capped_fraction_<model> (0: no breakdown, charging.py),
+                          capped_fraction_<model> (empty: the DEM's grain has no
+                          segments), charge_lost_<model> (C, to the gas: charging.py),
                           contact_fraction, impacts, fraction_<motion> (empty: LIGGGHTS does
                           not classify the motion), cpu_s and wall_s (the coupled run's
                           per grain), and its key, as the population's grain of the same
                           draw has it
-    <out>/impacts.csv     a row per impact (contacts.py's columns, and its charge gain by
-                          each model for an uncharged grain, C)
+    <out>/impacts.csv     a row per impact (contacts.py's columns, the wall it met: 0 the
+                          plate, 1 a feeder's side wall, and its charge gain by each model
+                          for an uncharged grain, C); particles.csv's `impacts` count the
+                          plate's, a feeder's `side_impacts` the side walls'.
     <out>/summary.csv, population.png, population.json   as a population's
     <out>/liggghts/       the LIGGGHTS run: its input, the plate's STL, its outputs and log
 
@@ -42,13 +45,14 @@ from ..populations.feed import (STEPS_PER_RUN, Feed, draw, particle_parameters, 
 from ..populations.runner import FIGURE, METADATA, PARTICLES, SUMMARY
 from ..populations.summary import check_class_edges, summarize_population
 from . import contacts, engine, script
-from .charging import Charger, band_charge, charges
+from .charging import Charger, GasLimits, band, charges
 from .device import Chute, DeviceError, entries
 
 IMPACTS = "impacts.csv"
 STOPPED = "stopped.json"  # a run stopped by a signal: its settings, CPU so far, parts run
 RUN_FOLDER = "liggghts"
 SLOWEST = 1e-3  # m/s: contacts slower along the normal are not written (contacts.py)
+PLATE_WALL, SIDE_WALL = 0, 1  # impacts.csv's `wall`: the plate's impact or a side wall's
 
 
 class DemError(ValueError):
@@ -82,11 +86,12 @@ def _spheres(feed: Feed) -> None:
 class DemJob(Job):
     """n grains of `feed` (spheres) through the chute in LIGGGHTS, charged by the impact
     map (the module's text). feed_rate None: the dilute limit (a lane each, all dropped at
-    once); else grains/s into `lanes` lanes. vibration (amplitude m, frequency Hz): the
-    plate vibrates along its normal (device.py). ranks: LIGGGHTS' MPI ranks. stiffness_scale:
-    the Young's moduli LIGGGHTS takes, as a fraction of the materials' (a larger time step;
-    the charges are the map's, at the impact speeds). maps: the folder the impact maps are
-    kept in."""
+    once); else grains/s into `lanes` lanes. vibration (amplitude m, frequency Hz[, the
+    stroke's angle from the plate in degrees, 90 by default: along its normal]): a feeder,
+    the plate and its side walls moved along the stroke (device.py). ranks: LIGGGHTS' MPI
+    ranks. stiffness_scale: the Young's moduli LIGGGHTS takes, as a fraction of the
+    materials' (a larger time step; the charges are the map's, at the impact speeds). maps:
+    the folder the impact maps are kept in."""
 
     kind, noun, results_file = "dem", "grain", PARTICLES
 
@@ -99,6 +104,8 @@ class DemJob(Job):
         self.feed, self.n, self.seed, self.t_end, self.fmu = feed, n, seed, t_end, fmu
         self.feed_rate, self.lanes, self.lane_spacing = feed_rate, lanes, lane_spacing
         self.vibration = tuple(vibration) if vibration else None
+        if self.vibration is not None and len(self.vibration) == 2:
+            self.vibration += (90.0,)
         self.ranks, self.stiffness_scale, self.maps = ranks, stiffness_scale, maps
         self.figure, self.shape_edges, self.size_edges = figure, shape_edges, size_edges
         self.keys = []
@@ -117,9 +124,13 @@ class DemJob(Job):
                            f"feed rate only (the dilute limit gives each grain its own)")
         _spheres(self.feed)
         check_class_edges(self.shape_edges, self.size_edges)
-        amplitude, frequency = self.vibration or (0.0, 0.0)
-        self.chute = Chute(**self.feed.describe()["chute"], amplitude=amplitude,
-                           frequency=frequency)
+        if self.vibration is not None and len(self.vibration) != 3:
+            raise DemError(f"vibration = {self.vibration!r}: the amplitude (m), the frequency "
+                           f"(Hz) and the stroke's angle from the plate (degrees)")
+        amplitude, frequency, angle = self.vibration or (0.0, 0.0, 90.0)
+        chute = self.feed.describe()["chute"]
+        self.chute = Chute(chute["chute_length"], chute["tilt_deg"], amplitude=amplitude,
+                           frequency=frequency, angle_deg=angle)
         self.image = FmuImage.load(find_fmu(self.fmu, "si"))
         md = self.image.model_description()
         depth = start_value(md, "cylinder_length")
@@ -205,21 +216,31 @@ class DemJob(Job):
                "friction": contact.friction, "rolling_friction": contact.rolling_friction,
                "youngs_modulus_particle": contact.youngs_particle,
                "youngs_modulus_wall": contact.youngs_wall, "ranks": self.ranks}
+        if self.chute.amplitude:  # a feeder: its stroke, and its side walls
+            run["vibration"] = list(self.vibration)
         previous = _read(done_path)
         if previous is None or previous.get("run") != run:
             previous = self._simulate(folder, run, size, contact, progress, wall0)
         cpu0 = time.process_time()
-        found = contacts.impacts(os.path.join(folder, script.CONTACTS), dt, every,
-                                 tuple(9.81 * c for c in self.chute.gravity_vector),
-                                 self.n, wall=self.chute)
+        gravity = tuple(9.81 * c for c in self.chute.gravity_vector)
+        found = contacts.impacts(os.path.join(folder, script.CONTACTS), dt, every, gravity,
+                                 self.n, wall=self.chute).assign(wall=PLATE_WALL)
+        if self.chute.amplitude:  # the feeder's side walls: charged alike, counted apart
+            sides = contacts.Wall(gravity, self.chute, side=True,
+                                  half_width=self.entry.width / 2, others=True)
+            found = pd.concat([found, contacts.impacts(
+                os.path.join(folder, script.CONTACTS), dt, every, gravity, self.n,
+                wall=sides).assign(wall=SIDE_WALL)], ignore_index=True).sort_values(
+                ["grain", "time"], kind="stable").reset_index(drop=True)
         left = contacts.exits(os.path.join(folder, script.EXITS), dt, self.chute.chute_length, self.n)
         sigma0 = float(p0["sigma0"])
         # the materials' own moduli (not LIGGGHTS' scaled ones): the model's indentation
         modulus = script.effective_modulus(p0["youngs_modulus_particle"],
                                            p0["poisson_ratio_particle"],
                                            p0["youngs_modulus_wall"], p0["poisson_ratio_wall"])
-        band = band_charge(size, p0["density"], modulus, self.chute.tilt_deg, sigma0)
-        charged = charges(charger, found, size, sigma0, band)
+        limits = GasLimits.of(md, p0)
+        rolled = band(size, p0["density"], modulus, self.chute.tilt_deg, sigma0, limits)
+        charged = charges(charger, found, size, sigma0, limits, rolled)
         for model in charger.models:
             grains = found["grain"].to_numpy(dtype=np.int64)
             found[f"gain_{model}"] = charger.charge(
@@ -236,9 +257,10 @@ class DemJob(Job):
         signal with the same settings (engine.py), else from the start; its record."""
         stopped_path = os.path.join(folder, STOPPED)
         stopped = _read(stopped_path)
-        # a vibrating plate is not resumed: its mesh's motion restarts with the input
+        # a feeder's run too: its restart file holds the meshes where they were and the time
+        # of their motion, which goes on from there
         restart = (_restart(folder) if stopped is not None and stopped.get("run") == run
-                   and not self.chute.amplitude else None)
+                   else None)
         if restart is None:  # from the start: what an earlier run left goes
             if os.path.isdir(folder):
                 shutil.rmtree(folder)
@@ -255,7 +277,11 @@ class DemJob(Job):
         with open(os.path.join(folder, input_name), "w") as f:
             f.write(text)
         with open(os.path.join(folder, script.PLATE), "w") as f:
-            f.write(self.chute.stl(self.entry.width))
+            f.write(self.chute.stl(self.entry.width, self.chute.start(float(np.max(size)))))
+        if self.chute.amplitude:
+            with open(os.path.join(folder, script.SIDES), "w") as f:
+                f.write(self.chute.sides_stl(self.entry.width, script.box_top(self.entry, size),
+                                             self.chute.start(float(np.max(size)))))
 
         def on_stop(cpu):
             with open(stopped_path, "w") as f:
@@ -273,6 +299,7 @@ class DemJob(Job):
 
     def _rows(self, out, found, left, charged, size, dem, charging_cpu, wall) -> DemReport:
         n = self.n
+        plate = found[found["wall"] == PLATE_WALL]
         mass = math.pi / 6.0 * self.drawn["size"].to_numpy() ** 3 * float(self.params[0]["density"])
         end = np.where(left["exited"] == 1, left["exit_time"], self.t_end)
         rows = pd.DataFrame(self.params)
@@ -288,21 +315,27 @@ class DemJob(Job):
         result.update({"exited": left["exited"].to_numpy(), "exit_time": left["exit_time"].to_numpy(),
                        "time_end": end, "u": left["u"].to_numpy(), "v": left["v"].to_numpy(),
                        "exit_speed": left["exit_speed"].to_numpy(), "omega": left["omega"].to_numpy(),
-                       "contact_fraction": contacts.contact_time(found, n) / end,
-                       "impacts": contacts.count(found, n), "assumption_warnings": 0})
+                       "contact_fraction": contacts.contact_time(plate, n) / end,
+                       "impacts": contacts.count(plate, n), "assumption_warnings": 0})
         # how a grain's run ended, where the population's rows say it (populations/feed.py):
         # one that left by the chute's end ended there (1); of one that did not, LIGGGHTS
         # does not say whether it rests, rolls or fell off the plate's side: left empty
         left_by_end = left["exited"].to_numpy() == 1
         result.update({"end_reason": np.where(left_by_end, 1.0, np.nan),
                        "at_rest": np.where(left_by_end, 0.0, np.nan)})
+        lost = {}
         for model in self.models:
-            q = charged.get(model, np.full(n, np.nan))
+            q, lost[model] = charged.get(model, (np.full(n, np.nan), np.full(n, np.nan)))
             result[f"charge_{model}"] = q
             result[f"charge_to_mass_{model}"] = q / mass
-            result[f"capped_fraction_{model}"] = 0.0
+            # the share of a grain's boundary at its limit has no meaning without segments
+            result[f"capped_fraction_{model}"] = np.nan
         for c in columns:  # the population's columns, those it has
             rows[c] = result[c]
+        for model in self.models:  # and the DEM's own: the charge lost to the gas (charging.py)
+            rows[f"charge_lost_{model}"] = lost[model]
+        if self.chute.amplitude:  # a feeder's side walls' impacts, counted apart
+            rows["side_impacts"] = contacts.count(found[found["wall"] == SIDE_WALL], n)
         total_cpu = dem["cpu_s"] + charging_cpu
         rows["cpu_s"] = total_cpu / n
         rows["wall_s"] = wall / n
@@ -326,10 +359,14 @@ class DemJob(Job):
             from ..populations.plot import population_title, write_population_figure
             chute = described["chute"]
             how = ("dilute" if self.feed_rate is None else f"{format_number(self.feed_rate)} grains/s")
+            # the title names the amplitude and frequency; the stroke's angle is said here
+            stroke = (f", its stroke at {format_number(self.vibration[2])}° to it"
+                      if self.vibration and self.vibration[2] != 90 else "")
             title = population_title(
-                dict(described, vibration=self.vibration), n, self.seed,
-                f"at the exit of a {format_number(chute['chute_length'])} m chute tilted "
-                f"{format_number(chute['tilt_deg'])}°", head=f"DEM (LIGGGHTS, spheres, {how}): ")
+                dict(described, vibration=self.vibration[:2] if self.vibration else None), n,
+                self.seed, f"at the exit of a {format_number(chute['chute_length'])} m chute "
+                f"tilted {format_number(chute['tilt_deg'])}°{stroke}",
+                head=f"DEM (LIGGGHTS, spheres, {how}): ")
             report.files.append(write_population_figure(rows, summary, os.path.join(out, FIGURE),
                                                         title))
         return report

@@ -20,6 +20,8 @@ Outputs (the run's folder):
     contacts.dump  every sample_every steps, each grain near the plate and moving along its
                    normal: the step, its id, position, velocity, radius, and the wall's
                    normal force on it (LIGGGHTS' wall contact: nonzero while touching)
+                   (a feeder's: near the plate or near a side wall, moving across the
+                   chute, with the walls' force across it too, to 10 digits)
     exits.dump     every exit_every steps, the grains whose centre has passed the chute's
                    end (x > chute_length): id, position, velocity, spin
     log.liggghts   LIGGGHTS' log; its thermo lines (step, grains in the box) show progress
@@ -32,11 +34,17 @@ import numpy as np
 
 from .device import Chute, Entry
 
-INPUT, PLATE, CONTACTS, EXITS, LOG = "in.liggghts", "plate.stl", "contacts.dump", "exits.dump", "log.liggghts"
+INPUT, PLATE, SIDES, LOG = "in.liggghts", "plate.stl", "sides.stl", "log.liggghts"
+CONTACTS, EXITS = "contacts.dump", "exits.dump"
 # the columns contacts.dump holds (each frame headed by its step): the grain's id, centre, velocity and radius,
 # and the normal component of the force the wall exerts on it (fix wall/gran's
 # store_force: nonzero while the grain touches the wall)
 CONTACT_COLUMNS = ["id", "x", "y", "z", "vx", "vy", "vz", "radius", "f_force_walls[3]"]
+# a feeder's contacts.dump: also the force across the chute (the side walls' normal)
+FEEDER_COLUMNS = CONTACT_COLUMNS[:-1] + ["f_force_walls[2]", "f_force_walls[3]"]
+# its numbers to 10 digits: a grain's gap to a side wall centimetres off the axis is read
+# to a nanometre (the default 6 digits: to 0.1 um, more than a contact's indentation)
+FEEDER_FORMAT = "%d " + " ".join(["%.10g"] * (len(FEEDER_COLUMNS) - 1))
 EXIT_COLUMNS = ["id", "x", "y", "z", "vx", "vy", "vz", "omegay"]
 # a tenth of the smallest grain's Rayleigh time: LIGGGHTS warns above a fifth of it
 RAYLEIGH_FRACTION = 0.1
@@ -102,6 +110,12 @@ def _number(x: float) -> str:
     return f"{x:.10g}"
 
 
+def box_top(entry: Entry, diameters: np.ndarray) -> float:
+    """The box's height above the plate (m): the highest drop, ten grains and 2 cm more (a
+    feeder's side walls are as high)."""
+    return float(np.max(entry.position[:, 2])) + 10.0 * float(np.max(diameters)) + 0.02
+
+
 def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *, dt: float,
                 sample_every: int, t_end: float, exit_every: int, progress_every: int,
                 near: float, slowest: float, contacts: bool = True,
@@ -117,7 +131,7 @@ def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *
     n = len(diameters)
     biggest = float(np.max(diameters))
     L, half = chute.chute_length, entry.width / 2.0
-    top = float(np.max(entry.position[:, 2])) + 10.0 * biggest + 0.02
+    top = box_top(entry, diameters)
     steps = int(math.ceil(t_end / dt))
     gx, gy, gz = chute.gravity_vector
     lines = [
@@ -125,7 +139,8 @@ def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *
         "# plate's frame, gravity tilted; grains as the feed drew them",
         "atom_style granular", "atom_modify map array", "boundary f f f", "newton off",
         "communicate single vel yes", "units si", "hard_particles yes",
-        f"region box block {_number(-5 * biggest)} {_number(L + 0.01)} "
+        f"region box block {_number(min(-5 * biggest, chute.start(biggest) - biggest))} "
+        f"{_number(L + 0.01)} "
         f"{_number(-half - 5 * biggest)} {_number(half + 5 * biggest)} "
         f"{_number(-0.01)} {_number(top)} units box",
         "create_box 2 box",
@@ -154,12 +169,19 @@ def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *
         f"fix gravity all gravity 9.81 vector {_number(gx)} {_number(gy)} {_number(gz)}",
         f"fix plate all mesh/surface file {PLATE} type 2",
     ]
-    if chute.amplitude:  # the vibrating chute: the mesh moves along its normal
-        lines += [f"fix vibrate all move/mesh mesh plate wiggle amplitude 0 0 "
-                  f"{_number(chute.amplitude)} period {_number(1.0 / chute.frequency)}"]
+    # a feeder (a vibrating chute) has side walls, moving with its plate along the stroke
+    meshes = ("plate", "sides") if chute.amplitude else ("plate",)
+    if chute.amplitude:
+        (sx, sz), period = chute.stroke, _number(1.0 / chute.frequency)
+        lines += [f"fix sides all mesh/surface file {SIDES} type 2"]
+        lines += [f"fix vibrate_{mesh} all move/mesh mesh {mesh} wiggle amplitude "
+                  f"{_number(sx)} 0 {_number(sz)} period {period}" for mesh in meshes]
+    # one wall fix for every mesh (LIGGGHTS takes no second): its force is the sum of the
+    # plate's and the sides' on a grain (contacts.py tells them apart by the grain's gap)
     lines += [
         "fix walls all wall/gran model hertz tangential history rolling_friction cdt "
-        "mesh n_meshes 1 meshes plate store_force yes",
+        f"mesh n_meshes {len(meshes)} meshes {' '.join(meshes)} store_force yes",
+
         "fix integrate all nve/sphere",
         # the grains that leave the box (past the end, off the sides) are dropped
         "thermo_style custom step atoms", f"thermo {progress_every}",
@@ -173,19 +195,35 @@ def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *
         # a grain is written while near the plate (its gap below `near`, so that the last
         # sample before a contact is in flight) and moving along the normal faster than
         # `slowest` relative to it: a grain at rest or rolling on the plate is not written
-        # (the plate where it is: a vibrating plate's A sin(2 pi f t))
+        # (the plate where it is: a vibrating plate's stroke times sin(2 pi f t)); the same
+        # near a side wall, across the chute (the stroke moves the sides along themselves)
         phase = f"2*PI*{_number(chute.frequency)}*step*{_number(dt)}"
-        wall, wall_speed = ((f"{_number(chute.amplitude)}*sin({phase})",
-                             f"{_number(chute.amplitude * 2 * math.pi * chute.frequency)}*cos({phase})")
+        sz = chute.stroke[1]
+        wall, wall_speed = ((f"{_number(sz)}*sin({phase})",
+                             f"{_number(sz * 2 * math.pi * chute.frequency)}*cos({phase})")
                             if chute.amplitude else ("0", "0"))
+        along = f"(x>{_number(chute.start(biggest))}-c_radius)*(x<{_number(L)}+c_radius)"
         lines += ["compute radius all property/atom radius",
                   f"variable wall equal {wall}", f"variable wall_speed equal {wall_speed}",
-                  f"variable near atom (z-c_radius-v_wall<{_number(near)})*(x>-c_radius)*"
-                  f"(x<{_number(L)}+c_radius)",
-                  "variable normal_speed atom abs(vz-v_wall_speed)",
-                  f"dump contacts all custom {sample_every} {CONTACTS} "
-                  + " ".join(CONTACT_COLUMNS),
-                  f"dump_modify contacts thresh v_near == 1 thresh v_normal_speed > {_number(slowest)}"]
+                  f"variable near atom (z-c_radius-v_wall<{_number(near)})*{along}",
+                  "variable normal_speed atom abs(vz-v_wall_speed)"]
+        if not chute.amplitude:
+            lines += [f"dump contacts all custom {sample_every} {CONTACTS} "
+                      + " ".join(CONTACT_COLUMNS),
+                      f"dump_modify contacts thresh v_near == 1 thresh v_normal_speed > "
+                      f"{_number(slowest)}"]
+        else:
+            # a feeder's one dump for the plate and the side walls (a dump's frames are
+            # most of its cost, most of them empty: one set of them)
+            lines += [f"variable near_side atom ({_number(half)}-abs(y)-c_radius<{_number(near)})"
+                      f"*{along}",
+                      "variable side_speed atom abs(vy)",
+                      f"variable written atom v_near*(v_normal_speed>{_number(slowest)})"
+                      f"+v_near_side*(v_side_speed>{_number(slowest)})",
+                      f"dump contacts all custom {sample_every} {CONTACTS} "
+                      + " ".join(FEEDER_COLUMNS),
+                      "dump_modify contacts thresh v_written > 0",
+                      f'dump_modify contacts format "{FEEDER_FORMAT}"']
         append += [] if restart is None else ["dump_modify contacts append yes"]
     lines += append
     # each grain enters at its step: a `run` to it, then the grain

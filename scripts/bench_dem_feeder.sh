@@ -1,0 +1,96 @@
+#!/usr/bin/env bash
+# A vibratory feeder both ways (issue 44, docs/dem.md "The feeder beside the project's
+# population"): the same sphere feed (epsilon 1, PE of 0.6-1 mm on steel, seed 1) through the
+# same feeder, a level plate BENCH_LENGTH long (default 0.3 m) moved 0.5 mm at 50 Hz along a
+# stroke at 30 degrees to it, as the project's population (the SI FMU's vibrating chute,
+# docs/model.md section 9b: `tribo population --vibration`) and in LIGGGHTS (`tribo dem
+# --vibration`, dilute: the grains do not meet), each run once here. Prints, for each: the
+# conveying speed (the plate's length over the mean exit time), the impacts per grain, the
+# stream's mass-weighted q/m and its spread, CPU per grain; grain by grain (the same draw:
+# the same feed and seed give the same grains, in the same order) the ratio of the q/m and
+# of the impacts; writes compare.csv (a row per grain), summary.md (the table) and
+# feeder.png (the figure) into out/bench-dem-feeder/ (BENCH_OUT).
+#
+# Needs: the SI FMU with the vibrating chute's parameters (vibration_amplitude,
+# vibration_frequency, vibration_angle: branch vib) and `tribo population --vibration
+# A,F,ANGLE_DEG`; LIGGGHTS (scripts/setup.sh). Sizes: BENCH_GRAINS (default 20),
+# BENCH_T_END (default 30 s: at about 0.03 m/s a grain crosses 0.3 m in some 10 s),
+# BENCH_STIFFNESS (default 0.01: LIGGGHTS' moduli, docs/dem.md).
+set -euo pipefail
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+PY=${PYTHON:-"$ROOT/.venv/bin/python"}
+OUT=${BENCH_OUT:-"$ROOT/out/bench-dem-feeder"}
+N=${BENCH_GRAINS:-20}
+LENGTH=${BENCH_LENGTH:-0.3}
+T_END=${BENCH_T_END:-30}
+STIFF=${BENCH_STIFFNESS:-0.01}
+FEED=(--seed 1 --epsilon 1 --size uniform:6e-4:1e-3 --chute-length "$LENGTH" --tilt-deg 0
+      --vibration 5e-4,50,30 --t-end "$T_END" --no-progress)
+mkdir -p "$OUT"
+cd "$OUT"
+if ! "$PY" -m tribo population --help | grep -q -- "--vibration"; then
+  echo "bench_dem_feeder.sh: tribo population has no --vibration (the SI FMU's vibrating chute, branch vib, is needed)" >&2
+  exit 2
+fi
+"$PY" -m tribo population -n "$N" "${FEED[@]}" --serial --no-plot --out population --fresh > /dev/null
+"$PY" -m tribo dem -n "$N" "${FEED[@]}" --stiffness-scale "$STIFF" --maps "$OUT/maps" \
+  --no-plot --out dem --fresh | sed -n 2p
+
+"$PY" - "$N" "$LENGTH" <<'PYEOF'
+import json, math, sys
+import numpy as np
+import pandas as pd
+from tribo.plotting import plt, save
+n, length = int(sys.argv[1]), float(sys.argv[2])
+pop, dem = pd.read_csv("population/particles.csv"), pd.read_csv("dem/particles.csv")
+# the same draw: the same grains in the same order (the feed's variables say so)
+for c in ("size", "drop_height", "epsilon"):
+    assert np.allclose(pop[c], dem[c], rtol=0, atol=0), c
+dem_meta = json.load(open("dem/population.json"))
+rows = []
+for name, d, cpu in (("population (SI FMU, 2D lamina)", pop, pop["cpu_s"].sum() / n),
+                     ("LIGGGHTS + charging (3D spheres)", dem,
+                      (dem_meta["dem_cpu_s"] + dem_meta["charging_cpu_s"]) / n)):
+    left = d[d.exited == 1]
+    mass = math.pi / 6 * left["size"] ** 3 * left["density"]
+    qm = left["charge_to_mass_static"]
+    mean = float((qm * mass).sum() / mass.sum()) if len(left) else math.nan
+    spread = float(math.sqrt(((qm - mean) ** 2 * mass).sum() / mass.sum())) if len(left) else math.nan
+    rows.append({"model": name, "left": f"{len(left)}/{n}",
+                 "conveying speed (m/s)": length / left["exit_time"].mean() if len(left) else math.nan,
+                 "impacts per grain": d["impacts"].mean(),
+                 "stream q/m (uC/kg)": mean * 1e6, "spread (uC/kg)": spread * 1e6,
+                 "CPU per grain (s)": cpu})
+table = pd.DataFrame(rows)
+with open("summary.md", "w") as f:
+    f.write("| " + " | ".join(table.columns) + " |\n|" + "---|" * len(table.columns) + "\n")
+    for row in table.itertuples(index=False):
+        f.write("| " + " | ".join(v if isinstance(v, str) else f"{v:.4g}" for v in row) + " |\n")
+print(table.to_string(index=False))
+both = (pop.exited == 1) & (dem.exited == 1)
+compare = pd.DataFrame({"size": pop["size"], "qm_population": pop["charge_to_mass_static"],
+                        "qm_dem": dem["charge_to_mass_static"], "impacts_population": pop["impacts"],
+                        "impacts_dem": dem["impacts"], "exit_time_population": pop["exit_time"],
+                        "exit_time_dem": dem["exit_time"], "both_left": both.astype(int)})
+compare.to_csv("compare.csv", index=False)
+ratio = (compare.qm_dem / compare.qm_population)[both]
+hops = (compare.impacts_dem / compare.impacts_population)[both]
+print(f"grain by grain ({int(both.sum())} grains that left both ways): q/m DEM / population "
+      f"{ratio.mean():.3g} +- {ratio.std():.2g}, impacts {hops.mean():.3g} +- {hops.std():.2g}")
+fig, (a, b) = plt.subplots(1, 2, figsize=(12, 5), layout="constrained")
+a.scatter(-compare.qm_population[both] * 1e6, -compare.qm_dem[both] * 1e6, s=14)
+lim = [0, 1.05 * max((-compare.qm_population[both]).max(), (-compare.qm_dem[both]).max()) * 1e6]
+a.plot(lim, lim, "k--", lw=1, label="equal")
+a.set_xlabel("−q/m, the project's population (µC/kg)")
+a.set_ylabel("−q/m, LIGGGHTS + charging (µC/kg)")
+a.legend(loc="upper left")
+b.scatter(compare.impacts_population[both], compare.impacts_dem[both], s=14)
+lim = [0, 1.05 * max(compare.impacts_population.max(), compare.impacts_dem.max())]
+b.plot(lim, lim, "k--", lw=1, label="equal")
+b.set_xlabel("impacts per grain, the project's population")
+b.set_ylabel("impacts per grain, LIGGGHTS")
+b.legend(loc="upper left")
+fig.suptitle(f"{n} PE spheres of 0.6-1 mm on a level steel feeder {length:g} m long, 0.5 mm "
+             f"at 50 Hz along a stroke at 30° (static model)")
+save(fig, "feeder.png")
+PYEOF
