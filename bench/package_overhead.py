@@ -17,14 +17,17 @@ with a revision's package on PYTHONPATH and once with this tree's). Printed: one
 - disc: the rolling 1 mm disc (epsilon 1, mu 0.5, placed on 0.3 m of steel at 30 degrees)
   through tribo.run_si with its default rows (every 0.1 ms to the exit), with the end
   alone (record_interval=None, where the package has it), and through the core alone as
-  above, to the exit in one step and to every 0.1 ms on the way (what the FMU's
-  communication points cost, reading nothing): the fastest of 5 each.
+  above, to the exit in one step, to every 0.1 ms on the way (what the FMU's
+  communication points cost, reading nothing), and to every 0.1 ms reading there the
+  outputs tribo.run_si records, one call of the FMU per type into an array (the same run
+  and rows as tribo.run_si's): the fastest of 5 each.
 
 Only API that the package has had since its populations is used, so that the same file
 measures the package before and after a change.
 """
 
 import argparse
+import ctypes
 import json
 import os
 import shutil
@@ -39,6 +42,7 @@ from fmpy.fmi3 import FMU3Slave, fmi3Boolean, fmi3Float64
 
 import tribo
 from tribo.fmu import FmuImage
+from tribo.fmu.library import raw_getters
 from tribo.fmu.names import start_value, to_fmu
 from tribo.populations.feed import Feed, run_particle, specs_of
 
@@ -64,9 +68,34 @@ class Core:
                         "UInt64": (s.setUInt64, int), "Boolean": (s.setBoolean, bool)}
         self.flags = [fmi3Boolean(), fmi3Boolean(), fmi3Boolean(), fmi3Float64()]
 
-    def run(self, params: dict, t_end: float, interval: float | None = None) -> tuple[float, float]:
+    def reads(self, names):
+        """A function that reads the variables `names` at once: one call of the FMU per
+        type into a preallocated array, no Python object per value (the least an importer
+        that keeps the rows can do)."""
+        calls = []
+        by_type = {}
+        for name in names:
+            v = self.variables[name]
+            by_type.setdefault(v.type, []).append(v.valueReference)
+        getters = raw_getters(self.slave.dll, 3)  # C functions that take plain addresses
+        for kind, refs in by_type.items():
+            _, function, dtype = getters[kind]
+            buffer = np.empty(len(refs), dtype)
+            calls.append((function, (ctypes.c_uint32 * len(refs))(*refs), len(refs),
+                          buffer.ctypes.data, buffer))
+        slave = self.slave
+
+        def read():  # on the instance of the run (each run instantiates anew)
+            for function, refs, n, address, _ in calls:
+                function(slave.component, refs, n, address, n)
+
+        return read
+
+    def run(self, params: dict, t_end: float, interval: float | None = None,
+            read=None) -> tuple[float, float]:
         """(the thread's CPU time of one run, the time it ended): doSteps to the horizon, or
-        (interval) to each multiple of interval on the way, reading nothing there."""
+        (interval) to each multiple of interval on the way, reading nothing there, or
+        calling `read` (Core.reads) at the start and at each point."""
         values = [(self.variables[n], value) for n, value in to_fmu(self.md, params).items()]
         flags = self.flags
         cpu0 = time.thread_time()
@@ -77,6 +106,8 @@ class Core:
             setter([v.valueReference], [kind(value)])
         s.enterInitializationMode(startTime=0.0, stopTime=t_end)
         s.exitInitializationMode()
+        if read:
+            read()
         t, k = 0.0, 1
         while True:  # on to the horizon (or the next point) through the work limit's early ends
             to = t_end if interval is None else min(k * interval, t_end)
@@ -85,16 +116,25 @@ class Core:
                 raise RuntimeError(f"fmi3DoStep: status {status}")
             if status == 0 and not flags[1].value and not flags[2].value:
                 t, k = to, k + 1  # reached the point: its time is `to`
+                if read:
+                    read()
                 if to == t_end:
                     break
             else:  # the run's end (the exit), or cut by the work limit: on from where it stopped
                 t = flags[3].value
                 if flags[1].value:
+                    if read:
+                        read()
                     break
         s.getFloat64([self.variables["u"].valueReference, self.variables["x"].valueReference])
         s.terminate()
         s.fmi3FreeInstance(s.component)
         return time.thread_time() - cpu0, t
+
+
+def to_fmu_outputs(md) -> list[str]:
+    """The FMU's names of the outputs tribo.run_si records by default (every scalar one)."""
+    return [v.name for v in md.modelVariables if v.causality == "output" and not v.dimensions]
 
 
 def main():
@@ -123,8 +163,10 @@ def main():
             times.append(time.thread_time() - cpu0)
         return min(times)
 
+    read = core.reads(to_fmu_outputs(image.model_description()))
     disc = {"core_s": min(core.run(DISC, DISC_T_END)[0] for _ in range(5)),
             "core_points_s": min(core.run(DISC, DISC_T_END, 1e-4)[0] for _ in range(5)),
+            "core_rows_s": min(core.run(DISC, DISC_T_END, 1e-4, read)[0] for _ in range(5)),
             "run_si_s": fastest(lambda: tribo.run_si(**DISC)),
             "rows": len(tribo.run_si(**DISC))}
     try:

@@ -2,35 +2,30 @@
 # What the Python package costs beside the core it drives (bench/package_overhead.py;
 # docs/populations.md, "Benchmark"): per grain of the population benchmark's feed and for
 # the rolling 1 mm disc through tribo.run_si, the package's CPU time and the core's own in
-# the same process. With --before REV the package of revision REV (its python/tribo, on
+# the same process (the disc's also reading the same rows; the whole population command
+# against the core: scripts/bench_population_package.sh). With --before REV the package of revision REV (its python/tribo, on
 # the same build's FMUs) is measured too, in rounds that alternate with this tree's, each a
 # fresh process, so that one run of this command gives the before and the after under the
 # same load; the table gives each quantity's median over the rounds and the ratio.
 # Usage: scripts/bench_package.sh [--before REV] [rounds=3] [grains=100]
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-before=""
-if [ "${1:-}" = --before ]; then
-  before=${2:?"--before needs a revision"}
-  shift 2
-fi
+# shellcheck source=bench_before.sh
+. "$ROOT/scripts/bench_before.sh"
 rounds=${1:-3}
 grains=${2:-100}
 "$ROOT/scripts/setup.sh" >/dev/null
 export TRIBO_BUILD_DIR="$ROOT/build"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-if [ -n "$before" ]; then
-  mkdir "$tmp/before"
-  git -C "$ROOT" archive "$before" python/tribo | tar -x -C "$tmp/before"
-fi
+before_package "$tmp"
 for ((r = 1; r <= rounds; r++)); do
   if [ -n "$before" ]; then
     PYTHONPATH="$tmp/before/python" "$ROOT/.venv/bin/python" "$ROOT/bench/package_overhead.py" \
       --grains "$grains" --label before >> "$tmp/results.jsonl"
   fi
-  "$ROOT/.venv/bin/python" "$ROOT/bench/package_overhead.py" --grains "$grains" \
-    --label after >> "$tmp/results.jsonl"
+  PYTHONPATH="$ROOT/python" "$ROOT/.venv/bin/python" "$ROOT/bench/package_overhead.py" \
+    --grains "$grains" --label after >> "$tmp/results.jsonl"
 done
 "$ROOT/.venv/bin/python" - "$tmp/results.jsonl" "${before:+$(git -C "$ROOT" rev-parse --short "$before")}" \
   "$(git -C "$ROOT" rev-parse --short HEAD)$(git -C "$ROOT" diff --quiet HEAD -- python || echo ', modified')" <<'PY'
@@ -47,6 +42,7 @@ quantities = [
     ("grain: the package's overhead, median [ms]", lambda r: r["grain_overhead_median_ms"]),
     ("disc: the core's own CPU [s]", lambda r: r["disc"]["core_s"]),
     ("disc: the core, stepped to every 0.1 ms, nothing read [s]", lambda r: r["disc"]["core_points_s"]),
+    ("disc: the core, the same rows read in blocks [s]", lambda r: r["disc"]["core_rows_s"]),
     ("disc: tribo.run_si, rows every 0.1 ms [s]", lambda r: r["disc"]["run_si_s"]),
     ("disc: tribo.run_si, the end alone [s]", lambda r: r["disc"]["run_si_end_s"]),
 ]
@@ -70,6 +66,8 @@ for title, get in quantities:
 rolls = [r["disc"] for r in rows if r["label"] == "after"]
 print()
 print(f"the disc's rows: {rolls[0]['rows']}; this tree's run_si against the core: rows every "
-      f"0.1 ms {np.median([d['run_si_s'] / d['core_s'] for d in rolls]):.2f}x, the end alone "
+      f"0.1 ms {np.median([d['run_si_s'] / d['core_rows_s'] for d in rolls]):.2f}x the core's "
+      f"same run and rows ({np.median([d['run_si_s'] / d['core_s'] for d in rolls]):.2f}x its run "
+      f"to the exit in one step), the end alone "
       f"{np.median([d['run_si_end_s'] / d['core_s'] for d in rolls]):.2f}x (medians of the rounds' ratios)")
 PY

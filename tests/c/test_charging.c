@@ -3,6 +3,7 @@
 #include <criterion/criterion.h>
 #include <float.h>
 #include <math.h>
+#include <string.h>
 
 #include "charge_registry.h"
 #include "charging.h"
@@ -309,4 +310,89 @@ Test(charging, a_contact_past_the_limit_stays_at_it_and_books_the_rest_as_lost)
     cr_expect_float_eq(tribo_charging_lost(&c, 1) - lost,
                        (S - 0.004) * (1.0 - exp(-T / P.tau0)), 1e-17);
     tribo_charging_free(&c);
+}
+
+/* ---- a saturated boundary (charge_sweep.c, saturated_piece) ---------------------------- */
+
+/* The boundary of a grain charged turn after turn: each segment a few units of rounding off
+   each model's saturation (static 1, sliding Sigma_s = Sigma0, no work done), k of them for
+   segment i (k < 16, the sweep's bound), below it. */
+static void saturate_all(tribo_charging *c, int n)
+{
+    for (int i = 0; i < n; i++) {
+        const double k = (double)(i % 9);
+        static_q(c)[i] = 1.0 - k * DBL_EPSILON;
+        sliding_sigma(c)[i] = PARAMS.Sigma0 * (1.0 - k * DBL_EPSILON);
+    }
+}
+
+/* A contact travelling 0.28 of the boundary of n = 400 segments from segment 80 (to 191) over
+   [0, T = 25], doing no work (model.md §5a, §5b). */
+static void sweep_along(tribo_charging *c, double T)
+{
+    moving mv = {0.2 * c->arc.perimeter, 0.06, 0.3 * c->arc.perimeter / 400, c->arc.perimeter,
+                 0.0, 0.0};
+    const tribo_contact_probe pr = {probe, &mv};
+    double work = 0.0, globals[TRIBO_CHARGE_MAX_GLOBALS];
+    tribo_charging_start(c, &PARAMS, globals);
+    samples = 0;
+    cr_assert_eq(tribo_charging_sweep(c, &PARAMS, &pr, 0.0, T, 1e-8, 1e-10, &work, globals, apply,
+                                      NULL, INFINITY, TRIBO_SWEEP_CELL_COST, NULL),
+                 0);
+}
+
+/* Where every segment the contact crosses is within 16 units of rounding of its saturation
+   and the globals hold still, the sweep leaves them as they are, giving its sink no sample:
+   charging them would move none by more than that (the rate law only approaches the
+   saturation). One segment farther off on the contact's way is charged, towards its
+   saturation and not past it. */
+Test(charging, a_saturated_boundary_is_left_as_it_is_and_a_segment_off_it_is_charged)
+{
+    tribo_charging c = make(0.7, 400);
+    target = &c;
+    PARAMS = params();
+    saturate_all(&c, 400);
+    double before[400];
+    memcpy(before, static_q(&c), sizeof before);
+    sweep_along(&c, 25.0);
+    cr_expect_eq(samples, 0, "%ld samples", samples);
+    cr_expect_eq(memcmp(before, static_q(&c), sizeof before), 0);
+    /* segment 150 lies on the contact's way (it starts at 80 and covers 0.6 segments) */
+    static_q(&c)[150] = 1.0 - 20.0 * DBL_EPSILON;
+    sweep_along(&c, 25.0);
+    cr_expect_gt(samples, 0);
+    cr_expect_gt(static_q(&c)[150], 1.0 - 20.0 * DBL_EPSILON);
+    cr_expect_leq(static_q(&c)[150], 1.0);
+    tribo_charging_free(&c);
+}
+
+/* A sweep that starts on saturated segments tries a saturated piece first; where the
+   boundary ahead is not saturated it drops that piece and starts again as a sweep that never
+   hoped: every segment but those under the contact at the start is charged the same to the
+   bit, in as many samples. */
+Test(charging, a_sweep_that_hoped_for_a_saturated_boundary_is_the_sweep_that_did_not)
+{
+    double after[2][400];
+    long count[2];
+    for (int hope = 0; hope < 2; hope++) {
+        tribo_charging c = make(0.7, 400);
+        target = &c;
+        PARAMS = params();
+        for (int i = 0; i < 400; i++)
+            static_q(&c)[i] = sliding_sigma(&c)[i] = 0.0;
+        /* the contact starts over segment 80 */
+        for (int i = 78; i <= 82; i++) {
+            static_q(&c)[i] = hope ? 1.0 : 0.5;
+            sliding_sigma(&c)[i] = hope ? PARAMS.Sigma0 : 0.5 * PARAMS.Sigma0;
+        }
+        sweep_along(&c, 25.0);
+        memcpy(after[hope], static_q(&c), sizeof after[hope]);
+        count[hope] = samples;
+        tribo_charging_free(&c);
+    }
+    cr_expect_eq(count[0], count[1], "%ld and %ld samples", count[0], count[1]);
+    for (int i = 0; i < 400; i++)
+        if (i < 78 || i > 82)
+            cr_expect_eq(after[0][i], after[1][i], "segment %d: %.17g and %.17g", i, after[0][i],
+                         after[1][i]);
 }

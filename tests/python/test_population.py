@@ -3,17 +3,21 @@ against a direct computation, bad input in one line, the figure's legends."""
 
 import os
 
+import fmpy
 import numpy as np
 import pandas as pd
 import pytest
 
 import tribo
-from tribo.batch.executors import SerialExecutor
+from tribo.batch.executors import DaskExecutor, SerialExecutor, runs_per_task
+from tribo.batch.results import csv_line, read_results
+from tribo.fmu.charge_models import charge_models
+from tribo.fmu.names import fmu_outputs, from_fmu_column, to_fmu
 from tribo.cli.main import main as tribo_command
 from tribo.fmu import FmuImage
 from tribo.populations import plot as population_plot
-from tribo.populations.feed import Feed, FeedError, draw, particle_parameters
-from tribo.populations.runner import run_population
+from tribo.populations.feed import Feed, FeedError, draw, outputs, particle_parameters
+from tribo.populations.runner import prepare_population, run_population
 from tribo.populations.summary import statistics, stream_statistics, summarize_population
 from figure_checks import assert_legends_cover_no_data, assert_tick_labels_apart
 
@@ -89,6 +93,43 @@ def test_a_population_resumes_after_an_interruption_with_the_same_numbers(tmp_pa
     fractions = whole.results[[f"fraction_{c}" for c in ("flight", "rocking", "rolling", "tumbling",
                                                          "bouncing")]].sum(axis=1)
     assert np.allclose(fractions, 1.0, atol=1e-12)
+
+
+def test_a_population_in_tasks_of_several_grains_is_fmpys_grain_by_grain_to_the_bit(
+        tmp_path, si_image):
+    """The population's path (Dask tasks of several grains each, the FMU loaded once per
+    process, rows written without pandas) against each grain run alone by fmpy's
+    simulate_fmu from the .fmu file: every grain's outputs the same to the bit; the
+    particles.csv of the tasks the serial run's, row for row, every column but the timings,
+    and each row as pandas writes it."""
+    feed, n = Feed(chute=SHORT), 8
+    assert runs_per_task(n, 1) == 2  # the tasks below hold two grains each
+    with DaskExecutor(workers=1) as executor:
+        tasks = run_population(feed, n, 11, 1.0, si_image, str(tmp_path / "tasks"), executor,
+                               progress=False, figure=False)
+    serial = run_population(feed, n, 11, 1.0, si_image, str(tmp_path / "serial"),
+                            SerialExecutor(), progress=False, figure=False)
+    assert tasks.complete and tasks.executed == n and not tasks.failed
+    timing = ["cpu_s", "wall_s"]
+    pd.testing.assert_frame_equal(tasks.results.drop(columns=timing),
+                                  serial.results.drop(columns=timing))
+    with open(tmp_path / "tasks" / "particles.csv") as f:
+        lines = f.read().splitlines(keepends=True)
+    table = read_results(str(tmp_path / "tasks" / "particles.csv"))
+    for i, row in table.iterrows():
+        assert csv_line(list(row)) == lines[i + 1]
+    md = si_image.model_description()
+    names = outputs(charge_models(md), md)
+    fmu_names = fmu_outputs(md, names)
+    path = tribo.find_fmu(3, variant="si")
+    specs = prepare_population(feed, n, 11, 1.0, si_image)
+    for spec, (_, row) in zip(specs, tasks.results.iterrows()):
+        alone = fmpy.simulate_fmu(path, start_values=to_fmu(md, spec.params), stop_time=spec.t_end,
+                                  output_interval=spec.t_end, output=fmu_names,
+                                  fmi_type="CoSimulation", validate=False)[-1]
+        for name, fmu_name in zip(names, fmu_names):
+            value = float(from_fmu_column(md, fmu_name, float(alone[fmu_name]))[1])
+            assert row[name] == value or (np.isnan(value) and np.isnan(row[name])), (name, row["key"])
 
 
 def test_the_summary_is_the_direct_computation():

@@ -11,6 +11,7 @@ import subprocess
 import sys
 import time
 
+import numpy as np
 import pandas as pd
 import pytest
 
@@ -18,7 +19,7 @@ from study_support import PYTHON, CountingRun, image_of, short_spec, subcommand,
 from tribo.batch.executors import DaskExecutor, SerialExecutor
 from tribo.batch.grid import PAPER_BASE, build_specs, parse_param
 from tribo.batch.particle import run_fmu
-from tribo.batch.results import read_results
+from tribo.batch.results import csv_line, read_results
 from tribo.batch.specs import run_key
 from tribo.batch.sweep import run_sweep, series_path
 from tribo.fmu.parameters import ParameterError, check_names, integer_names
@@ -64,6 +65,18 @@ def test_dask_local_cluster_equals_serial(image, local_dask, uninterrupted, tmp_
     assert on_disk["Y"].to_numpy() == pytest.approx(serial.series["Y"].to_numpy(), rel=1e-9)
 
 
+def test_the_local_cluster_keeps_no_dashboards_profile_and_looks_at_itself_seldom(local_dask):
+    """The local cluster serves no dashboard: its workers sample no profile for one, and its
+    servers look at their event loop and memory once a second, not 50 and 10 times
+    (executors.LOCAL_CLUSTER_CONFIG), in every run of it."""
+    def callbacks(dask_worker):
+        return {name: pc.callback_time for name, pc in dask_worker.periodic_callbacks.items()}
+
+    for found in local_dask.client.run(callbacks).values():
+        assert "profile" not in found and "profile-cycle" not in found
+        assert found["tick"] == 1000 and found["memory_monitor"] == 1000
+
+
 def test_results_load_with_plain_pandas(uninterrupted, image, tmp_path):
     path = str(tmp_path / "results.csv")
     with SerialExecutor() as ex:
@@ -75,6 +88,21 @@ def test_results_load_with_plain_pandas(uninterrupted, image, tmp_path):
     direct = run_fmu(image, SPECS[1]).row
     for column in ("Q_static_end", "Q_sliding_40pct", "contact_fraction", "turns", "Y_max"):
         assert plain[column].iloc[1] == direct[column], column
+
+
+def test_a_row_is_written_as_pandas_writes_it():
+    """results.csv_line against a one-row DataFrame's to_csv (what the file's rows were):
+    floats of every size and sign, the non-finite ones, numpy's scalars, integers, booleans,
+    text that needs quoting, nothing."""
+    rng = np.random.default_rng(3)
+    floats = list(rng.standard_normal(2000) * 10.0 ** rng.integers(-300, 300, 2000))
+    values = floats + [0.1, 1e16, 1e15, 9.999999999999999e15, 1e-5, 5e-324, -0.0, 0.0, np.inf,
+                       -np.inf, np.nan, np.float64(0.3), np.int64(-7), 3, 2**63 - 1, True,
+                       np.bool_(False), "PE", "a,b", 'say "x"', "two\nlines", "", None]
+    for k in range(0, len(values), 50):
+        row = ["key"] + values[k:k + 50]
+        expected = pd.DataFrame([dict(enumerate(row))]).to_csv(header=False, index=False)
+        assert csv_line(row) == expected
 
 
 def test_limited_sweep_resumes_without_redoing_runs(image, uninterrupted, tmp_path):

@@ -136,19 +136,61 @@ def executor_for(serial: bool = False, scheduler: str | None = None, workers: in
     return DaskExecutor(scheduler, workers, connect_timeout=connect_timeout, processes=processes)
 
 
+# What the local cluster's servers do besides the runs, made rarer or left out: each of them
+# (the scheduler, each worker and its nanny, the client) wakes every 20 ms to see whether its
+# event loop is blocked, 10 times a second to read its memory and twice to record the
+# system's load for a dashboard, and each worker samples its threads' stacks every 10 ms
+# for a profile no one reads (the cluster serves no dashboard). Together that was an eighth
+# of the CPU of 400 grains of the reference feed on 2 workers, threads or processes
+# (docs/populations.md, "Benchmark"). An existing cluster keeps its own settings.
+LOCAL_CLUSTER_CONFIG = {
+    "distributed.admin.tick.interval": "1s",
+    "distributed.worker.memory.monitor-interval": "1s",
+    "distributed.admin.system-monitor.interval": "5s",
+    "distributed.worker.profile.enabled": False,
+}
+
+# a task holds at most this many runs, and each worker gets at least TASKS_PER_WORKER tasks
+# where there are runs enough: the slowest grain's task then ends about as the others do
+RUNS_PER_TASK = 16
+TASKS_PER_WORKER = 4
+
+
+def runs_per_task(runs: int, workers: int, most: int = RUNS_PER_TASK) -> int:
+    """How many runs one Dask task holds (at most `most`), for `runs` runs on `workers`
+    worker threads."""
+    return max(1, min(most, runs // (TASKS_PER_WORKER * max(1, workers))))
+
+
+def run_each(function: Callable, image, specs) -> list:
+    """A Dask task of several runs: each run's result, or the exception it raised, in the
+    order of `specs` (one failed run does not stop the others)."""
+    results = []
+    for spec in specs:
+        try:
+            results.append(function(image, spec))
+        except Exception as e:
+            results.append(e)
+    return results
+
+
 class DaskExecutor:
     """Runs as Dask tasks: a local cluster of `workers` threads (default: one per core;
     processes=True: worker processes, one thread each), or the existing cluster at
     `address` (e.g. "tcp://10.0.0.5:8786", see `scheduler_address`), whose workers receive
     this package on connection (they need fmpy, numpy and pandas). An address where no
     Dask scheduler with workers answers within `connect_timeout` seconds raises
-    ClusterUnreachable."""
+    ClusterUnreachable. `task_runs`: the most runs one task holds (runs_per_task)."""
 
     def __init__(self, address: str | None = None, workers: int | None = None,
-                 connect_timeout: float = CONNECT_TIMEOUT_S, processes: bool = False):
+                 connect_timeout: float = CONNECT_TIMEOUT_S, processes: bool = False,
+                 task_runs: int | None = None):
         if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
                                     or workers < 1):
             raise ValueError(f"workers = {workers!r}: a whole number, at least 1")
+        if task_runs is not None and (isinstance(task_runs, bool) or not isinstance(task_runs, int)
+                                      or task_runs < 1):
+            raise ValueError(f"task_runs = {task_runs!r}: a whole number, at least 1")
         if not (isinstance(connect_timeout, (int, float)) and connect_timeout > 0
                 and connect_timeout < float("inf")):
             raise ValueError(f"connect timeout = {connect_timeout!r}: a positive number of seconds")
@@ -156,6 +198,7 @@ class DaskExecutor:
         self.n_workers = workers or available_cores()
         self.connect_timeout = float(connect_timeout)
         self.processes = processes
+        self.task_runs = task_runs or RUNS_PER_TASK  # the most runs a task holds (run)
         self._cluster = None
         self._client = None
         self._scattered = {}  # FMU sha256 -> future of its image on the workers
@@ -169,7 +212,17 @@ class DaskExecutor:
         if self.address:
             self._client = _connect(self.address, self.connect_timeout)
             _ship_package(self._client)
-        elif self.processes:
+            return self
+        # dask only when a Dask run starts, as distributed above
+        import dask
+
+        with dask.config.set(LOCAL_CLUSTER_CONFIG):  # taken by each server as it starts
+            self._start_local(Client, LocalCluster)
+        return self
+
+    def _start_local(self, Client, LocalCluster):
+        """The local cluster (threads, or worker processes) and its client."""
+        if self.processes:
             # the worker processes' own logs are not the command's: a run's failure comes
             # back with its result, and after Ctrl-C a worker's heartbeat to the scheduler
             # that is closing logs an error with a traceback
@@ -189,7 +242,6 @@ class DaskExecutor:
                 scheduler_kwargs={"dashboard": False, "dashboard_address": "127.0.0.1:0"},
                 silence_logs=logging.ERROR)
             self._client = Client(self._cluster)
-        return self
 
     def __exit__(self, exc_type, *exc):
         self._scattered.clear()
@@ -221,22 +273,30 @@ class DaskExecutor:
         return f"Dask, {where}"
 
     def run(self, function: Callable, image, specs) -> Iterator:
+        """The runs as tasks of `runs_per_task` runs each: a task costs the scheduler, the
+        worker and this process some milliseconds of CPU, as much as a grain's run, so
+        that a task per run would double a population's CPU (docs/populations.md,
+        "Benchmark"). An interrupted sweep loses the runs of the tasks in flight."""
         from distributed import as_completed  # lazily, as in __enter__
 
         if image.sha256 not in self._scattered:
             self._scattered[image.sha256] = self._client.scatter(image, broadcast=True)
         image_future = self._scattered[image.sha256]
-        futures = [self._client.submit(function, image_future, spec, pure=False) for spec in specs]
-        index = {f.key: i for i, f in enumerate(futures)}
+        size = runs_per_task(len(specs), self.n_workers if self.address is None else self.workers,
+                             self.task_runs)
+        starts = range(0, len(specs), size)
+        futures = [self._client.submit(run_each, function, image_future, specs[i:i + size],
+                                       pure=False) for i in starts]
+        first = {f.key: i for i, f in zip(starts, futures)}
         try:
             for future in as_completed(futures):
-                i = index[future.key]
+                i = first[future.key]
                 try:
-                    result = future.result()
-                except Exception as e:
-                    yield i, e
-                else:
-                    yield i, result
+                    results = future.result()
+                except Exception as e:  # the task itself failed (a worker lost): each run did
+                    results = [e] * len(specs[i:i + size])
+                for k, result in enumerate(results):
+                    yield i + k, result
                 future.release()
         finally:
             for f in futures:

@@ -1,8 +1,9 @@
 """The results file of a sweep: a CSV with one row per finished run, keyed by the run's
 key (specs.run_key).
 
-Rows are appended (and flushed to disk) as runs finish, so an interrupted sweep loses
-at most the runs that were in flight. The file is read once, when it is opened: a last
+Rows are appended (handed to the system at once, forced to the disk at least every
+second) as runs finish, so an interrupted sweep loses at most the runs that were in
+flight. The file is read once, when it is opened: a last
 line cut short by an interruption is dropped, and so is any row that does not read back
 as written (not UTF-8, another number of fields, a number column holding text such as
 `x.y01`): nothing that cannot be read back is kept as a result. Such rows are moved out
@@ -17,11 +18,18 @@ bit.
 """
 
 import csv
+import io
 import os
+import time
 
+import numpy as np
 import pandas as pd
 
 KEY = "key"
+# appended rows are handed to the system at once (a sweep that is interrupted keeps them),
+# and forced to the disk at most this often and at the end (a machine that goes down loses
+# the last second's rows): a sync a row cost about as much wall time as a grain's run
+SYNC_INTERVAL_S = 1.0
 _TEXT_COLUMNS = {KEY: str, "fmu_sha256": str}
 
 
@@ -64,6 +72,7 @@ class ResultsFile:
             self.backup = backup_path(self.path)
             os.replace(self.path, self.backup)
         self.rows = self._open_or_create()  # the finished runs' rows, read once
+        self._synced = time.monotonic()  # when the rows appended were last forced to disk
 
     def _open_or_create(self) -> pd.DataFrame:
         data = b""
@@ -131,17 +140,21 @@ class ResultsFile:
             missing, extra = set(self.columns) - set(row), set(row) - set(self.columns)
             raise ValueError(f"row does not match the header: missing {sorted(missing)}, "
                              f"extra {sorted(extra)}")
-        line = pd.DataFrame([row], columns=self.columns).to_csv(header=False, index=False)
+        line = csv_line([row[c] for c in self.columns])
         with open(self.path, "a") as f:
             f.write(line)
             f.flush()
-            os.fsync(f.fileno())
+            if time.monotonic() - self._synced >= SYNC_INTERVAL_S:
+                os.fsync(f.fileno())
+                self._synced = time.monotonic()
 
     def close(self, keys: list[str], done=None) -> pd.DataFrame:
         """The rows of `keys` that are in the file (and `done(key)`, if given: e.g. their
         series are on disk too), in that order. A file that holds exactly those runs, all
         done, is rewritten in that order (a file several sweeps share keeps the order its
         rows came in)."""
+        with open(self.path, "a") as f:  # the rows since the last sync
+            os.fsync(f.fileno())
         table = read_results(self.path).drop_duplicates(KEY, keep="first")
         found = set(table[KEY])
         finished = [k for k in keys if k in found and (done is None or done(k))]
@@ -153,6 +166,31 @@ class ResultsFile:
             os.replace(tmp, self.path)
             table = read_results(self.path)
         return table.set_index(KEY).loc[finished].reset_index()
+
+
+def csv_line(values: list) -> str:
+    """One row as pandas writes a one-row DataFrame of these values (to_csv, no header, no
+    index): a float in its shortest round-trip form, NaN and None as nothing, text quoted
+    where it must be. Without building the DataFrame, which cost a particle's row more CPU
+    than the package's own part of its run (docs/populations.md, "Benchmark"); values of
+    other types go through pandas."""
+    fields = []
+    for v in values:
+        if isinstance(v, str):
+            fields.append(v)
+        elif isinstance(v, (float, np.floating)) and not isinstance(v, np.float16 | np.float32):
+            fields.append("" if v != v else repr(float(v)))
+        elif isinstance(v, (bool, np.bool_)):
+            fields.append(str(bool(v)))
+        elif isinstance(v, (int, np.integer)):
+            fields.append(str(int(v)))
+        elif v is None:
+            fields.append("")
+        else:
+            return pd.DataFrame([values]).to_csv(header=False, index=False)
+    out = io.StringIO()
+    csv.writer(out, lineterminator="\n").writerow(fields)
+    return out.getvalue()
 
 
 def backup_path(path: str) -> str:

@@ -2,6 +2,7 @@
    exact in the time each segment spends in contact (docs/model.md §5). */
 #include "charging.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,6 +24,7 @@ typedef struct sweep {
     double rtol;
     int instant;   /* instantaneous transfer (tau0 = 0, model.md §5c) */
     int reach;     /* the most segments an edge may cross within one piece */
+    int emitted;   /* whether a sample has gone to the sink (saturated_piece) */
     tribo_sample_sink sink;
     void *sink_ctx;
     int status;
@@ -178,6 +180,9 @@ static double crossing(sweep *w, const probe_point *pts, const edge_fit *f, doub
    without locating its crossings, and may span more. */
 #define SEGMENTS_PER_PIECE 8
 #define SEGMENTS_PER_INSTANT_PIECE 64
+/* A piece left as it is (saturated_piece) needs no crossings: it may span a CVODE step's
+   travel of a rolling grain (0.2 rad of spin, 64 of the default 2000 segments) and more. */
+#define SEGMENTS_PER_SATURATED_PIECE 256
 #define MAX_CUTS (2 * SEGMENTS_PER_INSTANT_PIECE + 2)
 
 /* A boundary crossing inside a piece: when, and which edge's segment index moves how. */
@@ -347,6 +352,79 @@ static void globals_quadratic(int n_globals, const double *S0, const double *S1,
     }
 }
 
+/* How close to its saturation a segment must be for a piece to leave it as it is
+   (saturated_piece): 16 units of rounding of the saturation. */
+#define SATURATED_ULPS 16.0
+
+/* Whether every selected model's committed value of the segments lo_segment ... hi_segment
+   (numbers that wrap around the ring) is within SATURATED_ULPS of its saturation at the
+   globals g, the breakdown limit holding none of them back. Returns how many segments that
+   is (0: not all of them are). */
+static long run_saturated(const sweep *w, double lo_segment, double hi_segment, const double *g)
+{
+    const tribo_charging *c = w->c;
+    tribo_contact_sample run;
+    tribo_charging_run(c, lo_segment, hi_segment, &run);
+    const long head = tribo_min(run.count, c->n - run.first);
+    for (int m = 0; m < c->n_models; m++) {
+        const tribo_charge_slot *slot = &c->slot[m];
+        if (!slot->selected)
+            continue;
+        const double target = slot->model->saturation(w->s, g + slot->globals_at);
+        const double cap = slot->model->density_unit
+                               ? w->s->Sigma_bd / slot->model->density_unit(w->s)
+                               : INFINITY;
+        if (!(fabs(target) < cap))
+            return 0;
+        const double tol = SATURATED_ULPS * DBL_EPSILON * fabs(target);
+        for (long i = 0; i < run.count; i++) {
+            const double v = slot->segments[i < head ? run.first + i : i - head];
+            if (!(fabs(v - target) <= tol))
+                return 0;
+        }
+    }
+    return run.count;
+}
+
+/* Whether a piece may leave every segment it covers as it is: the rate law (§5a, §5b, tau0 >
+   0) moves a segment only towards its saturation, which the globals fix, so where they hold
+   still over the piece and each segment under the contact is within SATURATED_ULPS of it,
+   charging the piece would change no segment by more than that (a rolling grain's boundary,
+   charged turn after turn, sits there: its segments are held a unit or two of rounding off
+   the saturation, where each sample's update rounds back to the value it had). Only for a
+   contact that moves on, farther than its width and a segment over the piece (what is saved
+   is locating the crossings and charging the samples between them; a grain at rest keeps
+   its samples). Not for the grain's bands (their area grows), not where the breakdown limit
+   holds the saturation back, and only before the sweep has given its sink a sample: the
+   committed values read here are then those the sweep's samples apply to, whether the sink
+   applies them at once or keeps them pending. */
+static int saturated_piece(sweep *w, const probe_point *pts, const double *S0, const double *S1,
+                           const double *S2)
+{
+    const tribo_charging *c = w->c;
+    const probe_point *a = &pts[0], *b = &pts[PIECE_POINTS - 1];
+    if (w->instant || w->emitted || c->keep_bands || !still(c->n_globals, S0, S1, S2) ||
+        !(fabs(b->lo - a->lo) >= tribo_max(a->hi - a->lo, b->hi - b->lo) + w->seg))
+        return 0;
+    double lo = INFINITY, hi = -INFINITY;
+    for (int i = 0; i < PIECE_POINTS; i++) {
+        lo = tribo_min(lo, pts[i].lo);
+        hi = tribo_max(hi, pts[i].hi);
+    }
+    const long count = run_saturated(w, floor(lo / w->seg), floor(hi / w->seg), S0);
+    w->cost += w->cell_cost * (double)count;
+    return count > 0;
+}
+
+/* Whether the sweep's first trial piece may be a saturated piece's: the segments under the
+   contact at the start are saturated (saturated_piece) at the globals there. */
+static int saturated_here(const sweep *w, const probe_point *at, const double *globals)
+{
+    if (w->instant || w->c->keep_bands)
+        return 0;
+    return run_saturated(w, floor(at->lo / w->seg), floor(at->hi / w->seg), globals) > 0;
+}
+
 /* A piece in which each edge moves monotonically by at most w->reach segments and the
    globals are quadratic to the tolerances: locate the boundary crossings, and charge the
    parts between them, each with its fixed set of segments (§5a, §5b). pts: the piece's
@@ -359,6 +437,7 @@ static void charge_piece(sweep *w, const probe_point *pts, const double *S0, con
         charge_whole_piece(w, pts, S0, S1, S2);
         return;
     }
+    w->emitted = 1;
     const probe_point *a = &pts[0], *b = &pts[PIECE_POINTS - 1];
     cut cuts[MAX_CUTS];
     const int n = locate_cuts(w, pts, cuts);
@@ -488,7 +567,8 @@ int tribo_charging_sweep(tribo_charging *c, const tribo_scene *s, const tribo_co
     sweep w = {c,        s,
                probe,    c->arc.perimeter,
                c->arc.perimeter / c->n, rtol,
-               instant,  instant ? SEGMENTS_PER_INSTANT_PIECE : SEGMENTS_PER_PIECE,
+               instant,  SEGMENTS_PER_PIECE,
+               0,
                sink,     sink_ctx,
                0,        0.0,
                cell_cost};
@@ -503,7 +583,15 @@ int tribo_charging_sweep(tribo_charging *c, const tribo_scene *s, const tribo_co
     memcpy(cur.quadratures, quadratures, q_bytes);
     const double min_piece = 1e-13 * (1.0 + fabs(b));
     double trial = b - a;
+    /* Where the boundary under the contact is saturated, a trial piece may be as long as a
+       saturated piece (saturated_piece). One that turns out not to be is dropped, its probes'
+       cost with it, and tried again as long as a piece that is charged: at the sweep's start
+       the sweep starts again as it would have without the hope, piece for piece. */
+    int hopeful = saturated_here(&w, &cur, globals);
+    const double cost_at_start = w.cost;
     while (cur.t < b && !w.status) {
+        w.reach = hopeful ? SEGMENTS_PER_SATURATED_PIECE
+                          : instant ? SEGMENTS_PER_INSTANT_PIECE : SEGMENTS_PER_PIECE;
         if (cur.speed > 0.0)
             trial = tribo_min(trial, (w.reach - 1) * w.seg / cur.speed);
         /* within min_piece of b, go to b: the piece then is at most trial + min_piece */
@@ -531,9 +619,20 @@ int tribo_charging_sweep(tribo_charging *c, const tribo_scene *s, const tribo_co
         }
         if (ok && with_states)
             ok = advance_states(&w, pts, h, rtol, atol, q_end, globals, g_mid, g_end);
+        const int saturated = ok && saturated_piece(&w, pts, globals, g_mid, g_end);
+        if (hopeful && !saturated) {
+            hopeful = 0;
+            if (cur.t == a) {
+                w.cost = cost_at_start;
+                trial = b - a;
+            }
+            continue;
+        }
         if (ok || forced) {
             memcpy(pts[4].quadratures, q_end, q_bytes);
-            charge_piece(&w, pts, globals, g_mid, g_end);
+            if (!saturated)
+                charge_piece(&w, pts, globals, g_mid, g_end);
+            hopeful = saturated;
             memcpy(globals, g_end, g_bytes);
             cur = pts[4];
             trial = 2.0 * h;
