@@ -168,17 +168,22 @@ static double damped_velocity_rate(const tribo_dyn_params *p, const tribo_force_
     return f[TRIBO_IV] + tribo_pose_kappa(p->eps2, &ev.pose) * Om * Om + ev.pose.cx * f[TRIBO_IOMEGA];
 }
 
-/* dvn/dtau at y in the normal phase of sign s (s = 0: the spring force alone, Psi_N =
-   delta_y), with the tangential rule that phase gives the stretch. */
-static double normal_acceleration(const tribo_dyn_params *p, const double *y,
-                                  const tribo_force_law *law, double s)
+/* The damped velocity's rate (dvn/dtau) at y in the normal phase of sign s (s = 0: the
+   spring force alone, Psi_N = delta_y), under the tangential rule that phase has on a copy of
+   y: settled as after a switch from old (settle_tangent), or, where old is NULL, the one the
+   state gives (tangent_from_state). */
+static double sign_phase_rate(const tribo_dyn_params *p, const double *y,
+                              const tribo_force_law *law, const tribo_force_law *old, double s)
 {
     double z[TRIBO_NSTATE_MAX];
     memcpy(z, y, sizeof z);
     tribo_force_law trial = *law;
     trial.normal = TRIBO_NORMAL_SIGN;
     trial.normal_sign = s;
-    tangent_from_state(p, z, &trial);
+    if (old)
+        settle_tangent(p, z, &trial, old);
+    else
+        tangent_from_state(p, z, &trial);
     return damped_velocity_rate(p, &trial, z);
 }
 
@@ -189,11 +194,12 @@ static double normal_acceleration(const tribo_dyn_params *p, const double *y,
    direction dvn/dtau has under the spring force alone. */
 static double leaving_sign(const tribo_dyn_params *p, const double *y, const tribo_force_law *law)
 {
-    const int lifts = normal_acceleration(p, y, law, +1.0) > 0.0;
-    const int presses = normal_acceleration(p, y, law, -1.0) < 0.0;
+    /* each phase with the tangential rule it gives the stretch */
+    const int lifts = sign_phase_rate(p, y, law, NULL, +1.0) > 0.0;
+    const int presses = sign_phase_rate(p, y, law, NULL, -1.0) < 0.0;
     if (lifts != presses)
         return lifts ? +1.0 : -1.0;
-    return normal_acceleration(p, y, law, 0.0) > 0.0 ? +1.0 : -1.0;
+    return sign_phase_rate(p, y, law, NULL, 0.0) > 0.0 ? +1.0 : -1.0;
 }
 
 static int in_band(const tribo_dyn_params *p, double dy, double psi_star)
@@ -206,13 +212,7 @@ static int in_band(const tribo_dyn_params *p, double dy, double psi_star)
 static int sign_leaves(const tribo_dyn_params *p, const double *y, const tribo_force_law *law,
                        const tribo_force_law *old, double s)
 {
-    double z[TRIBO_NSTATE_MAX];
-    memcpy(z, y, sizeof z);
-    tribo_force_law trial = *law;
-    trial.normal = TRIBO_NORMAL_SIGN;
-    trial.normal_sign = s;
-    settle_tangent(p, z, &trial, old);
-    return s * damped_velocity_rate(p, &trial, z) > 0.0;
+    return s * sign_phase_rate(p, y, law, old, s) > 0.0;
 }
 
 /* A lock with the compliant stick (Psi_T = -dx) where its force lies in the band and the
