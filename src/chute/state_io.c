@@ -319,9 +319,20 @@ static const char *end_problem(const loaded *l)
     return NULL;
 }
 
-static int finite_sums(const tribo_compensated *a, const tribo_compensated *b)
+static int finite_sum(const tribo_compensated *a) { return isfinite(a->sum) && isfinite(a->c); }
+
+/* A model's values, their running sum and the charge its breakdown limit took: all numbers. */
+static int finite_charges(const double *values, int n, const tribo_compensated *sum,
+                          const tribo_compensated *lost)
 {
-    return isfinite(a->sum) && isfinite(a->c) && isfinite(b->sum) && isfinite(b->c);
+    return all_finite(values, n) && finite_sum(sum) && finite_sum(lost);
+}
+
+/* A running sum is the sum (total) of its terms, whose magnitudes sum to magnitude, up to its
+   rounding. */
+static int sum_holds(const tribo_compensated *sum, double total, double magnitude)
+{
+    return fabs(tribo_compensated_value(sum) - total) <= 1e-6 * magnitude + 1e-300;
 }
 
 /* The bound the breakdown limit sets on a model's values (docs/model.md §8b; INF: none). */
@@ -338,7 +349,7 @@ static const char *charges_problem(const tribo_model *m, const tribo_charge_slot
                                    const double *globals)
 {
     const int n = m->charging.n;
-    if (!all_finite(values, n) || !finite_sums(sum, lost))
+    if (!finite_charges(values, n, sum, lost))
         return "values that are not numbers";
     if (slot->model->valid && !slot->model->valid(scene, globals + slot->globals_at, values, n))
         return "values the model cannot produce";
@@ -350,7 +361,7 @@ static const char *charges_problem(const tribo_model *m, const tribo_charge_slot
     double magnitude = 0.0;
     for (int i = 0; i < n; i++)
         magnitude += fabs(values[i]);
-    if (!(fabs(tribo_compensated_value(sum) - tribo_sum(values, n)) <= 1e-6 * magnitude + 1e-300))
+    if (!sum_holds(sum, tribo_sum(values, n), magnitude))
         return "a sum that is not the sum of its values";
     return NULL;
 }
@@ -369,7 +380,7 @@ static const char *geometry_problem(const tribo_model *m, const tribo_band_geome
     const int n = m->charging.n;
     const double seg = m->charging.segment_length;
     if (!all_finite(g->width, n) || !all_finite(g->lo, n) || !all_finite(g->hi, n) ||
-        !isfinite(area->sum) || !isfinite(area->c))
+        !finite_sum(area))
         return "values that are not numbers";
     double total = 0.0;
     for (int i = 0; i < n; i++) {
@@ -379,7 +390,7 @@ static const char *geometry_problem(const tribo_model *m, const tribo_band_geome
             return "a band that is not one";
         total += band_area(g, i, seg);
     }
-    if (!(fabs(tribo_compensated_value(area) - total) <= 1e-6 * total + 1e-300))
+    if (!sum_holds(area, total, total))
         return "a charged area that is not the sum of its bands";
     return NULL;
 }
@@ -412,7 +423,7 @@ static const char *bands_problem(const tribo_model *m, const tribo_charge_slot *
                                  const tribo_compensated *lost)
 {
     const int n = m->charging.n;
-    if (!all_finite(bands, n) || !finite_sums(charge, lost))
+    if (!finite_charges(bands, n, charge, lost))
         return "bands that are not numbers";
     const double cap = cap_of(slot, scene);
     const double init = tribo_charging_initial_value(&m->charging, slot->model, scene);
@@ -427,7 +438,7 @@ static const char *bands_problem(const tribo_model *m, const tribo_charge_slot *
         total += bands[i] * a;
         magnitude += fabs(bands[i]) * a;
     }
-    if (!(fabs(tribo_compensated_value(charge) - total) <= 1e-6 * magnitude + 1e-300))
+    if (!sum_holds(charge, total, magnitude))
         return "a band charge that is not the sum of its bands";
     return NULL;
 }
