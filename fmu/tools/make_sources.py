@@ -46,9 +46,11 @@ from build_description import build_description
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 # tribo_fmu_layer in fmu/CMakeLists.txt, and each front end's object library
 FMU_LAYER = ["logging.c", "lifecycle.c", "step.c", "access.c", "fmu_state.c"]
-FRONT_END = {"tribo": ["variables_model.c", "front_end_model.c", "front_end_chute.c"],
+FRONT_END = {"tribo": ["variables_model.c", "front_end_model.c", "front_end_chute.c",
+                       "front_end_identity.c"],
              "tribo_si": ["variables_si.c", "front_end_si.c", "front_end_chute.c"],
-             "tribo_separator": ["variables_separator.c", "front_end_separator.c"]}
+             "tribo_separator": ["variables_separator.c", "front_end_separator.c",
+                                 "front_end_identity.c"]}
 # configured by SUNDIALS' CMake for the Windows build (static: SUNDIALS_EXPORT is empty);
 # of what they hold only the deprecation attributes are compiler-specific (a __declspec, a
 # GCC attribute): made empty, so that any C compiler takes them

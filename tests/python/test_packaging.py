@@ -62,9 +62,11 @@ def test_binary_exports_exactly_the_fmi_functions(fmu_dir, version):
 
 
 # each pair of FMUs links one front end (fmu/front_end.h) and its variable table
-FRONT_ENDS = {"tribo": ("fmu/front_end_model.c", "fmu/variables_model.c", "fmu/front_end_chute.c"),
+FRONT_ENDS = {"tribo": ("fmu/front_end_model.c", "fmu/variables_model.c", "fmu/front_end_chute.c",
+                        "fmu/front_end_identity.c"),
               "tribo_si": ("fmu/front_end_si.c", "fmu/variables_si.c", "fmu/front_end_chute.c"),
-              "tribo_separator": ("fmu/front_end_separator.c", "fmu/variables_separator.c")}
+              "tribo_separator": ("fmu/front_end_separator.c", "fmu/variables_separator.c",
+                                  "fmu/front_end_identity.c")}
 
 
 @pytest.mark.parametrize("prefix", FRONT_ENDS)

@@ -309,7 +309,7 @@ def test_the_figure_draws_the_streams_mass_weighted_mean():
 
 
 def test_the_title_says_the_materials_file_and_the_vibrating_chute():
-    described = {"particle": "PE", "wall": "steel", "materials": "/x/out/cal/materials.toml",
+    described = {"particle": "PE", "wall": "steel", "materials": "out/cal/materials.toml",
                  "vibration": (5e-4, 50.0)}
     title = population_plot.population_title(described, 10, 1, "at the exit")
     assert title.endswith("; materials from materials.toml, the chute vibrating 0.5 mm at 50 Hz")

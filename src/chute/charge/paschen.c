@@ -4,11 +4,22 @@
 
 #include <math.h>
 
+/* sqrt(x^2 + c^2) for x, c >= 0 without overflow; not hypot, whose glibc symbol (2.35) the
+   FMUs' binaries must not need (docs/platforms.md: glibc 2.29 at most). */
+static double norm(double x, double c)
+{
+    const double big = x > c ? x : c, small = x > c ? c : x;
+    if (!(big > 0.0))
+        return big + small; /* 0, or not a number */
+    const double r = small / big;
+    return big * sqrt(1.0 + r * r);
+}
+
 /* F(x; c) = c + x - sqrt(x^2 + c^2), in the form without cancellation on either side of
    x = c. */
 static double gap_voltage(double x, double c)
 {
-    const double h = hypot(x, c);
+    const double h = norm(x, c);
     return x <= c ? x - x * x / (c + h) : c - c * c / (x + h);
 }
 
@@ -89,7 +100,7 @@ static void make_node(tribo_paschen *t, int i)
     double x;
     const double S = minimise(c, t->log_K, t->x_min, &x);
     t->y[i] = log(S);
-    t->slope[i] = -c * (1.0 - c / hypot(x, c)) / gap_voltage(x, c);
+    t->slope[i] = -c * (1.0 - c / norm(x, c)) / gap_voltage(x, c);
 }
 
 double tribo_paschen_limit(tribo_paschen *t, double c)
