@@ -2,6 +2,9 @@
 against a direct computation, bad input in one line, the figure's legends."""
 
 import os
+import pickle
+import subprocess
+import sys
 
 import fmpy
 import numpy as np
@@ -9,7 +12,7 @@ import pandas as pd
 import pytest
 
 import tribo
-from tribo.batch.executors import DaskExecutor, SerialExecutor, runs_per_task
+from tribo.batch.executors import DaskExecutor, SerialExecutor, run_each, runs_per_task
 from tribo.batch.results import csv_line, read_results
 from tribo.fmu.charge_models import charge_models
 from tribo.fmu.names import fmu_outputs, from_fmu_column, to_fmu
@@ -17,6 +20,7 @@ from tribo.cli.main import main as tribo_command
 from tribo.fmu import FmuImage
 from tribo.populations import plot as population_plot
 from tribo.populations.feed import Feed, FeedError, draw, outputs, particle_parameters
+from tribo.populations.particle import run_particle
 from tribo.populations.runner import prepare_population, run_population
 from tribo.populations.summary import statistics, stream_statistics, summarize_population
 from figure_checks import assert_legends_cover_no_data, assert_tick_labels_apart
@@ -130,6 +134,32 @@ def test_a_population_in_tasks_of_several_grains_is_fmpys_grain_by_grain_to_the_
         for name, fmu_name in zip(names, fmu_names):
             value = float(from_fmu_column(md, fmu_name, float(alone[fmu_name]))[1])
             assert row[name] == value or (np.isnan(value) and np.isnan(row[name])), (name, row["key"])
+
+
+def test_a_worker_process_runs_a_grain_without_pandas_and_gives_the_same_row(si_image):
+    """What a Dask worker process imports to run a task of grains (the task's functions
+    and the FMU's image, unpickled in a fresh interpreter) holds no pandas, matplotlib,
+    scipy nor the feed (docs/populations.md, "Benchmark": importing them cost each worker a
+    third of a second of CPU before its first grain), and its row is this process's, to
+    the bit but the timings."""
+    spec = prepare_population(Feed(chute=SHORT), 1, 3, 1.0, si_image)[0]
+    task = pickle.dumps((run_each, run_particle, si_image, [spec]))
+    script = ("import pickle, sys\n"
+              "run_each, run, image, specs = pickle.loads(sys.stdin.buffer.read())\n"
+              "rows = [r.row for r in run_each(run, image, specs)]\n"
+              "heavy = sorted(m for m in sys.modules if m.split('.')[0] in "
+              "('pandas', 'matplotlib', 'scipy') or m == 'tribo.populations.feed')\n"
+              "sys.stdout.buffer.write(pickle.dumps((rows, heavy)))\n")
+    package = os.path.dirname(os.path.dirname(tribo.__file__))
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([package, os.environ.get("PYTHONPATH", "")])}
+    done = subprocess.run([sys.executable, "-c", script], input=task, capture_output=True,
+                          env=env, check=True)
+    (row,), heavy = pickle.loads(done.stdout)
+    assert heavy == []
+    here = run_particle(si_image, spec).row
+    # repr: a float's shortest round-trip form, so that equal is the same bits (NaN too)
+    assert ({k: repr(v) for k, v in row.items() if k not in ("cpu_s", "wall_s")}
+            == {k: repr(v) for k, v in here.items() if k not in ("cpu_s", "wall_s")})
 
 
 def test_the_summary_is_the_direct_computation():
