@@ -1,6 +1,7 @@
 """Populations (tribo.population, tribo population): the seeded draw, resuming, the summary
 against a direct computation, bad input in one line, the figure's legends."""
 
+import multiprocessing
 import os
 import pickle
 import subprocess
@@ -160,6 +161,28 @@ def test_a_worker_process_runs_a_grain_without_pandas_and_gives_the_same_row(si_
     # repr: a float's shortest round-trip form, so that equal is the same bits (NaN too)
     assert ({k: repr(v) for k, v in row.items() if k not in ("cpu_s", "wall_s")}
             == {k: repr(v) for k, v in here.items() if k not in ("cpu_s", "wall_s")})
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="worker processes are forked on Linux only")
+def test_worker_processes_are_forked_with_this_ones_modules_and_give_the_serial_rows(
+        tmp_path, si_image):
+    """The local cluster's worker processes are forked from this one (executors.
+    worker_start_method): they hold the modules this process imported (the feed, pandas),
+    so that none imports Dask or the package again before its first grain, and the rows
+    they give are the serial run's, to the bit but the timings."""
+    feed, n = Feed(chute=SHORT), 4
+    with DaskExecutor(workers=1, processes=True) as executor:
+        held = executor.client.run(lambda: "tribo.populations.feed" in sys.modules
+                                   and multiprocessing.parent_process() is not None)
+        assert list(held.values()) == [True]
+        tasks = run_population(feed, n, 5, 1.0, si_image, str(tmp_path / "tasks"), executor,
+                               progress=False, figure=False)
+    serial = run_population(feed, n, 5, 1.0, si_image, str(tmp_path / "serial"),
+                            SerialExecutor(), progress=False, figure=False)
+    assert tasks.complete and tasks.executed == n and not tasks.failed
+    timing = ["cpu_s", "wall_s"]
+    pd.testing.assert_frame_equal(tasks.results.drop(columns=timing),
+                                  serial.results.drop(columns=timing))
 
 
 def test_the_summary_is_the_direct_computation():
