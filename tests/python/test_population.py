@@ -100,6 +100,17 @@ def test_a_population_resumes_after_an_interruption_with_the_same_numbers(tmp_pa
     assert np.allclose(fractions, 1.0, atol=1e-12)
 
 
+def assert_the_serial_rows(tasks, feed, n, seed, image, tmp_path):
+    """`tasks`, a population run on Dask, ran every grain, and its rows are the serial
+    run's, every column but the timings to the bit."""
+    serial = run_population(feed, n, seed, 1.0, image, str(tmp_path / "serial"),
+                            SerialExecutor(), progress=False, figure=False)
+    assert tasks.complete and tasks.executed == n and not tasks.failed
+    timing = ["cpu_s", "wall_s"]
+    pd.testing.assert_frame_equal(tasks.results.drop(columns=timing),
+                                  serial.results.drop(columns=timing))
+
+
 def test_a_population_in_tasks_of_several_grains_is_fmpys_grain_by_grain_to_the_bit(
         tmp_path, si_image):
     """The population's path (Dask tasks of several grains each, the FMU loaded once per
@@ -112,12 +123,7 @@ def test_a_population_in_tasks_of_several_grains_is_fmpys_grain_by_grain_to_the_
     with DaskExecutor(workers=1) as executor:
         tasks = run_population(feed, n, 11, 1.0, si_image, str(tmp_path / "tasks"), executor,
                                progress=False, figure=False)
-    serial = run_population(feed, n, 11, 1.0, si_image, str(tmp_path / "serial"),
-                            SerialExecutor(), progress=False, figure=False)
-    assert tasks.complete and tasks.executed == n and not tasks.failed
-    timing = ["cpu_s", "wall_s"]
-    pd.testing.assert_frame_equal(tasks.results.drop(columns=timing),
-                                  serial.results.drop(columns=timing))
+    assert_the_serial_rows(tasks, feed, n, 11, si_image, tmp_path)
     with open(tmp_path / "tasks" / "particles.csv") as f:
         lines = f.read().splitlines(keepends=True)
     table = read_results(str(tmp_path / "tasks" / "particles.csv"))
@@ -177,12 +183,7 @@ def test_worker_processes_are_forked_with_this_ones_modules_and_give_the_serial_
         assert list(held.values()) == [True]
         tasks = run_population(feed, n, 5, 1.0, si_image, str(tmp_path / "tasks"), executor,
                                progress=False, figure=False)
-    serial = run_population(feed, n, 5, 1.0, si_image, str(tmp_path / "serial"),
-                            SerialExecutor(), progress=False, figure=False)
-    assert tasks.complete and tasks.executed == n and not tasks.failed
-    timing = ["cpu_s", "wall_s"]
-    pd.testing.assert_frame_equal(tasks.results.drop(columns=timing),
-                                  serial.results.drop(columns=timing))
+    assert_the_serial_rows(tasks, feed, n, 5, si_image, tmp_path)
 
 
 def test_the_summary_is_the_direct_computation():
