@@ -51,8 +51,9 @@ Its subpackages, by concern (each module's docstring says what it does):
                  locate (where the FMUs are), names (the package's names and units),
                  parameters (values checked by the FMU)
     batch/       many runs of the FMU: specs (a run and its key), grid (a sweep's runs, the
-                 sweep as a job), particle (one run: series, segment charges, summary row),
-                 summary (what a series is summarised into), results (the results CSV),
+                 sweep as a job), run (one run of the FMU, numpy and fmpy only), particle
+                 (one run: series, segment charges, summary row), summary (what a series
+                 is summarised into), results (the results CSV),
                  executors (serial or Dask), folder (an output folder: its record and
                  lock), sweep (skip finished runs, run the rest, record them), job (the one
                  flow of every job: prepare, claim the folder, run, report), plot

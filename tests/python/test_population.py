@@ -1,7 +1,11 @@
 """Populations (tribo.population, tribo population): the seeded draw, resuming, the summary
 against a direct computation, bad input in one line, the figure's legends."""
 
+import multiprocessing
 import os
+import pickle
+import subprocess
+import sys
 
 import fmpy
 import numpy as np
@@ -9,7 +13,7 @@ import pandas as pd
 import pytest
 
 import tribo
-from tribo.batch.executors import DaskExecutor, SerialExecutor, runs_per_task
+from tribo.batch.executors import DaskExecutor, SerialExecutor, run_each, runs_per_task
 from tribo.batch.results import csv_line, read_results
 from tribo.fmu.charge_models import charge_models
 from tribo.fmu.names import fmu_outputs, from_fmu_column, to_fmu
@@ -17,6 +21,7 @@ from tribo.cli.main import main as tribo_command
 from tribo.fmu import FmuImage
 from tribo.populations import plot as population_plot
 from tribo.populations.feed import Feed, FeedError, draw, outputs, particle_parameters
+from tribo.populations.particle import run_particle
 from tribo.populations.runner import prepare_population, run_population
 from tribo.populations.summary import statistics, stream_statistics, summarize_population
 from figure_checks import assert_legends_cover_no_data, assert_tick_labels_apart
@@ -95,6 +100,17 @@ def test_a_population_resumes_after_an_interruption_with_the_same_numbers(tmp_pa
     assert np.allclose(fractions, 1.0, atol=1e-12)
 
 
+def assert_the_serial_rows(tasks, feed, n, seed, image, tmp_path):
+    """`tasks`, a population run on Dask, ran every grain, and its rows are the serial
+    run's, every column but the timings to the bit."""
+    serial = run_population(feed, n, seed, 1.0, image, str(tmp_path / "serial"),
+                            SerialExecutor(), progress=False, figure=False)
+    assert tasks.complete and tasks.executed == n and not tasks.failed
+    timing = ["cpu_s", "wall_s"]
+    pd.testing.assert_frame_equal(tasks.results.drop(columns=timing),
+                                  serial.results.drop(columns=timing))
+
+
 def test_a_population_in_tasks_of_several_grains_is_fmpys_grain_by_grain_to_the_bit(
         tmp_path, si_image):
     """The population's path (Dask tasks of several grains each, the FMU loaded once per
@@ -107,12 +123,7 @@ def test_a_population_in_tasks_of_several_grains_is_fmpys_grain_by_grain_to_the_
     with DaskExecutor(workers=1) as executor:
         tasks = run_population(feed, n, 11, 1.0, si_image, str(tmp_path / "tasks"), executor,
                                progress=False, figure=False)
-    serial = run_population(feed, n, 11, 1.0, si_image, str(tmp_path / "serial"),
-                            SerialExecutor(), progress=False, figure=False)
-    assert tasks.complete and tasks.executed == n and not tasks.failed
-    timing = ["cpu_s", "wall_s"]
-    pd.testing.assert_frame_equal(tasks.results.drop(columns=timing),
-                                  serial.results.drop(columns=timing))
+    assert_the_serial_rows(tasks, feed, n, 11, si_image, tmp_path)
     with open(tmp_path / "tasks" / "particles.csv") as f:
         lines = f.read().splitlines(keepends=True)
     table = read_results(str(tmp_path / "tasks" / "particles.csv"))
@@ -130,6 +141,49 @@ def test_a_population_in_tasks_of_several_grains_is_fmpys_grain_by_grain_to_the_
         for name, fmu_name in zip(names, fmu_names):
             value = float(from_fmu_column(md, fmu_name, float(alone[fmu_name]))[1])
             assert row[name] == value or (np.isnan(value) and np.isnan(row[name])), (name, row["key"])
+
+
+def test_a_worker_process_runs_a_grain_without_pandas_and_gives_the_same_row(si_image):
+    """What a Dask worker process imports to run a task of grains (the task's functions
+    and the FMU's image, unpickled in a fresh interpreter) holds no pandas, matplotlib,
+    scipy nor the feed (docs/populations.md, "Benchmark": importing them cost each worker a
+    third of a second of CPU before its first grain), and its row is this process's, to
+    the bit but the timings."""
+    spec = prepare_population(Feed(chute=SHORT), 1, 3, 1.0, si_image)[0]
+    task = pickle.dumps((run_each, run_particle, si_image, [spec]))
+    script = ("import pickle, sys\n"
+              "run_each, run, image, specs = pickle.loads(sys.stdin.buffer.read())\n"
+              "rows = [r.row for r in run_each(run, image, specs)]\n"
+              "heavy = sorted(m for m in sys.modules if m.split('.')[0] in "
+              "('pandas', 'matplotlib', 'scipy') or m == 'tribo.populations.feed')\n"
+              "sys.stdout.buffer.write(pickle.dumps((rows, heavy)))\n")
+    package = os.path.dirname(os.path.dirname(tribo.__file__))
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([package, os.environ.get("PYTHONPATH", "")])}
+    done = subprocess.run([sys.executable, "-c", script], input=task, capture_output=True,
+                          env=env, check=True)
+    (row,), heavy = pickle.loads(done.stdout)
+    assert heavy == []
+    here = run_particle(si_image, spec).row
+    # repr: a float's shortest round-trip form, so that equal is the same bits (NaN too)
+    assert ({k: repr(v) for k, v in row.items() if k not in ("cpu_s", "wall_s")}
+            == {k: repr(v) for k, v in here.items() if k not in ("cpu_s", "wall_s")})
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="worker processes are forked on Linux only")
+def test_worker_processes_are_forked_with_this_ones_modules_and_give_the_serial_rows(
+        tmp_path, si_image):
+    """The local cluster's worker processes are forked from this one (executors.
+    worker_start_method): they hold the modules this process imported (the feed, pandas),
+    so that none imports Dask or the package again before its first grain, and the rows
+    they give are the serial run's, to the bit but the timings."""
+    feed, n = Feed(chute=SHORT), 4
+    with DaskExecutor(workers=1, processes=True) as executor:
+        held = executor.client.run(lambda: "tribo.populations.feed" in sys.modules
+                                   and multiprocessing.parent_process() is not None)
+        assert list(held.values()) == [True]
+        tasks = run_population(feed, n, 5, 1.0, si_image, str(tmp_path / "tasks"), executor,
+                               progress=False, figure=False)
+    assert_the_serial_rows(tasks, feed, n, 5, si_image, tmp_path)
 
 
 def test_the_summary_is_the_direct_computation():

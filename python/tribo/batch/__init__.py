@@ -4,6 +4,8 @@ parameter sweeps, which the study, populations and impact maps run on too.
     specs      what one run is (parameters, horizon, recording interval) and its key
     grid       the runs of a sweep: combinations of values over a base set-up (the paper's);
                the sweep as a job
+    run        one run of the FMU: its outputs at the times asked, or at its end (numpy
+               and fmpy only: what a Dask worker process imports)
     particle   one particle's run: series, segment charges, summary row
     summary    what a time series is summarised into (bounce envelope, charges, motion classes)
     results    the results CSV: append a row per finished run, resume, backups

@@ -5,8 +5,9 @@ on an existing cluster when given its scheduler address.
 The local cluster runs its tasks in threads of this process, one per core: the FMU's
 calls release the GIL (ctypes), so runs proceed in parallel, and no process is spawned,
 which would import the user's script again in each worker (a script without an
-`if __name__ == "__main__":` guard would start clusters recursively); docs/sweeps.md
-has the measurement against worker processes, which `processes=True` still gives. The
+`if __name__ == "__main__":` guard would start clusters recursively where worker
+processes are spawned, that is not on Linux: `worker_start_method`); docs/sweeps.md has
+the measurement against worker processes, which `processes=True` still gives. The
 cluster's scheduler and workers talk in-process (with processes: over 127.0.0.1), and it
 opens no dashboard: the HTTP servers Dask always starts take free ports on 127.0.0.1 and
 serve no dashboard pages. Worker processes ignore SIGINT: Ctrl-C in a
@@ -29,6 +30,7 @@ import logging
 import os
 import signal
 import socket
+import sys
 import tempfile
 import threading
 import time
@@ -150,6 +152,22 @@ LOCAL_CLUSTER_CONFIG = {
     "distributed.worker.profile.enabled": False,
 }
 
+
+def worker_start_method() -> str:
+    """How the local cluster starts its worker processes: forked from this process on Linux,
+    where Dask spawns them by default. A spawned worker imports Dask, numpy and the task's
+    modules before its first run (0.45 s of CPU each here, a tenth of the core's CPU for
+    1000 grains of the reference feed: docs/populations.md, "Benchmark") and runs the
+    user's script again (as __mp_main__); a forked one has them and does not. The fork is
+    taken as the cluster starts, by Dask's nanny from a thread of its own: Python makes its
+    import and logging locks anew in the child and multiprocessing its queues; the child
+    keeps the FMU its parent loaded (fmu/library.py). A run's numbers do not depend on it:
+    every task loads the FMU image it is given and runs from its initial state. Elsewhere
+    spawned, as Dask does: macOS's system libraries are not safe in a forked child of a
+    process with threads, and Windows has no fork."""
+    return "fork" if sys.platform.startswith("linux") else "spawn"
+
+
 # a task holds at most this many runs, and each worker gets at least TASKS_PER_WORKER tasks
 # where there are runs enough: the slowest grain's task then ends about as the others do
 RUNS_PER_TASK = 16
@@ -216,7 +234,9 @@ class DaskExecutor:
         # dask only when a Dask run starts, as distributed above
         import dask
 
-        with dask.config.set(LOCAL_CLUSTER_CONFIG):  # taken by each server as it starts
+        # taken by each server, and by each nanny for its worker process, as it starts
+        with dask.config.set({**LOCAL_CLUSTER_CONFIG,
+                              "distributed.worker.multiprocessing-method": worker_start_method()}):
             self._start_local(Client, LocalCluster)
         return self
 

@@ -20,11 +20,12 @@ from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
-from fmpy.fmi1 import FMICallException
 
-from ..fmu import ERROR, FmuImage, Instance, Rows, record
-from ..fmu.charge_models import MEAN_CHARGE_PREFIX, mean_charges, segment_arrays
-from ..fmu.names import fmu_outputs, from_fmu_column, in_package_terms, to_fmu
+from ..fmu import FmuImage
+from ..fmu.charge_models import MEAN_CHARGE_PREFIX, mean_charges
+from ..fmu.names import fmu_outputs, from_fmu_column
+# the run itself (numpy and fmpy only), and what the package has always imported from here
+from .run import End, RunResult, check_horizon, run_to_end, run_values  # noqa: F401
 from .specs import RunSpec
 from .summary import END_OUTPUTS, MOTION_CLASSES, summarize
 
@@ -42,7 +43,6 @@ def recorded(models, md=None) -> list[str]:
 
 # more recorded points than this is a mistake in the horizon or the interval, not a run
 MAX_POINTS = 10_000_000
-WORK_LIMIT = "work_limit"  # the FMUs' parameter bounding one doStep's work
 
 
 @dataclass
@@ -50,19 +50,6 @@ class Recording:
     series: pd.DataFrame  # "time", then the outputs at every communication point reached
     segments: pd.DataFrame | None  # one row per segment at the end, a column per charge model
     messages: list  # (status, category, message) as the FMU logged them
-
-
-@dataclass
-class RunResult:
-    row: dict  # the summary (summary.summarize) plus cpu_s and wall_s
-    series: pd.DataFrame | None  # None for a run that reads only its end
-    segments: pd.DataFrame | None = None
-
-
-def check_horizon(t_end: float) -> None:
-    """ValueError, saying why, for a horizon that is not positive and finite."""
-    if not (np.isfinite(t_end) and t_end > 0):
-        raise ValueError(f"the horizon t_end must be a positive number, got {t_end:g}")
 
 
 def communication_points(t_end: float, interval: float) -> np.ndarray:
@@ -93,72 +80,12 @@ def simulate(image: FmuImage, params: dict, t_end: float, record_interval: float
     md = image.model_description()
     outputs = recorded(mean_charges(md), md) if outputs is None else list(outputs)
     fmu_names = fmu_outputs(md, outputs)
-    reached, data, arrays, messages = _run(image, params, t_end, times, fmu_names, segments)
+    reached, data, arrays, messages = run_values(image, params, t_end, times, fmu_names, segments)
     series = pd.DataFrame({name: from_fmu_column(md, fmu_name, data[:, i])[1]
                            for i, (name, fmu_name) in enumerate(zip(outputs, fmu_names))},
                           columns=outputs)
     series.insert(0, "time", reached)
     return Recording(series, pd.DataFrame(arrays) if arrays else None, messages)
-
-
-@dataclass
-class End:
-    time: float  # where the run ended: t_end, or where the FMU ended it
-    values: dict  # output (the package's name) -> its value there (a float, the package's unit)
-    messages: list  # (status, category, message) as the FMU logged them
-
-
-def run_to_end(image: FmuImage, params: dict, t_end: float, outputs) -> End:
-    """simulate(image, params, t_end, None, outputs)'s one row without a DataFrame: for runs
-    that read only the end (a population's particle, a line's grain)."""
-    md = image.model_description()
-    outputs = list(outputs)
-    fmu_names = fmu_outputs(md, outputs)
-    reached, data, _, messages = _run(image, params, t_end, None, fmu_names, False)
-    values = {name: float(from_fmu_column(md, fmu_name, data[0, i])[1])
-              for i, (name, fmu_name) in enumerate(zip(outputs, fmu_names))}
-    return End(float(reached[0]), values, messages)
-
-
-def _run(image: FmuImage, params: dict, t_end: float, times, fmu_names, segments: bool):
-    """One run on an instance of its own: (the times reached, a row of `fmu_names`' values
-    per time, the segment arrays if `segments`, the FMU's messages). `times` None: only
-    the end, one step to t_end."""
-    if times is None:
-        check_horizon(t_end)
-        t_end = float(t_end)  # the time reached is a float, as the recorded times are
-    md = image.model_description()
-    fmu_params = to_fmu(md, params)
-    instance = Instance(image, name="tribo")
-    if times is None and instance.version == 2 and WORK_LIMIT in instance.variables:
-        # an FMI 2.0 step cut by the work limit cannot go on (stepFailed), where FMI 3.0's
-        # does: the one step to the end gets the most work the FMU allows unless the
-        # caller set the limit (no result depends on it: fmu/README.md, "Work limit")
-        fmu_params.setdefault(WORK_LIMIT, int(instance.variables[WORK_LIMIT].max))
-    stage = "setting the parameters"
-    try:
-        instance.set_parameters(fmu_params)
-        stage = "initialization"
-        instance.init(0.0, t_end)
-        stage = "the run"
-        if times is None:
-            rows = Rows(instance, fmu_names, capacity=1)
-            instance.step_to(t_end)
-            rows.read()
-            reached, data = np.array([instance.t]), rows.table()
-        else:
-            reached, data = record(instance, times, fmu_names)
-        arrays = ({model: instance.get(name) for model, name in segment_arrays(md).items()}
-                  if segments else {})
-        instance.terminate()
-    except FMICallException as e:
-        errors = [m for status, _, m in instance.messages if status >= ERROR]
-        where = stage if stage != "the run" else f"the step from time {instance.t:g}"
-        raise RuntimeError(f"the FMU failed in {where}: "
-                           f"{in_package_terms(md, errors[-1]) if errors else e}") from None
-    finally:
-        instance.free()
-    return reached, data, arrays, instance.messages
 
 
 def run_fmu(image: FmuImage, spec: RunSpec) -> RunResult:

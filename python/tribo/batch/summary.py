@@ -30,10 +30,15 @@ Definitions (used in the tables, the figures and the docs):
   (held, as the FMU holds them).
 """
 
+from __future__ import annotations  # the DataFrames summarised are the caller's
+
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
+
+if TYPE_CHECKING:  # not imported here: a population's worker process needs MOTION_CLASSES only
+    import pandas as pd
 
 ENVELOPE_WIDTH = 50.0
 WARMUP = 60.0  # three classification windows of the FMU (TRIBO_MOTION_WINDOW = 20)
