@@ -15,7 +15,8 @@
 # vibration_frequency, vibration_angle: branch vib) and `tribo population --vibration
 # A,F,ANGLE_DEG`; LIGGGHTS (scripts/setup.sh). Sizes: BENCH_GRAINS (default 20),
 # BENCH_T_END (default 30 s: at about 0.03 m/s a grain crosses 0.3 m in some 10 s),
-# BENCH_STIFFNESS (default 0.01: LIGGGHTS' moduli, docs/dem.md).
+# BENCH_STIFFNESS (default 0.01: LIGGGHTS' moduli, docs/dem.md). BENCH_REPORT_ONLY=1 makes
+# the table and the figure again from the runs already in BENCH_OUT.
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 PY=${PYTHON:-"$ROOT/.venv/bin/python"}
@@ -32,9 +33,11 @@ if ! "$PY" -m tribo population --help | grep -q -- "--vibration"; then
   echo "bench_dem_feeder.sh: tribo population has no --vibration (the SI FMU's vibrating chute, branch vib, is needed)" >&2
   exit 2
 fi
-"$PY" -m tribo population -n "$N" "${FEED[@]}" --serial --no-plot --out population --fresh > /dev/null
-"$PY" -m tribo dem -n "$N" "${FEED[@]}" --stiffness-scale "$STIFF" --maps "$OUT/maps" \
-  --no-plot --out dem --fresh | sed -n 2p
+if [[ ${BENCH_REPORT_ONLY:-0} != 1 ]]; then
+  "$PY" -m tribo population -n "$N" "${FEED[@]}" --serial --no-plot --out population --fresh > /dev/null
+  "$PY" -m tribo dem -n "$N" "${FEED[@]}" --stiffness-scale "$STIFF" --maps "$OUT/maps" \
+    --no-plot --out dem --fresh | grep "CPU:"
+fi
 
 "$PY" - "$N" "$LENGTH" <<'PYEOF'
 import json, math, sys
@@ -59,6 +62,8 @@ for name, d, cpu in (("population (SI FMU, 2D lamina)", pop, pop["cpu_s"].sum() 
     rows.append({"model": name, "left": f"{len(left)}/{n}",
                  "conveying speed (m/s)": length / left["exit_time"].mean() if len(left) else math.nan,
                  "impacts per grain": d["impacts"].mean(),
+                 "impacts per second": (left["impacts"] / left["exit_time"]).mean(),
+                 "q/m per impact (nC/kg)": (left["charge_to_mass_static"] / left["impacts"]).mean() * 1e9,
                  "stream q/m (uC/kg)": mean * 1e6, "spread (uC/kg)": spread * 1e6,
                  "CPU per grain (s)": cpu})
 table = pd.DataFrame(rows)
@@ -75,9 +80,11 @@ compare = pd.DataFrame({"size": pop["size"], "qm_population": pop["charge_to_mas
 compare.to_csv("compare.csv", index=False)
 ratio = (compare.qm_dem / compare.qm_population)[both]
 hops = (compare.impacts_dem / compare.impacts_population)[both]
+slow = (compare.exit_time_dem / compare.exit_time_population)[both]
 print(f"grain by grain ({int(both.sum())} grains that left both ways): q/m DEM / population "
-      f"{ratio.mean():.3g} +- {ratio.std():.2g}, impacts {hops.mean():.3g} +- {hops.std():.2g}")
-fig, (a, b) = plt.subplots(1, 2, figsize=(12, 5), layout="constrained")
+      f"{ratio.mean():.3g} +- {ratio.std():.2g}, impacts {hops.mean():.3g} +- {hops.std():.2g}, "
+      f"exit time {slow.mean():.3g} +- {slow.std():.2g}")
+fig, (a, b, c) = plt.subplots(1, 3, figsize=(16, 5), layout="constrained")
 a.scatter(-compare.qm_population[both] * 1e6, -compare.qm_dem[both] * 1e6, s=14)
 lim = [0, 1.05 * max((-compare.qm_population[both]).max(), (-compare.qm_dem[both]).max()) * 1e6]
 a.plot(lim, lim, "k--", lw=1, label="equal")
@@ -90,6 +97,12 @@ b.plot(lim, lim, "k--", lw=1, label="equal")
 b.set_xlabel("impacts per grain, the project's population")
 b.set_ylabel("impacts per grain, LIGGGHTS")
 b.legend(loc="upper left")
+c.scatter(compare.exit_time_population[both], compare.exit_time_dem[both], s=14)
+lim = [0, 1.05 * max(compare.exit_time_population[both].max(), compare.exit_time_dem[both].max())]
+c.plot(lim, lim, "k--", lw=1, label="equal")
+c.set_xlabel("exit time (s), the project's population")
+c.set_ylabel("exit time (s), LIGGGHTS")
+c.legend(loc="upper left")
 fig.suptitle(f"{n} PE spheres of 0.6-1 mm on a level steel feeder {length:g} m long, 0.5 mm "
              f"at 50 Hz along a stroke at 30° (static model)")
 save(fig, "feeder.png")
