@@ -584,8 +584,8 @@ def test_a_dilute_feeder_agrees_with_the_population_within_the_explained_differe
     same draw through the same level feeder both ways. The impacts come at nearly the same
     rate (measured: LIGGGHTS' 1.12 times the population's, the mean of the grains' ratios,
     1.04 over 0.3 m) and charge alike, each impact's charge being the FMU's own at its speed
-    and angle (0.97 times; over 0.3 m the lamina's later impacts charge less, its perimeter
-    charged over); the sphere is slower, its inertia taking less of the plate's stroke at
+    and angle (0.97 times; over 0.3 m the lamina's later impacts charge less, landing on
+    spots charged before); the sphere is slower, its inertia taking less of the plate's stroke at
     each landing (2/7 of the slip against the lamina's 1/3: its exit time 1.54 times the
     lamina's here, the drop's first bounces included, 1.23 over 0.3 m). Over 5 cm the first
     bounces dominate (1.9 times the exit time), hence 0.1 m: about 9 s of LIGGGHTS' CPU."""
