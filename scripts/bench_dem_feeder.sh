@@ -123,7 +123,7 @@ maps = {float(re.search(r"-([0-9.]+)m-", f).group(1)): tribo.ImpactMap.load(f)
 keys = ["size", "phi0_deg", "omega0", "drop_height", "drop_speed", "drop_angle_deg", "epsilon",
         "chute_length", "tilt_deg", "vibration_amplitude", "vibration_frequency",
         "vibration_angle_deg"]
-fresh_rows = []
+fresh_rows, hits_dem = [], pd.read_csv("dem/impacts.csv")
 for _, r in pop.iterrows():
     s = tribo.run_si(r["particle"], r["wall"], t_end=float(r["t_end"]), record_interval=2e-4,
                      outputs=["impacts", "u", "v", "omega", "charged_area"],
@@ -137,13 +137,21 @@ for _, r in pop.iterrows():
     new = area / (np.asarray(maps[size]("charged_area", speed, angle, 0.0, 1.0)) * r["size"] / size)
     late = np.arange(len(hits)) >= len(hits) // 2
     fresh_rows.append({"first half": new[~late].mean(), "second half": new[late].mean(),
-                       "normal speed": np.median(vn), "spin": np.median(np.abs(s.loc[hits - 1, "omega"]))})
+                       "normal speed": np.median(vn), "angle": np.median(np.degrees(np.arctan2(vn, vt))),
+                       "spin": np.median(np.abs(s.loc[hits - 1, "omega"]))})
 fresh = pd.DataFrame(fresh_rows)
 print("the population's impacts: new charged area over the map's (an uncharged grain's), "
       f"first half {fresh['first half'].mean():.3g} +- {fresh['first half'].std():.2g}, "
       f"second half {fresh['second half'].mean():.3g} +- {fresh['second half'].std():.2g}; "
       f"median normal speed {fresh['normal speed'].mean():.3g} m/s (LIGGGHTS' "
-      f"{pd.read_csv('dem/impacts.csv').normal_speed.median():.3g}), spin {fresh['spin'].mean():.3g} rad/s")
+      f"{hits_dem.normal_speed.median():.3g}), angle {fresh['angle'].mean():.3g} deg (LIGGGHTS' "
+      f"{hits_dem.angle_deg.median():.3g}), spin {fresh['spin'].mean():.3g} rad/s (the means of the "
+      "grains' medians; LIGGGHTS' the median of its impacts)")
+# the share of the surface charged at the end: the lamina's bands over its perimeter times
+# the cylinder's depth; the sphere's charge over sigma0 times its surface
+print("charged at the end: the lamina "
+      f"{(pop.charged_area / (math.pi * pop['size'] * pop.cylinder_length)).mean():.3g} of its "
+      f"surface, the sphere {(dem.charge_static / (dem.sigma0 * math.pi * dem['size'] ** 2)).mean():.3g}")
 spin = float(fresh["spin"].mean())
 area = {w: float(tribo.impact_map(speed=[0.2], angle_deg=[70.0], phi0_deg=[0.0], epsilon=[1.0],
                                   omega0=w, settings={"size": 8e-4}, out=f"spin/{w:g}", serial=True,
