@@ -16,7 +16,8 @@ from tribo.cli.main import SUBCOMMANDS
 PACKAGE_DIR = os.path.dirname(tribo.__file__)
 # the concerns from the bottom up: a module may import its own concern's modules and those
 # of a lower layer (tribo/__init__.py says the same)
-LAYERS = {"tribo.plotting": 0, "tribo.fmu": 0, "tribo.materials": 1, "tribo.batch": 1,
+LAYERS = {"tribo.plotting": 0, "tribo.fmu": 0, "tribo.materials": 1, "tribo.paschen": 1,
+          "tribo.batch": 1,
           "tribo.study": 2, "tribo.populations": 2, "tribo.impact": 2, "tribo.line": 3, "tribo.calibration": 3,
           "tribo.dem": 3,
           "tribo.api": 4, "tribo.cli": 5, "tribo": 6}
