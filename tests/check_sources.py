@@ -28,7 +28,7 @@ MAY_INCLUDE = {
     "chute/integrators": {"common", "chute/charge", "tribo.h", "contact.h", "dynamics.h",
                           "force_phases.h", "flight.h", "motion.h"},
     "si": {"common", "tribo.h", "quantities.def", "charge_registry.h", "charge_registry.def",
-           "geometry.h"},
+           "geometry.h", "paschen.h"},
     "separator": {"common", "tribo.h"},
 }
 SOURCE = (".c", ".h", ".def")

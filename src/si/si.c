@@ -10,6 +10,7 @@
 #include "charge_registry.h"
 #include "geometry.h"
 #include "param_table.h"
+#include "paschen.h"
 
 /* ---- the table ------------------------------------------------------------------------ */
 
@@ -278,6 +279,42 @@ static tribo_status check_initial_charge(const tribo_si_scene *si, char *msg, si
     return TRIBO_ERR_INVALID_ARGUMENT;
 }
 
+/* The Paschen limit's numbers (model.md §8e): the model's A p a and eps0 B p in its unit of
+   density, and what they mean in SI units. The declared ranges of A, B, p and gamma keep the
+   curve's minimum, at A p d = e ln(1 + 1/gamma), finite and positive: a curve without one
+   (A or B not positive, gamma at 1 or beyond) is refused with its parameter's range. */
+static tribo_status derive_paschen(const tribo_si_scene *si, tribo_si_derived *d, char *made_of,
+                                   size_t made_of_size, char *msg, size_t msg_size)
+{
+    const double eps0 = 8.8541878128e-12, p = si->gas_pressure;
+    const double x_min = tribo_paschen_minimum(si->secondary_emission);
+    d->paschen_minimum_gap = x_min / (si->paschen_A * p);
+    d->paschen_minimum_voltage = x_min * si->paschen_B / si->paschen_A;
+    /* the sphere of the grain's area; a pair's field (an insulating wall) is the image's at
+       twice the size */
+    const double radius = sqrt(d->grain_area / (4.0 * M_PI));
+    const double c = si->paschen_A * p * radius * (si->wall_conducting ? 0.5 : 1.0);
+    d->grain_charge_limit = eps0 * si->paschen_B * p *
+                            tribo_paschen_reduced(si->secondary_emission, c) * d->grain_area;
+    d->scene.paschen_gap_scale = si->paschen_A * p * d->a;
+    d->scene.Sigma_paschen = eps0 * si->paschen_B * p / d->sigma_scale;
+    static const char *const derived[] = {"paschen_gap_scale", "Sigma_paschen"};
+    const double values[] = {d->scene.paschen_gap_scale, d->scene.Sigma_paschen};
+    for (int i = 0; i < 2; i++) {
+        const tribo_param_info *model = tribo_param_find(derived[i]);
+        if (tribo_param_check(model, values[i], NULL, 0) == TRIBO_OK)
+            continue;
+        made_of[0] = '\0';
+        append_value(made_of, made_of_size, si, i ? "paschen_B" : "paschen_A", "");
+        append_value(made_of, made_of_size, si, "gas_pressure", ", ");
+        strncat(made_of, ", ", made_of_size - strlen(made_of) - 1);
+        describe_inputs(made_of + strlen(made_of), made_of_size - strlen(made_of), si, d, NULL,
+                        i ? DENSITY : LENGTH);
+        return check_derived(model, values[i], made_of, msg, msg_size);
+    }
+    return TRIBO_OK;
+}
+
 tribo_status tribo_si_derive(const tribo_si_scene *si, tribo_si_derived *d, char *msg,
                              size_t msg_size)
 {
@@ -348,6 +385,8 @@ tribo_status tribo_si_derive(const tribo_si_scene *si, tribo_si_derived *d, char
         describe_inputs(made_of, sizeof made_of, si, d, "gravity", SPEED);
         return check_derived(gamma, d->scene.Gamma, made_of, msg, msg_size);
     }
+    if ((st = derive_paschen(si, d, made_of, sizeof made_of, msg, msg_size)) != TRIBO_OK)
+        return st;
     if ((st = tribo_scene_validate(&d->scene, msg, msg_size)) != TRIBO_OK)
         return st;
     return charge_to_mass_model_included(si, d, msg, msg_size);

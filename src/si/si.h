@@ -85,6 +85,9 @@ typedef struct tribo_si_derived {
                                cylinder of depth `depth`                             */
     double grain_mass;      /* kg: (4/3) pi rho a b^2, or m' l                       */
     double grain_area;      /* m^2: the spheroid's surface, or the cylinder's a P l  */
+    double paschen_minimum_voltage; /* V: the gas's least breakdown voltage (§8e) */
+    double paschen_minimum_gap;     /* m: the gap where it lies                    */
+    double grain_charge_limit;      /* C: sigma_P(R_s) A_s, the grain's limit (§8e) */
     int charge_to_mass_model; /* the registry's row (from 1) whose ratio charge_to_mass is:
                                  the parameter's, or with 0 the first row included */
     tribo_scene scene;      /* the model's scene                                     */
