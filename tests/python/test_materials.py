@@ -102,8 +102,14 @@ def test_the_wall_sets_wall_conducting():
 
 def test_sigma0_signs_follow_the_triboelectric_series():
     # PTFE is at the negative end of the series, so a particle is charged more positively
-    # on a PTFE wall than on a metal; on glass (near the positive end) less positively.
+    # on a PTFE wall than on a metal; on glass (near the positive end) less positively. The
+    # signs only: the metal pairs' magnitudes are the contact's own density, the insulating
+    # walls' a saturation's (docs/materials.md), not comparable.
     def get(p, w):
+        s = _get(p, w)
+        return None if s is None else math.copysign(1.0, s)
+
+    def _get(p, w):
         try:
             return materials.pair_sigma0(p, w)
         except materials.MaterialError:
@@ -135,9 +141,13 @@ def test_polyethylene_on_steel_is_the_reference_case(si_rows):
     rows = si_rows
     values = materials.start_values("PE", "steel")
     for name in ("youngs_modulus_particle", "poisson_ratio_particle", "density",
-                 "youngs_modulus_wall", "poisson_ratio_wall", "sigma0",
-                 "interface_capacitance"):
+                 "youngs_modulus_wall", "poisson_ratio_wall", "interface_capacitance",
+                 "wall_conducting"):
         assert values[name] == pytest.approx(rows[name][2], rel=1e-12), name
+    # sigma0: the SI FMU's default is revision 4's -1e-5 (a weakly charging pair, below the
+    # gas's limit), the table's the contact's own -1e-3 (docs/model.md section 8e): the sign
+    # is the pair's in both
+    assert values["sigma0"] * rows["sigma0"][2] > 0
 
 
 def test_overrides_win_and_names_are_case_insensitive():
