@@ -198,6 +198,8 @@ void tribo_book_interval(tribo_model *m, const tribo_point *from, tribo_point *t
     if (in_contact && !from->contact.in_contact &&
         to->y[TRIBO_IV] + spin < -tribo_velocity_rounding(&m->dyn, to->y[TRIBO_IV], spin))
         to->motion.impacts++;
+    if (in_contact && !from->contact.in_contact)
+        to->motion.touchdowns++;
     if (!(h > 0.0))
         return;
     if (m->motion_decay_h != h) {
@@ -283,6 +285,13 @@ tribo_status tribo_charge_sample(tribo_model *m, const tribo_contact_sample *sam
 {
     if (!m->charging.any_selected)
         return TRIBO_OK;
+    tribo_contact_sample stamped;
+    if (!sample->episode) {
+        /* a rest's: inside the committed point's contact episode (§8e) */
+        stamped = *sample;
+        stamped.episode = m->committed.motion.touchdowns + 1;
+        sample = &stamped;
+    }
     if (where == TRIBO_CHARGE_PENDING)
         return pending_push(m, sample);
     const long updates = tribo_charging_apply(&m->charging, &m->scene, sample, TRIBO_CHARGE_COMMIT);
@@ -313,6 +322,8 @@ void tribo_charge_step(tribo_model *m, const tribo_point *from, tribo_point *to,
     tribo_charging_step(&m->charging, &m->scene, &to->contact.pose, to->contact.delta_y, h,
                         from->y + TRIBO_NMOTION, to->y + TRIBO_NMOTION, from->charge_globals,
                         to->charge_globals, sample);
+    /* the step's contact is its end point's, and so is its episode (§8e) */
+    sample->episode = to->motion.touchdowns + 1;
 }
 
 void tribo_probe_contact(const tribo_model *m, const double *y, double *s_centre,
@@ -357,7 +368,10 @@ static int sink(void *ctx, const tribo_contact_sample *sample)
         work += values_work(m, sample->leave_by_edges, (double)models * (double)sample->count,
                             models);
     tribo_work(m, work);
-    return tribo_charge_sample(m, sample, s->where) != TRIBO_OK;
+    /* a sweep runs inside one contact phase, begun at or before the committed point (§8e) */
+    tribo_contact_sample stamped = *sample;
+    stamped.episode = m->committed.motion.touchdowns + 1;
+    return tribo_charge_sample(m, &stamped, s->where) != TRIBO_OK;
 }
 
 /* The integrator's probe, each look at the contact booked as work. */

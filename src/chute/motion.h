@@ -25,6 +25,8 @@ typedef struct tribo_motion {
     double class_time[TRIBO_MOTION_CLASSES];
     int outside_assumptions; /* the contact was outside them at the last update */
     long long impacts;       /* contacts made after a flight */
+    long long touchdowns;    /* contacts made, after a flight or not: the contact episodes
+                                begun (model.md §8e) */
 } tribo_motion;
 
 /* Window of the averages: long enough to span the flights between the paper's bounces

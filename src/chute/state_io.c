@@ -9,7 +9,9 @@
  *   selected charge model its committed per-segment charges, their running sum and the
  *   charge its breakdown limit took (each value and compensation) and, where the grain keeps
  *   bands (model.md §8c), its band densities with their charge and loss the same way; then
- *   the bands' widths and hulls with the charged area; the integrator's own bytes.
+ *   the bands' widths and hulls with the charged area, then their limits and the gas's state
+ *   (model.md §8e: the contact episode, its region's radius and limit, its run of bands, the
+ *   grain's charge per model); the integrator's own bytes.
  * The output point is not stored: it is recomputed from the committed point exactly as
  * the advance that made it did, so a loaded instance continues bit-identically.
  *
@@ -25,12 +27,12 @@
 #include <string.h>
 
 static const char MAGIC[8] = {'T', 'R', 'I', 'B', 'O', 'S', 'T', '1'};
-enum { STATE_VERSION = 8 };
+enum { STATE_VERSION = 9 };
 
 /* Fields of a point, in order; the contact evaluation is stored with it because some
    integrators (phases of the force law) cannot recompute it from y alone. */
 #define CONTACT_DOUBLES 10
-#define POINT_INTS 5
+#define POINT_INTS 6
 
 static size_t point_size(const tribo_model *m)
 {
@@ -62,6 +64,7 @@ static void put_point(tribo_writer *w, const tribo_model *m, const tribo_point *
     tribo_write_int(w, mo->current);
     tribo_write_int(w, mo->outside_assumptions);
     tribo_write_int(w, mo->impacts);
+    tribo_write_int(w, mo->touchdowns);
 }
 
 /* A flag or a small index saved in 64 bits; one that an int cannot hold reads as -1 (which
@@ -96,6 +99,7 @@ static void get_point(tribo_reader *r, const tribo_model *m, tribo_point *p)
     mo->current = read_small(r);
     mo->outside_assumptions = read_small(r);
     mo->impacts = tribo_read_int(r);
+    mo->touchdowns = tribo_read_int(r);
 }
 
 static size_t header_size(void) { return sizeof MAGIC + 2 * sizeof(int64_t); }
@@ -110,7 +114,7 @@ static size_t charge_count(const tribo_model *m)
         if (c->slot[i].segments)
             n += ((size_t)c->n + 4) * (c->keep_bands ? 2 : 1);
     if (c->any_selected && c->keep_bands)
-        n += 3 * (size_t)c->n + 2;
+        n += 4 * (size_t)c->n + 2 + 5 + (size_t)c->n_models;
     return n;
 }
 
@@ -186,6 +190,15 @@ tribo_status tribo_state_save(const tribo_model *m, void *buffer, size_t size)
         tribo_write_bytes(&w, c->bands.lo, bytes);
         tribo_write_bytes(&w, c->bands.hi, bytes);
         write_compensated(&w, &c->area);
+        tribo_write_bytes(&w, c->bands.limit, bytes);
+        const tribo_gas_state *g = &c->gas;
+        tribo_write_int(&w, g->episode);
+        tribo_write_double(&w, g->radius);
+        tribo_write_double(&w, g->limit);
+        tribo_write_int(&w, g->first);
+        tribo_write_int(&w, g->count);
+        for (int i = 0; i < c->n_models; i++)
+            tribo_write_double(&w, g->grain[i]);
     }
     m->integrator->state_save(m->integrator_data, w.p);
     return TRIBO_OK;
@@ -223,6 +236,7 @@ typedef struct loaded {
     tribo_compensated band_charge[TRIBO_CHARGE_MAX_MODELS], band_lost[TRIBO_CHARGE_MAX_MODELS];
     tribo_band_geometry geometry;              /* owned; NULLs without bands */
     tribo_compensated area;
+    tribo_gas_state gas;
     const unsigned char *integrator;           /* into the bytes */
 } loaded;
 
@@ -235,6 +249,7 @@ static void loaded_free(loaded *l)
     free(l->geometry.width);
     free(l->geometry.lo);
     free(l->geometry.hi);
+    free(l->geometry.limit);
 }
 
 static int all_finite(const double *v, int n)
@@ -276,6 +291,8 @@ static const char *point_problem(const tribo_model *m, const tribo_point *p, dou
             return "motion classes";
     if (!(mo->impacts >= 0 && (double)mo->impacts <= COUNTER_MAX))
         return "impacts";
+    if (!(mo->touchdowns >= mo->impacts && (double)mo->touchdowns <= COUNTER_MAX))
+        return "touch-downs";
     return NULL;
 }
 
@@ -367,6 +384,26 @@ static const char *geometry_problem(const tribo_model *m, const tribo_band_geome
     return NULL;
 }
 
+/* The gas's state (§8e): an episode of the touch-downs so far (0: none yet), its region's
+   radius and limit, a run of bands on the ring, each band's limit positive, the grain's
+   charges finite. */
+static const char *gas_problem(const tribo_model *m, const loaded *l)
+{
+    const tribo_gas_state *g = &l->gas;
+    const long n = m->charging.n;
+    if (!(g->episode >= 0 && g->episode <= l->committed.motion.touchdowns + 1) ||
+        !(g->radius >= 0.0 && isfinite(g->radius)) || !(g->limit > 0.0) ||
+        !(g->first >= 0 && g->first < n && g->count >= 0 && g->count <= n))
+        return "a gas's state that is not one";
+    for (long i = 0; i < n; i++)
+        if (!(l->geometry.limit[i] > 0.0))
+            return "a band's limit that is not one";
+    for (int i = 0; i < m->charging.n_models; i++)
+        if (!isfinite(g->grain[i]))
+            return "a grain charge that is not a number";
+    return NULL;
+}
+
 /* A model's band densities: finite, within the breakdown limit where it holds the initial
    density too, their charge the sum of density times area up to its rounding. */
 static const char *bands_problem(const tribo_model *m, const tribo_charge_slot *slot,
@@ -379,9 +416,12 @@ static const char *bands_problem(const tribo_model *m, const tribo_charge_slot *
         return "bands that are not numbers";
     const double cap = cap_of(slot, scene);
     const double init = tribo_charging_initial_value(slot->model, scene);
+    /* with the Paschen limit each band has its episode's (§8e) */
+    const int paschen = scene->breakdown_model == TRIBO_BREAKDOWN_PASCHEN && slot->model->density_unit;
+    const double unit = paschen ? slot->model->density_unit(scene) : 1.0;
     double total = 0.0, magnitude = 0.0;
     for (int i = 0; i < n; i++) {
-        if (fabs(bands[i]) > fmax(cap, fabs(init)))
+        if (fabs(bands[i]) > fmax(paschen ? g->limit[i] / unit : cap, fabs(init)))
             return "bands above the breakdown limit";
         const double a = band_area(g, i, m->charging.segment_length);
         total += bands[i] * a;
@@ -485,13 +525,25 @@ static tribo_status read_band_geometry(tribo_model *m, tribo_reader *r, loaded *
         return TRIBO_OK;
     const size_t bytes = (size_t)c->n * sizeof(double);
     tribo_band_geometry *g = &l->geometry;
-    if (!(g->width = malloc(bytes)) || !(g->lo = malloc(bytes)) || !(g->hi = malloc(bytes)))
+    if (!(g->width = malloc(bytes)) || !(g->lo = malloc(bytes)) || !(g->hi = malloc(bytes)) ||
+        !(g->limit = malloc(bytes)))
         return tribo_fail(m, TRIBO_ERR_MEMORY, "out of memory");
     tribo_read_bytes(r, g->width, bytes);
     tribo_read_bytes(r, g->lo, bytes);
     tribo_read_bytes(r, g->hi, bytes);
     l->area = read_compensated(r);
+    tribo_read_bytes(r, g->limit, bytes);
+    tribo_gas_state *gas = &l->gas;
+    gas->episode = tribo_read_int(r);
+    gas->radius = tribo_read_double(r);
+    gas->limit = tribo_read_double(r);
+    gas->first = (long)tribo_read_int(r);
+    gas->count = (long)tribo_read_int(r);
+    for (int i = 0; i < c->n_models; i++)
+        gas->grain[i] = tribo_read_double(r);
     const char *problem = check && !r->overrun ? geometry_problem(m, g, &l->area) : NULL;
+    if (!problem && check && !r->overrun)
+        problem = gas_problem(m, l);
     if (problem)
         return tribo_fail(m, TRIBO_ERR_STATE, "state is corrupt: the grain's bands hold %s",
                           problem);
@@ -564,6 +616,9 @@ static tribo_status apply_state(tribo_model *m, const loaded *l)
         memcpy(c->bands.lo, l->geometry.lo, bytes);
         memcpy(c->bands.hi, l->geometry.hi, bytes);
         c->area = l->area;
+        memcpy(c->bands.limit, l->geometry.limit, bytes);
+        tribo_charging_setup_gas(c, &m->scene);
+        c->gas = l->gas;
     }
     m->out = m->committed;
     m->n_pending = 0;

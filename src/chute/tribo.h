@@ -95,6 +95,13 @@ typedef enum tribo_grain_geometry {
     TRIBO_GRAIN_SPHEROID = 1  /* the prolate spheroid a, b, b, charged in bands           */
 } tribo_grain_geometry;
 
+/* The limit the gas sets on the spheroid's bands (parameter breakdown_model, docs/model.md
+   §8b, §8e). */
+typedef enum tribo_breakdown_model {
+    TRIBO_BREAKDOWN_FIXED = 0,  /* Sigma_bd on every band and segment                     */
+    TRIBO_BREAKDOWN_PASCHEN = 1 /* each contact episode's region at its Paschen limit      */
+} tribo_breakdown_model;
+
 #define TRIBO_CTYPE_REAL double
 #define TRIBO_CTYPE_INTEGER int
 #define TRIBO_CTYPE_COUNT int

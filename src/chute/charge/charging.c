@@ -11,7 +11,8 @@ static void free_geometry(tribo_band_geometry *g)
     free(g->width);
     free(g->lo);
     free(g->hi);
-    g->width = g->lo = g->hi = NULL;
+    free(g->limit);
+    g->width = g->lo = g->hi = g->limit = NULL;
 }
 
 static int alloc_geometry(tribo_band_geometry *g, int n)
@@ -20,7 +21,8 @@ static int alloc_geometry(tribo_band_geometry *g, int n)
     g->width = malloc(bytes);
     g->lo = malloc(bytes);
     g->hi = malloc(bytes);
-    return g->width && g->lo && g->hi ? 0 : -1;
+    g->limit = malloc(bytes);
+    return g->width && g->lo && g->hi && g->limit ? 0 : -1;
 }
 
 int tribo_charging_init(tribo_charging *c, const tribo_charge_model *const *models, int n_models,
@@ -65,7 +67,7 @@ int tribo_charging_init(tribo_charging *c, const tribo_charge_model *const *mode
         if (slot->model->cache_size && !(slot->cache = malloc(slot->model->cache_size)))
             goto fail;
     }
-    if (keep_bands && (alloc_geometry(&c->bands, n) != 0 || !(c->scratch = malloc(2 * bytes))))
+    if (keep_bands && (alloc_geometry(&c->bands, n) != 0 || !(c->scratch = malloc(3 * bytes))))
         goto fail;
     if (!(c->targets = malloc((size_t)n_models * bytes)))
         goto fail;
@@ -113,6 +115,7 @@ static void empty_bands(tribo_charging *c, const tribo_scene *s)
         c->bands.width[i] = 0.0;
         c->bands.lo[i] = 1.0;
         c->bands.hi[i] = 0.0;
+        c->bands.limit[i] = INFINITY;
     }
     for (int k = 0; k < c->n_models; k++) {
         tribo_charge_slot *slot = &c->slot[k];
@@ -122,6 +125,35 @@ static void empty_bands(tribo_charging *c, const tribo_scene *s)
         for (int i = 0; i < c->n; i++)
             slot->bands[i] = init;
     }
+}
+
+double tribo_charging_region_limit(const tribo_charging *c, const tribo_scene *s, double radius)
+{
+    return s->Sigma_paschen * tribo_paschen_limit(&c->table, c->region_scale * radius);
+}
+
+void tribo_charging_setup_gas(tribo_charging *c, const tribo_scene *s)
+{
+    c->paschen = c->keep_bands && s->breakdown_model == TRIBO_BREAKDOWN_PASCHEN;
+    if (!c->paschen)
+        return;
+    /* a grounded wall's image halves the region's size (the pair form: L/2 -> L) */
+    c->region_scale = s->paschen_gap_scale * (s->wall_conducting ? 0.5 : 1.0);
+    const double area = tribo_spheroid_area(s->epsilon);
+    const double radius = sqrt(area / (4.0 * M_PI));
+    tribo_paschen_build(&c->table, s->secondary_emission, c->region_scale * radius);
+    c->grain_limit = tribo_charging_region_limit(c, s, radius) * area;
+}
+
+/* No episode under way, the grain at its initial charge (§8e). */
+static void reset_gas(tribo_charging *c, const tribo_scene *s)
+{
+    tribo_charging_setup_gas(c, s);
+    c->gas = (tribo_gas_state){.limit = INFINITY};
+    const double area = tribo_spheroid_area(s->epsilon);
+    for (int k = 0; k < c->n_models && c->paschen; k++)
+        if (c->slot[k].bands)
+            c->gas.grain[k] = tribo_charging_initial_value(c->slot[k].model, s) * area;
 }
 
 void tribo_charging_reset(tribo_charging *c, const tribo_scene *s)
@@ -137,6 +169,7 @@ void tribo_charging_reset(tribo_charging *c, const tribo_scene *s)
     c->area = (tribo_compensated){0};
     if (c->keep_bands && c->bands.width)
         empty_bands(c, s);
+    reset_gas(c, s);
     memset(&c->decay, 0, sizeof c->decay);
 }
 
@@ -258,6 +291,8 @@ static long segment_run(const tribo_contact_sample *sample, long *first)
    output copies, or a window of them. */
 typedef struct ring {
     long len;
+    int wraps; /* the whole ring (a window shorter than it: no run wraps) */
+    tribo_gas_state *gas; /* the gas's state the samples meet (§8e) */
     double *values[TRIBO_CHARGE_MAX_MODELS];
     double *bands[TRIBO_CHARGE_MAX_MODELS]; /* NULL without bands */
     tribo_band_geometry geometry;
@@ -596,12 +631,144 @@ static void charge_bands(tribo_charge_slot *slot, const tribo_scene *s, const tr
     }
 }
 
+/* ---- the Paschen limit (§8e) ------------------------------------------------------------ */
+
+/* The episode's run of bands joined by the run [first, first + count) of a ring. */
+static void join_run(tribo_gas_state *g, const ring *r, long first, long count)
+{
+    if (g->count == 0) {
+        g->first = first;
+        g->count = count;
+        return;
+    }
+    const long len = r->len;
+    if (g->count >= len)
+        return;
+    long offset = first - g->first;
+    if (r->wraps) { /* the nearer way round */
+        offset %= len;
+        if (offset < 0)
+            offset += len;
+        if (offset > len / 2)
+            offset -= len;
+    }
+    const long lo = offset < 0 ? offset : 0;
+    const long hi = offset + count > g->count ? offset + count : g->count;
+    if (hi - lo >= len) {
+        g->first = 0;
+        g->count = len;
+        return;
+    }
+    g->first += lo;
+    if (g->first < 0)
+        g->first += len;
+    g->count = hi - lo;
+}
+
+/* Every band of ring indices [first, first + count) (around the ring) at most limit
+   (sliding model's unit) and marked with it; what came down, per model, into t. */
+static void bring_down(tribo_charging *c, const tribo_scene *s, const ring *r, long first,
+                       long count, double limit, tribo_charge_totals *t)
+{
+    const double seg = c->segment_length;
+    const tribo_band_geometry *geo = &r->geometry;
+    for (long j = 0; j < count; j++) {
+        const long i = (first + j) % r->len;
+        geo->limit[i] = limit;
+        const double area = geo->hi[i] > geo->lo[i] ? geo->width[i] * (geo->hi[i] - geo->lo[i]) * seg : 0.0;
+        for (int m = 0; m < c->n_models; m++) {
+            double *b = r->bands[m];
+            if (!b || !c->slot[m].model->density_unit)
+                continue;
+            const double cap = limit / c->slot[m].model->density_unit(s);
+            if (fabs(b[i]) > cap) {
+                const double held = b[i] > 0.0 ? cap : -cap;
+                t->band_charge[m] -= (b[i] - held) * area;
+                t->band_lost[m] += (b[i] - held) * area;
+                b[i] = held;
+            }
+        }
+    }
+}
+
+/* The episode a sample belongs to (§8e): a new one starts with no region; the sample's run
+   joins it; where the sample's largest patch, as the equal-area radius sqrt(Sc S_perp) =
+   Sc sqrt(h), widens the region, its limit falls and every band of the episode comes down
+   to it. Returns the bands so visited. */
+static long meet_episode(tribo_charging *c, const tribo_scene *s, const tribo_contact_sample *sample,
+                         const ring *r, long first, long count, tribo_charge_totals *t)
+{
+    tribo_gas_state *g = r->gas;
+    if (sample->episode != g->episode) {
+        g->episode = sample->episode;
+        g->radius = 0.0;
+        g->limit = INFINITY;
+        g->count = 0;
+    }
+    join_run(g, r, first, count);
+    double radius = g->radius;
+    for (int i = 0; i < sample->n_patch; i++)
+        radius = tribo_max(radius, sample->patch[i].half * c->segment_length *
+                                       sqrt(sample->patch[i].depth));
+    if (radius > g->radius) {
+        g->radius = radius;
+        g->limit = tribo_charging_region_limit(c, s, radius);
+        bring_down(c, s, r, g->first, g->count, g->limit, t);
+        return g->count;
+    }
+    for (long j = 0; j < count; j++)
+        r->geometry.limit[(first + j) % r->len] = g->limit;
+    return 0;
+}
+
+/* The grain's limit (§8e) on model m after a sample: its charge Q, moved by the sample's
+   change of the band charges (less the initial density's share of the area it widened, which
+   the uncharged surface gave up), at most grain_limit; the excess is taken back from the
+   sample's bands in proportion to what each of them gained (old[]: their densities before
+   it), and lost. */
+static void hold_grain(tribo_charging *c, const tribo_scene *s, const ring *r, const slices *sl,
+                       int m, double change, const double *old, const double *weights,
+                       tribo_charge_totals *t)
+{
+    tribo_gas_state *g = r->gas;
+    const double unit = c->slot[m].model->density_unit(s);
+    const double q = g->grain[m] + change, limit = c->grain_limit / unit;
+    g->grain[m] = q;
+    if (!(fabs(q) > limit))
+        return;
+    const double sign = q > 0.0 ? 1.0 : -1.0;
+    double gained = 0.0;
+    for (int i = 0; i < sl->n; i++)
+        for (long j = 0; j < sl->count[i]; j++) {
+            const long k = sl->k0[i] + j;
+            gained += sign * (r->bands[m][sl->at[i] + j] - old[k]) * weights[k];
+        }
+    if (!(gained > 0.0))
+        return;
+    const double f = tribo_min(1.0, (fabs(q) - limit) / gained);
+    for (int i = 0; i < sl->n; i++)
+        for (long j = 0; j < sl->count[i]; j++) {
+            double *b = &r->bands[m][sl->at[i] + j];
+            *b -= f * (*b - old[sl->k0[i] + j]);
+        }
+    const double taken = sign * f * gained;
+    t->band_charge[m] -= taken;
+    t->band_lost[m] += taken;
+    g->grain[m] = q - taken;
+}
+
 /* Charge a sample's run of count segments from ring index first; adds what it changed to t.
    Returns the number of segment values updated. */
 static long charge_run(tribo_charging *c, const tribo_scene *s, const tribo_contact_sample *sample,
                        const ring *r, long first, long count, tribo_charge_totals *t)
 {
     const slices sl = slices_of(r, first, count);
+    /* the sample's own change of the totals, for the grain's limit (§8e) */
+    const int paschen = c->paschen && r->geometry.width;
+    const double area0 = t->area;
+    double band0[TRIBO_CHARGE_MAX_MODELS];
+    for (int m = 0; m < c->n_models; m++)
+        band0[m] = t->band_charge[m];
     double *before = NULL, *after = NULL;
     if (r->geometry.width) {
         before = c->scratch;
@@ -618,6 +785,8 @@ static long charge_run(tribo_charging *c, const tribo_scene *s, const tribo_cont
         leave_targets(c, s, sample, count, 0, targets);
     }
     long updates = 0;
+    if (paschen)
+        updates += meet_episode(c, s, sample, r, first, count, t);
     for (int m = 0; m < c->n_models; m++) {
         tribo_charge_slot *slot = &c->slot[m];
         if (!r->values[m])
@@ -627,9 +796,20 @@ static long charge_run(tribo_charging *c, const tribo_scene *s, const tribo_cont
                                         sample->globals_end + slot->globals_at, &c->decay};
         const double cap = slot_cap(slot, s);
         charge_values(slot, s, &f, r->values[m], &sl, targets[m], cap, &t->sum[m], &t->lost[m]);
-        if (r->bands[m])
+        if (r->bands[m] && paschen && slot->model->density_unit) {
+            double *old = c->scratch + 2 * count;
+            for (int i = 0; i < sl.n; i++)
+                memcpy(old + sl.k0[i], r->bands[m] + sl.at[i], (size_t)sl.count[i] * sizeof *old);
+            charge_bands(slot, s, &f, r->bands[m], &sl, before, after, targets[m],
+                         r->gas->limit / slot->model->density_unit(s), &t->band_charge[m],
+                         &t->band_lost[m]);
+            const double init = tribo_charging_initial_value(slot->model, s);
+            hold_grain(c, s, r, &sl, m, t->band_charge[m] - band0[m] - init * (t->area - area0),
+                       old, after, t);
+        } else if (r->bands[m]) {
             charge_bands(slot, s, &f, r->bands[m], &sl, before, after, targets[m], cap,
                          &t->band_charge[m], &t->band_lost[m]);
+        }
         updates += count;
     }
     return updates;
@@ -638,7 +818,8 @@ static long charge_run(tribo_charging *c, const tribo_scene *s, const tribo_cont
 /* The instance's arrays (committed, or their output copies) as a ring. */
 static ring ring_of(tribo_charging *c, tribo_charge_destination where)
 {
-    ring r = {.len = c->n};
+    ring r = {.len = c->n, .wraps = 1,
+              .gas = where == TRIBO_CHARGE_COMMIT ? &c->gas : &c->gas_out};
     for (int m = 0; m < c->n_models; m++) {
         const tribo_charge_slot *slot = &c->slot[m];
         if (!slot->selected)
@@ -665,8 +846,16 @@ double tribo_charging_capped_area(const tribo_charging *c, const tribo_charge_sl
                                   const tribo_scene *s, const double *bands,
                                   const tribo_band_geometry *g)
 {
-    const double cap = cap_of(slot, s);
     double area = 0.0;
+    if (c->paschen && slot->model->density_unit) {
+        /* each band at the limit of the episode that last touched it (§8e) */
+        const double unit = slot->model->density_unit(s);
+        for (long i = 0; i < c->n; i++)
+            if (fabs(bands[i]) >= g->limit[i] / unit && g->hi[i] > g->lo[i])
+                area += g->width[i] * (g->hi[i] - g->lo[i]) * c->segment_length;
+        return area;
+    }
+    const double cap = cap_of(slot, s);
     if (isfinite(cap))
         for (long i = 0; i < c->n; i++)
             if (fabs(bands[i]) >= cap && g->hi[i] > g->lo[i])
@@ -727,8 +916,10 @@ int tribo_charging_copy_out(tribo_charging *c)
     }
     if (copy_array(&c->bands_out.width, c->bands.width, c->n) ||
         copy_array(&c->bands_out.lo, c->bands.lo, c->n) ||
-        copy_array(&c->bands_out.hi, c->bands.hi, c->n))
+        copy_array(&c->bands_out.hi, c->bands.hi, c->n) ||
+        copy_array(&c->bands_out.limit, c->bands.limit, c->n))
         return -1;
+    c->gas_out = c->gas;
     return 0;
 }
 
@@ -741,11 +932,16 @@ int tribo_charging_pending_totals(tribo_charging *c, const tribo_scene *s,
 {
     const long n = c->n;
     long anchor = -1, lo = 0, hi = 0; /* the window [anchor + lo, anchor + hi), unwrapped */
-    for (size_t i = 0; i < n_samples; i++) {
-        long first;
-        const long count = segment_run(&samples[i], &first);
+    /* with the Paschen limit, the episode's bands too: a sample may bring them down (§8e) */
+    const int episode = c->paschen && c->gas.count > 0;
+    int any_sample = 0;
+    for (size_t i = 0; i < n_samples + (size_t)episode; i++) {
+        long first = 0;
+        const long count = i == n_samples ? (first = c->gas.first, c->gas.count)
+                                          : segment_run(&samples[i], &first);
         if (!count)
             continue;
+        any_sample |= i < n_samples;
         if (anchor < 0) {
             anchor = first;
             hi = count;
@@ -760,7 +956,7 @@ int tribo_charging_pending_totals(tribo_charging *c, const tribo_scene *s,
         hi = offset + count > hi ? offset + count : hi;
     }
     memset(totals, 0, sizeof *totals);
-    if (anchor < 0)
+    if (!any_sample)
         return 0;
     const long len = hi - lo < n ? hi - lo : n;
     long start = len < n ? (anchor + lo) % n : 0;
@@ -771,7 +967,7 @@ int tribo_charging_pending_totals(tribo_charging *c, const tribo_scene *s,
     for (int m = 0; m < c->n_models; m++)
         arrays += (c->slot[m].segments != NULL) + (c->slot[m].bands != NULL);
     if (c->keep_bands)
-        arrays += 3;
+        arrays += 3 + (c->paschen != 0);
     if (c->window_cap < arrays * (size_t)len) {
         double *w = realloc(c->window, arrays * (size_t)len * sizeof *w);
         if (!w)
@@ -779,7 +975,13 @@ int tribo_charging_pending_totals(tribo_charging *c, const tribo_scene *s,
         c->window = w;
         c->window_cap = arrays * (size_t)len;
     }
-    ring r = {.len = len};
+    tribo_gas_state gas = c->gas;
+    if (episode) { /* the episode's run in the window's indices */
+        gas.first = (gas.first - start) % n;
+        if (gas.first < 0)
+            gas.first += n;
+    }
+    ring r = {.len = len, .wraps = len == n, .gas = &gas};
     double *next = c->window;
     const long head = len < n - start ? len : n - start;
 #define WINDOW_OF(dst, src)                                                                      \
@@ -799,6 +1001,8 @@ int tribo_charging_pending_totals(tribo_charging *c, const tribo_scene *s,
         WINDOW_OF(r.geometry.width, c->bands.width);
         WINDOW_OF(r.geometry.lo, c->bands.lo);
         WINDOW_OF(r.geometry.hi, c->bands.hi);
+        if (c->paschen)
+            WINDOW_OF(r.geometry.limit, c->bands.limit);
     }
 #undef WINDOW_OF
     for (size_t i = 0; i < n_samples; i++) {

@@ -6,6 +6,7 @@
 
 #include "charge_interface.h"
 #include "geometry.h"
+#include "paschen.h"
 
 /* The smaller and the larger of two numbers that are not NaN (fmin and fmax are calls where
    the hot loops need a compare). */
@@ -38,6 +39,9 @@ typedef struct tribo_contact_sample {
        saturation at the globals of the time it left the contact (where an edge crossed its
        far boundary), or of the end */
     int leave_by_edges;
+    /* the contact episode it belongs to (model.md §8e): 1 + the touch-downs before it; 0 the
+       committed point's (tribo_charge_sample stamps it) */
+    long long episode;
     double globals_begin[TRIBO_CHARGE_MAX_GLOBALS];
     double globals_mid[TRIBO_CHARGE_MAX_GLOBALS];
     double globals_end[TRIBO_CHARGE_MAX_GLOBALS];
@@ -81,7 +85,21 @@ typedef struct tribo_charge_slot {
    segment (empty: lo = 1, hi = 0). */
 typedef struct tribo_band_geometry {
     double *width, *lo, *hi;
+    /* with the Paschen limit (§8e): the limit of the episode that last touched each band, in
+       the sliding model's unit of density (INF: none yet); NULL without it */
+    double *limit;
 } tribo_band_geometry;
+
+/* The gas's limit as the samples meet it (model.md §8e): the contact episode under way, its
+   region radius L_e (units of a) and limit sigma_P(L_e) (the sliding model's unit), the run
+   of bands it has touched ([first, first + count) around the ring), and each model's grain
+   charge Q (its own units times a^2), which the grain's limit bounds. */
+typedef struct tribo_gas_state {
+    long long episode;
+    double radius, limit;
+    long first, count;
+    double grain[TRIBO_CHARGE_MAX_MODELS];
+} tribo_gas_state;
 
 typedef struct tribo_charging {
     int n_models;
@@ -105,13 +123,31 @@ typedef struct tribo_charging {
     tribo_band_geometry bands, bands_out;
     double *window;
     size_t window_cap;
-    double *scratch; /* per-segment areas of a sample's run */
+    double *scratch; /* per-segment areas of a sample's run, and band densities before it */
+    /* the Paschen limit (breakdown_model = paschen on the spheroid, §8e; paschen 0 else):
+       S of the gas's gamma, a region's reduced size per unit radius (A p a, halved for the
+       image of a grounded wall), the grain's limit in the sliding model's unit times a^2,
+       and the gas's state, committed and with the pending samples applied */
+    int paschen;
+    tribo_paschen table;
+    double region_scale, grain_limit;
+    tribo_gas_state gas, gas_out;
     double *targets; /* per model, each segment's saturation (n_models x n) */
 } tribo_charging;
 
 /* Where a sample's charge goes: into the committed charges (and their sums), or queued for
    the output point, which applies it to copies of them when they are read. */
 typedef enum { TRIBO_CHARGE_COMMIT, TRIBO_CHARGE_PENDING } tribo_charge_destination;
+
+/* The Paschen limit of a region of radius L (units of a) in the sliding model's unit of
+   density (§8e). */
+double tribo_charging_region_limit(const tribo_charging *c, const tribo_scene *s, double radius);
+
+/* The Paschen limit's constants for the scene (§8e), where it acts (breakdown_model =
+   paschen, with the grain's bands): the table of the gas's gamma over the regions up to the
+   sphere of the grain's area (a larger one is minimised where it comes), and the grain's
+   limit; the gas's state stays. */
+void tribo_charging_setup_gas(tribo_charging *c, const tribo_scene *s);
 
 /* Set up the models[0..n_models) (selected by bit i of `selection`) over n segments of
    the ellipse of roundness eps, with the grain's bands where keep_bands (§8c); the boundary's
