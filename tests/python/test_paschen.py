@@ -98,11 +98,13 @@ def test_an_impact_leaves_sigma_p_of_its_region_or_sigma0_below_it():
     is below; on an insulating wall the pair form. The core's sigma_P table against this
     module's own minimisation: within 2 % (the table's 1e-4, the charged area's band rule
     within 1 % of the patch: half a per cent in sigma_P)."""
-    for size, speed in ((2e-4, 1.0), (2e-3, 0.5), (2e-3, 8.0), (1e-2, 2.0)):
-        hit = tribo.single_impact("PE", "steel", speed=speed, size=size)
+    for size, speed in ((2e-4, 1.0), (2e-4, 8.0), (2e-3, 0.5), (2e-3, 8.0), (1e-2, 2.0)):
+        hit = tribo.single_impact("PE", "steel", speed=speed, size=size)  # sigma0 -1e-3
         radius = math.sqrt(hit["charged_area"] / math.pi)
+        # measured: 0.2-1.7 % above (the charged area's bands over-count the patch, so the
+        # radius from it is a little large and its sigma_P a little small)
         assert abs(hit["charge"]) / hit["charged_area"] == pytest.approx(
-            paschen.limit(radius), rel=0.02), (size, speed)
+            min(1e-3, paschen.limit(radius)), rel=0.02), (size, speed)
         weak = tribo.single_impact("PE", "steel", speed=speed, size=size,
                                    settings={"sigma0": -1e-5})
         assert weak["charge"] / weak["charged_area"] == pytest.approx(-1e-5, rel=1e-9)

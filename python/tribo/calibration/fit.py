@@ -94,6 +94,11 @@ REFINEMENTS, REFINED = 3, 1e-3
 JACOBIAN_STEP = 0.05  # decades, the forward differences of a fit on runs
 # sigma0's lower bound (data at the gas's limit) is found to this many decades (0.5 %)
 LOWER_BOUND_DECADES = 0.002
+LOWER_BOUND_SPAN = 3.0  # decades below the fit where the bound is sought
+# and not below 1e-5 C/m2 (log10): the gas's limit of a region up to a centimetre is 4.9e-5
+# and more, so data at the limit are bounded above it; smaller sigma0 may leave the model's
+# range of Sigma0 for large, stiff grains
+LOWER_BOUND_FLOOR = -5.0
 IMPACT_CHUNK, GRAIN_CHUNK = 25, 8  # runs per task (about 0.1 s each)
 
 
@@ -840,12 +845,15 @@ def lower_bound(problem: Problem, evaluator: Evaluator, fit: Fit) -> Fit:
     ss_fit, model_fit, r_fit = sum_of_squares(problem, evaluator, values, x)
     floor = max(fit.scatter, FLOOR_DECADES) if math.isfinite(fit.scatter) else FLOOR_DECADES
     threshold = ss_fit + COMPLETE_TRANSFER_CHI2 * floor ** 2
-    if sum_of_squares(problem, evaluator, values, up)[0] > threshold:
+    if sum_of_squares(problem, evaluator, values, up)[0] > threshold or not capped_at(
+            problem, evaluator, dict(values, sigma0=problem.sign * 10 ** up)):
+        return fit  # sigma0 acts on the data, or they do not depend on it for another reason
+    # the smallest |sigma0| within the threshold: between a point outside it and the fit;
+    # data that fit as well LOWER_BOUND_SPAN decades below bound nothing (the sliding
+    # model's charge at the limit, raised by the work whatever sigma0: not determined)
+    below = max(low, x - LOWER_BOUND_SPAN, LOWER_BOUND_FLOOR)
+    if below >= x or sum_of_squares(problem, evaluator, values, below)[0] <= threshold:
         return fit
-    # the smallest |sigma0| within the threshold: between a point outside it and the fit
-    below = max(low, x - 3.0)
-    while below > low and sum_of_squares(problem, evaluator, values, below)[0] <= threshold:
-        below = max(low, below - 3.0)
     inside, model, r = x, model_fit, r_fit
     while inside - below > LOWER_BOUND_DECADES:
         middle = 0.5 * (inside + below)

@@ -242,8 +242,14 @@ def repeated_impacts(particle: str = "PE", wall: str = "steel", n: int = 10, *, 
         raise ObservableError(f"n = {n!r}: the number of impacts, a whole number from 1 to "
                               f"{MAX_IMPACTS}")
     image, base = _image_and_base(particle, wall, settings, materials, fmu, charge_model)
+    md = image.model_description()
     params = impact_parameters(base, speed=speed, angle_deg=angle_deg, size=size,
                                epsilon=epsilon, phi0_deg=phi0_deg, initial_charge=initial_charge)
+    if _paschen(md, params) and "breakdown_density" not in (settings or {}):
+        # the carried charge re-enters as the initial density, which the core holds at
+        # breakdown_density (section 8b's rule for an arriving surface); with the gas's limit
+        # the grain's own limit holds it (section 8e), so the long-gap cap is lifted here
+        params["breakdown_density"] = 0.0
     check_values(image, {k: [v] for k, v in params.items()})
     row = run_runs(image, Runs((params,), _checked_limit(limit), charge_model, repeat=int(n)))[0]
     charges = np.array(row.get("charges", [row["charge"]]))
@@ -251,13 +257,19 @@ def repeated_impacts(particle: str = "PE", wall: str = "steel", n: int = 10, *, 
     return pd.DataFrame({"impact": np.arange(1, len(charges) + 1), "charge": charges,
                          "charge_gained": charges - row["charge_initial"],
                          "delta": charges - before,
-                         "ceiling": ceiling_of(image.model_description(), params, charge_model),
+                         "ceiling": ceiling_of(md, params, charge_model),
                          "surface": REPEATED_SURFACE})
 
 
 # what repeated_impacts charges, beside a chute run (the module's text)
 REPEATED_SURFACE = ("fresh spots over the whole spheroid (the charge spread evenly between "
                     "impacts); a chute run charges only the belt its section sweeps")
+
+
+def _paschen(md, params: dict) -> bool:
+    """The gas's limit of section 8e is in force (breakdown_model = 1, paschen)."""
+    model = params.get("breakdown_model", start_value(md, "breakdown_model"))
+    return model is not None and int(model) == 1
 
 
 def ceiling_of(md, params: dict, charge_model: str = "static") -> float:
@@ -274,8 +286,7 @@ def ceiling_of(md, params: dict, charge_model: str = "static") -> float:
     size, epsilon = value("size"), value("epsilon")
     area = spheroid_surface(size, epsilon)
     own = abs(sigma0) * area if charge_model == "static" else math.inf
-    model = value("breakdown_model")
-    if model is not None and int(model) == 1:
+    if _paschen(md, params):
         gas = Gas.of(params, md)
         cap = grain_limit(size, epsilon, gas, bool(value("wall_conducting") or 0))
     else:
