@@ -126,6 +126,7 @@ def main(argv=None):
     p.add_argument("--work", default=None, help="the runs' folder (default: a temporary one)")
     a = p.parse_args(argv)
     work = a.work or tempfile.mkdtemp(prefix="validation-")
+    os.makedirs(work, exist_ok=True)
     before = os.path.join(work, "revision4.toml")
     with open(before, "w") as f:
         f.write(BEFORE_TABLE)
