@@ -206,7 +206,9 @@ Test(grain, instantaneous_transfer_is_the_limit_of_short_charging_times)
         snprintf(more, sizeof more, "charging_time=%.17g", t0);
         m = impact(&d, 1.0, more);
         const double error = fabs(tribo_si_get(&d, m, TRIBO_SI_QUANTITY_CHARGE_STATIC) / limit - 1.0);
-        cr_expect(error <= previous, "t0 %g: error %.3g after %.3g", t0, error, previous);
+        /* (to rounding: the bands' mean widths, §8e, leave it a few 1e-16 off at the end) */
+        cr_expect(error <= previous || error <= 1e-15, "t0 %g: error %.3g after %.3g", t0, error,
+                  previous);
         if (t0 <= 1.1e-9)
             cr_expect(error <= 1e-12, "t0 %g: error %.3g", t0, error);
         previous = error;

@@ -139,7 +139,7 @@ void tribo_charging_setup_gas(tribo_charging *c, const tribo_scene *s)
         return;
     /* a grounded wall's image halves the region's size (the pair form: L/2 -> L) */
     c->region_scale = s->paschen_gap_scale * (s->wall_conducting ? 0.5 : 1.0);
-    const double area = tribo_spheroid_area(s->epsilon);
+    const double area = tribo_spheroid_area(c->arc.eps);
     const double radius = sqrt(area / (4.0 * M_PI));
     tribo_paschen_build(&c->table, s->secondary_emission, c->region_scale * radius);
     c->grain_limit = tribo_charging_region_limit(c, s, radius) * area;
@@ -150,7 +150,7 @@ static void reset_gas(tribo_charging *c, const tribo_scene *s)
 {
     tribo_charging_setup_gas(c, s);
     c->gas = (tribo_gas_state){.limit = INFINITY};
-    const double area = tribo_spheroid_area(s->epsilon);
+    const double area = tribo_spheroid_area(c->arc.eps);
     for (int k = 0; k < c->n_models && c->paschen; k++)
         if (c->slot[k].bands)
             c->gas.grain[k] = tribo_charging_initial_value(c->slot[k].model, s) * area;
@@ -510,6 +510,46 @@ static double half_width_over(const tribo_contact_sample *sample, double k)
     return sqrt(w2);
 }
 
+/* (u sqrt(1 - u^2) + asin u) / 2: the integral of the unit ellipse's half-chord from 0 to u. */
+static double chord_integral(double u) { return 0.5 * (u * sqrt(1.0 - u * u) + asin(u)); }
+
+/* The area (segments^2) of a patch point's ellipse over segment k's arc [k, k + 1]. */
+static double slice_area(const tribo_patch_point *p, double k)
+{
+    if (!(p->half > 0.0))
+        return 0.0;
+    const double u1 = tribo_min(tribo_max((k - p->centre) / p->half, -1.0), 1.0);
+    const double u2 = tribo_min(tribo_max((k + 1.0 - p->centre) / p->half, -1.0), 1.0);
+    return 2.0 * p->depth * p->half * p->half * (chord_integral(u2) - chord_integral(u1));
+}
+
+/* The patch's mean width (segments) over the part [k + a, k + b] of segment k it covers in a
+   sample, so that the band's area W L is the patch's own over the segment (§8e's refinement
+   of §8c's band, where the patch is not much longer than a segment): the largest slice of one
+   of its points, or, where the centre's path crosses the segment, that and the strip of the
+   full width it sweeps there; at most the full width. */
+static double mean_width_over(const tribo_contact_sample *sample, double k, double a, double b)
+{
+    const tribo_patch_point *p = sample->patch;
+    double area = 0.0, full = 0.0;
+    for (int i = 0; i < sample->n_patch; i++) {
+        const double slice = slice_area(&p[i], k);
+        area = tribo_max(area, slice);
+        full = tribo_max(full, 2.0 * p[i].depth * p[i].half);
+        if (i + 1 == sample->n_patch)
+            break;
+        const double lo = tribo_min(p[i].centre, p[i + 1].centre);
+        const double hi = tribo_max(p[i].centre, p[i + 1].centre);
+        const double inside = tribo_min(hi, k + 1.0) - tribo_max(lo, k);
+        if (inside > 0.0)
+            area = tribo_max(area, tribo_max(slice, slice_area(&p[i + 1], k)) +
+                                       2.0 * tribo_max(p[i].depth * p[i].half,
+                                                       p[i + 1].depth * p[i + 1].half) *
+                                           inside);
+    }
+    return tribo_min(area / (b - a), full);
+}
+
 /* The bands of segments at[0..count) of the ring, offsets k0.. from the sample's first: each
    widened and lengthened by the patch (§8c), each model's band density diluted where its area
    grew (the new part at the initial density). The areas (a^2) before and after go to
@@ -543,7 +583,9 @@ static void widen_bands(tribo_charging *c, const tribo_scene *s, const tribo_con
             if (b > a) { /* (a run's end segment may be touched only to rounding) */
                 *lo = tribo_min(*lo, a);
                 *hi = tribo_max(*hi, b);
-                const double w = whole_ring ? bound : 2.0 * half_width_over(sample, k);
+                const double w = whole_ring  ? bound
+                                 : c->paschen ? mean_width_over(sample, k, a, b)
+                                              : 2.0 * half_width_over(sample, k);
                 *W = tribo_max(*W, w * seg);
             }
         }
@@ -693,8 +735,9 @@ static void bring_down(tribo_charging *c, const tribo_scene *s, const ring *r, l
 
 /* The episode a sample belongs to (§8e): a new one starts with no region; the sample's run
    joins it; where the sample's largest patch, as the equal-area radius sqrt(Sc S_perp) =
-   Sc sqrt(h), widens the region, its limit falls and every band of the episode comes down
-   to it. Returns the bands so visited. */
+   Sc sqrt(h), widens the region, its limit falls and every other band of the episode comes
+   down to it (the run's own are charged within it next, their transfer's excess lost there).
+   Returns the bands so visited. */
 static long meet_episode(tribo_charging *c, const tribo_scene *s, const tribo_contact_sample *sample,
                          const ring *r, long first, long count, tribo_charge_totals *t)
 {
@@ -710,15 +753,21 @@ static long meet_episode(tribo_charging *c, const tribo_scene *s, const tribo_co
     for (int i = 0; i < sample->n_patch; i++)
         radius = tribo_max(radius, sample->patch[i].half * c->segment_length *
                                        sqrt(sample->patch[i].depth));
+    long visited = 0;
     if (radius > g->radius) {
         g->radius = radius;
         g->limit = tribo_charging_region_limit(c, s, radius);
-        bring_down(c, s, r, g->first, g->count, g->limit, t);
-        return g->count;
+        /* the run lies in the episode's: [g->first + ahead, + count) */
+        long ahead = first - g->first;
+        if (ahead < 0)
+            ahead += r->len;
+        bring_down(c, s, r, g->first, ahead, g->limit, t);
+        bring_down(c, s, r, (first + count) % r->len, g->count - ahead - count, g->limit, t);
+        visited = g->count - count;
     }
     for (long j = 0; j < count; j++)
         r->geometry.limit[(first + j) % r->len] = g->limit;
-    return 0;
+    return visited;
 }
 
 /* The grain's limit (§8e) on model m after a sample: its charge Q, moved by the sample's
@@ -737,11 +786,12 @@ static void hold_grain(tribo_charging *c, const tribo_scene *s, const ring *r, c
     if (!(fabs(q) > limit))
         return;
     const double sign = q > 0.0 ? 1.0 : -1.0;
+    /* (only from the bands that gained: one the sample brought down stays within its limit) */
     double gained = 0.0;
     for (int i = 0; i < sl->n; i++)
         for (long j = 0; j < sl->count[i]; j++) {
             const long k = sl->k0[i] + j;
-            gained += sign * (r->bands[m][sl->at[i] + j] - old[k]) * weights[k];
+            gained += tribo_max(0.0, sign * (r->bands[m][sl->at[i] + j] - old[k])) * weights[k];
         }
     if (!(gained > 0.0))
         return;
@@ -749,7 +799,7 @@ static void hold_grain(tribo_charging *c, const tribo_scene *s, const ring *r, c
     for (int i = 0; i < sl->n; i++)
         for (long j = 0; j < sl->count[i]; j++) {
             double *b = &r->bands[m][sl->at[i] + j];
-            *b -= f * (*b - old[sl->k0[i] + j]);
+            *b -= f * sign * tribo_max(0.0, sign * (*b - old[sl->k0[i] + j]));
         }
     const double taken = sign * f * gained;
     t->band_charge[m] -= taken;
