@@ -96,15 +96,13 @@ def test_an_impact_leaves_sigma_p_of_its_region_or_sigma0_below_it():
     """docs/model.md section 8e: Delta q / A_max = sigma_P(L_e) where |sigma0| is above it
     (L_e the equal-area radius of the largest patch, sqrt(A_max / pi)), = |sigma0| where it
     is below; on an insulating wall the pair form. The core's sigma_P table against this
-    module's own minimisation: within 2 % (the table's 1e-4, the charged area's band rule
-    within 1 % of the patch: half a per cent in sigma_P)."""
+    module's own minimisation: measured within 0.16 % (0.2-10 mm, 0.1-10 m/s, 30 and 90
+    degrees, eps 0.7; the core's table to 1e-4), held to 0.5 %."""
     for size, speed in ((2e-4, 1.0), (2e-4, 8.0), (2e-3, 0.5), (2e-3, 8.0), (1e-2, 2.0)):
         hit = tribo.single_impact("PE", "steel", speed=speed, size=size)  # sigma0 -1e-3
         radius = math.sqrt(hit["charged_area"] / math.pi)
-        # measured: 0.2-1.7 % above (the charged area's bands over-count the patch, so the
-        # radius from it is a little large and its sigma_P a little small)
         assert abs(hit["charge"]) / hit["charged_area"] == pytest.approx(
-            min(1e-3, paschen.limit(radius)), rel=0.02), (size, speed)
+            min(1e-3, paschen.limit(radius)), rel=5e-3), (size, speed)
         weak = tribo.single_impact("PE", "steel", speed=speed, size=size,
                                    settings={"sigma0": -1e-5})
         assert weak["charge"] / weak["charged_area"] == pytest.approx(-1e-5, rel=1e-9)
@@ -112,7 +110,7 @@ def test_an_impact_leaves_sigma_p_of_its_region_or_sigma0_below_it():
                               settings={"sigma0": -1e-3, "wall_conducting": 0})
     radius = math.sqrt(hit["charged_area"] / math.pi)
     assert abs(hit["charge"]) / hit["charged_area"] == pytest.approx(
-        paschen.limit(radius, conducting=False), rel=0.02)
+        paschen.limit(radius, conducting=False), rel=5e-3)
 
 
 def test_the_gas_parameters_reach_the_core_through_the_api_and_the_commands(tmp_path, capsys):
@@ -129,7 +127,7 @@ def test_the_gas_parameters_reach_the_core_through_the_api_and_the_commands(tmp_
     assert abs(thin["charge"]) < abs(air["charge"])
     gas = paschen.Gas.of({"gas_pressure": 1e4})
     assert abs(thin["charge"]) / thin["charged_area"] == pytest.approx(
-        paschen.limit(math.sqrt(thin["charged_area"] / math.pi), gas), rel=0.02)
+        paschen.limit(math.sqrt(thin["charged_area"] / math.pi), gas), rel=5e-3)
     out = tmp_path / "map"
     assert tribo_command(["impact-map", "--speed", "2", "--angle-deg", "90", "--set",
                           "gas_pressure=1e4", "--set", "secondary_emission=0.05", "--serial",
