@@ -35,7 +35,8 @@ touched, and meets the wall on other spots: the even spread is the simplest such
 one plane: its contacts charge only the belt its section sweeps (the bands of docs/model.md
 section 8c, its `charged_area`), never the rest of the spheroid, so its ceiling is that
 belt at the density its patches keep (min(|sigma0|, sigma_P(L_e)) times the belt's area,
-at most the grain's limit): for a 1 mm sphere a few hundredths of the surface. The two
+at most the grain's limit): under a thousandth of the surface (2.1e-3 mm2 on average down
+the reference chute, docs/validation.md). The two
 describe different grains: repeated impacts one tumbling between impacts, the chute one
 that keeps its orientation plane; the column `surface` of repeated_impacts says so.
 
