@@ -21,8 +21,11 @@ dq the map's (uncharged grain), A_s = pi size^2 (the condenser law with complete
 section 8c: dq = (sigma0 - sigma_init) A; tested there). A second impact on the spot an
 earlier one charged is thus not recognised as such: the grain's charge is mixed over its
 surface, the simplest such mixing (as for repeated_impacts). So after impacts dq_k,
-q = Q (1 - prod_k (1 - dq_k / Q)), Q = sigma0 A_s. The air-breakdown limit (section 8b) is
-not applied: a chute's grains stay far below it (their charge is a small fraction of Q).
+q = Q (1 - prod_k (1 - dq_k / Q)), Q = sigma0 A_s. The gas's limits (sections 8b, 8e) are
+the maps' only (each impact's dq is held at its patch's limit): a chute's grains stay far
+below the grain's own limit, and a spot's later contacts are not told apart (docs/dem.md:
+at the table's sigma0 the chute model's rolling band raises the impacts' spots to sigma0,
+which this composition does not).
 
 **Sustained contact.** A grain that comes to rest on the plate or rolls on it (a contact
 that lasts: contacts.py's `sustained`) keeps touching it under its own weight, and in the
