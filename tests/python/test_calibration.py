@@ -149,9 +149,10 @@ def test_repeated_impacts_at_the_tables_sigma0_approach_the_grains_limit(image):
     assert ceiling == pytest.approx(-instance_limit, rel=2e-3)  # the core's table: 1e-4
     assert ceiling == pytest.approx(-tribo.paschen.grain_limit(1e-3, 1.0), rel=1e-12)
     assert (rows["charge"] < 0).all() and (np.abs(rows["charge"]) <= abs(ceiling) * (1 + 1e-9)).all()
-    assert (np.diff(np.abs(rows["charge"])) >= 0).all()
+    # rising to the limit, then held there (to the rounding: 5e-26 C, 2e-16 of it, measured)
+    assert (np.diff(np.abs(rows["charge"])) >= -1e-12 * abs(ceiling)).all()
     assert rows["charge"].iloc[-1] == pytest.approx(ceiling, rel=2e-3)
-    assert rows["delta"].iloc[-1] == 0.0
+    assert abs(rows["delta"].iloc[-1]) <= 1e-12 * abs(ceiling)
 
 
 def test_an_impact_that_does_not_lift_off_says_so_and_when():
