@@ -215,7 +215,7 @@ def test_sigma0_comes_back_from_noisy_impacts_and_complete_transfer_is_said(imag
     assert values["sigma0"] == fit.loc["sigma0", "value"] and values["charging_time"] == 0.0
 
 
-def test_impacts_at_the_gas_limit_give_sigma0_as_a_lower_bound(image, tmp_path):
+def test_impacts_at_the_gas_limit_give_sigma0_as_a_lower_bound(image, tmp_path, capsys):
     """Head-on impacts of 1 and 2 mm PE spheres from 0.5 to 4 m/s made at the table's
     sigma0 (-1e-3 C/m2, above the gas's limit of every patch: each impact leaves sigma_P of
     its region, docs/model.md section 8e), no noise: any |sigma0| at or above the largest of
@@ -244,6 +244,14 @@ def test_impacts_at_the_gas_limit_give_sigma0_as_a_lower_bound(image, tmp_path):
     assert tribo.materials.pair_sigma0("PE", "steel", materials=report.materials_file) == bound
     toml = open(report.materials_file).read()
     assert 'sigma0_status = "lower bound"' in toml
+    # the command says it so
+    data.to_csv(tmp_path / "impacts.csv", index=False)
+    assert tribo_command(["calibrate", "--impacts", str(tmp_path / "impacts.csv"), "--fit",
+                          "sigma0", "--serial", "--no-progress", "--no-plot",
+                          "--out", str(tmp_path / "command")]) == 0
+    said = capsys.readouterr().out
+    assert f"|sigma0| >= {abs(bound):.4g} C/m2 (lower bound" in said
+    assert "calibration: warning: sigma0 is a lower bound, not a value" in said
 
 
 def test_impacts_below_the_gas_limit_are_fitted_as_before_with_the_limit_on(image, tmp_path):
