@@ -24,7 +24,7 @@ double tribo_grain_charge(tribo_model *m, int index)
        assumptions can make patches whose bands add up to more than the surface: then none of
        it is uncharged */
     const double uncharged = fmax(0.0, tribo_spheroid_area(m->scene.epsilon) - tribo_charged_area(m));
-    return reported(m, index, &v, tribo_charging_initial_value(model, &m->scene) * uncharged +
+    return reported(m, index, &v, tribo_charging_initial_value(&m->charging, model, &m->scene) * uncharged +
                                       v.band_charge);
 }
 

@@ -415,7 +415,7 @@ static const char *bands_problem(const tribo_model *m, const tribo_charge_slot *
     if (!all_finite(bands, n) || !finite_sums(charge, lost))
         return "bands that are not numbers";
     const double cap = cap_of(slot, scene);
-    const double init = tribo_charging_initial_value(slot->model, scene);
+    const double init = tribo_charging_initial_value(&m->charging, slot->model, scene);
     /* with the Paschen limit each band has its episode's (§8e) */
     const int paschen = scene->breakdown_model == TRIBO_BREAKDOWN_PASCHEN && slot->model->density_unit;
     const double unit = paschen ? slot->model->density_unit(scene) : 1.0;

@@ -125,6 +125,17 @@ static inline unsigned char *saved_state(const tribo_model *m, size_t *size)
     return bytes;
 }
 
+/* A new instance of the scene s loaded with m's saved state. */
+static inline tribo_model *loaded_copy(const tribo_model *m, const tribo_scene *s)
+{
+    size_t size;
+    unsigned char *bytes = saved_state(m, &size);
+    tribo_model *copy = make(s);
+    cr_assert_eq(tribo_state_load(copy, bytes, size), TRIBO_OK, "%s", tribo_last_error(copy));
+    free(bytes);
+    return copy;
+}
+
 /* Where a state keeps whether (and why) its run has ended (state_io.c's layout): after the
    header, the parameters, F_T, F_N, the output time and the six work counters. */
 static inline size_t state_ended_offset(void)

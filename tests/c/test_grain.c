@@ -9,6 +9,7 @@
 #include "charge_registry.h"
 #include "charging.h"
 #include "si.h"
+#include "si_support.h"
 #include "support.h"
 
 /* Every model of the registry over n segments of the ellipse eps, with the grain's bands. */
@@ -109,7 +110,7 @@ Test(grain, a_band_that_widens_keeps_its_charge)
     const double A_s = tribo_spheroid_area(0.7);
     double before[TRIBO_SEGMENTS_COUNT];
     for (int k = 0; k < TRIBO_SEGMENTS_COUNT; k++) {
-        const double init = tribo_charging_initial_value(c.slot[k].model, &P);
+        const double init = tribo_charging_initial_value(&c, c.slot[k].model, &P);
         before[k] = init * (A_s - charged_area(&c)) + tribo_compensated_value(&c.band_charge[k]);
     }
     const double area = charged_area(&c);
@@ -117,7 +118,7 @@ Test(grain, a_band_that_widens_keeps_its_charge)
     tribo_charging_apply(&c, &P, &wide, TRIBO_CHARGE_COMMIT);
     cr_assert_gt(charged_area(&c), 3.0 * area);
     for (int k = 0; k < TRIBO_SEGMENTS_COUNT; k++) {
-        const double init = tribo_charging_initial_value(c.slot[k].model, &P);
+        const double init = tribo_charging_initial_value(&c, c.slot[k].model, &P);
         const double after = init * (A_s - charged_area(&c)) + tribo_compensated_value(&c.band_charge[k]);
         cr_expect_float_eq(after, before[k], 1e-14 * fabs(before[k]), "%s: %.17g, was %.17g",
                            c.slot[k].model->name, after, before[k]);
@@ -126,17 +127,6 @@ Test(grain, a_band_that_widens_keeps_its_charge)
 }
 
 /* ---- the grain in SI units ------------------------------------------------------------------ */
-
-static tribo_si_derived derived(const char *settings)
-{
-    tribo_si_scene si;
-    tribo_si_scene_defaults(&si);
-    char err[512];
-    cr_assert_eq(tribo_si_scene_apply(&si, settings, err, sizeof err), TRIBO_OK, "%s", err);
-    tribo_si_derived d;
-    cr_assert_eq(tribo_si_derive(&si, &d, err, sizeof err), TRIBO_OK, "%s", err);
-    return d;
-}
 
 /* One impact of a 2 mm PE sphere head-on on a level steel wall at speed v: the first
    lift-off ends the run. Returns the instance there. */
@@ -256,11 +246,7 @@ Test(grain, the_bands_run_independently_of_the_times_asked_for_and_survive_a_sta
         const tribo_status s = tribo_advance_fully(many, end * k / 400.0);
         cr_assert(s == TRIBO_OK || s == TRIBO_ENDED, "%s", tribo_last_error(many));
         if (k == 200) {
-            size_t size;
-            unsigned char *bytes = saved_state(many, &size);
-            loaded = make(&d.scene);
-            cr_assert_eq(tribo_state_load(loaded, bytes, size), TRIBO_OK, "%s", tribo_last_error(loaded));
-            free(bytes);
+            loaded = loaded_copy(many, &d.scene);
             cr_assert(same_outputs(loaded, many));
         }
         if (s == TRIBO_ENDED)

@@ -320,12 +320,11 @@ def test_sigma0_comes_back_from_chute_runs(image, tmp_path):
 
 
 def test_sigma0_and_eta_come_back_with_the_sliding_model(image, tmp_path):
-    """The sliding model, its charge not capped (breakdown_model fixed, breakdown_density 0:
-    neither the gas's limit nor the cap of section 8b): impacts from 20 to 90
-    degrees made at sigma0 = -2e-6, eta = 1e-10 with 0.03 decades of noise (measured on 10
-    of them: each within 0.04 decades, 1.0 of its reported deviation); head-on impacts
-    tell sigma0, oblique ones eta."""
-    settings = {"mu": 0.5, "breakdown_density": 0.0, "breakdown_model": 0}
+    """The sliding model, its charge not capped (breakdown_model 0, the fixed limit, at
+    breakdown_density 0): impacts from 20 to 90 degrees made at sigma0 = -2e-6, eta = 1e-10
+    with 0.03 decades of noise (measured on 10 of them: each within 0.04 decades, 1.0 of its
+    reported deviation); head-on impacts tell sigma0, oblique ones eta."""
+    settings = {"mu": 0.5, "breakdown_model": 0, "breakdown_density": 0.0}
     points = [dict(speed=v, angle_deg=a, size=1e-3, epsilon=0.8) for v in (1.5, 4.0)
               for a in (20.0, 45.0, 90.0)]
     data = synthetic_impacts(image, points, noise=0.03, seed=2, charge_model="sliding",

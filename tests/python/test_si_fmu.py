@@ -197,7 +197,10 @@ MODEL_OF_SI = {"epsilon": "epsilon", "mu": "mu", "nu": "nu", "eta": "eta", "tilt
                "Gamma": "Gamma", "tau0": "tau0", "tau_r": "tau_r",
                "Sigma0": "Sigma0", "chute_length_scaled": "chute_length",
                "drop_speed_scaled": "drop_speed", "Sigma_bd": "Sigma_bd",
-               "grain_geometry": "grain_geometry", "Sigma_init": "Sigma_init"}
+               "grain_geometry": "grain_geometry", "Sigma_init": "Sigma_init",
+               "breakdown_model": "breakdown_model", "secondary_emission": "secondary_emission",
+               "wall_conducting": "wall_conducting", "paschen_gap_scale": "paschen_gap_scale",
+               "Sigma_paschen": "Sigma_paschen"}
 
 
 def dimensionless_scene(si):

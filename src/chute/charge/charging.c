@@ -99,12 +99,15 @@ void tribo_charging_free(tribo_charging *c)
     c->window_cap = 0;
 }
 
-double tribo_charging_initial_value(const tribo_charge_model *model, const tribo_scene *s)
+double tribo_charging_initial_value(const tribo_charging *c, const tribo_charge_model *model,
+                                    const tribo_scene *s)
 {
     if (!model->density_unit || s->Sigma_init == 0.0)
         return 0.0;
-    /* a surface arriving above what air holds keeps what it holds (§8b) */
-    const double unit = model->density_unit(s), cap = s->Sigma_bd / unit;
+    /* a surface arriving above what air holds keeps what it holds (§8b; §8e: the grain's own
+       limit, where it acts) */
+    const double unit = model->density_unit(s);
+    const double cap = tribo_min(s->Sigma_bd, c->surface_limit) / unit;
     return tribo_min(tribo_max(s->Sigma_init / unit, -cap), cap);
 }
 
@@ -121,13 +124,13 @@ static void empty_bands(tribo_charging *c, const tribo_scene *s)
         tribo_charge_slot *slot = &c->slot[k];
         if (!slot->bands)
             continue;
-        const double init = tribo_charging_initial_value(slot->model, s);
+        const double init = tribo_charging_initial_value(c, slot->model, s);
         for (int i = 0; i < c->n; i++)
             slot->bands[i] = init;
     }
 }
 
-double tribo_charging_region_limit(const tribo_charging *c, const tribo_scene *s, double radius)
+double tribo_charging_region_limit(tribo_charging *c, const tribo_scene *s, double radius)
 {
     return s->Sigma_paschen * tribo_paschen_limit(&c->table, c->region_scale * radius);
 }
@@ -135,6 +138,7 @@ double tribo_charging_region_limit(const tribo_charging *c, const tribo_scene *s
 void tribo_charging_setup_gas(tribo_charging *c, const tribo_scene *s)
 {
     c->paschen = c->keep_bands && s->breakdown_model == TRIBO_BREAKDOWN_PASCHEN;
+    c->surface_limit = INFINITY;
     if (!c->paschen)
         return;
     /* a grounded wall's image halves the region's size (the pair form: L/2 -> L) */
@@ -143,17 +147,17 @@ void tribo_charging_setup_gas(tribo_charging *c, const tribo_scene *s)
     const double radius = sqrt(area / (4.0 * M_PI));
     tribo_paschen_build(&c->table, s->secondary_emission, c->region_scale * radius);
     c->grain_limit = tribo_charging_region_limit(c, s, radius) * area;
+    c->surface_limit = c->grain_limit / area;
 }
 
 /* No episode under way, the grain at its initial charge (§8e). */
 static void reset_gas(tribo_charging *c, const tribo_scene *s)
 {
-    tribo_charging_setup_gas(c, s);
     c->gas = (tribo_gas_state){.limit = INFINITY};
     const double area = tribo_spheroid_area(c->arc.eps);
     for (int k = 0; k < c->n_models && c->paschen; k++)
         if (c->slot[k].bands)
-            c->gas.grain[k] = tribo_charging_initial_value(c->slot[k].model, s) * area;
+            c->gas.grain[k] = tribo_charging_initial_value(c, c->slot[k].model, s) * area;
 }
 
 void tribo_charging_reset(tribo_charging *c, const tribo_scene *s)
@@ -167,6 +171,7 @@ void tribo_charging_reset(tribo_charging *c, const tribo_scene *s)
         c->sum[i] = c->lost[i] = c->band_charge[i] = c->band_lost[i] = (tribo_compensated){0};
     }
     c->area = (tribo_compensated){0};
+    tribo_charging_setup_gas(c, s);
     if (c->keep_bands && c->bands.width)
         empty_bands(c, s);
     reset_gas(c, s);
@@ -525,27 +530,30 @@ static double slice_area(const tribo_patch_point *p, double k)
 
 /* The patch's mean width (segments) over the part [k + a, k + b] of segment k it covers in a
    sample, so that the band's area W L is the patch's own over the segment (§8e's refinement
-   of §8c's band, where the patch is not much longer than a segment): the largest slice of one
-   of its points, or, where the centre's path crosses the segment, that and the strip of the
-   full width it sweeps there; at most the full width. */
+   of §8c's band, where the patch is not much longer than a segment): the slice of its largest
+   point (the sample's points are a short stretch of a smooth contact: the largest holds the
+   others, exactly so where the patch grows or shrinks in place, as in an impact), or, where
+   the centre's path crosses the segment, that and the strip of the full width it sweeps
+   there; at most the full width. */
 static double mean_width_over(const tribo_contact_sample *sample, double k, double a, double b)
 {
     const tribo_patch_point *p = sample->patch;
-    double area = 0.0, full = 0.0;
+    int largest = 0;
+    double full = 0.0;
     for (int i = 0; i < sample->n_patch; i++) {
-        const double slice = slice_area(&p[i], k);
-        area = tribo_max(area, slice);
-        full = tribo_max(full, 2.0 * p[i].depth * p[i].half);
-        if (i + 1 == sample->n_patch)
-            break;
+        const double w = 2.0 * p[i].depth * p[i].half;
+        if (w * p[i].half > full * p[largest].half)
+            largest = i;
+        full = tribo_max(full, w);
+    }
+    const double slice = slice_area(&p[largest], k);
+    double area = slice;
+    for (int i = 0; i + 1 < sample->n_patch; i++) {
         const double lo = tribo_min(p[i].centre, p[i + 1].centre);
         const double hi = tribo_max(p[i].centre, p[i + 1].centre);
         const double inside = tribo_min(hi, k + 1.0) - tribo_max(lo, k);
         if (inside > 0.0)
-            area = tribo_max(area, tribo_max(slice, slice_area(&p[i + 1], k)) +
-                                       2.0 * tribo_max(p[i].depth * p[i].half,
-                                                       p[i + 1].depth * p[i + 1].half) *
-                                           inside);
+            area = tribo_max(area, slice + full * inside);
     }
     return tribo_min(area / (b - a), full);
 }
@@ -569,7 +577,7 @@ static void widen_bands(tribo_charging *c, const tribo_scene *s, const tribo_con
     const double seg = c->segment_length;
     double init[TRIBO_CHARGE_MAX_MODELS];
     for (int m = 0; m < c->n_models; m++)
-        init[m] = r->bands[m] ? tribo_charging_initial_value(c->slot[m].model, s) : 0.0;
+        init[m] = r->bands[m] ? tribo_charging_initial_value(c, c->slot[m].model, s) : 0.0;
     for (long j = 0; j < count; j++) {
         const long i = at + j;
         const double k = (double)(k0 + j);
@@ -645,9 +653,9 @@ static void charge_values(tribo_charge_slot *slot, const tribo_scene *s, const t
    the patch widened them). */
 static void charge_bands(tribo_charge_slot *slot, const tribo_scene *s, const tribo_charge_forcing *f,
                          double *bands, const slices *sl, const double *before, const double *after,
-                         const double *targets, double cap, double *charge, double *lost)
+                         const double *targets, double init, double cap, double *charge,
+                         double *lost)
 {
-    const double init = tribo_charging_initial_value(slot->model, s);
     for (int i = 0; i < sl->n; i++) {
         double *b = bands + sl->at[i];
         const long count = sl->count[i];
@@ -749,10 +757,10 @@ static long meet_episode(tribo_charging *c, const tribo_scene *s, const tribo_co
         g->count = 0;
     }
     join_run(g, r, first, count);
-    double radius = g->radius;
+    double r2 = 0.0; /* (Sc^2 h in segments^2: one root, where the region grows) */
     for (int i = 0; i < sample->n_patch; i++)
-        radius = tribo_max(radius, sample->patch[i].half * c->segment_length *
-                                       sqrt(sample->patch[i].depth));
+        r2 = tribo_max(r2, sample->patch[i].half * sample->patch[i].half * sample->patch[i].depth);
+    const double radius = sqrt(r2) * c->segment_length;
     long visited = 0;
     if (radius > g->radius) {
         g->radius = radius;
@@ -775,12 +783,11 @@ static long meet_episode(tribo_charging *c, const tribo_scene *s, const tribo_co
    the uncharged surface gave up), at most grain_limit; the excess is taken back from the
    sample's bands in proportion to what each of them gained (old[]: their densities before
    it), and lost. */
-static void hold_grain(tribo_charging *c, const tribo_scene *s, const ring *r, const slices *sl,
+static void hold_grain(const tribo_charging *c, double unit, const ring *r, const slices *sl,
                        int m, double change, const double *old, const double *weights,
                        tribo_charge_totals *t)
 {
     tribo_gas_state *g = r->gas;
-    const double unit = c->slot[m].model->density_unit(s);
     const double q = g->grain[m] + change, limit = c->grain_limit / unit;
     g->grain[m] = q;
     if (!(fabs(q) > limit))
@@ -846,18 +853,18 @@ static long charge_run(tribo_charging *c, const tribo_scene *s, const tribo_cont
                                         sample->globals_end + slot->globals_at, &c->decay};
         const double cap = slot_cap(slot, s);
         charge_values(slot, s, &f, r->values[m], &sl, targets[m], cap, &t->sum[m], &t->lost[m]);
+        const double init = r->bands[m] ? tribo_charging_initial_value(c, slot->model, s) : 0.0;
         if (r->bands[m] && paschen && slot->model->density_unit) {
             double *old = c->scratch + 2 * count;
             for (int i = 0; i < sl.n; i++)
                 memcpy(old + sl.k0[i], r->bands[m] + sl.at[i], (size_t)sl.count[i] * sizeof *old);
-            charge_bands(slot, s, &f, r->bands[m], &sl, before, after, targets[m],
-                         r->gas->limit / slot->model->density_unit(s), &t->band_charge[m],
-                         &t->band_lost[m]);
-            const double init = tribo_charging_initial_value(slot->model, s);
-            hold_grain(c, s, r, &sl, m, t->band_charge[m] - band0[m] - init * (t->area - area0),
+            const double unit = slot->model->density_unit(s);
+            charge_bands(slot, s, &f, r->bands[m], &sl, before, after, targets[m], init,
+                         r->gas->limit / unit, &t->band_charge[m], &t->band_lost[m]);
+            hold_grain(c, unit, r, &sl, m, t->band_charge[m] - band0[m] - init * (t->area - area0),
                        old, after, t);
         } else if (r->bands[m]) {
-            charge_bands(slot, s, &f, r->bands[m], &sl, before, after, targets[m], cap,
+            charge_bands(slot, s, &f, r->bands[m], &sl, before, after, targets[m], init, cap,
                          &t->band_charge[m], &t->band_lost[m]);
         }
         updates += count;

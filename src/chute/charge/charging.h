@@ -131,6 +131,7 @@ typedef struct tribo_charging {
     int paschen;
     tribo_paschen table;
     double region_scale, grain_limit;
+    double surface_limit; /* grain_limit / A_s: what an arriving surface keeps (INF without) */
     tribo_gas_state gas, gas_out;
     double *targets; /* per model, each segment's saturation (n_models x n) */
 } tribo_charging;
@@ -141,7 +142,7 @@ typedef enum { TRIBO_CHARGE_COMMIT, TRIBO_CHARGE_PENDING } tribo_charge_destinat
 
 /* The Paschen limit of a region of radius L (units of a) in the sliding model's unit of
    density (§8e). */
-double tribo_charging_region_limit(const tribo_charging *c, const tribo_scene *s, double radius);
+double tribo_charging_region_limit(tribo_charging *c, const tribo_scene *s, double radius);
 
 /* The Paschen limit's constants for the scene (§8e), where it acts (breakdown_model =
    paschen, with the grain's bands): the table of the gas's gamma over the regions up to the
@@ -208,7 +209,8 @@ double tribo_charging_capped_area(const tribo_charging *c, const tribo_charge_sl
                                   const tribo_band_geometry *g);
 /* The grain's initial density (scene Sigma_init, §8c) in a model's own units (0 for a model
    whose values are no densities). */
-double tribo_charging_initial_value(const tribo_charge_model *model, const tribo_scene *s);
+double tribo_charging_initial_value(const tribo_charging *c, const tribo_charge_model *model,
+                                    const tribo_scene *s);
 
 /* What the samples (in order, not committed) would add to the committed totals (0 for slots
    not selected). Costs the segments they touch, not n. Returns 0, or -1 if out of memory. */

@@ -76,18 +76,23 @@ void tribo_paschen_build(tribo_paschen *t, double gamma, double c_max)
         n = TRIBO_PASCHEN_MAX_NODES;
     t->n = n;
     t->c_hi = exp(t->v0 + (n - 1) * t->dv);
-    for (int i = 0; i < n; i++) {
-        const double c = exp(t->v0 + i * t->dv);
-        double x;
-        const double S = minimise(c, t->log_K, x_min, &x);
-        const double h = hypot(x, c);
-        /* the envelope theorem: dS/dc = -(G / F^2) dF/dc at the minimum, dF/dc = 1 - c / h */
-        t->y[i] = log(S);
-        t->slope[i] = -c * (1.0 - c / h) / gap_voltage(x, c);
-    }
+    /* each node is minimised where a size first needs it: an instance's contacts meet a few */
+    for (int i = 0; i < n; i++)
+        t->y[i] = NAN;
 }
 
-double tribo_paschen_limit(const tribo_paschen *t, double c)
+/* Node i: ln S and its slope, by the envelope theorem (dS/dc = -(G / F^2) dF/dc at the
+   minimum, dF/dc = 1 - c / sqrt(x^2 + c^2)). */
+static void make_node(tribo_paschen *t, int i)
+{
+    const double c = exp(t->v0 + i * t->dv);
+    double x;
+    const double S = minimise(c, t->log_K, t->x_min, &x);
+    t->y[i] = log(S);
+    t->slope[i] = -c * (1.0 - c / hypot(x, c)) / gap_voltage(x, c);
+}
+
+double tribo_paschen_limit(tribo_paschen *t, double c)
 {
     if (c < t->c_lo) /* the gap's voltage saturates at c long before the minimum's gap */
         return t->x_min / gap_voltage(t->x_min, c);
@@ -97,6 +102,10 @@ double tribo_paschen_limit(const tribo_paschen *t, double c)
     int i = (int)v;
     if (i > t->n - 2)
         i = t->n - 2;
+    if (isnan(t->y[i]))
+        make_node(t, i);
+    if (isnan(t->y[i + 1]))
+        make_node(t, i + 1);
     const double u = v - i, u2 = u * u, u3 = u2 * u;
     /* cubic Hermite in ln S */
     const double y = (2 * u3 - 3 * u2 + 1) * t->y[i] + (u3 - 2 * u2 + u) * t->dv * t->slope[i] +

@@ -39,12 +39,13 @@ double tribo_paschen_reduced(double gamma, double c);
 /* The minimum's reduced gap e ln(1 + 1/gamma): its voltage is (B/A) times the same number. */
 double tribo_paschen_minimum(double gamma);
 
-/* Build the table for gamma over reduced sizes up to c_max (nothing if it is built for them
-   already): from a ten-thousandth of the minimum's gap, below which the asymptote holds to
-   5e-5. */
+/* Lay out the table for gamma over reduced sizes up to c_max (nothing if it is laid out for
+   them already): from a ten-thousandth of the minimum's gap, below which the asymptote holds
+   to 5e-5. Its nodes are minimised where a size first needs them (tribo_paschen_limit), each
+   once: an instance meets a few of them. */
 void tribo_paschen_build(tribo_paschen *t, double gamma, double c_max);
 
-/* S(c) from the table (c > 0). */
-double tribo_paschen_limit(const tribo_paschen *t, double c);
+/* S(c) from the table (c > 0), minimising the nodes it needs where they are not yet. */
+double tribo_paschen_limit(tribo_paschen *t, double c);
 
 #endif
