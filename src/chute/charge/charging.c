@@ -515,27 +515,16 @@ static double half_width_over(const tribo_contact_sample *sample, double k)
     return sqrt(w2);
 }
 
-/* (u sqrt(1 - u^2) + asin u) / 2: the integral of the unit ellipse's half-chord from 0 to u. */
-static double chord_integral(double u) { return 0.5 * (u * sqrt(1.0 - u * u) + asin(u)); }
+/* The slices of a sample's largest patch point over consecutive segments (§8e): the integral
+   of the unit ellipse's half-chord, (u sqrt(1 - u^2) + asin u) / 2, at each segment boundary,
+   kept for the next segment, which shares it; the full width the sample's patch reaches. */
+typedef struct slicer {
+    const tribo_patch_point *largest;
+    double full;
+    double k_next, chord_next; /* the boundary last reached, and its integral */
+} slicer;
 
-/* The area (segments^2) of a patch point's ellipse over segment k's arc [k, k + 1]. */
-static double slice_area(const tribo_patch_point *p, double k)
-{
-    if (!(p->half > 0.0))
-        return 0.0;
-    const double u1 = tribo_min(tribo_max((k - p->centre) / p->half, -1.0), 1.0);
-    const double u2 = tribo_min(tribo_max((k + 1.0 - p->centre) / p->half, -1.0), 1.0);
-    return 2.0 * p->depth * p->half * p->half * (chord_integral(u2) - chord_integral(u1));
-}
-
-/* The patch's mean width (segments) over the part [k + a, k + b] of segment k it covers in a
-   sample, so that the band's area W L is the patch's own over the segment (§8e's refinement
-   of §8c's band, where the patch is not much longer than a segment): the slice of its largest
-   point (the sample's points are a short stretch of a smooth contact: the largest holds the
-   others, exactly so where the patch grows or shrinks in place, as in an impact), or, where
-   the centre's path crosses the segment, that and the strip of the full width it sweeps
-   there; at most the full width. */
-static double mean_width_over(const tribo_contact_sample *sample, double k, double a, double b)
+static slicer slicer_of(const tribo_contact_sample *sample)
 {
     const tribo_patch_point *p = sample->patch;
     int largest = 0;
@@ -546,16 +535,54 @@ static double mean_width_over(const tribo_contact_sample *sample, double k, doub
             largest = i;
         full = tribo_max(full, w);
     }
-    const double slice = slice_area(&p[largest], k);
+    return (slicer){&p[largest], full, NAN, 0.0};
+}
+
+/* The half-chord's integral up to boundary x (segments) of the patch point's ellipse. */
+static double chord_to(const tribo_patch_point *p, double x)
+{
+    const double u = (x - p->centre) / p->half;
+    if (!(u > -1.0))
+        return -M_PI / 4.0;
+    if (!(u < 1.0))
+        return M_PI / 4.0;
+    return 0.5 * (u * sqrt(1.0 - u * u) + asin(u));
+}
+
+/* The area (segments^2) of the largest point's ellipse over segment k's arc [k, k + 1]. */
+static double slice_area(slicer *sl, double k)
+{
+    const tribo_patch_point *p = sl->largest;
+    if (!(p->half > 0.0))
+        return 0.0;
+    const double lo = k == sl->k_next ? sl->chord_next : chord_to(p, k);
+    const double hi = chord_to(p, k + 1.0);
+    sl->k_next = k + 1.0;
+    sl->chord_next = hi;
+    return 2.0 * p->depth * p->half * p->half * (hi - lo);
+}
+
+/* The patch's mean width (segments) over the part [k + a, k + b] of segment k it covers in a
+   sample, so that the band's area W L is the patch's own over the segment (§8e's refinement
+   of §8c's band, where the patch is not much longer than a segment): the slice of its largest
+   point (the sample's points are a short stretch of a smooth contact: the largest holds the
+   others, exactly so where the patch grows or shrinks in place, as in an impact), or, where
+   the centre's path crosses the segment, that and the strip of the full width it sweeps
+   there; at most the full width. */
+static double mean_width_over(const tribo_contact_sample *sample, slicer *sl, double k, double a,
+                              double b)
+{
+    const tribo_patch_point *p = sample->patch;
+    const double slice = slice_area(sl, k);
     double area = slice;
     for (int i = 0; i + 1 < sample->n_patch; i++) {
         const double lo = tribo_min(p[i].centre, p[i + 1].centre);
         const double hi = tribo_max(p[i].centre, p[i + 1].centre);
         const double inside = tribo_min(hi, k + 1.0) - tribo_max(lo, k);
         if (inside > 0.0)
-            area = tribo_max(area, slice + full * inside);
+            area = tribo_max(area, slice + sl->full * inside);
     }
-    return tribo_min(area / (b - a), full);
+    return tribo_min(area / (b - a), sl->full);
 }
 
 /* The bands of segments at[0..count) of the ring, offsets k0.. from the sample's first: each
@@ -578,6 +605,7 @@ static void widen_bands(tribo_charging *c, const tribo_scene *s, const tribo_con
     double init[TRIBO_CHARGE_MAX_MODELS];
     for (int m = 0; m < c->n_models; m++)
         init[m] = r->bands[m] ? tribo_charging_initial_value(c, c->slot[m].model, s) : 0.0;
+    slicer slices = slicer_of(sample);
     for (long j = 0; j < count; j++) {
         const long i = at + j;
         const double k = (double)(k0 + j);
@@ -592,7 +620,7 @@ static void widen_bands(tribo_charging *c, const tribo_scene *s, const tribo_con
                 *lo = tribo_min(*lo, a);
                 *hi = tribo_max(*hi, b);
                 const double w = whole_ring  ? bound
-                                 : c->paschen ? mean_width_over(sample, k, a, b)
+                                 : c->paschen ? mean_width_over(sample, &slices, k, a, b)
                                               : 2.0 * half_width_over(sample, k);
                 *W = tribo_max(*W, w * seg);
             }
