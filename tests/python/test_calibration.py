@@ -63,16 +63,17 @@ def fitted(report) -> pd.DataFrame:
 # ---- the observables ------------------------------------------------------------------------
 
 def test_a_head_on_impact_charges_sigma0_times_its_charged_area_linearly_in_the_speed():
-    """A 2 mm PE sphere head-on on level steel: -0.050 pC at 1 m/s (sigma0 = -1e-5 C/m2),
-    Delta q = sigma0 A_max exactly (complete transfer, docs/model.md section 5c), and about
-    twice as much at twice the speed (the patch follows the model's indentation, linear in
-    the normal speed: measured x1.97-1.99 per doubling)."""
+    """A 2 mm PE sphere head-on on level steel: -0.0478 pC at 1 m/s (sigma0 = -1e-5 C/m2,
+    below the gas's limit), Delta q = sigma0 A_max exactly (complete transfer, docs/model.md
+    section 5c), and twice as much at twice the speed (the patch follows the model's
+    indentation, linear in the normal speed, and the charged area is the patch's, section
+    8e: measured x1.99998 per doubling)."""
     one = tribo.single_impact("PE", "steel", speed=1.0, size=2e-3, epsilon=1.0, settings=BELOW)
     assert one["lifted_off"] and one["charge_model"] == "static"
     assert one["charge"] == pytest.approx(-1e-5 * one["charged_area"], rel=1e-12)
-    assert one["charge"] == pytest.approx(-0.050e-12, rel=0.02)
+    assert one["charge"] == pytest.approx(-0.0478e-12, rel=0.01, abs=0)
     two = tribo.single_impact("PE", "steel", speed=2.0, size=2e-3, epsilon=1.0, settings=BELOW)
-    assert 1.95 < two["charge"] / one["charge"] < 2.0
+    assert two["charge"] / one["charge"] == pytest.approx(2.0, rel=1e-4)
     assert one["contact_time"] == pytest.approx(one["time_end"], rel=1e-12)
     # the grain's mass and surface are the spheroid's
     assert one["mass"] == pytest.approx(spheroid_mass(2e-3, 1.0, 950.0), rel=1e-12)
@@ -146,12 +147,12 @@ def test_repeated_impacts_at_the_tables_sigma0_approach_the_grains_limit(image):
     instance_limit = tribo.run_si("PE", "steel", size=1e-3, epsilon=1.0, t_end=1e-6,
                                   record_interval=None,
                                   outputs=["grain_charge_limit"]).iloc[-1]["grain_charge_limit"]
-    assert ceiling == pytest.approx(-instance_limit, rel=2e-3)  # the core's table: 1e-4
-    assert ceiling == pytest.approx(-tribo.paschen.grain_limit(1e-3, 1.0), rel=1e-12)
+    assert ceiling == pytest.approx(-instance_limit, rel=2e-3, abs=0)  # the core's table: 1e-4
+    assert ceiling == pytest.approx(-tribo.paschen.grain_limit(1e-3, 1.0), rel=1e-12, abs=0)
     assert (rows["charge"] < 0).all() and (np.abs(rows["charge"]) <= abs(ceiling) * (1 + 1e-9)).all()
     # rising to the limit, then held there (to the rounding: 5e-26 C, 2e-16 of it, measured)
     assert (np.diff(np.abs(rows["charge"])) >= -1e-12 * abs(ceiling)).all()
-    assert rows["charge"].iloc[-1] == pytest.approx(ceiling, rel=2e-3)
+    assert rows["charge"].iloc[-1] == pytest.approx(ceiling, rel=2e-3, abs=0)
     assert abs(rows["delta"].iloc[-1]) <= 1e-12 * abs(ceiling)
 
 
@@ -265,7 +266,7 @@ def test_impacts_below_the_gas_limit_are_fitted_as_before_with_the_limit_on(imag
                              figure=False, out=str(tmp_path / "cal"))
     fit = fitted(report)
     assert fit.loc["sigma0", "status"] == "fitted"
-    assert fit.loc["sigma0", "value"] == pytest.approx(-2e-5, rel=1e-6)
+    assert fit.loc["sigma0", "value"] == pytest.approx(-2e-5, rel=1e-6, abs=0)
     assert not any("lower bound" in w for w in report.warnings)
 
 
