@@ -43,7 +43,7 @@ def test_run_si_takes_the_files_values(doubled, base):
     assert table["charge_static"] < 0
     file = tribo.run_si("PE", "steel", materials=doubled, **kwargs).iloc[-1]
     assert table["exited"] == file["exited"] == 1
-    assert file["charge_static"] == pytest.approx(2 * table["charge_static"], rel=1e-12)
+    assert file["charge_static"] == pytest.approx(2 * table["charge_static"], rel=1e-12, abs=0)
 
 
 def test_a_population_and_its_command_take_the_file(doubled, base, tmp_path, capsys):
@@ -76,7 +76,7 @@ def test_an_impact_map_takes_the_file(doubled, base, tmp_path):
     for speed in (1.0, 2.0):
         point = dict(speed=speed, angle_deg=90.0, phi0_deg=0.0, epsilon=1.0)
         assert file("charge_static", **point) == pytest.approx(
-            2 * table("charge_static", **point), rel=1e-12)
+            2 * table("charge_static", **point), rel=1e-12, abs=0)
 
 
 def test_the_line_takes_the_file_for_each_particle(doubled, base, tmp_path):
@@ -84,7 +84,8 @@ def test_the_line_takes_the_file_for_each_particle(doubled, base, tmp_path):
     for particle in ("PE", "nylon"):
         table = tribo.line_grain(particle, "steel", materials=base, **kwargs)
         file = tribo.line_grain(particle, "steel", materials=doubled, **kwargs)
-        assert file["charge_to_mass"] == pytest.approx(2 * table["charge_to_mass"], rel=1e-12)
+        assert file["charge_to_mass"] == pytest.approx(2 * table["charge_to_mass"], rel=1e-12,
+                                                       abs=0)
     # a mixture: each material its own sigma0 from the file, the record names the file
     mix = tribo.line_mixture(4, seed=1, voltage=10e3, chute={"chute_length": 0.02}, t_end=1.0,
                              serial=True, materials=doubled, out=str(tmp_path / "mixture"))
