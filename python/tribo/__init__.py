@@ -44,6 +44,8 @@ Its subpackages, by concern (each module's docstring says what it does):
     api          the functions above
     materials    the materials table (data/materials.toml): a particle/wall pair as the SI
                  FMU's start values; a materials file read over it (a calibration's)
+    paschen      the gas's limit sigma_P(L) of a charged region (docs/model.md section 8e):
+                 the ceilings of a grain and of repeated impacts
     plotting     what every figure shares (axis labels, colours, legends; matplotlib)
     ssp          the separation line as an SSP 1.0 package (the SI chute's FMU feeding the
                  separator's) for SSP importers: libcosim, ecos (standard library only)
@@ -77,7 +79,7 @@ Its subpackages, by concern (each module's docstring says what it does):
     cli/         the command `tribo` (main) and its subcommands, a module each
 
 Each imports only its own modules and the layers below it: plotting and fmu at the
-bottom, then materials and batch, then study, populations and impact (not each other), then
+bottom, then materials, paschen and batch, then study, populations and impact (not each other), then
 line, calibration and dem (on populations and impact; not each other), then api and cli (CONTRIBUTING.md; tests/python/test_package_layout.py checks it).
 """
 
@@ -86,7 +88,7 @@ import importlib
 # where each name of the API is defined: imported at its first use, so that `import tribo`
 # (and the command, tribo/cli) does not import the libraries of every job
 _DEFINED_IN = {
-    "fmu": None, "materials": None,
+    "fmu": None, "materials": None, "paschen": None,
     **{name: ".api" for name in ("calibrate", "impact_map", "line_grain", "line_mixture",
                                  "line_population", "line_sweep", "load_results", "population",
                                  "run", "run_si", "sweep")},
@@ -96,7 +98,7 @@ _DEFINED_IN = {
     "ImpactMap": ".impact.map",
 }
 
-__all__ = ["run", "run_si", "sweep", "load_results", "find_fmu", "materials", "population",
+__all__ = ["run", "run_si", "sweep", "load_results", "find_fmu", "materials", "paschen", "population",
            "impact_map", "ImpactMap", "line_grain", "line_population", "line_mixture",
            "line_sweep", "single_impact", "repeated_impacts", "chute_stream", "calibrate"]
 

@@ -4,13 +4,14 @@ and a wall by name, turned into the SI FMU's start values.
     import tribo
     tribo.materials.particles()                     # ['PE', 'PP', ..., 'glass']
     tribo.materials.walls()                         # ['PTFE', 'glass', 'steel', 'aluminium']
-    tribo.materials.pair_sigma0("PE", "steel")      # -1e-05 C/m^2 (sign: the particle's)
+    tribo.materials.pair_sigma0("PE", "steel")      # -0.001 C/m^2 (sign: the particle's)
     start = tribo.materials.start_values("PE", "steel", semi_major_axis=0.5e-3,
                                          chute_length=0.3)
 
 start_values gives a dict keyed by the SI FMU's parameter names (src/si/si_quantities.def):
-the particle's and the wall's elastic constants, the particle's density, the pair's sigma0
-and the interface capacitance kappa, and every override (any SI parameter by name, e.g. the
+the particle's and the wall's elastic constants, the particle's density, whether the wall
+conducts (wall_conducting), the pair's sigma0 and the interface capacitance kappa, and every
+override (any SI parameter by name, e.g. the
 size, shape, chute and drop). Given sigma0 as an override, a pair without an entry is fine.
 
 A materials file (`load(path)`, the `materials=` of the package's functions, `--materials
@@ -53,11 +54,12 @@ class Material:
     poisson_ratio: float
     density: float        # kg/m^3
     roles: tuple[str, ...]  # "particle", "wall"
+    conducting: bool = False  # a wall: a grounded metal (the gas's limit's image form, section 8e)
 
 
 # the sections of a materials file, and what each may hold
 SECTIONS = ("material", "sigma0", "charging", "interface", "calibration")
-MATERIAL_KEYS = ("name", "youngs_modulus", "poisson_ratio", "density", "roles")
+MATERIAL_KEYS = ("name", "youngs_modulus", "poisson_ratio", "density", "roles", "conducting")
 # a pair's charging parameters besides sigma0 (the SI FMU's names, docs/model.md sections 5, 8)
 CHARGING_KEYS = ("charging_time", "eta", "backflow_time")
 INTERFACE_KEYS = ("epsilon0", "gap")
@@ -76,7 +78,7 @@ class Materials:
     def _materials(self) -> dict[str, Material]:
         return {key: Material(key, row["name"], float(row["youngs_modulus"]),
                               float(row["poisson_ratio"]), float(row["density"]),
-                              tuple(row["roles"]))
+                              tuple(row["roles"]), bool(row.get("conducting", False)))
                 for key, row in self.table["material"].items()}
 
     def names(self, role: str) -> list[str]:
@@ -92,8 +94,8 @@ class Materials:
         what = f"{role} material" if role else "material"
         raise MaterialError(f"unknown {what} {name!r}; known: {', '.join(known)}")
 
-    def breakdown_limit(self) -> float:
-        return float(self.table["sigma0"]["breakdown_limit"])
+    def sigma0_limit(self) -> float:
+        return float(self.table["sigma0"]["limit"])
 
     def pairs(self) -> dict:
         """wall -> {particle: sigma0}."""
@@ -130,6 +132,8 @@ class Materials:
             "density": p.density,
             "youngs_modulus_wall": w.youngs_modulus,
             "poisson_ratio_wall": w.poisson_ratio,
+            # the gas's limit takes the image form on a metal wall (section 8e)
+            "wall_conducting": int(w.conducting),
             "interface_capacitance": self.interface_capacitance(),
         }
         if sigma0:
@@ -155,7 +159,7 @@ def load(path: str) -> Materials:
     """The materials file at `path` read over the package's table (see the module's
     text). MaterialError, one line naming the file and the entry, for a file that cannot be
     read, an unknown section or key, a material not in the package's table, a value that is
-    not a finite number in its range, or a |sigma0| above the breakdown limit."""
+    not a finite number in its range, or a |sigma0| above the table's limit (1e-2 C/m2)."""
     data = read_input(path, MaterialError, "materials file")
     try:
         given = tomllib.loads(data.decode("utf-8"))
@@ -241,16 +245,22 @@ def _merged(table: dict, given: dict, path: str) -> dict:
         if "roles" in row and (not isinstance(row["roles"], list)
                                or not set(row["roles"]) <= {"particle", "wall"} or not row["roles"]):
             raise MaterialError(f"{where} roles = {row['roles']!r}: a list of 'particle', 'wall'")
+        if "conducting" in row and not isinstance(row["conducting"], bool):
+            raise MaterialError(f"{where} conducting = {row['conducting']!r}: true (a grounded "
+                                f"metal wall) or false (an insulating one)")
         table["material"][key].update(row)
     sigma0 = given.get("sigma0", {})
     if "breakdown_limit" in sigma0:
-        table["sigma0"]["breakdown_limit"] = _number(
-            sigma0["breakdown_limit"], f"materials file {path}: [sigma0] breakdown_limit", 0,
-            open_low=True)
-    limit = float(table["sigma0"]["breakdown_limit"])
+        raise MaterialError(f"materials file {path}: [sigma0] breakdown_limit is not read: sigma0 "
+                            f"is the contact's own density, within +-{table['sigma0']['limit']:g} "
+                            f"C/m2, and the gas's limit is the SI parameter breakdown_model "
+                            f"(docs/model.md section 8e)")
+    if "limit" in sigma0:
+        raise MaterialError(f"materials file {path}: [sigma0] limit is the table's bound on "
+                            f"|sigma0| ({table['sigma0']['limit']:g} C/m2, the SI FMU's range); "
+                            f"a file does not set it")
+    limit = float(table["sigma0"]["limit"])
     for wall, row in sigma0.items():
-        if wall == "breakdown_limit":
-            continue
         _pair_table(table, wall, row, path, "sigma0")
         for particle, value in row.items():
             _pair_names(table, particle, wall, path, "sigma0")
@@ -315,9 +325,10 @@ def material(name: str, role: str | None = None, materials=None) -> Material:
     return table_of(materials).material(name, role)
 
 
-def breakdown_limit(materials=None) -> float:
-    """The air-breakdown limit of a surface charge density, C/m^2 (the bound on |sigma0|)."""
-    return table_of(materials).breakdown_limit()
+def sigma0_limit(materials=None) -> float:
+    """The bound on |sigma0|, C/m^2 (the SI FMU's declared range): sigma0 is the contact's
+    own density, before the gas relaxes it (docs/model.md section 8e)."""
+    return table_of(materials).sigma0_limit()
 
 
 def pair_sigma0(particle: str, wall: str, materials=None) -> float:

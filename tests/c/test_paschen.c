@@ -176,6 +176,12 @@ Test(paschen, episodes_hold_their_bands_and_the_grain_holds_its_limit)
     P.Sigma_init = 10.0 * q_max / A_s;
     tribo_charging_reset(&c, &P);
     cr_expect_float_eq(grain_q(&c, &P, 0), q_max, 1e-12 * q_max);
+    /* ... and Sigma_bd, which the gas's limit replaces on the bands, does not hold it lower */
+    const double Sigma_bd = P.Sigma_bd;
+    P.Sigma_bd = 0.5 * q_max / A_s;
+    tribo_charging_reset(&c, &P);
+    cr_expect_float_eq(grain_q(&c, &P, 0), q_max, 1e-12 * q_max);
+    P.Sigma_bd = Sigma_bd;
     P.Sigma_init = 0.99 * q_max / A_s;
     tribo_charging_reset(&c, &P);
     cr_assert(c.paschen);

@@ -27,7 +27,12 @@ from tribo.dem.device import Chute, DeviceError, Entry, entries, highest_rate
 
 needs_liggghts = pytest.mark.skipif(shutil.which("liggghts") is None,
                                     reason="LIGGGHTS is not installed (scripts/setup.sh installs it)")
-FEED = ["--epsilon", "1", "--size", "uniform:6e-4:1e-3"]
+# sigma0 below the gas's limit of every patch (docs/model.md section 8e), where the DEM's
+# composition of map charges is the chute model's; at the table's -1e-3 it is not (the
+# chute's rolling band brings the impacts' spots on its belt up to sigma0, the DEM's maps
+# keep them at their patches' limits): docs/dem.md, 12-22 % below the population
+WEAK = -1e-5
+FEED = ["--epsilon", "1", "--size", "uniform:6e-4:1e-3", "--set", f"sigma0={WEAK}"]
 N = 12
 # a hang guard only, far above a run's time (about 10 s of CPU on one core)
 TIMEOUT = 600
@@ -57,7 +62,8 @@ def dilute(tmp_path_factory, maps):
 def test_dilute_dem_agrees_with_the_population_of_the_same_draw(dilute, tmp_path):
     dem = pd.read_csv(dilute / "dem" / "particles.csv")
     pop = tribo.population(N, seed=3, distributions={"epsilon": 1.0, "size": "uniform:6e-4:1e-3"},
-                           out=str(tmp_path / "pop"), serial=True).results
+                           settings={"sigma0": WEAK}, out=str(tmp_path / "pop"),
+                           serial=True).results
     # the same grains: a population's keys (every parameter of a grain's run)
     assert list(dem["key"]) == list(pop["key"])
     assert (dem["exited"] == 1).all() and (pop["exited"] == 1).all()

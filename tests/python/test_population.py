@@ -50,7 +50,7 @@ def test_the_draw_is_reproducible_by_seed_and_measured_rows_stay_together():
     # the package's names: the size (the long diameter), angles in degrees; the chute's
     # tilt set explicitly (the reference case's 30 degrees)
     params = particle_parameters(feed, a.head(2))
-    assert params[0]["size"] == a["size"][0] and params[0]["sigma0"] == -1e-5
+    assert params[0]["size"] == a["size"][0] and params[0]["sigma0"] == -1e-3  # the table's
     assert params[0]["tilt_deg"] == 30.0 and 0 <= params[0]["phi0_deg"] <= 180
     assert not {"semi_major_axis", "tilt", "phi0"} & set(params[0])
 

@@ -1,21 +1,22 @@
 """The fit of a pair's charging parameters to measured points (data.py), through the SI
-FMU's observables (observables.py): sigma0 (signed, |sigma0| within the breakdown limit)
-and whichever of charging_time (t0) and eta the data determine.
+FMU's observables (observables.py): sigma0 (signed, |sigma0| within its bound) and
+whichever of charging_time (t0) and eta the data determine; sigma0 a lower bound where the
+data stand at the gas's limit.
 
 **What is fitted.** The residual of a point is log10(model / measured) of its charge
 (impacts: Delta q; chutes: the stream's q/m), weighted by the measured standard deviation
 in decades, std / (|value| ln 10), where every point gives one (else all alike, said in
 a warning where only some do). The
 parameters are fitted in decades too, log10 |sigma0|, log10 t0, log10 eta, by scipy's
-least_squares within bounds: |sigma0| up to the breakdown limit (the materials table's,
-and the FMU's breakdown_density where lower), t0 over the range where it acts on these
+least_squares within bounds: |sigma0| up to the materials table's bound, 1e-2 C/m2 (the
+contact's own density, docs/model.md section 8e; with breakdown_model = fixed, up to
+breakdown_density where lower, section 8b), t0 over the range where it acts on these
 data (a hundredth of the shortest contact period to ten times the longest run), eta from
 1e-14 to 1e3 (the sliding model's work raises the saturation by sqrt(eta
 omega) in units of sqrt(kappa k' a), some 1e2 C/m2 for a mm grain: an eta of 1e-10 already
 takes an oblique impact's saturation above sigma0). sigma0's sign is the data's.
 
-**The static model's structure.** With the static model, no point above the breakdown
-limit and a uniform initial density sigma_init, every band's density is a mix of sigma0 and
+**The static model's structure.** With the static model, no band at the gas's limit and a uniform initial density sigma_init, every band's density is a mix of sigma0 and
 sigma_init, so the charge an impact gives is exactly (sigma0 - sigma_init) F, F depending on
 t0 (and the mechanics) but not on sigma0 (docs/model.md sections 5a, 8c; with t0 = 0, F is
 the charged area); n impacts on fresh spots follow the recurrence q_(k+1) = q_k + (sigma0 -
@@ -40,6 +41,17 @@ standard deviations), t0 = 0 is taken (complete transfer, the SI default) and si
 fitted alone; the largest t0 of the grid that fits as well is said. A parameter the data
 do not determine otherwise keeps its fitted value, with the uncertainty that says so and a
 warning naming the combination that is determined.
+
+**At the gas's limit** (docs/model.md section 8e). A patch keeps at most sigma_P(L_e) of
+its episode's region, the grain at most sigma_P(R_s) A_s; where |sigma0| is above that, the
+charge is the limit's, whatever sigma0. The structure is checked at the fit's own runs:
+where a band stands at the limit there, the fit is made again on runs at every step. Then,
+where a decade more of |sigma0| fits the data as well as the fit (its sum of squares within
+COMPLETE_TRANSFER_CHI2 times their variance), the data stand at the limit and determine no
+value of sigma0, only a bound: the smallest |sigma0| that fits as well, found by bisection,
+is written with the status "lower bound" and the warning that says why (Matsuyama &
+Yamamoto's charge relaxation: single impacts in air measure the limit). Data below the
+limit are fitted as before.
 
 Uncertainties: the covariance s^2 (J^T J)^-1 (a pseudo-inverse), in decades, given as the
 standard deviation of each value (value x ln 10 x its decades) and the range value / 10^d
@@ -80,6 +92,13 @@ GRIDS = {"impact": GRID_PER_DECADE, "chute": 1}
 # chute's stream at one run a decade: up to 0.035 decades off between the runs)
 REFINEMENTS, REFINED = 3, 1e-3
 JACOBIAN_STEP = 0.05  # decades, the forward differences of a fit on runs
+# sigma0's lower bound (data at the gas's limit) is found to this many decades (0.5 %)
+LOWER_BOUND_DECADES = 0.002
+LOWER_BOUND_SPAN = 3.0  # decades below the fit where the bound is sought
+# and not below 1e-5 C/m2 (log10): the gas's limit of a region up to a centimetre is 4.9e-5
+# and more, so data at the limit are bounded above it; smaller sigma0 may leave the model's
+# range of Sigma0 for large, stiff grains
+LOWER_BOUND_FLOOR = -5.0
 IMPACT_CHUNK, GRAIN_CHUNK = 25, 8  # runs per task (about 0.1 s each)
 
 
@@ -118,6 +137,8 @@ class Problem:
     fixed: dict  # name -> value of the charging parameters not fitted (None: the FMU's)
     sign: float
     sigma0_limit: float
+    # the gas's limit in force, in words (for the warnings): section 8e's or 8b's
+    gas_limit: str = "the air-breakdown limit (breakdown_density, docs/model.md section 8b)"
 
     @property
     def measured(self) -> np.ndarray:
@@ -321,7 +342,7 @@ def structured_problem_runs(problem: Problem) -> Problem:
         points.append(Point(p.kind, p.label, p.measured, p.std, runs, p.horizon, p.in_t_star,
                             p.steps, 1, 0.0, p.surface))
     return Problem(points, problem.base, problem.charge_model, problem.fit, problem.fixed,
-                   problem.sign, problem.sigma0_limit)
+                   problem.sign, problem.sigma0_limit, problem.gas_limit)
 
 
 def fit_structured(problem: Problem, evaluator: Evaluator) -> Fit:
@@ -657,8 +678,7 @@ def capped_warnings(problem: Problem, evaluator: Evaluator, fixed: dict, fitted:
     if not capped:
         return []
     return [f"at {len(capped)} of {len(problem.points)} points (e.g. {capped[0]}) "
-            f"the model's charge stands at the air-breakdown limit "
-            f"(breakdown_density, docs/model.md section 8b): there no charging "
+            f"the model's charge stands at {problem.gas_limit}: there no charging "
             f"parameter acts on it"]
 
 
@@ -738,7 +758,7 @@ def finish(problem: Problem, fitted: dict, jacobian, weighted, model, warnings: 
                             decades[n] for n in alone})
     for n, side in (at_bounds or {}).items():
         if side and n in names:
-            what = {"sigma0": "the breakdown limit" if side == "high" else
+            what = {"sigma0": "the bound on |sigma0|" if side == "high" else
                     f"{SIGMA0_DECADES_BELOW:g} decades below it",
                     "charging_time": "the range where it acts on these data",
                     "eta": f"1e{ETA_DECADES[1 if side == 'high' else 0]:g}"}[n]
@@ -756,3 +776,102 @@ def finish(problem: Problem, fitted: dict, jacobian, weighted, model, warnings: 
     r = np.asarray(weighted)
     return Fit(values, stds, ranges, status, np.asarray(model), r, rms(r, problem), scatter,
                warnings)
+
+
+# ---- data at the gas's limit: sigma0 a lower bound (docs/model.md section 8e) ----------------
+
+def fit_pair(problem: Problem, evaluator: Evaluator) -> Fit:
+    """The fit (the module's text): the static model's on its structure, else on runs; then
+    the structure checked at the optimum's own runs (no band at the gas's limit), the fit
+    made on runs where it does not hold, and sigma0 turned into a lower bound where the data
+    stand at the limit."""
+    fit = (fit_structured if problem.structured else fit_runs)(problem, evaluator)
+    if problem.structured and capped_at(problem, evaluator, fit.values):
+        # the structure (charge linear in sigma0) does not hold where the gas caps a band:
+        # the fit on runs (its counts are the evaluator's, this check's included)
+        first = (fit.evaluations, fit.runs)
+        fit = fit_runs(problem, evaluator)
+        fit.warnings.insert(0, f"the model's charge stands at {problem.gas_limit} at some "
+                               f"points: fitted on runs at every step, not on the static "
+                               f"model's structure")
+        fit.evaluations += first[0]
+        fit.runs += first[1]
+    elif problem.structured:
+        fit.evaluations += 1
+        fit.runs += sum(len(p.runs) * p.repeat for p in problem.points)
+    return at_gas_limit(problem, evaluator, fit)
+
+
+def parameter_set(problem: Problem, values: dict) -> dict:
+    """The charging parameters of a run: the fixed ones, then the fit's values."""
+    return dict({k: v for k, v in problem.fixed.items() if v is not None}, **values)
+
+
+def capped_at(problem: Problem, evaluator: Evaluator, values: dict) -> bool:
+    """Some run of some point has a band at the gas's limit at these values."""
+    rows = evaluator.rows([parameter_set(problem, values)])[0]
+    return any(r["capped"] > 0 for point_rows in rows for r in point_rows)
+
+
+def sum_of_squares(problem: Problem, evaluator: Evaluator, values: dict, log_sigma0: float):
+    """The weighted sum of squares and the model's values with |sigma0| = 10^log_sigma0."""
+    model = evaluator.values([parameter_set(problem, dict(
+        values, sigma0=problem.sign * 10 ** log_sigma0))])[0]
+    r = residuals(model, problem)
+    return float(np.sum(r ** 2)), model, r
+
+
+def at_gas_limit(problem: Problem, evaluator: Evaluator, fit: Fit) -> Fit:
+    """The fit with sigma0 a lower bound where a decade more of |sigma0| (up to its bound)
+    fits the data as well as the fit: the charge stands at the gas's limit and only the
+    limit is measured. The bound is the smallest |sigma0| that fits as well (sum of squares
+    within COMPLETE_TRANSFER_CHI2 times the data's variance of the best, as t0's test),
+    found by bisection in decades to LOWER_BOUND_DECADES; the fit unchanged elsewhere."""
+    counts = (evaluator.evaluations, evaluator.runs)
+    bounded = lower_bound(problem, evaluator, fit)
+    fit.evaluations += evaluator.evaluations - counts[0]
+    fit.runs += evaluator.runs - counts[1]
+    return bounded
+
+
+def lower_bound(problem: Problem, evaluator: Evaluator, fit: Fit) -> Fit:
+    """at_gas_limit's work (the runs it makes counted by the caller)."""
+    x = math.log10(abs(fit.values["sigma0"]))
+    low, high = sigma0_bounds(problem)
+    up = min(x + 1.0, high)
+    if up <= x + 1e-9:
+        return fit  # at its bound already: finish's warning says so
+    values = {k: v for k, v in fit.values.items()}
+    ss_fit, model_fit, r_fit = sum_of_squares(problem, evaluator, values, x)
+    floor = max(fit.scatter, FLOOR_DECADES) if math.isfinite(fit.scatter) else FLOOR_DECADES
+    threshold = ss_fit + COMPLETE_TRANSFER_CHI2 * floor ** 2
+    if sum_of_squares(problem, evaluator, values, up)[0] > threshold or not capped_at(
+            problem, evaluator, dict(values, sigma0=problem.sign * 10 ** up)):
+        return fit  # sigma0 acts on the data, or they do not depend on it for another reason
+    # the smallest |sigma0| within the threshold: between a point outside it and the fit;
+    # data that fit as well LOWER_BOUND_SPAN decades below bound nothing (the sliding
+    # model's charge at the limit, raised by the work whatever sigma0: not determined)
+    below = max(low, x - LOWER_BOUND_SPAN, LOWER_BOUND_FLOOR)
+    if below >= x or sum_of_squares(problem, evaluator, values, below)[0] <= threshold:
+        return fit
+    inside, model, r = x, model_fit, r_fit
+    while inside - below > LOWER_BOUND_DECADES:
+        middle = 0.5 * (inside + below)
+        ss, m, rm = sum_of_squares(problem, evaluator, values, middle)
+        if ss <= threshold:
+            inside, model, r = middle, m, rm
+        else:
+            below = middle
+    bound = problem.sign * 10 ** inside
+    fit.values["sigma0"] = bound
+    fit.stds["sigma0"], fit.decades["sigma0"] = math.nan, math.nan
+    fit.status["sigma0"] = "lower bound"
+    fit.model, fit.residuals, fit.rms_log10 = np.asarray(model), r, rms(r, problem)
+    fit.warnings = [w for w in fit.warnings if not w.startswith("sigma0 ")]
+    fit.warnings.insert(0, f"sigma0 is a lower bound, not a value: the data stand at "
+                           f"{problem.gas_limit}, where the charge no longer follows sigma0; "
+                           f"every |sigma0| >= {abs(bound):.3g} C/m2 fits them as well (a "
+                           f"decade more changes the fit by less than their scatter). They "
+                           f"measure what the gas lets the contact keep, not the contact's own "
+                           f"density; written as the bound")
+    return fit

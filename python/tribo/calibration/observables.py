@@ -22,10 +22,23 @@ at a time, so the impacts are run one after another, each a single impact of the
 speed, angle and orientation on a fresh wall spot, and between two impacts the charge the
 grain carries is taken spread evenly over its surface: it enters the next impact as its
 initial density. So each impact charges its patch from the grain's mean density towards
-saturation, the condenser model's approach to a saturation q_inf = sigma0 A_s (the whole
-surface at sigma0; with complete transfer and no breakdown, q_n = sigma0 A_s (1 - (1 -
-A/A_s)^n), A the patch's area: tested). A real grain carries its charge where it touched,
-and meets the wall on other spots: the even spread is the simplest such mixing.
+saturation, the condenser model's approach to a saturation over **the whole spheroid's
+surface** A_s: with complete transfer, q_n = s A_s (1 - (1 - A/A_s)^n), A the patch's area,
+s the density a patch keeps (|sigma0|, or the gas's sigma_P(L_e) of the patch where that
+is lower, docs/model.md section 8e: tested), up to the grain's own limit. The series'
+ceiling (the column `ceiling`) is `ceiling_of`'s: min(|sigma0|, sigma_P(R_s)) A_s with
+breakdown_model = paschen (sigma_P(R_s) A_s, the grain's limit, for the table's pairs),
+min(|sigma0|, breakdown_density) A_s with fixed. A real grain carries its charge where it
+touched, and meets the wall on other spots: the even spread is the simplest such mixing.
+
+**Not the chute's grain.** A chute run (chute_stream, tribo.population) moves the grain in
+one plane: its contacts charge only the belt its section sweeps (the bands of docs/model.md
+section 8c, its `charged_area`), never the rest of the spheroid, so its ceiling is that
+belt at the density its patches keep (min(|sigma0|, sigma_P(L_e)) times the belt's area,
+at most the grain's limit): under a thousandth of the surface (2.1e-3 mm2 on average down
+the reference chute, docs/validation.md). The two
+describe different grains: repeated impacts one tumbling between impacts, the chute one
+that keeps its orientation plane; the column `surface` of repeated_impacts says so.
 
 The runs of a calibration are many and short (an impact is about a millisecond of the
 core's time): `Runs` is a batch of them in one FMU instance, reset between runs, so that
@@ -50,7 +63,10 @@ from ..fmu.names import failure, to_fmu
 from ..fmu.parameters import check_values
 from ..impact.defaults import DEFAULT_LIMIT
 from ..impact.episode import check_axis, episode_parameters
+from ..fmu.names import start_value
 from ..materials import table_of, with_pair
+from ..paschen import Gas, grain_limit
+from ..paschen import spheroid_area as spheroid_surface
 from ..populations.feed import STEPS_PER_RUN, Feed, draw, particle_parameters
 from ..populations.feed_variables import DEFAULT_CHUTE
 from ..populations.summary import stream_statistics
@@ -62,17 +78,6 @@ MAX_IMPACTS = 10_000  # repeated impacts: more is a typing mistake, not a measur
 
 class ObservableError(ValueError):
     """An observable that cannot be run as asked (the message, one line, names the value)."""
-
-
-def spheroid_surface(size: float, epsilon: float) -> float:
-    """The surface area (m2) of the prolate spheroid of long diameter `size` (2a) and
-    roundness epsilon (semi-axes a, b, b; b = epsilon a): 2 pi b^2 + 2 pi a b asin(e)/e,
-    e = sqrt(1 - epsilon^2); 4 pi a^2 for a sphere (docs/model.md section 8c)."""
-    a = size / 2.0
-    b = epsilon * a
-    e = math.sqrt(max(0.0, 1.0 - epsilon * epsilon))
-    ratio = math.asin(e) / e if e > 1e-8 else 1.0 + e * e / 6.0  # asin(e)/e -> 1 + e^2/6
-    return 2.0 * math.pi * b * b + 2.0 * math.pi * a * b * ratio
 
 
 def spheroid_mass(size: float, epsilon: float, density: float) -> float:
@@ -108,7 +113,7 @@ class Runs:
 def run_runs(image: FmuImage, runs: Runs) -> list[dict]:
     """Each run of the batch in one instance of the FMU, reset between runs: a row per run
     (charge, C, the grain's, before the first and after the last impact: `charge_initial`,
-    `charge`; `capped`, the fraction of its surface at the breakdown limit; charged_area,
+    `charge`; `capped`, the fraction of its bands at the gas's limit; charged_area,
     m2; lifted_off, contact_time, exited, mass; t_star, time_end in s). With `repeat` > 1 a row also holds `charges`: the charge after each impact."""
     md = image.model_description()
     outputs = (f"charge_{runs.charge_model}", f"capped_fraction_{runs.charge_model}") + RUN_OUTPUTS
@@ -231,20 +236,64 @@ def repeated_impacts(particle: str = "PE", wall: str = "steel", n: int = 10, *, 
     """n impacts as single_impact's, each on a fresh wall spot, the charge carried spread
     evenly over the grain between them (the module's text). A row per impact: `impact`
     (1..n), `charge` (the grain's after it, C), `charge_gained` (since the first impact
-    began, C), `delta` (this impact's Delta q, C)."""
+    began, C), `delta` (this impact's Delta q, C), `ceiling` (C: the charge the series
+    approaches, ceiling_of) and `surface` (what the impacts charge: the whole spheroid's
+    surface, not a chute run's belt)."""
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not 1 <= n <= MAX_IMPACTS:
         raise ObservableError(f"n = {n!r}: the number of impacts, a whole number from 1 to "
                               f"{MAX_IMPACTS}")
     image, base = _image_and_base(particle, wall, settings, materials, fmu, charge_model)
+    md = image.model_description()
     params = impact_parameters(base, speed=speed, angle_deg=angle_deg, size=size,
                                epsilon=epsilon, phi0_deg=phi0_deg, initial_charge=initial_charge)
+    if _paschen(md, params) and "breakdown_density" not in (settings or {}):
+        # the carried charge re-enters as the initial density, which the core holds at
+        # breakdown_density (section 8b's rule for an arriving surface); with the gas's limit
+        # the grain's own limit holds it (section 8e), so the long-gap cap is lifted here
+        params["breakdown_density"] = 0.0
     check_values(image, {k: [v] for k, v in params.items()})
     row = run_runs(image, Runs((params,), _checked_limit(limit), charge_model, repeat=int(n)))[0]
     charges = np.array(row.get("charges", [row["charge"]]))
     before = np.concatenate([[row["charge_initial"]], charges[:-1]])
     return pd.DataFrame({"impact": np.arange(1, len(charges) + 1), "charge": charges,
                          "charge_gained": charges - row["charge_initial"],
-                         "delta": charges - before})
+                         "delta": charges - before,
+                         "ceiling": ceiling_of(md, params, charge_model),
+                         "surface": REPEATED_SURFACE})
+
+
+# what repeated_impacts charges, beside a chute run (the module's text)
+REPEATED_SURFACE = ("fresh spots over the whole spheroid (the charge spread evenly between "
+                    "impacts); a chute run charges only the belt its section sweeps")
+
+
+def _paschen(md, params: dict) -> bool:
+    """The gas's limit of section 8e is in force (breakdown_model = 1, paschen)."""
+    model = params.get("breakdown_model", start_value(md, "breakdown_model"))
+    return model is not None and int(model) == 1
+
+
+def ceiling_of(md, params: dict, charge_model: str = "static") -> float:
+    """The charge (C, of sigma0's sign) that repeated impacts approach (the module's
+    text): the whole surface A_s at the density the grain keeps. The static model's
+    |sigma0|, capped by the gas: with breakdown_model = paschen the grain's limit
+    sigma_P(R_s) A_s (docs/model.md section 8e), with fixed breakdown_density (section 8b;
+    0: none). The sliding model's saturation grows with the work: the gas's cap alone (inf
+    without one)."""
+    def value(name):
+        v = params.get(name, start_value(md, name))
+        return None if v is None else float(v)
+    sigma0 = value("sigma0") or 0.0
+    size, epsilon = value("size"), value("epsilon")
+    area = spheroid_surface(size, epsilon)
+    own = abs(sigma0) * area if charge_model == "static" else math.inf
+    if _paschen(md, params):
+        gas = Gas.of(params, md)
+        cap = grain_limit(size, epsilon, gas, bool(value("wall_conducting") or 0))
+    else:
+        density = value("breakdown_density") or 0.0
+        cap = density * area if density > 0 else math.inf
+    return math.copysign(min(own, cap), sigma0)
 
 
 @dataclass
@@ -252,7 +301,9 @@ class Stream:
     """A feed's exit stream (chute_stream): `statistics` (q_per_m: the mass-weighted mean
     q/m of the grains that left, C/kg; q_per_m_std: the mass-weighted standard deviation of
     their q/m; stayed: the mass fraction that did not leave; n, n_exited) and `grains` (a
-    row per grain: its feed variables, exited, charge (C), mass (kg), charge_to_mass)."""
+    row per grain: its feed variables, exited, charge (C), mass (kg), charged_area (m2: the
+    belt its contacts charged, the most it can charge: the module's text), surface_area (m2,
+    the spheroid's), charge_to_mass)."""
 
     statistics: dict
     grains: pd.DataFrame
@@ -320,6 +371,8 @@ def chute_stream(particle: str = "PE", wall: str = "steel", n: int = 100, *, see
                    for c in chunks(params, 4 * executor.workers)]
         rows = [r for batch in run_all(executor, image, batches) for r in batch]
     grains = drawn.assign(exited=[r["exited"] for r in rows], charge=[r["charge"] for r in rows],
-                          mass=[r["mass"] for r in rows])
+                          mass=[r["mass"] for r in rows],
+                          charged_area=[r["charged_area"] for r in rows],
+                          surface_area=[spheroid_surface(p["size"], p["epsilon"]) for p in params])
     grains["charge_to_mass"] = grains["charge"] / grains["mass"]
     return Stream(stream_of(rows), grains)

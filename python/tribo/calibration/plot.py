@@ -85,6 +85,8 @@ def _said(fit, name: str) -> str:
     value, std, status = fit.values[name], fit.stds.get(name, math.nan), fit.status[name]
     text = f"{symbol} = {value:.3g}" + (f" ± {std:.2g}" if status == "fitted" and std == std else "")
     text += f" {unit}" if unit else ""
+    if status == "lower bound":  # data at the gas's limit (docs/model.md section 8e)
+        return f"|{symbol}| ≥ {abs(value):.3g}" + (f" {unit}" if unit else "")
     return text if status == "fitted" else f"{text} ({status})"
 
 

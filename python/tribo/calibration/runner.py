@@ -3,7 +3,8 @@ fitted to measured impacts and chute runs (data.py, fit.py), and what it writes:
 
     <out>/fit.csv           a row per charging parameter: value, standard deviation, its
                             decades d and the range value/10^d to value*10^d, status
-                            (fitted, not determined, fixed), unit
+                            (fitted, not determined, fixed, or lower bound: |sigma0| at
+                            least |value|, where the data stand at the gas's limit), unit
     <out>/points.csv        a row per measured point: its file and row, what was measured
                             (the file's columns), the model's value, log10(model/measured)
     <out>/profile.csv       (static model, t0 fitted) sigma0 fitted at each t0 of the grid
@@ -43,8 +44,7 @@ from ..populations.feed import Feed, draw, particle_parameters
 from ..populations.feed_variables import DEFAULT_CHUTE, FEED_VARIABLES
 from .bounds import check_charges
 from .data import DataError, combined_sign, read
-from .fit import (DEFAULT_FIT, PARAMETERS, Evaluator, FitError, Point, Problem, fit_runs,
-                  fit_structured)
+from .fit import DEFAULT_FIT, PARAMETERS, Evaluator, FitError, Point, Problem, fit_pair
 from .observables import impact_parameters, model_switches, spheroid_surface
 
 FIT, POINTS, PROFILE, MATERIALS, FIGURE, METADATA = (
@@ -127,9 +127,7 @@ class CalibrationJob(Job):
                     **model_switches(self.charge_model, models), **self.settings)
         for n in self.fit_names:
             base.pop(n, None)
-        breakdown = float(self.settings.get("breakdown_density", start_value(md, "breakdown_density")))
-        limit = self.table.breakdown_limit()
-        limit = min(limit, breakdown) if breakdown > 0 else limit
+        limit, gas_limit = sigma0_limit(self.table, self.settings, md)
         placeholder = dict(sigma0=sign * min(1e-5, limit), **{n: v for n, v in fixed.items()
                                                               if v is not None})
         points = []
@@ -147,7 +145,8 @@ class CalibrationJob(Job):
                 for k, v in dict(run, **placeholder).items():
                     values.setdefault(k, {})[v] = None
         check_values(self.image, {k: list(v) for k, v in values.items()})
-        self.problem = Problem(points, base, self.charge_model, self.fit_names, fixed, sign, limit)
+        self.problem = Problem(points, base, self.charge_model, self.fit_names, fixed, sign, limit,
+                               gas_limit)
         self.sha256 = self.image.sha256
         self.keys = [p.label for p in points]
 
@@ -169,7 +168,7 @@ class CalibrationJob(Job):
     def run(self, out: str, executor, *, progress: bool, max_runs: int | None) -> CalibrationReport:
         started, cpu = time.perf_counter(), time.process_time()
         evaluator = Evaluator(self.problem, self.image, executor)
-        fit = (fit_structured if self.problem.structured else fit_runs)(self.problem, evaluator)
+        fit = fit_pair(self.problem, evaluator)
         # this process's CPU time: the local cluster's threads included, not worker processes
         # or another machine's
         wall_s, cpu_s = time.perf_counter() - started, time.process_time() - cpu
@@ -206,6 +205,20 @@ class CalibrationJob(Job):
                                  warnings=list(fit.warnings), profile=profile,
                                  materials_file=materials_path, wall_s=wall_s, cpu_s=cpu_s,
                                  runs=fit.runs)
+
+
+def sigma0_limit(table, settings: dict, md) -> tuple[float, str]:
+    """The bound on |sigma0| and the gas's limit in force, in words. With breakdown_model
+    paschen (docs/model.md section 8e) |sigma0| reaches the table's bound (the contact's own
+    density; the gas caps what a patch keeps, and data at that cap give a lower bound);
+    with fixed, the cap breakdown_density too (section 8b: no sigma0 above it charges more)."""
+    model = settings.get("breakdown_model", start_value(md, "breakdown_model"))
+    if model is not None and int(model) == 1:
+        return table.sigma0_limit(), ("the gas's relaxation limit (breakdown_model = paschen, "
+                                      "docs/model.md section 8e)")
+    breakdown = float(settings.get("breakdown_density", start_value(md, "breakdown_density")))
+    limit = min(table.sigma0_limit(), breakdown) if breakdown > 0 else table.sigma0_limit()
+    return limit, "the air-breakdown limit (breakdown_density, docs/model.md section 8b)"
 
 
 def check_fit(names, charge_model: str) -> tuple:

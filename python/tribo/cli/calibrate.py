@@ -76,6 +76,10 @@ def told(job, report) -> list[str]:
              f"{report.rms_log10:.3f} decades of the charge"]
     for row in report.fit.itertuples():
         spread = f" ± {row.std:.2g}" if row.std == row.std else ""
+        if row.status == "lower bound":  # the data at the gas's limit (docs/calibration.md)
+            lines.append(f"  |{row.parameter}| >= {abs(row.value):.4g} {row.unit} (lower bound; "
+                         f"written as {row.value:.4g})")
+            continue
         lines.append(f"  {row.parameter} = {row.value:.4g}{spread} {row.unit} ({row.status})")
     lines += [f"calibration: warning: {w}" for w in report.warnings]
     lines += [f"calibration: wrote {', '.join(report.files)}",

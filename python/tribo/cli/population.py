@@ -21,9 +21,10 @@ Writes into the folder --out: particles.csv (one row per particle: the materials
 every parameter of its run (the feed variables, the chute, the materials' constants), then
 exited, exit_time, end_reason (1 left the chute, 3 came to rest on it, 0 still on it at the
 horizon), at_rest, rest_time (s), time_end, u, v, exit_speed, omega, then for each charge model of the FMU
-(static, sliding) charge_<model> (C, on the cylinder of depth cylinder_length),
-charge_to_mass_<model> (C/kg), capped_fraction_<model> (of the boundary at the breakdown
-limit), charged_area (m2, the area the grain's contact patch charged), contact_fraction, impacts (contacts made while approaching the plate: bounces, the drop's
+(static, sliding) charge_<model> (C, the grain's: the spheroid's; with --set
+grain_geometry=0 the cylinder's of depth cylinder_length), charge_to_mass_<model> (C/kg),
+capped_fraction_<model> (of the grain's bands at the gas's limit, docs/model.md §8e; of the
+cylinder's segments with grain_geometry 0), charged_area (m2, the area the grain's contact patch charged), contact_fraction, impacts (contacts made while approaching the plate: bounces, the drop's
 first landing included), fraction_flight ... fraction_bouncing, cpu_s, wall_s), summary.csv (q/m in C/kg:
 n, mean, std, percentiles 5 25 50 75 95, stream_mean and stream_std (q/m of the grains that
 left the chute, mass-weighted: what a Faraday cup at its end reads) and stayed (the mass

@@ -16,8 +16,8 @@ Its results (`episode_columns`): the charge each charge model of the FMU transfe
 the grain's: the spheroid's by default, the cylinder of the depth set with grain_geometry
 = cylinder; and per unit mass; fmu/charge_models.py), the area the
 contact patch charged (`charged_area`, m2: for a first impact on an uncharged grain with
-instantaneous transfer the static charge is sigma0 times it below the breakdown limit,
-docs/model.md sections 5c, 8c), the rebound (velocity along and normal to the plate, speed,
+instantaneous transfer the static charge is sigma0 times it where |sigma0| is below the
+gas's limit of the patch, and that limit times it above, docs/model.md sections 5c, 8c, 8e), the rebound (velocity along and normal to the plate, speed,
 angle from the surface in degrees, spin), the contact time, whether it lifted off and how
 the episode ended (`end_reason`; NaN where the FMU lacks it, as `charged_area`).
 

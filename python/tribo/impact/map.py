@@ -125,7 +125,10 @@ def map_metadata(grid: Grid, particle: str, wall: str, settings: dict, limit: fl
 
 
 def _unit(column: str) -> str:
-    units = dict(zip(MODEL_PREFIXES, ("C, on the cylinder of depth cylinder_length", "C/kg")))
+    # the grain's charge: the spheroid's by default (docs/model.md section 8c)
+    units = dict(zip(MODEL_PREFIXES, ("C per impact, the grain's: the spheroid's (grain_geometry "
+                                      "1, the default); the cylinder's of depth cylinder_length "
+                                      "with grain_geometry 0", "C/kg")))
     for prefix in sorted(units, key=len, reverse=True):  # charge_to_mass_ before charge_
         if column.startswith(prefix):
             return units[prefix]
@@ -136,7 +139,9 @@ def _unit(column: str) -> str:
             "end_reason": "tribo.EndReason (2 lifted off, 3 at rest on the plate, 0 in contact "
                           "at the time limit)",
             "time_end": "s", "t_star": "s", "particle": "material", "wall": "material",
-            "size": "m, the long diameter 2a", "cylinder_length": "m"}[column]
+            "size": "m, the long diameter 2a",
+            "cylinder_length": "m, the cylinder's depth (its charges with grain_geometry 0 "
+                               "only)"}[column]
 
 
 def run_impact_map(grid: Grid, particle: str, wall: str, settings: dict, limit: float,

@@ -1,7 +1,8 @@
 """The figure of a charge-per-impact map: for each charge model (a row), the charge per
 impact against the impact angle (at the map's highest speed) and against the impact speed
 (at its most head-on angle), a line per roundness, each the mean over the orientations;
-the title says the set-up (materials, size, cylinder depth: the charges in C are on it).
+the title says the set-up (materials, size, and whose the charges in C are: the
+spheroid's, or the cylinder's of its depth with grain_geometry 0).
 A point where some episode did not lift off (it came to rest on the plate, or was still in
 contact at the time limit: its charge is of a sustained contact, not of an impact) is
 ringed, with a legend entry that says so."""

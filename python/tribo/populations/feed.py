@@ -29,8 +29,9 @@ feed variables, the chute, the materials' constants): whether and when it left t
 how its run ended (END_COLUMNS, where the FMU outputs them: `end_reason` 1 chute_exit,
 3 at_rest, 0 still running at the horizon; `at_rest`, and `rest_time` in s, the time it came
 to rest on the chute, model.md section 3c); its velocity there (u along, v normal to the chute, the speed, the spin); each charge model's charge and
-charge-to-mass ratio, and the fraction of the boundary held at the air-breakdown limit
-(capped_fraction_<model>, model.md section 8b; the models are the FMU's,
+charge-to-mass ratio, and the fraction of the grain's bands held at the gas's limit
+(capped_fraction_<model>, model.md sections 8e, 8b; the cylinder's segments with
+grain_geometry 0; the models are the FMU's,
 fmu/charge_models.py); the area its contact patch charged (charged_area, m2, model.md
 section 8c, where the FMU outputs it); the contact fraction; impacts, the contacts made
 while approaching the plate (the core's count, model.md section 3b: each bounce is one, the

@@ -104,10 +104,10 @@ double tribo_charging_initial_value(const tribo_charging *c, const tribo_charge_
 {
     if (!model->density_unit || s->Sigma_init == 0.0)
         return 0.0;
-    /* a surface arriving above what air holds keeps what it holds (§8b; §8e: the grain's own
-       limit, where it acts) */
+    /* a surface arriving above what air holds keeps what it holds: Sigma_bd under §8b, the
+       grain's own limit under §8e, which replaces Sigma_bd on the spheroid's bands */
     const double unit = model->density_unit(s);
-    const double cap = tribo_min(s->Sigma_bd, c->surface_limit) / unit;
+    const double cap = (c->paschen ? c->surface_limit : s->Sigma_bd) / unit;
     return tribo_min(tribo_max(s->Sigma_init / unit, -cap), cap);
 }
 
