@@ -409,10 +409,11 @@ def test_a_run_stopped_by_ctrl_c_resumes_from_liggghts_restart_file(tmp_path, ma
     _, step, _ = runner._restart(str(log.parent))
     dt = json.loads((log.parent / engine.DONE).read_text())["run"]["dt"]
     impacts = [pd.read_csv(tmp_path / f / "impacts.csv") for f in ("whole", "cut")]
-    before = impacts[0]["time"] < step * dt
-    assert before.any() and not before.all()
-    assert (impacts[1]["time"] < step * dt).sum() == before.sum()
-    assert impacts[0][before].equals(impacts[1][before])
+    # (each run's own rows before the stop: a feeder's later hops may part, below, and so the
+    # runs' row counts)
+    before = [f[f["time"] < step * dt].reset_index(drop=True) for f in impacts]
+    assert len(before[0]) and len(before[0]) < len(impacts[0])
+    assert before[0].equals(before[1])
     if device:
         # a feeder's hops amplify a rounding difference hop after hop (a ball bouncing on a
         # vibrating plate is chaotic): measured over 15 cuts, in two a grain's hops parted

@@ -122,7 +122,7 @@ def test_make_sources_lays_out_only_what_the_link_maps_name(tmp_path):
     listed = {f.get("name") for f in build.iter("SourceFile")}
     layer = {"tribo/logging.c", "tribo/lifecycle.c", "tribo/step.c", "tribo/access.c",
              "tribo/fmu_state.c", "tribo/variables_model.c", "tribo/front_end_model.c",
-             "tribo/front_end_chute.c", "tribo/fmi3.c"}
+             "tribo/front_end_chute.c", "tribo/front_end_identity.c", "tribo/fmi3.c"}
     assert listed == layer | {"tribo/model.c", "tribo/geometry.c", "sundials/cvode.c",
                               "sundials/sundials_math.c"}
     made = {os.path.relpath(os.path.join(d, f), tmp_path / "sources")
