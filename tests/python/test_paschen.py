@@ -1,5 +1,5 @@
 """tribo.paschen: the gas's limit sigma_P(L) of a charged region (docs/model.md section 8e)
-as the package states it, against MODEL.md's table and its limits; and the SI FMU's
+as the package states it, against the table of model.md section 8e and its limits; and the SI FMU's
 impacts against it, an independent check of the core's table (here a grid refined by
 golden sections, there the core's own minimisation)."""
 

@@ -138,7 +138,7 @@ class CalibrationJob(Job):
             raise FitError(f"{len(points)} point(s) for {len(self.fit_names)} parameters "
                            f"({', '.join(self.fit_names)}): give more points, or fit fewer "
                            f"(fit=('sigma0',), --fit sigma0)")
-        check_charges(points, limit)
+        check_charges(points)
         values = {}
         for p in points:
             for run in p.runs:
