@@ -8,11 +8,8 @@
 # under the same load. Usage: scripts/bench_population_core.sh [--before REV] [N=1000] [ROUNDS=1]
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-before=""
-if [ "${1:-}" = --before ]; then
-  before=${2:?"--before needs a revision"}
-  shift 2
-fi
+# shellcheck source=bench_before.sh
+. "$ROOT/scripts/bench_before.sh"
 n=${1:-1000}
 rounds=${2:-1}
 "$ROOT/scripts/setup.sh" >/dev/null

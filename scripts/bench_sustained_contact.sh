@@ -7,11 +7,8 @@
 # Usage: scripts/bench_sustained_contact.sh [--before REV] [rounds=3]
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-before=""
-if [ "${1:-}" = --before ]; then
-  before=${2:?"--before needs a revision"}
-  shift 2
-fi
+# shellcheck source=bench_before.sh
+. "$ROOT/scripts/bench_before.sh"
 "$ROOT/scripts/setup.sh" >/dev/null
 if [ -n "$before" ]; then
   tmp=$(mktemp -d)
