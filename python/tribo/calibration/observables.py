@@ -246,11 +246,6 @@ def repeated_impacts(particle: str = "PE", wall: str = "steel", n: int = 10, *, 
     md = image.model_description()
     params = impact_parameters(base, speed=speed, angle_deg=angle_deg, size=size,
                                epsilon=epsilon, phi0_deg=phi0_deg, initial_charge=initial_charge)
-    if _paschen(md, params) and "breakdown_density" not in (settings or {}):
-        # the carried charge re-enters as the initial density, which the core holds at
-        # breakdown_density (section 8b's rule for an arriving surface); with the gas's limit
-        # the grain's own limit holds it (section 8e), so the long-gap cap is lifted here
-        params["breakdown_density"] = 0.0
     check_values(image, {k: [v] for k, v in params.items()})
     row = run_runs(image, Runs((params,), _checked_limit(limit), charge_model, repeat=int(n)))[0]
     charges = np.array(row.get("charges", [row["charge"]]))
