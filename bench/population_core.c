@@ -20,6 +20,11 @@ static double cpu_seconds(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+static double per(long long count, double impacts)
+{
+    return impacts > 0.0 ? (double)count / impacts : 0.0;
+}
+
 static int by_value(const void *a, const void *b)
 {
     const double x = *(const double *)a, y = *(const double *)b;
@@ -28,7 +33,7 @@ static int by_value(const void *a, const void *b)
 
 /* One grain: its CPU seconds, or a negative number where its set-up is refused. */
 static double run_grain(const char *line, const char *extra, double horizon, int *failed,
-                        double *impacts)
+                        double *impacts, tribo_stats *work)
 {
     char err[1024];
     tribo_si_scene si;
@@ -50,6 +55,11 @@ static double run_grain(const char *line, const char *extra, double horizon, int
     const double spent = cpu_seconds() - start;
     *failed = st != TRIBO_OK && st != TRIBO_ENDED;
     *impacts += tribo_get(m, TRIBO_QUANTITY_IMPACTS);
+    tribo_stats st_grain;
+    tribo_get_stats(m, &st_grain);
+    work->steps += st_grain.steps;
+    work->rhs_evals += st_grain.rhs_evals;
+    work->events += st_grain.events;
     tribo_free(m);
     return spent;
 }
@@ -71,9 +81,10 @@ int main(int argc, char **argv)
     double *cost = NULL;
     int n = 0, capacity = 0, failed = 0;
     double impacts = 0.0;
+    tribo_stats work = {0};
     while (fgets(line, sizeof line, f)) {
         int fail = 0;
-        const double c = run_grain(line, extra, horizon, &fail, &impacts);
+        const double c = run_grain(line, extra, horizon, &fail, &impacts, &work);
         if (c < 0.0) {
             fclose(f);
             free(cost);
@@ -98,9 +109,10 @@ int main(int argc, char **argv)
         total += cost[i];
     qsort(cost, (size_t)n, sizeof *cost, by_value);
     printf("grains %d  CPU %.2f s  median %.2f ms  slowest %.3f s  failed %d  impacts %.0f  "
-           "CPU per impact %.4f ms\n",
+           "CPU per impact %.4f ms  per impact: steps %.1f  events %.2f  rhs %.1f\n",
            n, total, n ? 1e3 * cost[n / 2] : 0.0, n ? cost[n - 1] : 0.0, failed, impacts,
-           impacts > 0.0 ? 1e3 * total / impacts : 0.0);
+           impacts > 0.0 ? 1e3 * total / impacts : 0.0, per(work.steps, impacts),
+           per(work.events, impacts), per(work.rhs_evals, impacts));
     free(cost);
     return failed ? 3 : 0;
 }
