@@ -19,7 +19,7 @@
  *
  * The phases, their switch functions and what happens at a switch are force_phases.c's;
  * this file drives CVODE through them. A switch function that dips past zero and back
- * within one step is caught on the dense output too (find_grazing_switch).
+ * within one step is caught on the dense output too (find_switch).
  *
  * Charging does not limit the step: both charge models are swept along each step from
  * CVODE's dense output, cut where the contact's edges cross segment boundaries, so that
@@ -42,6 +42,7 @@
 #include "integrator.h"
 
 #include "contact.h"
+#include "dop853.h"
 #include "flight.h"
 #include "force_phases.h"
 
@@ -77,6 +78,12 @@ typedef struct cvode_integrator {
     SUNMatrix jac;
     SUNLinearSolver ls;
     phase phase;
+    /* a vibrating plate's contact phases are taken by DOP853 (with Adams): each of an impact's
+       switches restarts the integration, which costs a one-step method nothing and CVODE a
+       climb from order 1 */
+    int one_step;
+    tribo_dop853 dop;
+    double h_max; /* the longest step since the restart */
     int replaying; /* re-taking saved steps: no counting, no charging */
     double rhs_work; /* the work of a right-hand side (integrator.h): Adams's or BDF's */
 
@@ -132,11 +139,9 @@ static int roots(sunrealtype t, N_Vector y, sunrealtype *g, void *user)
     return 0;
 }
 
-static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *user)
+static void evaluate(void *user, double t, const double *state, double *dydt)
 {
     cvode_integrator *c = user;
-    double *dydt = N_VGetArrayPointer(ydot);
-    const double *state = N_VGetArrayPointer(y);
     tribo_dyn_params at;
     const tribo_dyn_params *p = dyn_at(c, t, &at);
     tribo_dynamics_rhs(p, &c->phase, state, dydt, NULL);
@@ -150,6 +155,11 @@ static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *user)
         tribo_count(c->m, TRIBO_COUNT_RHS_EVALS, 1);
         tribo_work(c->m, c->rhs_work);
     }
+}
+
+static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *user)
+{
+    evaluate(user, t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
     return 0;
 }
 
@@ -209,7 +219,7 @@ static void hold_phase(const cvode_integrator *c, double t, double *y)
 /* The longest step: the time in which the steady loads (gravity and the inputs) move a
    particle from rest by 5e-4 semi-axes, sqrt(1e-3 / load), but at least 1 (the paper's
    scenes, Gamma >= 1e-3, keep 1; the contact's own period, 2 pi, CVODE resolves itself). The
-   switch functions are sampled within each step (find_grazing_switch): a step of that
+   switch functions are sampled within each step (find_switch): a step of that
    length leaves nothing between the samples. A physical particle has a tiny Gamma (1e-8 for
    a 1 mm polymer grain on steel): a step of 1 would then take ~1e6 steps to cross a chute
    the slow motion crosses in ~1e3 (model.md §8, §9). A vibrating plate's inertial force is
@@ -236,13 +246,21 @@ static tribo_status restart_at(cvode_integrator *c, double t, const double *y, c
             tribo_count(m, TRIBO_COUNT_RESTARTS, 1);
         return TRIBO_OK;
     }
-    memcpy(N_VGetArrayPointer(c->y), y, (size_t)c->n * sizeof(double));
-    int dir[N_ROOTS];
-    tribo_switch_directions(c->dyn, ph, dir);
     /* a rotating particle in flight must not swing its lowest point through the plate and
        back within one step unseen: 0.2 rad per step at most */
     const double spin = fabs(y[TRIBO_IOMEGA]);
     const double hmax = spin > 0.0 ? fmin(0.2 / spin, slow_step(c->dyn)) : slow_step(c->dyn);
+    if (c->one_step) {
+        c->h_max = hmax;
+        tribo_dop853_start(&c->dop, evaluate, c, c->n, t, y, c->dyn->rtol,
+                           N_VGetArrayPointer(c->abstol), hmax);
+        if (!c->replaying)
+            tribo_count(m, TRIBO_COUNT_RESTARTS, 1);
+        return TRIBO_OK;
+    }
+    memcpy(N_VGetArrayPointer(c->y), y, (size_t)c->n * sizeof(double));
+    int dir[N_ROOTS];
+    tribo_switch_directions(c->dyn, ph, dir);
     if (CVodeReInit(c->mem, t, c->y) != CV_SUCCESS || CVodeSetRootDirection(c->mem, dir) != CV_SUCCESS ||
         CVodeSetMaxStep(c->mem, hmax) != CV_SUCCESS)
         return tribo_fail(m, TRIBO_ERR_INTEGRATOR, "CVODE restart failed at t = %.17g: %s", t,
@@ -313,6 +331,8 @@ static tribo_status create(tribo_model *m, void **data)
     const tribo_scene *scene = tribo_get_scene(m);
     const int bdf = scene->integrator == TRIBO_INTEGRATOR_CVODE_BDF;
     c->rhs_work = bdf ? TRIBO_WORK_RHS_BDF : TRIBO_WORK_RHS_ADAMS;
+    c->one_step = !bdf && tribo_vibrating(c->dyn);
+    _Static_assert(TRIBO_NSTATE_MAX <= TRIBO_DOP853_MAX, "DOP853 holds the whole state");
     /* one SUNDIALS context per instance: nothing is shared between instances */
     if (failed(c, SUNContext_Create(NULL, &c->ctx) == 0, "SUNContext_Create") ||
         failed(c, (c->y = N_VNew_Serial(c->n, c->ctx)) != NULL, "N_VNew_Serial") ||
@@ -398,7 +418,8 @@ static tribo_status fail_at(cvode_integrator *c, double t, const double *y, cons
 }
 
 static void capture_interpolant(cvode_integrator *c);
-static int find_grazing_switch(cvode_integrator *c, double t_start);
+#define GRAZING_SAMPLES 8
+static int find_switch(cvode_integrator *c, double t_start, int last);
 
 /* The longest piece of a flight, in units of slow_step, and the most evaluations of the
    clearance a piece spends looking for the flight's end before it ends where it got to (so
@@ -436,12 +457,36 @@ static tribo_status take_flight_piece(cvode_integrator *c)
     return TRIBO_OK;
 }
 
+/* A contact's step by DOP853: its switches are located on its dense output (find_switch),
+   like the grazing ones of a CVODE step. */
+static tribo_status take_one_step(cvode_integrator *c)
+{
+    if (tribo_dop853_step(&c->dop, c->h_max) != 0)
+        return fail_at(c, c->dop.t, c->dop.y, "DOP853's step fell below the rounding of t");
+    c->steps_since_restart++;
+    c->open = 1;
+    c->t_end = c->dop.t;
+    memcpy(c->y_end, c->dop.y, (size_t)c->n * sizeof(double));
+    hold_phase(c, c->t_end, c->y_end);
+    c->ends_at_root = 0;
+    for (int i = 0; i < N_ROOTS; i++)
+        c->roots[i] = 0;
+    const int looks = find_switch(c, tribo_committed(c->m)->t, GRAZING_SAMPLES);
+    if (!c->replaying) {
+        tribo_count(c->m, TRIBO_COUNT_STEPS, 1);
+        tribo_work(c->m, TRIBO_WORK_CVODE_STEP + TRIBO_WORK_GRAZING_LOOK * (double)looks);
+    }
+    return TRIBO_OK;
+}
+
 /* Take one step from the end of the last one (a CVODE step in contact, a piece of the flight
    in flight); it becomes the open step. */
 static tribo_status take_step(cvode_integrator *c)
 {
     if (!tribo_touching(&c->phase))
         return take_flight_piece(c);
+    if (c->one_step)
+        return take_one_step(c);
     double t_ret;
     /* in one-step mode the target only sets the direction and the first step's scale */
     const int flag = CVode(c->mem, c->t_restart + 1.0, c->y, &t_ret, CV_ONE_STEP);
@@ -461,7 +506,7 @@ static tribo_status take_step(cvode_integrator *c)
     if (c->ends_at_root)
         CVodeGetRootInfo(c->mem, c->roots);
     capture_interpolant(c);
-    const int looks = c->ends_at_root ? 0 : find_grazing_switch(c, tribo_committed(c->m)->t);
+    const int looks = c->ends_at_root ? 0 : find_switch(c, tribo_committed(c->m)->t, GRAZING_SAMPLES - 1);
     if (!c->replaying) {
         /* (its right-hand sides are booked as CVODE evaluates them) */
         tribo_count(c->m, TRIBO_COUNT_STEPS, 1);
@@ -472,8 +517,11 @@ static tribo_status take_step(cvode_integrator *c)
     return TRIBO_OK;
 }
 
-static double dense_component(const cvode_integrator *c, double u, int i)
+static double dense_component(const cvode_integrator *c, double t, int i)
 {
+    if (c->one_step)
+        return tribo_dop853_dense(&c->dop, t, i);
+    const double u = t - c->taylor_t;
     double v = c->taylor[c->taylor_order][i];
     for (int k = c->taylor_order - 1; k >= 0; k--)
         v = v * u + c->taylor[k][i];
@@ -486,9 +534,8 @@ static void dense(cvode_integrator *c, double t, double *y)
         tribo_flight_state(&c->flight, c->dyn, t, y);
         return;
     }
-    const double u = t - c->taylor_t;
     for (int i = 0; i < c->n; i++)
-        y[i] = dense_component(c, u, i);
+        y[i] = dense_component(c, t, i);
 }
 
 /* CVODE sees a switch only where a root function has changed sign between the ends of a
@@ -497,8 +544,9 @@ static void dense(cvode_integrator *c, double t, double *y)
    Coulomb limit almost tangentially, and a dip of 1e-6 past it lies within one step, unseen
    at its ends. So each step is also sampled inside on the dense output; the first sample
    past a switch (beyond the rounding of that function's values in the step) is bisected to
-   the crossing, and the step ends there as if CVODE had found it. */
-#define GRAZING_SAMPLES 8
+   the crossing, and the step ends there as if CVODE had found it. A DOP853 step's switches are
+   all found so, its end's sample among them (last = GRAZING_SAMPLES; CVODE's own root finding
+   looks at a CVODE step's ends: last = GRAZING_SAMPLES - 1). */
 
 static void switch_functions(cvode_integrator *c, double t, double *g)
 {
@@ -509,7 +557,7 @@ static void switch_functions(cvode_integrator *c, double t, double *g)
 }
 
 /* Returns how many times it looked at the switch functions. */
-static int find_grazing_switch(cvode_integrator *c, double t_start)
+static int find_switch(cvode_integrator *c, double t_start, int last)
 {
     int dir[N_ROOTS];
     tribo_switch_directions(c->dyn, &c->phase, dir);
@@ -523,7 +571,7 @@ static int find_grazing_switch(cvode_integrator *c, double t_start)
         for (int i = 0; i < N_ROOTS; i++)
             scale[i] = fmax(scale[i], fabs(g[j][i]));
     }
-    for (int j = 1; j < GRAZING_SAMPLES; j++) {
+    for (int j = 1; j <= last; j++) {
         int found = -1;
         for (int i = 0; i < N_ROOTS && found < 0; i++) {
             const double noise = 1e-12 + 1e-9 * scale[i];
@@ -582,9 +630,8 @@ static void probe(void *ctx, double t, double *s_centre, double *half_width, dou
     /* the components tribo_probe_contact reads: the sweep probes often */
     static const int read[] = {TRIBO_IGAP, TRIBO_IPHI, TRIBO_IU, TRIBO_IOMEGA};
     double y[TRIBO_NSTATE_MAX];
-    const double u = t - c->taylor_t;
     for (size_t i = 0; i < sizeof read / sizeof read[0]; i++)
-        y[read[i]] = dense_component(c, u, read[i]);
+        y[read[i]] = dense_component(c, t, read[i]);
     tribo_probe_contact(c->m, y, s_centre, half_width, centre_speed, k);
     /* the rigid stick does not slip: no frictional work (model.md §3b) */
     if (c->phase.tangent == TRIBO_TANGENT_RIGID && tribo_touching(&c->phase))
