@@ -6,11 +6,12 @@
 #include <string.h>
 
 /* d(mu Psi_N)/dtau for Psi_N = max(0, dy (1 - nu s)) at fixed s, one-sided where dy = 0:
-   at the instant of contact the limit is 0 but already growing. */
+   at the instant of contact the limit is 0 but already growing (past the lift-off, the law
+   continued, p->past_liftoff: the unclamped one's). */
 static double limit_rate(const tribo_dyn_params *p, const tribo_contact_eval *ev, double ddy)
 {
     const double factor = 1.0 - p->nu * ev->sign_v;
-    return factor > 0.0 && (ev->delta_y > 0.0 || ddy > 0.0) ? p->mu * factor * ddy : 0.0;
+    return factor > 0.0 && (p->past_liftoff || ev->delta_y > 0.0 || ddy > 0.0) ? p->mu * factor * ddy : 0.0;
 }
 
 const tribo_dyn_params *tribo_dyn_at(const tribo_dyn_params *p, double tau, tribo_dyn_params *at)
@@ -164,7 +165,7 @@ void tribo_contact_at(const tribo_dyn_params *p, const tribo_force_law *law, con
                       tribo_contact_eval *ev)
 {
     tribo_pose_at(p->eps2, y[TRIBO_IPHI], &ev->pose);
-    ev->delta_y = tribo_indentation(y[TRIBO_IGAP]);
+    ev->delta_y = p->past_liftoff ? -y[TRIBO_IGAP] : tribo_indentation(y[TRIBO_IGAP]);
     ev->in_contact = law->contact == TRIBO_CONTACT_BY_GEOMETRY ? ev->delta_y > 0.0
                                                                 : law->contact == TRIBO_CONTACT_ON;
     ev->vs = y[TRIBO_IU] + ev->pose.h * y[TRIBO_IOMEGA]; /* model.md §2 */
@@ -185,7 +186,8 @@ void tribo_contact_at(const tribo_dyn_params *p, const tribo_force_law *law, con
         break;
     case TRIBO_NORMAL_SIGN:
         ev->sign_v = law->normal_sign;
-        ev->psi_n = tribo_normal_force(ev->delta_y, p->nu, ev->sign_v);
+        ev->psi_n = p->past_liftoff ? ev->delta_y * (1.0 - p->nu * ev->sign_v)
+                                    : tribo_normal_force(ev->delta_y, p->nu, ev->sign_v);
         ev->limit_rate = limit_rate(p, ev, ddy);
         break;
     case TRIBO_NORMAL_LOCK:

@@ -56,6 +56,12 @@ typedef struct tribo_dyn_params {
     /* the dynamics at one time (tribo_dyn_at): tau, the inertial force then and its rate;
        0 on a still plate */
     double tau, vib_t, vib_n, vib_rate_t, vib_rate_n;
+    /* a contact phase's law continued past its lift-off, for the right-hand side of a one-step
+       integrator: the indentation -G and Psi_N = delta_y (1 - nu s) unclamped. Up to the
+       lift-off (G <= 0) it is the law itself; past it, where a step that crosses the lift-off
+       is cut at the located root, it is smooth, where the clamps' kink would hold the step's
+       error estimate at the order of the kink and its steps to a crawl. 0 elsewhere. */
+    int past_liftoff;
 } tribo_dyn_params;
 
 /* Whether the plate vibrates (model.md §9b): the forces then depend on the time. */

@@ -275,6 +275,34 @@ static int still(int n, const double *S0, const double *S1, const double *S2)
     return 1;
 }
 
+/* An edge's extreme over a piece (the upper edge's highest, the lower's lowest), where it
+   turns between the piece's points: the vertex of the parabola through the extreme point and
+   its neighbours, probed there. The points alone can miss the far end of a contact's reach by
+   the edge's curvature times the square of their spacing, and with it a segment the contact
+   covers. Without such a turn, the extreme point's own value. */
+static double edge_extreme(sweep *w, const probe_point *pts, int hi_edge)
+{
+    const double sign = hi_edge ? 1.0 : -1.0;
+    int k = 0;
+    for (int i = 1; i < PIECE_POINTS; i++)
+        if (sign * edge_of(&pts[i], hi_edge) > sign * edge_of(&pts[k], hi_edge))
+            k = i;
+    const int c = k == 0 ? 1 : k == PIECE_POINTS - 1 ? PIECE_POINTS - 2 : k;
+    const double e0 = edge_of(&pts[c - 1], hi_edge), e1 = edge_of(&pts[c], hi_edge),
+                 e2 = edge_of(&pts[c + 1], hi_edge), best = edge_of(&pts[k], hi_edge);
+    const double curvature = e0 - 2.0 * e1 + e2;
+    if (!(sign * curvature < 0.0))
+        return best;
+    /* the vertex, in spacings of the points from the middle one */
+    const double u = 0.5 * (e0 - e2) / curvature;
+    if (!(fabs(u) < 1.0) || (k != c && (k < c) != (u < 0.0)))
+        return best;
+    const double t = pts[c].t + u * (pts[c + 1].t - pts[c].t);
+    const probe_point p = probe_at(w, t, &pts[c]);
+    const double e = edge_of(&p, hi_edge);
+    return sign * e > sign * best ? e : best;
+}
+
 /* Instantaneous transfer over a piece (model.md §5c): every segment the contact covers
    within it is at its saturation at once, whenever it was covered, and keeps the
    saturation of the time it left, so the piece is one sample over the union of the
@@ -291,6 +319,8 @@ static void charge_whole_piece(sweep *w, const probe_point *pts, const double *S
         lo = tribo_min(lo, pts[i].lo);
         hi = tribo_max(hi, pts[i].hi);
     }
+    lo = tribo_min(lo, edge_extreme(w, pts, 0));
+    hi = tribo_max(hi, edge_extreme(w, pts, 1));
     tribo_contact_sample s;
     s.duration = b->t - a->t;
     const double first = floor(lo / w->seg);

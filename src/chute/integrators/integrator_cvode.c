@@ -144,6 +144,10 @@ static void evaluate(void *user, double t, const double *state, double *dydt)
     cvode_integrator *c = user;
     tribo_dyn_params at;
     const tribo_dyn_params *p = dyn_at(c, t, &at);
+    if (c->one_step) { /* (a vibrating plate's: p is the copy `at`) */
+        at.past_liftoff = 1;
+        p = &at;
+    }
     tribo_dynamics_rhs(p, &c->phase, state, dydt, NULL);
     /* the charge models' quadratures are integrated by the charging sweep, so that they
        do not steer the steps: here they are constant */
@@ -556,6 +560,22 @@ static void switch_functions(cvode_integrator *c, double t, double *g)
     tribo_switch_functions(dyn_at(c, t, &at), &c->phase, y, g);
 }
 
+/* The first time in [a, b] where switch function i is past its switch (direction dir), a
+   before it and b past it; counts the looks. */
+static double bisect(cvode_integrator *c, int dir, int i, double a, double b, int *looks)
+{
+    for (int it = 0; it < 60 && b - a > 1e-15 * (1.0 + fabs(b)); it++, (*looks)++) {
+        const double mid = 0.5 * (a + b);
+        double gm[N_ROOTS];
+        switch_functions(c, mid, gm);
+        if (dir * gm[i] > 0.0)
+            b = mid;
+        else
+            a = mid;
+    }
+    return b;
+}
+
 /* Returns how many times it looked at the switch functions. */
 static int find_switch(cvode_integrator *c, double t_start, int last)
 {
@@ -572,28 +592,27 @@ static int find_switch(cvode_integrator *c, double t_start, int last)
             scale[i] = fmax(scale[i], fabs(g[j][i]));
     }
     for (int j = 1; j <= last; j++) {
+        /* every function past its switch at this sample is bisected, between the last sample
+           before it and this one, to its crossing: the earliest is the switch (two can cross
+           between two samples, a slip starting just before the lift-off, say) */
         int found = -1;
-        for (int i = 0; i < N_ROOTS && found < 0; i++) {
+        double at = INFINITY;
+        for (int i = 0; i < N_ROOTS; i++) {
             const double noise = 1e-12 + 1e-9 * scale[i];
-            if (dir[i] != 0 && dir[i] * g[0][i] <= noise && dir[i] * g[j][i] > noise)
+            if (dir[i] == 0 || !(dir[i] * g[0][i] <= noise && dir[i] * g[j][i] > noise))
+                continue;
+            const double crossing = bisect(c, dir[i], i, t_start + h * (j - 1) / GRAZING_SAMPLES,
+                                           t_start + h * j / GRAZING_SAMPLES, &looks);
+            if (crossing < at) {
+                at = crossing;
                 found = i;
+            }
         }
         if (found < 0)
             continue;
-        /* bisect between the last sample before the switch and the first past it */
-        double a = t_start + h * (j - 1) / GRAZING_SAMPLES, b = t_start + h * j / GRAZING_SAMPLES;
-        for (int it = 0; it < 60 && b - a > 1e-15 * (1.0 + fabs(b)); it++, looks++) {
-            const double mid = 0.5 * (a + b);
-            double gm[N_ROOTS];
-            switch_functions(c, mid, gm);
-            if (dir[found] * gm[found] > 0.0)
-                b = mid;
-            else
-                a = mid;
-        }
-        c->t_end = b;
-        dense(c, b, c->y_end);
-        hold_phase(c, b, c->y_end);
+        c->t_end = at;
+        dense(c, at, c->y_end);
+        hold_phase(c, at, c->y_end);
         c->ends_at_root = 1;
         for (int i = 0; i < N_ROOTS; i++)
             c->roots[i] = i == found ? dir[i] : 0;
