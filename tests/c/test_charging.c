@@ -249,6 +249,49 @@ Test(charging, sweep_finishes_at_a_kinked_or_singular_end, .timeout = 60)
     tribo_charging_free(&c);
 }
 
+/* A contact held at one place whose half-width swells and shrinks, half(t) = H - k (t - tm)^2:
+   its edges turn at tm. */
+typedef struct swelling {
+    double s0, H, k, tm;
+} swelling;
+
+static void swelling_probe(void *ctx, double t, double *s_c, double *half, double *speed,
+                           tribo_contact_kinematics *k)
+{
+    const swelling *sw = ctx;
+    *s_c = sw->s0;
+    *half = sw->H - sw->k * (t - sw->tm) * (t - sw->tm);
+    *speed = 0.0;
+    *k = (tribo_contact_kinematics){0.3, 1.0, 0.0, 1.0, 1.0};
+}
+
+/* Instantaneous transfer (model.md §5c) charges every segment the contact reaches, also one
+   its edges reach only where they turn between the probes of a piece: over [0, T] in one
+   piece (its probes at 0, T/4, T/2, ...), the edges turning at 0.15 T into the segments
+   99 and 110, which the probes do not reach. */
+Test(charging, instantaneous_transfer_reaches_where_the_edges_turn_between_probes)
+{
+    tribo_charging c = make(0.7, 400);
+    target = &c;
+    PARAMS = params();
+    PARAMS.tau0 = 0.0;
+    const double L = c.arc.perimeter / 400, T = 2.0;
+    /* the edges turn 0.025 L past the boundaries at 100 L and 110 L; the probe at T/4 sees
+       them 0.05 L short of their turns */
+    swelling sw = {105.0 * L, 5.025 * L, 0.05 * L / (0.1 * T * 0.1 * T), 0.15 * T};
+    const tribo_contact_probe pr = {swelling_probe, &sw};
+    double work = 0.0, globals[TRIBO_CHARGE_MAX_GLOBALS];
+    tribo_charging_start(&c, &PARAMS, globals);
+    samples = 0;
+    cr_assert_eq(tribo_charging_sweep(&c, &PARAMS, &pr, 0.0, T, 1e-8, 1e-10, &work, globals, apply,
+                                      NULL, INFINITY, TRIBO_SWEEP_CELL_COST, NULL),
+                 0);
+    const double *q = static_q(&c);
+    cr_expect(q[99] > 0.0 && q[110] > 0.0, "the turns' segments: %g, %g", q[99], q[110]);
+    cr_expect(q[98] == 0.0 && q[111] == 0.0, "beyond them: %g, %g", q[98], q[111]);
+    tribo_charging_free(&c);
+}
+
 /* A contact wider than the boundary charges each segment once, and one far off the
    numbering (as a corrupt or overflowing state could give) a segment or two, without a cast
    of a double an integer cannot hold (the sanitizer build checks the casts); the sums the
