@@ -53,7 +53,7 @@ if mode == "full":
         se = lambda v: v.std() / np.sqrt(len(v))
         print(f"{name}: {len(a)} grains, {(a[:, 0] != 8).sum()} not out in 30 s; impacts "
               f"{a[:, 10].mean():.1f} +- {se(a[:, 10]):.1f}; exit time {a[:, 1].mean():.4g} "
-              f"+- {se(a[:, 1]):.2g}; Q_static {a[:, 8].mean():.5g} +- {se(a[:, 8]):.2g} (mean +- its "
+              f"+- {se(a[:, 1]):.2g} t*; Q_static {a[:, 8].mean():.5g} +- {se(a[:, 8]):.2g} (mean +- its "
               "standard error)")
     sys.exit()
 ref = np.loadtxt(f"{folder}/reference.txt", ndmin=2)
