@@ -5,6 +5,7 @@
    text and the model's advance, so that it compiles against earlier cores too
    (scripts/bench_feeder_precision.sh --before REV sets two cores' ends side by side).
    Usage: tribo_feeder_state FEED [EXTRA_SETTINGS] [HORIZON_S=5] */
+#include "feed_args.h"
 #include "si.h"
 
 #include <stdio.h>
@@ -12,43 +13,35 @@
 
 int main(int argc, char **argv)
 {
-    if (argc < 2) {
-        fprintf(stderr, "usage: %s FEED [EXTRA_SETTINGS] [HORIZON_S]\n", argv[0]);
+    feed_args args;
+    if (!open_feed(argc, argv, &args))
         return 2;
-    }
-    const char *extra = argc > 2 ? argv[2] : "";
-    const double horizon = argc > 3 ? atof(argv[3]) : 5.0;
-    FILE *f = fopen(argv[1], "r");
-    if (!f) {
-        fprintf(stderr, "cannot read %s\n", argv[1]);
-        return 2;
-    }
     static const tribo_quantity shown[] = {
         TRIBO_QUANTITY_TIME,   TRIBO_QUANTITY_X,       TRIBO_QUANTITY_Y,
         TRIBO_QUANTITY_PHI,    TRIBO_QUANTITY_U,       TRIBO_QUANTITY_V,
         TRIBO_QUANTITY_OMEGA,  TRIBO_QUANTITY_STATIC,  TRIBO_QUANTITY_SLIDING,
         TRIBO_QUANTITY_IMPACTS, TRIBO_QUANTITY_WORK_DISSIPATED};
     static char line[1 << 14];
-    while (fgets(line, sizeof line, f)) {
+    while (fgets(line, sizeof line, args.feed)) {
         char err[1024];
         tribo_si_scene si;
         tribo_si_scene_defaults(&si);
         tribo_si_derived d;
         tribo_model *m = NULL;
         if (tribo_si_scene_apply(&si, line, err, sizeof err) != TRIBO_OK ||
-            tribo_si_scene_apply(&si, extra, err, sizeof err) != TRIBO_OK ||
+            tribo_si_scene_apply(&si, args.extra, err, sizeof err) != TRIBO_OK ||
             tribo_si_derive(&si, &d, err, sizeof err) != TRIBO_OK ||
             !(m = tribo_create(&d.scene, err, sizeof err))) {
             fprintf(stderr, "refused: %s\n", err);
-            fclose(f);
+            fclose(args.feed);
             return 1;
         }
-        printf("%d", (int)tribo_advance_fully(m, horizon / d.t_star));
+        printf("%d", (int)tribo_advance_fully(m, args.horizon / d.t_star));
         for (size_t i = 0; i < sizeof shown / sizeof shown[0]; i++)
             printf(" %.17g", tribo_get(m, shown[i]));
         printf("\n");
         tribo_free(m);
     }
-    fclose(f);
+    fclose(args.feed);
     return 0;
 }

@@ -6,6 +6,7 @@
    defaults. Prints the total, the median and the slowest grain's CPU, and the grains that
    ended in an error; exits 3 where one did (the population tests of tests/stability).
    Usage: tribo_population_core FEED [EXTRA_SETTINGS] [HORIZON_S=5] */
+#include "feed_args.h"
 #include "si.h"
 
 #include <stdio.h>
@@ -66,27 +67,19 @@ static double run_grain(const char *line, const char *extra, double horizon, int
 
 int main(int argc, char **argv)
 {
-    if (argc < 2) {
-        fprintf(stderr, "usage: %s FEED [EXTRA_SETTINGS] [HORIZON_S]\n", argv[0]);
+    feed_args args;
+    if (!open_feed(argc, argv, &args))
         return 2;
-    }
-    const char *extra = argc > 2 ? argv[2] : "";
-    const double horizon = argc > 3 ? atof(argv[3]) : 5.0;
-    FILE *f = fopen(argv[1], "r");
-    if (!f) {
-        fprintf(stderr, "cannot read %s\n", argv[1]);
-        return 2;
-    }
     static char line[1 << 14];
     double *cost = NULL;
     int n = 0, capacity = 0, failed = 0;
     double impacts = 0.0;
     tribo_stats work = {0};
-    while (fgets(line, sizeof line, f)) {
+    while (fgets(line, sizeof line, args.feed)) {
         int fail = 0;
-        const double c = run_grain(line, extra, horizon, &fail, &impacts, &work);
+        const double c = run_grain(line, args.extra, args.horizon, &fail, &impacts, &work);
         if (c < 0.0) {
-            fclose(f);
+            fclose(args.feed);
             free(cost);
             return 1;
         }
@@ -94,7 +87,7 @@ int main(int argc, char **argv)
             capacity = capacity ? 2 * capacity : 1024;
             double *grown = realloc(cost, (size_t)capacity * sizeof *cost);
             if (!grown) {
-                fclose(f);
+                fclose(args.feed);
                 free(cost);
                 return 1;
             }
@@ -103,7 +96,7 @@ int main(int argc, char **argv)
         cost[n++] = c;
         failed += fail;
     }
-    fclose(f);
+    fclose(args.feed);
     double total = 0.0;
     for (int i = 0; i < n; i++)
         total += cost[i];

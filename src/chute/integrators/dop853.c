@@ -125,11 +125,24 @@ void tribo_dop853_start(tribo_dop853 *s, tribo_rk_rhs rhs, void *ctx, int n, dou
     s->h = fmin(fmin(100.0 * h0, h1), hmax);
 }
 
+/* Stage st of a step of h from (t, y): its derivative, into k[st]. */
+static void take_stage(tribo_dop853 *s, int st, double t, const double *y, double h)
+{
+    double stage[TRIBO_DOP853_MAX];
+    for (int i = 0; i < s->n; i++) {
+        double sum = 0.0;
+        for (int j = 0; j < st; j++)
+            sum += A[st][j] * s->k[j][i];
+        stage[i] = y[i] + h * sum;
+    }
+    s->rhs(s->ctx, t + C[st] * h, stage, s->k[st]);
+}
+
 int tribo_dop853_step(tribo_dop853 *s, double hmax)
 {
     const int n = s->n;
     double(*k)[TRIBO_DOP853_MAX] = s->k;
-    double y_new[TRIBO_DOP853_MAX], stage[TRIBO_DOP853_MAX];
+    double y_new[TRIBO_DOP853_MAX];
     const double t = s->t;
     const double min_step = 10.0 * (nextafter(t, INFINITY) - t);
     double h = fmin(s->h, hmax), factor;
@@ -138,15 +151,8 @@ int tribo_dop853_step(tribo_dop853 *s, double hmax)
     for (;;) {
         if (!(h >= min_step))
             return -1;
-        for (int st = 1; st < 12; st++) {
-            for (int i = 0; i < n; i++) {
-                double sum = 0.0;
-                for (int j = 0; j < st; j++)
-                    sum += A[st][j] * k[j][i];
-                stage[i] = s->y[i] + h * sum;
-            }
-            s->rhs(s->ctx, t + C[st] * h, stage, k[st]);
-        }
+        for (int st = 1; st < 12; st++)
+            take_stage(s, st, t, s->y, h);
         for (int i = 0; i < n; i++) {
             double sum = 0.0;
             for (int j = 0; j < 12; j++)
@@ -185,15 +191,8 @@ int tribo_dop853_step(tribo_dop853 *s, double hmax)
     s->t = t + h;
     s->h = h * factor;
     /* the dense output: three more stages (dop853.f's contd8) */
-    for (int st = 13; st < 16; st++) {
-        for (int i = 0; i < n; i++) {
-            double sum = 0.0;
-            for (int j = 0; j < st; j++)
-                sum += A[st][j] * k[j][i];
-            stage[i] = s->y_old[i] + h * sum;
-        }
-        s->rhs(s->ctx, t + C[st] * h, stage, k[st]);
-    }
+    for (int st = 13; st < 16; st++)
+        take_stage(s, st, t, s->y_old, h);
     for (int i = 0; i < n; i++) {
         const double dy = s->y[i] - s->y_old[i];
         s->dense[0][i] = dy;
