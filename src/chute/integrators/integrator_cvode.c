@@ -21,6 +21,13 @@
  * this file drives CVODE through them. A switch function that dips past zero and back
  * within one step is caught on the dense output too (find_switch).
  *
+ * On a vibrating plate with Adams the contact phases are taken by DOP853 instead (dop853.h,
+ * docs/integrators.md): a feeder's grain has an impact a cycle, each with some four switches,
+ * and each switch restarted CVODE at order 1 with a tiny first step; a one-step method
+ * restarts at no cost. Its switches are all found on its dense output by find_switch, and its
+ * right-hand side continues the contact's law past the lift-off (past_liftoff, dynamics.h).
+ * The flights are closed-form either way; a still plate and BDF keep CVODE.
+ *
  * Charging does not limit the step: both charge models are swept along each step from
  * CVODE's dense output, cut where the contact's edges cross segment boundaries, so that
  * each segment's contact time is exact to the tolerances (charging.c, model.md §5).
