@@ -136,7 +136,11 @@ def main() -> None:
     parser.add_argument("--grains", type=int, default=40)
     parser.add_argument("--workers", type=int, default=2)
     args = parser.parse_args()
+    for name in ("grains", "workers"):
+        if getattr(args, name) < 1:
+            parser.error(f"--{name} {getattr(args, name)} is outside its range: at least 1")
     out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
 
     speeds = pd.DataFrame([grain_speed(K, 30.0) for K in (1.2, 1.6, 2.0, 2.5, 3.0, 4.0)] +
                           [grain_speed(2.5, psi) for psi in (15.0, 20.0, 45.0, 60.0)])
