@@ -193,6 +193,34 @@ def csv_line(values: list) -> str:
     return out.getvalue()
 
 
+def table_csv(columns, float_format: str) -> str | None:
+    """pd.DataFrame(columns).to_csv(index=False, float_format=float_format)'s text, the same
+    bytes, for `columns` (a DataFrame, or a dict of equally long arrays) of float64 and
+    int64 columns with text names (None for others: pandas writes them): a float formatted
+    by float_format, NaN as nothing. Without pandas' writer or a DataFrame, which cost a line's
+    grain more CPU than its flights (docs/line.md, "Benchmark")."""
+    names = list(columns)
+    if not all(isinstance(name, str) for name in names):
+        return None
+    fields = []
+    for name in names:
+        values = np.asarray(columns[name])
+        if values.ndim != 1:
+            return None
+        if values.dtype == np.float64:
+            fields.append(["" if v != v else float_format % v for v in values.tolist()])
+        elif values.dtype == np.int64:
+            fields.append([str(v) for v in values.tolist()])
+        else:
+            return None
+    if len({len(f) for f in fields}) > 1:
+        return None
+    out = io.StringIO()
+    csv.writer(out, lineterminator="\n").writerow(names)
+    out.writelines(",".join(row) + "\n" for row in zip(*fields))
+    return out.getvalue()
+
+
 def backup_path(path: str) -> str:
     """<stem>.backup-<n><ext>, the first n not taken."""
     stem, ext = os.path.splitext(path)
