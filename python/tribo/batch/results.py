@@ -176,6 +176,13 @@ def csv_line(values: list) -> str:
     other types go through pandas."""
     fields = []
     for v in values:
+        kind = type(v)  # the common types first, as the branches below write them
+        if kind is float:
+            fields.append("" if v != v else repr(v))
+            continue
+        if kind is int:
+            fields.append(str(v))
+            continue
         if isinstance(v, str):
             fields.append(v)
         elif isinstance(v, (float, np.floating)) and not isinstance(v, np.float16 | np.float32):

@@ -63,14 +63,16 @@ def keys_of(specs: list[RunSpec], image) -> list[str]:
 def run_sweep(specs: list[RunSpec], image, results_path: str, executor, *,
               resume: bool = True, series_dir: str | None = None, max_runs: int | None = None,
               progress: bool = True, desc: str = "runs", run=run_fmu,
-              result_columns: list[str] | None = None, constants: dict | None = None) -> Report:
+              result_columns: list[str] | None = None, constants: dict | None = None,
+              task_runs: int | None = None) -> Report:
     """Run `specs` (skipping finished ones if `resume`), appending a row per finished run
     to `results_path` and, if `series_dir` is given, writing each run's time series to
     <series_dir>/<key>.csv. `max_runs` caps the runs this call executes (the rest stay
     to be done). `run(image, spec)` -> RunResult is the function the executor runs;
     `result_columns` the names of its row (default: the study's summary of the FMU's
     charge models); `constants` columns with the same value on every row (what the runs
-    share but do not pass to the FMU by name, e.g. the materials' names), after the key.
+    share but do not pass to the FMU by name, e.g. the materials' names), after the key;
+    `task_runs` the most runs a Dask task holds (the executor's default if None).
     The report's results are the finished runs' rows, in the sweep's order."""
     keys = [run_key(s, image.sha256) for s in specs]
     unique = list(dict.fromkeys(keys))
@@ -96,7 +98,8 @@ def run_sweep(specs: list[RunSpec], image, results_path: str, executor, *,
     # a bar shows once the runs have taken PROGRESS_DELAY s: a study's short phases draw none
     with tqdm(total=len(todo), desc=desc, unit="run", disable=not progress or not todo,
               dynamic_ncols=True, delay=PROGRESS_DELAY) as bar:
-        for i, outcome in executor.run(run, image, [spec_of[k] for k in todo]):
+        for i, outcome in executor.run(run, image, [spec_of[k] for k in todo],
+                                       task_runs=task_runs):
             key, spec = todo[i], spec_of[todo[i]]
             bar.update()
             if isinstance(outcome, BaseException):
