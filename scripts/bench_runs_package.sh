@@ -3,8 +3,9 @@
 # docs/populations.md "Charge-per-impact maps", docs/calibration.md: "Benchmark"): the core's
 # CPU (bench/runs_core.c: the runs the command makes, written by bench/runs_feed.py, through
 # the C API one after another) and the CPU of the whole command (every process it starts, its
-# Dask workers included: its and its children's user and system time), serially, on the local
-# cluster's 2 threads and on 2 worker processes, and the ratio of each to the core's. KIND:
+# Dask workers included: its and its children's user and system time, the system's apart),
+# serially, on the local cluster's 2 threads and on 2 worker processes, and the ratio of each
+# to the core's. KIND:
 #   impact-map  tribo impact-map over a grid of 10 speeds x 6 angles x 6 orientations x 6
 #               roundnesses (2160 episodes)
 #   line        tribo line sweep -n 1000 --seed 1 at 4 voltages (1000 chute runs, 4000 flights)
@@ -46,7 +47,8 @@ esac
 PYTHONPATH="$ROOT/python" "$PYTHON" "$ROOT/bench/runs_feed.py" "${args[@]}" --no-plot \
   > "$tmp/feed.txt" 2> "$tmp/feed.log" || { cat "$tmp/feed.log"; exit 1; }
 voltages=$(sed -n 's/^voltages //p' "$tmp/feed.log")
-# the CPU of a command and of every process it waited for, in seconds
+# the CPU of a command and of every process it waited for, and the system's part of it, in
+# seconds (a file made costs system time: a line makes one per grain)
 cpu_of() {
   "$PYTHON" - "$@" <<'PY'
 import resource
@@ -55,14 +57,14 @@ import sys
 
 subprocess.run(sys.argv[1:], check=True, stdout=subprocess.DEVNULL)
 used = resource.getrusage(resource.RUSAGE_CHILDREN)
-print(f"{used.ru_utime + used.ru_stime:.3f}")
+print(f"{used.ru_utime + used.ru_stime:.3f} {used.ru_stime:.3f}")
 PY
 }
 modes=(serial threads processes)
 declare -A options=([serial]="--serial" [threads]="--workers 2" [processes]="--workers 2 --processes")
 for ((r = 1; r <= rounds; r++)); do
   core=$("$ROOT/build/tribo_runs_core" "$tmp/feed.txt" $voltages)
-  echo "core $(echo "$core" | sed -E 's/.*CPU ([0-9.]+) s.*/\1/')" >> "$tmp/results.txt"
+  echo "core $(echo "$core" | sed -E 's/.*CPU ([0-9.]+) s.*/\1/') 0" >> "$tmp/results.txt"
   for mode in "${modes[@]}"; do
     for label in ${before:+before} after; do
       rm -rf "$tmp/out"
@@ -84,21 +86,25 @@ import statistics
 import sys
 
 path, kind, core_line, rounds, before, after = sys.argv[1:]
-got = {}
+got, system = {}, {}
 for line in open(path):
-    name, value = line.split()
+    name, value, sys_part = line.split()
     got.setdefault(name, []).append(float(value))
+    system.setdefault(name, []).append(float(sys_part))
 median = {name: statistics.median(values) for name, values in got.items()}
+median_system = {name: statistics.median(values) for name, values in system.items()}
 core = median["core"]
 print(f"tribo {kind}, the median of {rounds} round(s); the core alone ({core_line.strip()}): "
       f"{core:.2f} s of CPU")
 print()
 labels = (["before"] if before else []) + ["after"]
 names = {"before": f"before ({before})", "after": f"this tree ({after})"}
-print("| executor | " + " | ".join(f"{names[l]}: CPU [s], / core" for l in labels) + " |")
+print("| executor | " + " | ".join(f"{names[l]}: CPU [s] (the system's), / core" for l in labels)
+      + " |")
 print("|---|" + "---|" * len(labels))
 for mode, text in (("serial", "in this process (--serial)"), ("threads", "2 threads (--workers 2)"),
                    ("processes", "2 worker processes (--workers 2 --processes)")):
-    cells = [f"{median[f'{mode}-{l}']:.2f}, {median[f'{mode}-{l}'] / core:.2f}x" for l in labels]
+    cells = [f"{median[f'{mode}-{l}']:.2f} ({median_system[f'{mode}-{l}']:.2f}), "
+             f"{median[f'{mode}-{l}'] / core:.2f}x" for l in labels]
     print(f"| {text} | " + " | ".join(cells) + " |")
 PY
