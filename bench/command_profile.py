@@ -3,7 +3,8 @@ docs/populations.md and docs/calibration.md, "Benchmark").
 
     TRIBO_BUILD_DIR=build .venv/bin/python bench/command_profile.py COMMAND [ARGS...]
 
-e.g. `bench/command_profile.py line sweep -n 200 --seed 1 --voltages 5e3:40e3:4`. Runs
+e.g. `bench/command_profile.py line sweep -n 200 --seed 1 --voltages 5e3:40e3:4` or
+`bench/command_profile.py population -n 200 --seed 1`. Runs
 `tribo COMMAND ARGS --serial --no-plot --no-progress` in this process under cProfile, timed by
 the process's CPU clock, into a temporary folder, and prints the CPU of each part the command
 has: the FMU's calls (the core), each run's function, the files written and read, the job
@@ -26,12 +27,14 @@ PARTS = [  # (what, the (file's end, function) whose cumulative CPU it is)
     ("the core: fmi3DoStep", ("instance.py", "_do_step3")),
     ("the core: exitInitializationMode", ("fmi3.py", "exitInitializationMode")),
     ("the core: instantiate", ("instance.py", "instantiate")),
-    ("the FMU's instances made and freed (Instance, free)", ("instance.py", "__init__")),
-    ("  freed", ("instance.py", "free")),
-    ("parameters set by name (Instance.set_parameters, set)", ("instance.py", "set_parameters")),
-    ("  set", ("instance.py", "set")),
-    ("a line's grain (run_line_grain), the core included", ("grain.py", "run_line_grain")),
-    ("  its chute (run_particle)", ("particle.py", "run_particle")),
+    ("the FMU's instances made (Instance)", ("instance.py", "__init__")),
+    ("  and freed", ("instance.py", "free")),
+    ("parameters set by name (Instance.set_parameters)", ("instance.py", "set_parameters")),
+    ("  every value set (Instance.set)", ("instance.py", "set")),
+    ("each grain's run down the chute (run_particle), the core included",
+     ("particle.py", "run_particle")),
+    ("a line's grain (run_line_grain): its chute and flights, the core included",
+     ("grain.py", "run_line_grain")),
     ("  its flights (fly)", ("grain.py", "fly")),
     ("an impact episode (run_episode), the core included", ("episode.py", "run_episode")),
     ("a calibration's batch of runs (run_runs), the core included", ("observables.py", "run_runs")),
@@ -40,7 +43,7 @@ PARTS = [  # (what, the (file's end, function) whose cumulative CPU it is)
     ("the landings collected (collect_landings)", ("mixture.py", "collect_landings")),
     ("the sweep (run_sweep): runs and rows", ("sweep.py", "run_sweep")),
     ("the calibration's fit (fit_pair)", ("fit.py", "fit_pair")),
-    ("the job (batch.job.execute)", ("job.py", "execute")),
+    ("the job (batch.job.execute): runs, rows, what is made of them", ("job.py", "execute")),
 ]
 
 

@@ -47,64 +47,12 @@ esac
 PYTHONPATH="$ROOT/python" "$PYTHON" "$ROOT/bench/runs_feed.py" "${args[@]}" --no-plot \
   > "$tmp/feed.txt" 2> "$tmp/feed.log" || { cat "$tmp/feed.log"; exit 1; }
 voltages=$(sed -n 's/^voltages //p' "$tmp/feed.log")
-# the CPU of a command and of every process it waited for, and the system's part of it, in
-# seconds (a file made costs system time: a line makes one per grain)
-cpu_of() {
-  "$PYTHON" - "$@" <<'PY'
-import resource
-import subprocess
-import sys
-
-subprocess.run(sys.argv[1:], check=True, stdout=subprocess.DEVNULL)
-used = resource.getrusage(resource.RUSAGE_CHILDREN)
-print(f"{used.ru_utime + used.ru_stime:.3f} {used.ru_stime:.3f}")
-PY
-}
-modes=(serial threads processes)
-declare -A options=([serial]="--serial" [threads]="--workers 2" [processes]="--workers 2 --processes")
+# shellcheck source=bench_modes.sh
+. "$ROOT/scripts/bench_modes.sh"
 for ((r = 1; r <= rounds; r++)); do
   core=$("$ROOT/build/tribo_runs_core" "$tmp/feed.txt" $voltages)
-  echo "core $(echo "$core" | sed -E 's/.*CPU ([0-9.]+) s.*/\1/') 0" >> "$tmp/results.txt"
-  for mode in "${modes[@]}"; do
-    for label in ${before:+before} after; do
-      rm -rf "$tmp/out"
-      if [ "$label" = before ]; then
-        command=(env PYTHONPATH="$tmp/before/python" "$PYTHON" -m tribo)
-      else
-        command=(env PYTHONPATH="$ROOT/python" "$PYTHON" -m tribo)
-      fi
-      # shellcheck disable=SC2086
-      echo "$mode-$label $(cpu_of "${command[@]}" "${args[@]}" ${options[$mode]} \
-        --out "$tmp/out" --no-progress --no-plot)" >> "$tmp/results.txt"
-    done
-  done
+  echo "core $(echo "$core" | sed -E 's/.*CPU ([0-9.]+) s.*/\1/')" >> "$tmp/results.txt"
+  echo "$core" > "$tmp/core.txt"
+  modes_run "$tmp/results.txt" "${args[@]}"
 done
-"$PYTHON" - "$tmp/results.txt" "$kind" "$core" "$rounds" \
-  "${before:+$(git -C "$ROOT" rev-parse --short "$before")}" \
-  "$(git -C "$ROOT" rev-parse --short HEAD)$(git -C "$ROOT" diff --quiet HEAD -- python src || echo ', modified')" <<'PY'
-import statistics
-import sys
-
-path, kind, core_line, rounds, before, after = sys.argv[1:]
-got, system = {}, {}
-for line in open(path):
-    name, value, sys_part = line.split()
-    got.setdefault(name, []).append(float(value))
-    system.setdefault(name, []).append(float(sys_part))
-median = {name: statistics.median(values) for name, values in got.items()}
-median_system = {name: statistics.median(values) for name, values in system.items()}
-core = median["core"]
-print(f"tribo {kind}, the median of {rounds} round(s); the core alone ({core_line.strip()}): "
-      f"{core:.2f} s of CPU")
-print()
-labels = (["before"] if before else []) + ["after"]
-names = {"before": f"before ({before})", "after": f"this tree ({after})"}
-print("| executor | " + " | ".join(f"{names[l]}: CPU [s] (the system's), / core" for l in labels)
-      + " |")
-print("|---|" + "---|" * len(labels))
-for mode, text in (("serial", "in this process (--serial)"), ("threads", "2 threads (--workers 2)"),
-                   ("processes", "2 worker processes (--workers 2 --processes)")):
-    cells = [f"{median[f'{mode}-{l}']:.2f} ({median_system[f'{mode}-{l}']:.2f}), "
-             f"{median[f'{mode}-{l}'] / core:.2f}x" for l in labels]
-    print(f"| {text} | " + " | ".join(cells) + " |")
-PY
+modes_report "$tmp/results.txt" "tribo $kind (the core: $(cat "$tmp/core.txt"))" "$rounds"
