@@ -23,20 +23,23 @@ PY
 }
 
 modes_run() {
-  local results=$1 mode label
+  local results=$1 mode label out
   shift
   local -A options=([serial]="--serial" [threads]="--workers 2"
                     [processes]="--workers 2 --processes")
   for mode in serial threads processes; do
     for label in ${before:+before} after; do
-      rm -rf "$tmp/out"
+      # a new folder for each, the earlier ones kept until the end: ext4 looks past the inodes
+      # of files deleted in the last minutes for each file made (a line makes one per grain),
+      # which cost the next command more system CPU than its own files
+      out=$(mktemp -d "$tmp/out.XXXXXX")
       if [ "$label" = before ]; then
         command=(env PYTHONPATH="$tmp/before/python" "$PYTHON" -m tribo)
       else
         command=(env PYTHONPATH="$ROOT/python" "$PYTHON" -m tribo)
       fi
       # shellcheck disable=SC2086
-      echo "$mode-$label $(cpu_of "${command[@]}" "$@" ${options[$mode]} --out "$tmp/out" \
+      echo "$mode-$label $(cpu_of "${command[@]}" "$@" ${options[$mode]} --out "$out/out" \
         --no-progress --no-plot)" >> "$results"
     done
   done

@@ -186,10 +186,14 @@ def test_a_sweep_with_vibration_is_the_sweep_with_its_parameters_to_the_bit(fmu_
               "--serial", "--no-plot"]
     given, _ = sweep(*common, "--vibration", f"{a},{f},{angle}", "--out", str(tmp_path / "v"))
     assert given.returncode == 0, given.stderr
-    spelled, _ = sweep(*common, "--param", f"vib_accel={a * omega * omega!r}",
-                       "--param", f"vib_omega={omega!r}", "--param", f"vib_angle_deg={angle!r}",
-                       "--out", str(tmp_path / "p"))
+    as_params = ["--param", f"vib_accel={a * omega * omega!r}", "--param", f"vib_omega={omega!r}",
+                 "--param", f"vib_angle_deg={angle!r}"]
+    spelled, _ = sweep(*common, *as_params, "--out", str(tmp_path / "p"))
     assert spelled.returncode == 0, spelled.stderr
+    # the same set-up: in the first one's folder, they are its runs, none to run again
+    again, _ = sweep(*common, *as_params, "--out", str(tmp_path / "v"))
+    assert again.returncode == 0, again.stderr
+    assert "0 executed, 2 already in the file" in again.stdout
     rows = [pd.read_csv(tmp_path / d / "results.csv", dtype=str).drop(columns=["cpu_s", "wall_s"])
             for d in ("v", "p")]
     pd.testing.assert_frame_equal(*rows)  # the text of every number: to the bit
