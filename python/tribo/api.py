@@ -122,7 +122,7 @@ def sweep(grid: dict, *, t_end: float, out: str = "out/sweep", record_interval: 
           base: str = "paper", tie: bool = True, fmu: str | int | None = None,
           scheduler: str | None = None, workers: int | None = None, serial: bool = False,
           processes: bool = False, fresh: bool = False, series: bool = False,
-          figure: bool = True, progress: bool = False) -> pd.DataFrame:
+          figure: bool = True, progress: bool = False, vibration=None) -> pd.DataFrame:
     """Run every combination of the values in `grid` (parameter name -> values), one row
     per run appended to <out>/results.csv as it finishes; runs already there are not run
     again; the figure <out>/results.png. Returns the sweep's rows (the columns of
@@ -133,9 +133,12 @@ def sweep(grid: dict, *, t_end: float, out: str = "out/sweep", record_interval: 
     mu and tau_r follows tau0 unless they are swept too. Runs on a local Dask cluster
     (threads; processes=True: worker processes), on the one at `scheduler`, or in this
     process (serial=True). fresh: start the folder over, keeping what it held in
-    <out>/backup-<n>/. series: also each run's time series, in <out>/series/."""
+    <out>/backup-<n>/. series: also each run's time series, in <out>/series/. vibration:
+    (AMPLITUDE, FREQUENCY[, ANGLE_DEG]) a vibrating plate in the model's units (amplitude in
+    units of the semi-major axis a, frequency in cycles per t*, angle in degrees), as tribo
+    sweep --vibration."""
     job = SweepJob(list(grid.items()), t_end=t_end, record_interval=record_interval, base=base,
-                   tie=tie, fmu=fmu, series=series, figure=figure)
+                   tie=tie, fmu=fmu, series=series, figure=figure, vibration=vibration)
     report = execute(job, out, executor_for(serial, scheduler, workers, processes), fresh=fresh,
                      progress=progress)
     return raise_on_failure(report, "run").results

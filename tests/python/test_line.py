@@ -313,3 +313,70 @@ def test_a_horizon_the_model_cannot_resolve_is_one_line_before_any_run(tmp_path,
     err = capsys.readouterr().err
     assert "t_end = 1e+308 s: at most" in err and len(err.strip().splitlines()) == 1, err
     assert not out.exists()
+
+
+# ---- the fast paths (docs/line.md, "Benchmark"), each against the path it replaced ----------
+
+def collect_landings_file_by_file(results, landings_dir):
+    """The landings as the line collected them before: each grain's file read by pandas, its
+    columns inserted, the frames concatenated."""
+    from tribo.batch.sweep import read_series
+    frames = []
+    for _, row in results.iterrows():
+        df = read_series(landings_dir, row["key"])
+        df.insert(0, "key", row["key"])
+        df.insert(1, "particle", row["particle"])
+        df.insert(2, "mass", row["mass"])
+        df.insert(3, "exited", int(row["exited"]))
+        df.insert(4, "end_reason", row["end_reason"] if "end_reason" in row else np.nan)
+        frames.append(df)
+    return pd.concat(frames, ignore_index=True)
+
+
+def assert_same_to_the_bit(a: pd.DataFrame, b: pd.DataFrame):
+    pd.testing.assert_frame_equal(a, b, check_exact=True)  # the columns, their types, values
+    for c in a.columns:
+        if a[c].dtype == np.float64:  # and the floats' bits (-0.0 is not 0.0, NaN is NaN)
+            assert (a[c].to_numpy().view(np.int64) == b[c].to_numpy().view(np.int64)).all(), c
+
+
+def test_the_landings_read_at_once_are_those_read_file_by_file(sweep, tmp_path):
+    report, _, out = sweep
+    landings_dir = os.path.join(out, "landings")
+    from tribo.line.mixture import collect_landings
+    assert_same_to_the_bit(collect_landings(report.results, landings_dir),
+                           collect_landings_file_by_file(report.results, landings_dir))
+    # where the files' headers differ (other columns), each is read alone, as before
+    odd = tmp_path / "landings"
+    odd.mkdir()
+    keys = list(report.results["key"][:3])
+    for i, key in enumerate(keys):
+        text = open(os.path.join(landings_dir, f"{key}.csv")).read()
+        (odd / f"{key}.csv").write_text(text.replace("landed", "landed_at") if i == 1 else text)
+    from tribo.batch.sweep import read_many_series, read_series
+    frame, lengths = read_many_series(str(odd), keys)
+    assert_same_to_the_bit(frame, pd.concat([read_series(str(odd), k) for k in keys],
+                                            ignore_index=True))
+    assert lengths == [3, 3, 3]
+
+
+@pytest.mark.parametrize("columns", [
+    {"voltage": [5e3, 2e4, -0.0], "landed": [1, 0, 1], "x_end": [1e-300, np.nan, -2.5e-3],
+     "time_land": [np.inf, -np.inf, 0.1 + 0.2]},
+    {"a b": [1.0], "c,d": [2], 'e"f': [np.nan]},  # names that need quoting
+    {"t": np.linspace(0, 1, 7) ** 3, "n": np.arange(7, dtype=np.int64) - 3},
+])
+def test_a_series_written_without_pandas_is_the_bytes_pandas_writes(columns, tmp_path):
+    from tribo.batch.results import table_csv
+    from tribo.batch.sweep import SERIES_FLOAT_FORMAT, write_series
+    frame = pd.DataFrame({k: np.asarray(v) for k, v in columns.items()})
+    expected = frame.to_csv(index=False, float_format=SERIES_FLOAT_FORMAT)
+    assert table_csv(frame, SERIES_FLOAT_FORMAT) == expected
+    assert table_csv({k: np.asarray(v) for k, v in columns.items()}, SERIES_FLOAT_FORMAT) == expected
+    write_series({k: np.asarray(v) for k, v in columns.items()}, str(tmp_path / "s.csv"))
+    assert (tmp_path / "s.csv").read_text() == expected
+    # what it does not take (text, other types) pandas writes
+    assert table_csv(frame.assign(text="x"), SERIES_FLOAT_FORMAT) is None
+    write_series(frame.assign(text="x"), str(tmp_path / "t.csv"))
+    assert (tmp_path / "t.csv").read_text() == frame.assign(text="x").to_csv(
+        index=False, float_format=SERIES_FLOAT_FORMAT)

@@ -143,6 +143,18 @@ def test_a_population_in_tasks_of_several_grains_is_fmpys_grain_by_grain_to_the_
             assert row[name] == value or (np.isnan(value) and np.isnan(row[name])), (name, row["key"])
 
 
+def test_a_rows_plain_floats_and_ints_are_written_as_their_numpy_kin_and_as_pandas_writes():
+    """csv_line's first test (Python's float and int) writes what its general branches write
+    for the same numbers as numpy's, and what pandas writes of the one-row DataFrame."""
+    plain = [0.1, -0.0, float("nan"), float("inf"), -1e-300, 1.0, 2.0 ** 60, 5, -3, 0, 10 ** 18,
+             True, "a, b", None]
+    kin = [np.float64(v) if type(v) is float else np.int64(v) if type(v) is int else v
+           for v in plain]
+    assert [type(v) for v in kin].count(np.float64) == 7
+    assert csv_line(plain) == csv_line(kin) == \
+        pd.DataFrame([kin]).to_csv(header=False, index=False)
+
+
 def test_a_worker_process_runs_a_grain_without_pandas_and_gives_the_same_row(si_image):
     """What a Dask worker process imports to run a task of grains (the task's functions
     and the FMU's image, unpickled in a fresh interpreter) holds no pandas, matplotlib,

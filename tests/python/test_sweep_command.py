@@ -4,6 +4,7 @@ values and horizons; unwritable outputs; Ctrl-C; a longer horizon into the same 
 --fresh; the embedded cluster's network exposure; the figure. Each mistake is one line on
 stderr, within the connect timeout, before any run is made."""
 
+import math
 import os
 import signal
 import socket
@@ -21,6 +22,7 @@ from figure_checks import assert_legends_cover_no_data
 
 from study_support import command, subcommand
 from tribo.batch.executors import DaskExecutor, scheduler_address
+from tribo.batch.specs import DECIMALS
 
 SMALL = ["--param", "n_segments=64", "--no-progress"]
 
@@ -149,13 +151,60 @@ def test_a_scheduler_without_workers_is_one_line_within_the_timeout(fmu_file, tm
     (["--param", "epsilon=-0.30"], ["epsilon = -0.3 is invalid"]),
     # the count was written out in 309 digits
     (["--param", "epsilon=0.5", "--t-end", "1e308"], ["1e+308 points to record"]),
+    # the plate's vibration in the model's units: 2 pi f at most 1, A (2 pi f)^2 at most 10
+    (["--param", "epsilon=0.5", "--vibration", "0.01,0.5"],
+     ["--vibration 0.01,0.5", "vib_omega = 3.14159", "vib_omega <= 1"]),
+    (["--param", "epsilon=0.5", "--vibration", "500,0.15"],
+     ["--vibration 500,0.15", "vib_accel = ", "vib_accel <= 10"]),
+    (["--param", "epsilon=0.5", "--vibration", "-1,0.1"],
+     ["--vibration -1,0.1", "the amplitude -1", "0 or more"]),
+    (["--param", "epsilon=0.5", "--vibration", "0.1,0"],
+     ["--vibration 0.1,0", "the frequency 0", "above 0"]),
+    (["--param", "epsilon=0.5", "--vibration", "0.1,0.1,120"],
+     ["--vibration 0.1,0.1,120", "vib_angle_deg = 120", "90"]),
+    (["--param", "epsilon=0.5", "--vibration", "0.1"],
+     ["--vibration", "'0.1': expected AMPLITUDE,FREQUENCY[,ANGLE_DEG]"]),
+    (["--param", "vib_omega=0.5", "--vibration", "0.1,0.1"],
+     ["vib_omega is given twice: swept (--param) and by --vibration"]),
 ], ids=["integer", "range", "negative", "text", "unknown", "t_end 0", "t_end -5", "t_end nan",
         "t_end interval", "t_end text", "address", "timeout", "no param", "radians", "degrees",
-        "as typed", "t_end huge"])
+        "as typed", "t_end huge", "vibration frequency", "vibration acceleration",
+        "vibration amplitude", "vibration no frequency", "vibration angle", "vibration count",
+        "vibration twice"])
 def test_bad_values_are_one_line_before_anything_starts(fmu_file, tmp_path, args, words):
     done, elapsed = sweep(*args, "--fmu", fmu_file(3), "--out", str(tmp_path / "r"))
     assert_one_line_error(done, *words)
     assert not (tmp_path / "r" / "results.csv").exists()
+
+
+def test_a_sweep_with_vibration_is_the_sweep_with_its_parameters_to_the_bit(fmu_file, tmp_path):
+    """--vibration A,F,ANGLE (the model's units) is --param vib_accel=A(2 pi F)^2 --param
+    vib_omega=2 pi F --param vib_angle_deg=ANGLE: the same keys, rows and numbers."""
+    a, f, angle = 0.02, 0.005, 30.0
+    omega = 2.0 * math.pi * f
+    common = ["--param", "mu=0.1,0.5", *SMALL, "--t-end", "40", "--fmu", fmu_file(3),
+              "--serial", "--no-plot"]
+    given, _ = sweep(*common, "--vibration", f"{a},{f},{angle}", "--out", str(tmp_path / "v"))
+    assert given.returncode == 0, given.stderr
+    as_params = ["--param", f"vib_accel={a * omega * omega!r}", "--param", f"vib_omega={omega!r}",
+                 "--param", f"vib_angle_deg={angle!r}"]
+    spelled, _ = sweep(*common, *as_params, "--out", str(tmp_path / "p"))
+    assert spelled.returncode == 0, spelled.stderr
+    # the same set-up: in the first one's folder, they are its runs, none to run again
+    again, _ = sweep(*common, *as_params, "--out", str(tmp_path / "v"))
+    assert again.returncode == 0, again.stderr
+    assert "0 executed, 2 already in the file" in again.stdout
+    rows = [pd.read_csv(tmp_path / d / "results.csv", dtype=str).drop(columns=["cpu_s", "wall_s"])
+            for d in ("v", "p")]
+    pd.testing.assert_frame_equal(*rows)  # the text of every number: to the bit
+    # rounded as every swept value is (batch/specs.py)
+    assert float(rows[0]["vib_omega"][0]) == round(omega, DECIMALS)
+    assert float(rows[0]["vib_accel"][0]) == round(a * omega * omega, DECIMALS) > 0
+    # the plate vibrated: its work on the grain is in the rows of neither a still plate's
+    still, _ = sweep(*common, "--out", str(tmp_path / "s"))
+    assert still.returncode == 0, still.stderr
+    assert not pd.read_csv(tmp_path / "s" / "results.csv")["Q_static_end"].equals(
+        pd.read_csv(tmp_path / "v" / "results.csv")["Q_static_end"])
 
 
 def test_unwritable_outputs_are_one_line_before_any_run(fmu_file, tmp_path):

@@ -116,7 +116,8 @@ class SerialExecutor:
     def describe(self) -> str:
         return "serial, in this process"
 
-    def run(self, function: Callable, image, specs) -> Iterator:
+    def run(self, function: Callable, image, specs, task_runs: int | None = None) -> Iterator:
+        # task_runs: DaskExecutor's; a serial run is one run at a time
         for i, spec in enumerate(specs):
             with _sigint_held() as interrupted:
                 try:
@@ -292,18 +293,20 @@ class DaskExecutor:
         where = self.address or f"local cluster ({self.n_workers} {kind})"
         return f"Dask, {where}"
 
-    def run(self, function: Callable, image, specs) -> Iterator:
-        """The runs as tasks of `runs_per_task` runs each: a task costs the scheduler, the
-        worker and this process some milliseconds of CPU, as much as a grain's run, so
-        that a task per run would double a population's CPU (docs/populations.md,
-        "Benchmark"). An interrupted sweep loses the runs of the tasks in flight."""
+    def run(self, function: Callable, image, specs, task_runs: int | None = None) -> Iterator:
+        """The runs as tasks of `runs_per_task` runs each (at most `task_runs`, default the
+        executor's: runs much shorter than a grain's, such as impact episodes, take more a
+        task): a task costs the scheduler, the worker and this process some milliseconds of
+        CPU, as much as a grain's run, so that a task per run would double a population's
+        CPU (docs/populations.md, "Benchmark"). An interrupted sweep loses the runs of the
+        tasks in flight."""
         from distributed import as_completed  # lazily, as in __enter__
 
         if image.sha256 not in self._scattered:
             self._scattered[image.sha256] = self._client.scatter(image, broadcast=True)
         image_future = self._scattered[image.sha256]
         size = runs_per_task(len(specs), self.n_workers if self.address is None else self.workers,
-                             self.task_runs)
+                             task_runs or self.task_runs)
         starts = range(0, len(specs), size)
         futures = [self._client.submit(run_each, function, image_future, specs[i:i + size],
                                        pure=False) for i in starts]

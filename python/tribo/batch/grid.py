@@ -16,6 +16,7 @@ import numpy as np
 
 from ..fmu import FmuImage
 from ..fmu.locate import find_fmu
+from ..fmu.names import ParameterError, format_number
 from ..fmu.parameters import check_names, check_values, integer_names
 from .job import Job
 from .particle import communication_points
@@ -95,6 +96,37 @@ def build_specs(swept: list[tuple[str, list[float]]], base: dict, integer_names,
     return specs
 
 
+def vibration_parameters(vibration, image) -> dict:
+    """A sweep's --vibration (AMPLITUDE, FREQUENCY[, ANGLE_DEG]) as the dimensionless FMU's
+    parameters, by the package's names: the amplitude A in units of the grain's semi-major axis
+    a, the frequency f in cycles per t*, the stroke's angle in degrees give vib_omega = 2 pi f,
+    vib_accel = A (2 pi f)^2 (docs/model.md section 9b, as src/si/si.c derives them from m and
+    Hz, with a and t* the units) and vib_angle_deg. ValueError / ParameterError, one line
+    naming --vibration, its value and the range, for a value the FMU refuses."""
+    values = tuple(float(v) for v in vibration)
+    text = ",".join(format_number(v) for v in values)
+    if len(values) not in (2, 3):
+        raise ValueError(f"--vibration {text}: expected AMPLITUDE,FREQUENCY[,ANGLE_DEG], two or "
+                         f"three numbers")
+    amplitude, frequency = values[:2]
+    if not (math.isfinite(amplitude) and amplitude >= 0):
+        raise ValueError(f"--vibration {text}: the amplitude {format_number(amplitude)} (in units "
+                         f"of the semi-major axis a) must be 0 or more")
+    if not (math.isfinite(frequency) and frequency > 0):
+        raise ValueError(f"--vibration {text}: the frequency {format_number(frequency)} (cycles "
+                         f"per t*) must be above 0, at most 1/(2 pi) = {1 / (2 * math.pi):.6g}")
+    omega = 2.0 * math.pi * frequency
+    params = {"vib_accel": amplitude * omega * omega, "vib_omega": omega}
+    if len(values) == 3:
+        params["vib_angle_deg"] = values[2]
+    try:
+        check_values(image, {name: [value] for name, value in params.items()})
+    except ParameterError as e:
+        raise ParameterError(f"--vibration {text} (A = {format_number(amplitude)} a, f = "
+                             f"{format_number(frequency)} per t*): {e}") from None
+    return params
+
+
 def values_of(specs: list[RunSpec]) -> dict:
     """Parameter name -> the distinct values the runs give it."""
     out = {}
@@ -107,14 +139,18 @@ def values_of(specs: list[RunSpec]) -> dict:
 class SweepJob(Job):
     """A parameter sweep of the dimensionless FMU into an output folder (batch/job.py):
     `swept` the (name, values) of each swept parameter, the rest as in build_specs; the
-    figure results.png unless figure=False, each run's series with series=True."""
+    figure results.png unless figure=False, each run's series with series=True; `vibration`
+    (AMPLITUDE, FREQUENCY[, ANGLE_DEG] in the model's units, vibration_parameters) swept at
+    one value each, after the others."""
 
     kind, noun, results_file = "sweep", "run", RESULTS
 
     def __init__(self, swept: list[tuple[str, list]], *, t_end: float, record_interval: float = 1.0,
                  base: str = "paper", tie: bool = True, fmu=None, series: bool = False,
-                 figure: bool = True):
-        self.swept = [(name, list(values)) for name, values in swept]
+                 figure: bool = True, vibration=None):
+        self.given = [(name, list(values)) for name, values in swept]
+        self.vibration = vibration
+        self.swept = list(self.given)  # with the vibration's, once prepared
         self.names = [name for name, _ in self.swept]
         self.t_end, self.record_interval = t_end, record_interval
         self.base, self.tie, self.fmu = base, tie, fmu
@@ -130,6 +166,13 @@ class SweepJob(Job):
         self.image = FmuImage.load(find_fmu(self.fmu))
         md = self.image.model_description()
         check_names(md, self.names)
+        if self.vibration is not None:
+            vibrating = vibration_parameters(self.vibration, self.image)
+            both = [name for name in vibrating if name in self.names]
+            if both:
+                raise ValueError(f"{both[0]} is given twice: swept (--param) and by --vibration")
+            self.swept = self.given + [(name, [value]) for name, value in vibrating.items()]
+            self.names = [name for name, _ in self.swept]
         self.specs = build_specs(self.swept, PAPER_BASE if self.base == "paper" else {},
                                  integer_names(md), self.t_end, self.record_interval, self.tie)
         check_values(self.image, values_of(self.specs))  # by the FMU itself

@@ -176,6 +176,13 @@ def csv_line(values: list) -> str:
     other types go through pandas."""
     fields = []
     for v in values:
+        kind = type(v)  # the common types first, as the branches below write them
+        if kind is float:
+            fields.append("" if v != v else repr(v))
+            continue
+        if kind is int:
+            fields.append(str(v))
+            continue
         if isinstance(v, str):
             fields.append(v)
         elif isinstance(v, (float, np.floating)) and not isinstance(v, np.float16 | np.float32):
@@ -190,6 +197,34 @@ def csv_line(values: list) -> str:
             return pd.DataFrame([values]).to_csv(header=False, index=False)
     out = io.StringIO()
     csv.writer(out, lineterminator="\n").writerow(fields)
+    return out.getvalue()
+
+
+def table_csv(columns, float_format: str) -> str | None:
+    """pd.DataFrame(columns).to_csv(index=False, float_format=float_format)'s text, the same
+    bytes, for `columns` (a DataFrame, or a dict of equally long arrays) of float64 and
+    int64 columns with text names (None for others: pandas writes them): a float formatted
+    by float_format, NaN as nothing. Without pandas' writer or a DataFrame, which cost a line's
+    grain more CPU than its flights (docs/line.md, "Benchmark")."""
+    names = list(columns)
+    if not all(isinstance(name, str) for name in names):
+        return None
+    fields = []
+    for name in names:
+        values = np.asarray(columns[name])
+        if values.ndim != 1:
+            return None
+        if values.dtype == np.float64:
+            fields.append(["" if v != v else float_format % v for v in values.tolist()])
+        elif values.dtype == np.int64:
+            fields.append([str(v) for v in values.tolist()])
+        else:
+            return None
+    if len({len(f) for f in fields}) > 1:
+        return None
+    out = io.StringIO()
+    csv.writer(out, lineterminator="\n").writerow(names)
+    out.writelines(",".join(row) + "\n" for row in zip(*fields))
     return out.getvalue()
 
 

@@ -27,7 +27,9 @@ WORK_LIMIT = "work_limit"  # the FMUs' parameter bounding one doStep's work
 @dataclass
 class RunResult:
     row: dict  # the summary (summary.summarize) plus cpu_s and wall_s
-    series: pd.DataFrame | None  # None for a run that reads only its end
+    # a DataFrame, or a dict of equally long columns (a line's grain's landings: no DataFrame
+    # made per grain); None for a run that reads only its end
+    series: pd.DataFrame | dict | None
     segments: pd.DataFrame | None = None
 
 

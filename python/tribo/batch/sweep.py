@@ -11,6 +11,7 @@ several sweeps keeps the order its rows came in). Runs of different horizons sha
 columns, so they can share a file.
 """
 
+import io
 import os
 
 import pandas as pd
@@ -19,7 +20,7 @@ from tqdm.auto import tqdm
 from ..fmu.charge_models import mean_charges
 from .job import Report
 from .particle import run_fmu
-from .results import KEY, ResultsFile
+from .results import KEY, ResultsFile, table_csv
 from .specs import RunSpec, run_key
 from .summary import summary_columns
 
@@ -62,14 +63,16 @@ def keys_of(specs: list[RunSpec], image) -> list[str]:
 def run_sweep(specs: list[RunSpec], image, results_path: str, executor, *,
               resume: bool = True, series_dir: str | None = None, max_runs: int | None = None,
               progress: bool = True, desc: str = "runs", run=run_fmu,
-              result_columns: list[str] | None = None, constants: dict | None = None) -> Report:
+              result_columns: list[str] | None = None, constants: dict | None = None,
+              task_runs: int | None = None) -> Report:
     """Run `specs` (skipping finished ones if `resume`), appending a row per finished run
     to `results_path` and, if `series_dir` is given, writing each run's time series to
     <series_dir>/<key>.csv. `max_runs` caps the runs this call executes (the rest stay
     to be done). `run(image, spec)` -> RunResult is the function the executor runs;
     `result_columns` the names of its row (default: the study's summary of the FMU's
     charge models); `constants` columns with the same value on every row (what the runs
-    share but do not pass to the FMU by name, e.g. the materials' names), after the key.
+    share but do not pass to the FMU by name, e.g. the materials' names), after the key;
+    `task_runs` the most runs a Dask task holds (the executor's default if None).
     The report's results are the finished runs' rows, in the sweep's order."""
     keys = [run_key(s, image.sha256) for s in specs]
     unique = list(dict.fromkeys(keys))
@@ -95,7 +98,8 @@ def run_sweep(specs: list[RunSpec], image, results_path: str, executor, *,
     # a bar shows once the runs have taken PROGRESS_DELAY s: a study's short phases draw none
     with tqdm(total=len(todo), desc=desc, unit="run", disable=not progress or not todo,
               dynamic_ncols=True, delay=PROGRESS_DELAY) as bar:
-        for i, outcome in executor.run(run, image, [spec_of[k] for k in todo]):
+        for i, outcome in executor.run(run, image, [spec_of[k] for k in todo],
+                                       task_runs=task_runs):
             key, spec = todo[i], spec_of[todo[i]]
             bar.update()
             if isinstance(outcome, BaseException):
@@ -125,14 +129,46 @@ def segments_path(series_dir: str, key: str) -> str:
     return os.path.join(series_dir, f"{key}.segments.csv")
 
 
-def write_series(series: pd.DataFrame, path: str) -> None:
+SERIES_FLOAT_FORMAT = "%.10g"
+
+
+def write_series(series, path: str) -> None:
+    """A run's series (a DataFrame, or a dict of equally long columns) as its CSV file."""
     tmp = path + ".tmp"
-    series.to_csv(tmp, index=False, float_format="%.10g")
+    text = table_csv(series, SERIES_FLOAT_FORMAT)
+    if text is None:
+        pd.DataFrame(series).to_csv(tmp, index=False, float_format=SERIES_FLOAT_FORMAT)
+    else:
+        with open(tmp, "w") as f:
+            f.write(text)
     os.replace(tmp, path)
 
 
 def read_series(series_dir: str, key: str) -> pd.DataFrame:
     return pd.read_csv(series_path(series_dir, key))
+
+
+def read_many_series(series_dir: str, keys: list[str]) -> tuple[pd.DataFrame, list[int]]:
+    """The series of `keys` as one table, their rows in the keys' order, and each one's number
+    of rows: pd.concat of read_series's (ignore_index), to the bit, where every file has the
+    same header (the files' text parsed in one call: a parse a file cost a line's grain more
+    CPU than its flights, docs/line.md "Benchmark"); one by one where they differ."""
+    header, bodies, lengths = None, [], []
+    for key in keys:
+        with open(series_path(series_dir, key), newline="") as f:
+            text = f.read()
+        head, _, body = text.partition("\n")
+        if header is None:
+            header = head
+        if head != header or "\r" in text or '"' in body:  # not plain lines of numbers
+            frames = [read_series(series_dir, k) for k in keys]
+            return pd.concat(frames, ignore_index=True), [len(f) for f in frames]
+        if body and not body.endswith("\n"):
+            body += "\n"
+        bodies.append(body)
+        lengths.append(body.count("\n"))
+    frame = pd.read_csv(io.StringIO(header + "\n" + "".join(bodies)))
+    return frame, lengths
 
 
 def read_segments(series_dir: str, key: str) -> pd.DataFrame | None:

@@ -61,15 +61,22 @@ def fail(prog: str, message: str, status: int = 2) -> int:
     return status
 
 
-def vibration(text: str) -> dict:
-    """argparse type: AMPLITUDE,FREQUENCY[,ANGLE_DEG], the chute's vibration (docs/feeder.md)
-    as the SI FMU's parameters by the package's names; the FMU checks their ranges."""
+def vibration_values(text: str) -> tuple:
+    """argparse type: AMPLITUDE,FREQUENCY[,ANGLE_DEG], a vibration's two or three numbers (their
+    units the command's: the SI chute's m, Hz, degrees; tribo sweep's its model's)."""
     values = numbers(text)
     if len(values) not in (2, 3):
-        raise argparse.ArgumentTypeError(
-            f"{text!r}: expected AMPLITUDE,FREQUENCY[,ANGLE_DEG] (m, Hz, degrees)")
+        raise argparse.ArgumentTypeError(f"{text!r}: expected AMPLITUDE,FREQUENCY[,ANGLE_DEG], "
+                                         f"two or three numbers")
+    return values
+
+
+def vibration(text: str) -> dict:
+    """argparse type: AMPLITUDE,FREQUENCY[,ANGLE_DEG], the chute's vibration (docs/feeder.md)
+    as the SI FMU's parameters by the package's names (m, Hz, degrees); the FMU checks their
+    ranges."""
     names = ("vibration_amplitude", "vibration_frequency", "vibration_angle_deg")
-    return dict(zip(names, values))
+    return dict(zip(names, vibration_values(text)))
 
 
 def add_vibration_option(p: argparse.ArgumentParser) -> None:

@@ -5,6 +5,7 @@ combination of the values given, one row per run in a CSV that pandas loads
     tribo sweep --param epsilon=0.1:1.0:10 --param mu=0.1,1.0 --t-end 1000 --out out/sweep
     tribo sweep --param beta_deg=30,45,60 --t-end 200 --out out/sweep-tilt --serial
     tribo sweep --param epsilon=0.5 --t-end 100 --scheduler tcp://scheduler-host:8786
+    tribo sweep --param mu=0.1,0.5 --vibration 0.02,0.005,30 --t-end 500 --out out/sweep-vibrating
 
 --param NAME=VALUES, VALUES one of: a:b:n (n values from a to b, ends included),
 v1,v2,... or a single value. NAME is any parameter of the FMU by the package's names
@@ -15,6 +16,17 @@ mu = nu = 0.1, beta_deg 45) unless --base fmu (the FMU's start values); the tole
 are the FMU's defaults unless given (--param rtol=1e-8). As in the paper, nu follows mu
 and tau_r follows tau0 unless they are given too (--no-tie: they don't). Every value and
 the horizon are checked (by the FMU itself) before anything runs.
+
+--vibration AMPLITUDE,FREQUENCY[,ANGLE_DEG] makes the plate vibrate (docs/model.md section 9b)
+in the dimensionless model's own units, since a sweep has no size nor time in SI units: the
+amplitude A in units of the grain's semi-major axis a, the frequency f in cycles per t*, the
+stroke's angle from the plate in degrees (90 by default: along its normal). They are the FMU's
+vib_omega = 2 pi f, vib_accel = A (2 pi f)^2 and vib_angle_deg, as the SI FMU derives them
+from its own (m, Hz) with a and t* as the units, and set as a --param of one value each
+would be: the same runs, keys and rows. 2 pi f must be at most 1 (a period of at least 2 pi
+t*, the contact's own) and A (2 pi f)^2 at most 10: a value outside is one line naming
+--vibration, before anything runs. For the SI chute's vibration in m and Hz: tribo population
+--vibration (docs/feeder.md).
 
 Writes into the folder --out: results.csv (a row per run as it finishes, keyed by a hash
 of the run's parameters, horizon and FMU), results.png (the charges, the contact fraction
@@ -44,12 +56,18 @@ listen on all interfaces unless --dashboard-address says otherwise, even with
 
 import os
 
-from .common import add_job_options, add_out_option, run_job
+from .common import add_job_options, add_out_option, run_job, vibration_values
 
 
 def add_arguments(p) -> None:
     p.add_argument("--param", action="append", required=True, metavar="NAME=VALUES",
                    help="a swept parameter and its values (repeat for more)")
+    p.add_argument("--vibration", type=vibration_values, metavar="AMPLITUDE,FREQUENCY[,ANGLE_DEG]",
+                   help="a vibrating plate in the model's units: the stroke's amplitude in units "
+                        "of the grain's semi-major axis a, its frequency in cycles per t*, its "
+                        "angle from the plate (degrees, default 90: along its normal); the same "
+                        "as --param vib_accel=A(2 pi f)^2 --param vib_omega=2 pi f --param "
+                        "vib_angle_deg=ANGLE (docs/sweeps.md)")
     p.add_argument("--t-end", type=float, default=1000.0, help="horizon of every run (default 1000)")
     p.add_argument("--record-interval", type=float, default=1.0, help="output interval (default 1)")
     p.add_argument("--base", choices=("paper", "fmu"), default="paper",
@@ -70,7 +88,8 @@ def job_of(args):
     from ..batch.grid import SweepJob, parse_param
     return SweepJob([parse_param(text) for text in args.param], t_end=args.t_end,
                     record_interval=args.record_interval, base=args.base, tie=args.tie,
-                    fmu=args.fmu, series=args.series, figure=not args.no_plot)
+                    fmu=args.fmu, series=args.series, figure=not args.no_plot,
+                    vibration=args.vibration)
 
 
 def told(job, report) -> list[str]:

@@ -35,6 +35,7 @@ from fmpy.fmi1 import FMICallException
 from ..batch.particle import RunResult
 from ..batch.specs import RunSpec, check_count
 from ..fmu import FmuImage, Instance
+from ..fmu.image import per_description
 from ..fmu.charge_models import charge_models, per_model
 from ..fmu.names import failure, to_fmu
 from ..materials import pair_values
@@ -122,20 +123,27 @@ def episode_specs(grid: Grid, particle: str, wall: str, settings: dict, limit: f
             for point in grid.points()]
 
 
+@per_description
+def episode_outputs(md) -> tuple[tuple, tuple]:
+    """(each charge model's outputs, those of AREA_COLUMN and end_reason the FMU has): once per
+    description, not a walk over its variables per episode (docs/populations.md, "Benchmark")."""
+    outputs = {v.name for v in md.modelVariables if v.causality == "output"}
+    return (tuple(per_model(MODEL_PREFIXES, charge_models(md))),
+            tuple(n for n in (AREA_COLUMN, "end_reason") if n in outputs))
+
+
 def run_episode(image: FmuImage, spec: RunSpec) -> RunResult:
     """One impact episode: its row (`episode_columns` of the FMU's charge models)."""
     wall0, cpu0 = time.perf_counter(), time.thread_time()
     md = image.model_description()
-    charges = per_model(MODEL_PREFIXES, charge_models(md))
-    optional = [n for n in (AREA_COLUMN, "end_reason")
-                if any(v.name == n and v.causality == "output" for v in md.modelVariables)]
+    charges, optional = episode_outputs(md)
     instance = Instance(image, name="tribo_impact")
     try:
         instance.set_parameters(to_fmu(md, spec.params))
         instance.init(0.0)
         t_star = instance.get("t_star")
         instance.step_to(spec.t_end * t_star)
-        end = instance.get_many(charges + ["u", "v", "omega", "contact_time", "lifted_off"]
+        end = instance.get_many(charges + ("u", "v", "omega", "contact_time", "lifted_off")
                                 + optional)
         reached = instance.t
         instance.terminate()

@@ -45,6 +45,10 @@ EPISODES, TABLE, METADATA, FIGURE = "episodes.csv", "impact_map.csv", "impact_ma
 # the cylinder the 2D particle stands for (with grain_geometry = cylinder the charges in C
 # scale with it; the spheroid's do not, nor does q/m)
 SET_UP_COLUMNS = ["particle", "wall", "size", "cylinder_length"]
+# the most episodes a Dask task holds: an episode costs the core about a third of a
+# population's grain, and a task some milliseconds of CPU whatever it holds (docs/populations.md,
+# "Benchmark")
+EPISODES_PER_TASK = 64
 
 
 @dataclass(kw_only=True)
@@ -157,7 +161,7 @@ def run_impact_map(grid: Grid, particle: str, wall: str, settings: dict, limit: 
     columns = episode_columns(models)
     runs = run_sweep(specs, image, os.path.join(out, EPISODES), executor, resume=resume,
                      max_runs=max_runs, progress=progress, desc="episodes", run=run_episode,
-                     result_columns=columns)
+                     result_columns=columns, task_runs=EPISODES_PER_TASK)
     report = MapReport(**vars(runs))
     report.files.append(os.path.join(out, EPISODES))
     if report.complete:

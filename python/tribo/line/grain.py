@@ -27,7 +27,7 @@ import math
 import time
 from dataclasses import dataclass, field
 
-import pandas as pd
+import numpy as np
 
 from ..batch.particle import RunResult
 from ..batch.specs import RunSpec
@@ -50,6 +50,7 @@ SEPARATOR_HORIZON = 10.0
 # -1 / +1 on a plate, both 0: not ended within the horizon (airborne) or not released
 # (the grain did not leave the chute)
 LANDING_COLUMNS = ["landed", "electrode", "bin", "x_end", "z_end", "flight_time", "time_land"]
+INTEGER_LANDING_COLUMNS = ("landed", "electrode", "bin")
 # per grain, whatever the voltage
 GRAIN_COLUMNS = ["charge_to_mass", "q_per_m", "mass", "equivalent_diameter"]
 OUTPUTS = ["landed", "electrode", "bin", "x_end", "z_end", "flight_time", "q_per_m", "mass",
@@ -137,15 +138,16 @@ def separator_parameters(chute_params: dict, settings: dict, voltage: float) -> 
     return {**bound, **settings, "voltage": float(voltage)}
 
 
-def fly(separator: FmuImage, md, params: dict, t_exit: float, inputs: dict | None,
+def fly(separator: FmuImage, fmu_params: dict, t_exit: float, inputs: dict | None,
         horizon: float = SEPARATOR_HORIZON) -> dict:
-    """One separator run: initialised with `params`, the grain held until t_exit, then
-    released with `inputs` (u_entry, v_entry, charge_to_mass; None: never released) and
-    stepped in one step to t_exit + horizon (the FMU ends the step where the run ends).
-    Returns OUTPUTS and time_land (the time the run ended, NaN if it did not)."""
+    """One separator run: initialised with `fmu_params` (the FMU's names and units:
+    fmu.names.to_fmu), the grain held until t_exit, then released with `inputs` (u_entry,
+    v_entry, charge_to_mass; None: never released) and stepped in one step to t_exit + horizon
+    (the FMU ends the step where the run ends). Returns OUTPUTS and time_land (the time the
+    run ended, NaN if it did not)."""
     s = Instance(separator, name="separator")
     try:
-        s.init(0.0, None, **to_fmu(md, params))
+        s.init(0.0, None, **fmu_params)
         if t_exit > 0:
             s.step_to(t_exit)
         if inputs is not None:
@@ -188,12 +190,14 @@ def run_line_grain(images: LineImages, spec: RunSpec) -> RunResult:
               "charge_to_mass": q} if exited else None
     md = images.separator.model_description()
     chute_s = time.thread_time() - cpu0
+    grain = separator_parameters(chute_spec.params, images.settings, 0.0)
+    if "x_entry" in spec.params:
+        grain["x_entry"] = float(spec.params["x_entry"])
+    grain = to_fmu(md, grain)  # once: the voltage alone differs between the flights
     landings = []
     for voltage in images.voltages:
-        params = separator_parameters(chute_spec.params, images.settings, voltage)
-        if "x_entry" in spec.params:
-            params["x_entry"] = float(spec.params["x_entry"])
-        flight = fly(images.separator, md, params, t_exit, inputs, images.horizon)
+        flight = fly(images.separator, dict(grain, voltage=float(voltage)), t_exit, inputs,
+                     images.horizon)
         landings.append({"voltage": float(voltage), **{c: flight[c] for c in LANDING_COLUMNS}})
     first = landings[0]
     row.update(charge_to_mass=q, q_per_m=flight["q_per_m"], mass=flight["mass"],
@@ -201,7 +205,13 @@ def run_line_grain(images: LineImages, spec: RunSpec) -> RunResult:
     row.update({c: first[c] for c in LANDING_COLUMNS})
     row.update(chute_cpu_s=chute_s, cpu_s=time.thread_time() - cpu0,
                wall_s=time.perf_counter() - wall0)
-    return RunResult(row, pd.DataFrame(landings))
+    # the series as columns (batch/sweep.py writes them): a DataFrame made per grain, written
+    # and read back by pandas cost more CPU than the grain's flights (docs/line.md, "Benchmark")
+    series = {"voltage": np.array([x["voltage"] for x in landings], dtype=np.float64)}
+    series.update({c: np.array([x[c] for x in landings],
+                               dtype=np.int64 if c in INTEGER_LANDING_COLUMNS else np.float64)
+                   for c in LANDING_COLUMNS})
+    return RunResult(row, series)
 
 
 def result_columns(models) -> list[str]:

@@ -59,7 +59,7 @@ import pandas as pd
 from ..batch.job import Job, Report
 from ..batch.results import KEY
 from ..batch.specs import RunSpec, check_count
-from ..batch.sweep import keys_of, read_series, run_sweep
+from ..batch.sweep import keys_of, read_many_series, run_sweep
 from ..fmu.names import start_value
 from ..fmu.parameters import check_values
 from ..materials import Materials, material, pair_sigma0, table_of, with_pair
@@ -313,16 +313,16 @@ def n_bins_of(images: LineImages) -> int:
 
 
 def collect_landings(results: pd.DataFrame, landings_dir: str) -> pd.DataFrame:
-    frames = []
-    for _, row in results.iterrows():
-        df = read_series(landings_dir, row[KEY])
-        df.insert(0, KEY, row[KEY])
-        df.insert(1, "particle", row["particle"])
-        df.insert(2, "mass", row["mass"])
-        df.insert(3, "exited", int(row["exited"]))
-        df.insert(4, "end_reason", row["end_reason"] if "end_reason" in row else np.nan)
-        frames.append(df)
-    return pd.concat(frames, ignore_index=True)
+    """Every grain's landings (landings/<key>.csv), a row per grain and voltage, each led by
+    the grain's key, particle, mass, exited and end_reason (NaN where its row has none)."""
+    landings, lengths = read_many_series(landings_dir, list(results[KEY]))
+    grain = np.repeat(np.arange(len(results)), lengths)
+    head = {KEY: results[KEY].to_numpy()[grain], "particle": results["particle"].to_numpy()[grain],
+            "mass": results["mass"].to_numpy()[grain],
+            "exited": results["exited"].to_numpy().astype(np.int64)[grain],
+            "end_reason": (results["end_reason"].to_numpy()[grain] if "end_reason" in results
+                           else np.full(len(grain), np.nan))}
+    return pd.concat([pd.DataFrame(head), landings], axis=1)
 
 
 # the regions of a grain that did not leave the chute: at rest on it, on it at the horizon

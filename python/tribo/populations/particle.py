@@ -12,6 +12,7 @@ from ..batch.run import RunResult, run_to_end
 from ..batch.specs import RunSpec
 from ..batch.summary import MOTION_CLASSES
 from ..fmu import FmuImage
+from ..fmu.image import per_description
 from ..fmu.charge_models import charge_models, per_model
 
 # the SI FMU's outputs of each charge model a particle's row holds (charge_<model>, ...)
@@ -27,8 +28,14 @@ AREA_COLUMN = "charged_area"
 
 def optional_outputs(md) -> list[str]:
     """END_COLUMNS and AREA_COLUMN that the FMU (its description `md`) outputs."""
+    return list(_optional_outputs(md))
+
+
+@per_description
+def _optional_outputs(md) -> tuple:
+    # once per description, not a walk over its variables per grain
     names = {v.name for v in md.modelVariables if v.causality == "output"}
-    return [c for c in (*END_COLUMNS, AREA_COLUMN) if c in names]
+    return tuple(c for c in (*END_COLUMNS, AREA_COLUMN) if c in names)
 
 
 def outputs(models, md=None) -> list[str]:
