@@ -896,10 +896,14 @@ static void stop_spin(const tribo_dyn_params *p, const tribo_force_law *law, con
 
 /* Whether the rolling lock holds the grain at y under the law (its rolling rule the lock, its
    normal and tangential rules set): the torque that holds it, Mr* = -(h Psi_T + cx Psi_N),
-   within mu_r Psi_N (model.md §3c); at Psi_N = 0 (a contact just made) judged per unit normal
-   force, as the load grows from 0 (the stretch of a new contact is 0; a slip's force is
-   mu Psi_N). *turn: the sign the grain turns with where it does not hold, that of the torque
-   that drives it, -Mr*. */
+   within mu_r Psi_N (model.md §3c). At Psi_N = 0 (a contact just made) the band and the torque
+   both open from 0: they are compared as they grow, per unit normal force, the forces' rates
+   in the ratio of their values, Psi_T / Psi_N -> (dPsi_T/dtau) / (dPsi_N/dtau): -mu sigma in
+   slip, -vs / (d(delta_y)/dtau (1 - nu s)) in stick, whose stretch grows at vs from 0. (Judged
+   by the forces at that instant alone, a stick's Psi_T = 0, the lock could be taken where its
+   torque leaves the band at once: its switch function would start at 0 and cross at once,
+   which an integrator's root finding cannot see.) *turn: the sign the grain turns with where
+   it does not hold, that of the torque that drives it, -Mr*. */
 static int roll_lock_holds(const tribo_dyn_params *p, const tribo_force_law *law, const double *y,
                            double *turn)
 {
@@ -907,7 +911,11 @@ static int roll_lock_holds(const tribo_dyn_params *p, const tribo_force_law *law
     tribo_contact_at(p, law, y, &ev);
     double drive = -ev.roll_torque, band = p->mu_roll * ev.psi_n;
     if (!(ev.psi_n > 0.0)) {
-        drive = ev.pose.cx - (law->tangent == TRIBO_TANGENT_SLIP ? p->mu * law->slip_sign * ev.pose.h : 0.0);
+        const double load_rate = (1.0 - p->nu * ev.sign_v) * (-ev.pose.cx * y[TRIBO_IOMEGA] - y[TRIBO_IV]);
+        const double tangential = law->tangent == TRIBO_TANGENT_SLIP ? -p->mu * law->slip_sign
+                                  : load_rate > 0.0                  ? -ev.vs / load_rate
+                                                                     : 0.0;
+        drive = ev.pose.cx + ev.pose.h * tangential;
         band = p->mu_roll;
     }
     *turn = drive >= 0.0 ? 1.0 : -1.0;
