@@ -595,20 +595,22 @@ Test(vibration, a_disc_landing_on_a_feeder_leaves_as_the_fixed_step_has_it)
        lock, whose band (mu_roll Psi_N) opens from 0 at the instant of contact: the tangential
        force's torque leaves it at once, and the disc turns through the contact. The
        event-driven law (DOP853 on a vibrating plate) and the fixed step's regularised one
-       give the same lift-off: measured phi 2.8e-8 rad and U 2.1e-8 apart, about the fixed
-       step's own error (dt 1e-3 against 3e-4: 1.1e-8 and 1.3e-8) and its regularised law's; a
+       give the same lift-off: measured phi 2.8e-8 rad and U 2.1e-8 apart at the fixed step's
+       dt 3e-4, about its own error (dt 1e-3 against 3e-4: 1.1e-8 and 1.3e-8) and its regularised
+       law's; the test takes dt 1e-3 (its drop of 1 cm is 4e5 fixed steps there: a third of
+       the cost of dt 3e-4); a
        lock held through the contact instead leaves phi 3.2e-4 rad and U 1.1e-4 off: CVODE's BDF,
        which a vibrating plate keeps, did so until the lock was judged by the forces' rates as
        the band opens (force_phases.c roll_lock_holds; its first step after the contact, 4e-9
        long, hid the band's edge crossed), and now leaves 2.8e-8 and 2.1e-8 off, as DOP853.
-       Bounds 1e-6 both, for each. */
+       At dt 1e-3 both are 3.9e-8 (phi) and 3.4e-8 (U) apart; bounds 1e-6 both, for each: 25
+       times that, 300 times below the held lock's error. */
     const char *grain = "epsilon=1 semi_major_axis=4.4e-4 phi0=2.98 drop_height=0.01 chute_length=0.1 "
                         "tilt=0 vibration_amplitude=5e-4 vibration_frequency=50 "
                         "vibration_angle=0.5235987755982988 run_end=1 stick_model=0";
-    const char *integrators[4] = {"integrator=1", "integrator=0 dt=1e-3", "integrator=0 dt=3e-4",
-                                  "integrator=2"};
-    double phi[4], U[4];
-    for (int k = 0; k < 4; k++) {
+    const char *integrators[3] = {"integrator=1", "integrator=0 dt=1e-3", "integrator=2"};
+    double phi[3], U[3];
+    for (int k = 0; k < 3; k++) {
         char settings[512], msg[512];
         snprintf(settings, sizeof settings, "%s %s", grain, integrators[k]);
         tribo_si_derived d;
@@ -620,11 +622,10 @@ Test(vibration, a_disc_landing_on_a_feeder_leaves_as_the_fixed_step_has_it)
         U[k] = tribo_get(m, TRIBO_QUANTITY_U);
         tribo_free(m);
     }
-    cr_log_info("phi: %.3g apart (the fixed step's own error %.3g); U: %.3g (%.3g)",
-                fabs(phi[0] - phi[2]), fabs(phi[1] - phi[2]), fabs(U[0] - U[2]), fabs(U[1] - U[2]));
-    cr_expect(fabs(phi[0] - phi[2]) <= 1e-6, "phi %.3g apart", fabs(phi[0] - phi[2]));
-    cr_expect(fabs(U[0] - U[2]) <= 1e-6, "U %.3g apart", fabs(U[0] - U[2]));
-    cr_log_info("BDF: phi %.3g apart, U %.3g", fabs(phi[3] - phi[2]), fabs(U[3] - U[2]));
-    cr_expect(fabs(phi[3] - phi[2]) <= 1e-6, "BDF: phi %.3g apart", fabs(phi[3] - phi[2]));
-    cr_expect(fabs(U[3] - U[2]) <= 1e-6, "BDF: U %.3g apart", fabs(U[3] - U[2]));
+    cr_log_info("phi: %.3g apart; U: %.3g", fabs(phi[0] - phi[1]), fabs(U[0] - U[1]));
+    cr_expect(fabs(phi[0] - phi[1]) <= 1e-6, "phi %.3g apart", fabs(phi[0] - phi[1]));
+    cr_expect(fabs(U[0] - U[1]) <= 1e-6, "U %.3g apart", fabs(U[0] - U[1]));
+    cr_log_info("BDF: phi %.3g apart, U %.3g", fabs(phi[2] - phi[1]), fabs(U[2] - U[1]));
+    cr_expect(fabs(phi[2] - phi[1]) <= 1e-6, "BDF: phi %.3g apart", fabs(phi[2] - phi[1]));
+    cr_expect(fabs(U[2] - U[1]) <= 1e-6, "BDF: U %.3g apart", fabs(U[2] - U[1]));
 }
