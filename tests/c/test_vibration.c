@@ -597,9 +597,8 @@ Test(vibration, a_disc_landing_on_a_feeder_leaves_as_the_fixed_step_has_it)
        event-driven law (DOP853 on a vibrating plate) and the fixed step's regularised one
        give the same lift-off: measured phi 2.8e-8 rad and U 2.1e-8 apart at the fixed step's
        dt 3e-4, about its own error (dt 1e-3 against 3e-4: 1.1e-8 and 1.3e-8) and its regularised
-       law's; the test takes dt 1e-3 (its drop of 1 cm is 4e5 fixed steps there: a third of
-       the cost of dt 3e-4); a
-       lock held through the contact instead leaves phi 3.2e-4 rad and U 1.1e-4 off: CVODE's BDF,
+       law's; the test takes dt 1e-3, a third of dt 3e-4's cost (the fixed step integrates the
+       drop of 1 cm too). A lock held through the contact instead leaves phi 3.2e-4 rad and U 1.1e-4 off: CVODE's BDF,
        which a vibrating plate keeps, did so until the lock was judged by the forces' rates as
        the band opens (force_phases.c roll_lock_holds; its first step after the contact, 4e-9
        long, hid the band's edge crossed), and now leaves 2.8e-8 and 2.1e-8 off, as DOP853.
