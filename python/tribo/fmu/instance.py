@@ -10,7 +10,8 @@ fmu/library.py: the package's runs) or from an unpacked FMU's directory (its lib
 loaded for the instance and released with it).
 
 `record` and `Instance.reader` read many outputs at many times: one FMI call per type of
-variable and time, straight into numpy arrays (`Rows`), no Python object per value.
+variable and time, straight into numpy arrays (`Rows`), no Python object per value; `Values`
+sets many variables at once, one FMI call per type.
 """
 
 import ctypes
@@ -27,7 +28,7 @@ from fmpy.fmi3 import FMU3Slave, fmi3Boolean, fmi3Float64
 from fmpy.logging import addLoggerProxy
 
 from .image import FmuImage
-from .library import LIBRARY_LOAD, loaded, raw_getters
+from .library import LIBRARY_LOAD, loaded, raw_getters, raw_setters
 
 OK, WARNING, DISCARD, ERROR, FATAL = range(5)  # fmi2Status / fmi3Status
 PARAMETER_CAUSALITIES = ("parameter", "structuralParameter")
@@ -70,7 +71,7 @@ class Instance:
             library = loaded(fmu)
             self.md, self.version, self.variables = library.md, library.version, library.variables
             self.fmu = library.slave(name)
-            self.getters = library.getters
+            self.getters, self.setters = library.getters, library.setters
             self._owns_library = False
         else:
             self.md = model_description(fmu)
@@ -82,6 +83,7 @@ class Instance:
                                modelIdentifier=self.md.coSimulation.modelIdentifier,
                                instanceName=name)
             self.getters = raw_getters(self.fmu.dll, self.version)
+            self.setters = raw_setters(self.fmu.dll, self.version)
             self._owns_library = True
         # fmi3DoStep's output arguments, made once (_do_step3)
         self._step_flags = (fmi3Boolean(), fmi3Boolean(), fmi3Boolean(), fmi3Float64())
@@ -135,6 +137,10 @@ class Instance:
     def init(self, start=0.0, stop=None, **params):
         """Set parameters (before initialization), then initialize."""
         self.set(**params)
+        return self.initialize(start, stop)
+
+    def initialize(self, start=0.0, stop=None):
+        """Enter and exit initialization mode with the values set so far."""
         if self.version == 2:
             self.fmu.setupExperiment(startTime=start, stopTime=stop)
             self.fmu.enterInitializationMode()
@@ -382,6 +388,48 @@ class Rows:
         for g in self.groups:
             out[:, g.columns] = g.block[:self.n]
         return out
+
+
+class Values:
+    """The scalar variables `names` of an instance set at once: one FMI call per type of
+    variable (as Rows reads them), the values converted to the FMI type as fmpy's setters
+    convert them (`Instance.set`: the same values reach the FMU). For runs that set the same
+    variables many times (a line's flights): a call by name costs a look-up, an fmpy wrapper
+    and its checks per value."""
+
+    def __init__(self, instance: Instance, names):
+        self.instance = instance
+        self.names = tuple(names)
+        by_type = {}
+        for position, name in enumerate(self.names):
+            v = instance.variables.get(name)
+            if v is None:
+                raise KeyError(f"{name!r} is not a variable of the FMU")
+            if v.dimensions:
+                raise ValueError(f"{name!r} is an array: set it with set")
+            if v.type not in instance.setters:
+                raise ValueError(f"{name!r}: the FMU's type {v.type} is not one set at once")
+            positions, refs = by_type.setdefault(v.type, ([], []))
+            positions.append(position)
+            refs.append(v.valueReference)
+        self.groups = []  # (function name, C function, value references, positions, array type)
+        for kind, (positions, refs) in by_type.items():
+            function, c_function, c_type = instance.setters[kind]
+            self.groups.append((function, c_function, (ctypes.c_uint32 * len(refs))(*refs),
+                                tuple(positions), c_type * len(refs)))
+
+    def set(self, values) -> None:
+        """Set the variables to `values`, in the order of `names`."""
+        component = self.instance.fmu.component
+        fmi3 = self.instance.version == 3
+        for function, c_function, vrs, positions, array in self.groups:
+            n = len(positions)
+            data = array(*[values[i] for i in positions])
+            status = (c_function(component, vrs, n, data, n) if fmi3
+                      else c_function(component, vrs, n, data))
+            if status > WARNING:  # as fmpy's own setters
+                raise FMICallException(f"{function} (the FMU logged: {self.instance.errors()})",
+                                       status)
 
 
 class _Group:
