@@ -258,11 +258,15 @@ class Instance:
     def set_parameters(self, params: dict):
         """Set parameters by name, each converted to its variable's type (an integer
         parameter given as 64.0 is set as 64)."""
+        values = []
         for name, value in params.items():
             v = self.variables.get(name)
             if v is None or v.causality not in PARAMETER_CAUSALITIES:
                 raise KeyError(f"{name!r} is not a parameter of the FMU")
-            self.set(**{name: float(value) if v.type in REAL_TYPES else int(value)})
+            values.append(float(value) if v.type in REAL_TYPES else int(value))
+        # in the order given, the values of one type next to each other in one call (a
+        # population's particle sets tens: by name, each cost an fmpy setter's checks)
+        Values(self, params).set(values)
 
     def get(self, name):
         v, getter = self._accessor("get", name)
@@ -272,7 +276,30 @@ class Instance:
             getter([v.valueReference], nValues=1)[0]
 
     def get_many(self, names):
-        return {name: self.get(name) for name in names}
+        """The variables `names` as `get` reads them (Python floats, ints, bools as fmpy's
+        getters give), the scalars in one FMI call per type."""
+        names = list(names)
+        found = [self.variables.get(name) for name in names]
+        if any(v is None or v.dimensions or v.type not in self.getters for v in found):
+            return {name: self.get(name) for name in names}
+        by_type = {}
+        for name, v in zip(names, found):
+            group, refs = by_type.setdefault(v.type, ([], []))
+            group.append(name)
+            refs.append(v.valueReference)
+        read = {}
+        for kind, (group, refs) in by_type.items():
+            function, c_function, dtype = self.getters[kind]
+            n = len(refs)
+            values = np.empty(n, dtype)
+            address = values.__array_interface__["data"][0]
+            vrs = (ctypes.c_uint32 * n)(*refs)
+            status = (c_function(self.fmu.component, vrs, n, address, n) if self.version == 3
+                      else c_function(self.fmu.component, vrs, n, address))
+            if status > WARNING:  # as fmpy's own getters
+                raise FMICallException(function, status)
+            read.update(zip(group, values.tolist()))  # numpy's scalars as Python's, as fmpy's
+        return {name: read[name] for name in names}
 
     def reader(self, names):
         """A function that reads the scalar variables `names` at once (one call per FMI
@@ -391,16 +418,17 @@ class Rows:
 
 
 class Values:
-    """The scalar variables `names` of an instance set at once: one FMI call per type of
-    variable (as Rows reads them), the values converted to the FMI type as fmpy's setters
-    convert them (`Instance.set`: the same values reach the FMU). For runs that set the same
-    variables many times (a line's flights): a call by name costs a look-up, an fmpy wrapper
-    and its checks per value."""
+    """The scalar variables `names` of an instance set at once, in their order: one FMI call
+    per run of names of one type, the values converted to the FMI type as fmpy's setters
+    convert them (`Instance.set`: the same values reach the FMU, in the same order). A call
+    by name costs a look-up, an fmpy wrapper and its checks per value; the FMU checks one
+    call's values together (FMI's semantics), which a set of values accepted one by one
+    passes too."""
 
     def __init__(self, instance: Instance, names):
         self.instance = instance
         self.names = tuple(names)
-        by_type = {}
+        runs = []  # (type, positions, value references): the names of one type next to each other
         for position, name in enumerate(self.names):
             v = instance.variables.get(name)
             if v is None:
@@ -409,11 +437,12 @@ class Values:
                 raise ValueError(f"{name!r} is an array: set it with set")
             if v.type not in instance.setters:
                 raise ValueError(f"{name!r}: the FMU's type {v.type} is not one set at once")
-            positions, refs = by_type.setdefault(v.type, ([], []))
-            positions.append(position)
-            refs.append(v.valueReference)
+            if not runs or runs[-1][0] != v.type:
+                runs.append((v.type, [], []))
+            runs[-1][1].append(position)
+            runs[-1][2].append(v.valueReference)
         self.groups = []  # (function name, C function, value references, positions, array type)
-        for kind, (positions, refs) in by_type.items():
+        for kind, positions, refs in runs:
             function, c_function, c_type = instance.setters[kind]
             self.groups.append((function, c_function, (ctypes.c_uint32 * len(refs))(*refs),
                                 tuple(positions), c_type * len(refs)))
