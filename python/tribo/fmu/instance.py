@@ -72,6 +72,7 @@ class Instance:
             self.md, self.version, self.variables = library.md, library.version, library.variables
             self.fmu = library.slave(name)
             self.getters, self.setters = library.getters, library.setters
+            self._library = library
             self._owns_library = False
         else:
             self.md = model_description(fmu)
@@ -84,6 +85,7 @@ class Instance:
                                instanceName=name)
             self.getters = raw_getters(self.fmu.dll, self.version)
             self.setters = raw_setters(self.fmu.dll, self.version)
+            self._library = None
             self._owns_library = True
         # fmi3DoStep's output arguments, made once (_do_step3)
         self._step_flags = (fmi3Boolean(), fmi3Boolean(), fmi3Boolean(), fmi3Float64())
@@ -275,30 +277,33 @@ class Instance:
         return getter([v.valueReference])[0] if self.version == 2 else \
             getter([v.valueReference], nValues=1)[0]
 
+    def layout(self, what: str, names, make):
+        """`make()` for `names`, once per loaded FMU (fmu/library.py's LoadedFmu.layout);
+        each time for an FMU this instance loaded itself."""
+        if self._library is None:
+            return make()
+        return self._library.layout(what, tuple(names), make)
+
     def get_many(self, names):
         """The variables `names` as `get` reads them (Python floats, ints, bools as fmpy's
         getters give), the scalars in one FMI call per type."""
         names = list(names)
-        found = [self.variables.get(name) for name in names]
-        if any(v is None or v.dimensions or v.type not in self.getters for v in found):
+        try:
+            groups = self.layout("read", names, lambda: read_layout(self, names))
+        except (KeyError, ValueError):  # arrays, types not read at once: one by one
             return {name: self.get(name) for name in names}
-        by_type = {}
-        for name, v in zip(names, found):
-            group, refs = by_type.setdefault(v.type, ([], []))
-            group.append(name)
-            refs.append(v.valueReference)
         read = {}
-        for kind, (group, refs) in by_type.items():
-            function, c_function, dtype = self.getters[kind]
-            n = len(refs)
+        component, fmi3 = self.fmu.component, self.version == 3
+        for function, c_function, vrs, columns, dtype in groups:
+            n = len(columns)
             values = np.empty(n, dtype)
             address = values.__array_interface__["data"][0]
-            vrs = (ctypes.c_uint32 * n)(*refs)
-            status = (c_function(self.fmu.component, vrs, n, address, n) if self.version == 3
-                      else c_function(self.fmu.component, vrs, n, address))
+            status = (c_function(component, vrs, n, address, n) if fmi3
+                      else c_function(component, vrs, n, address))
             if status > WARNING:  # as fmpy's own getters
                 raise FMICallException(function, status)
-            read.update(zip(group, values.tolist()))  # numpy's scalars as Python's, as fmpy's
+            # numpy's scalars as Python's, as fmpy's getters give them
+            read.update(zip((names[c] for c in columns), values.tolist()))
         return {name: read[name] for name in names}
 
     def reader(self, names):
@@ -362,6 +367,27 @@ def record(instance: Instance, times, names) -> tuple[np.ndarray, np.ndarray]:
     return np.array(reached), rows.table()
 
 
+def read_layout(instance: Instance, names) -> tuple:
+    """How the scalar variables `names` are read at once: (function name, C function, value
+    references, their positions in `names`, numpy type) per FMI type. KeyError for a name
+    that is not a variable, ValueError for an array or a type not read so."""
+    by_type = {}
+    for column, name in enumerate(names):
+        v = instance.variables.get(name)
+        if v is None:
+            raise KeyError(f"{name!r} is not a variable of the FMU")
+        if v.dimensions:
+            raise ValueError(f"{name!r} is an array: read it with get")
+        if v.type not in instance.getters:
+            raise ValueError(f"{name!r}: the FMU's type {v.type} is not one read in rows")
+        columns, refs = by_type.setdefault(v.type, ([], []))
+        columns.append(column)
+        refs.append(v.valueReference)
+    return tuple((*instance.getters[kind][:2], (ctypes.c_uint32 * len(refs))(*refs),
+                  tuple(columns), instance.getters[kind][2])
+                 for kind, (columns, refs) in by_type.items())
+
+
 class Rows:
     """The scalar variables `names` of an instance read into a table, a row per `read`:
     one FMI call per type of variable, writing straight into a numpy array (grown as
@@ -370,23 +396,10 @@ class Rows:
 
     def __init__(self, instance: Instance, names, capacity: int = 64):
         self.instance, self.width = instance, len(names)
-        by_type = {}
-        for column, name in enumerate(names):
-            v = instance.variables.get(name)
-            if v is None:
-                raise KeyError(f"{name!r} is not a variable of the FMU")
-            if v.dimensions:
-                raise ValueError(f"{name!r} is an array: read it with get")
-            if v.type not in instance.getters:
-                raise ValueError(f"{name!r}: the FMU's type {v.type} is not one read in rows")
-            columns, refs = by_type.setdefault(v.type, ([], []))
-            columns.append(column)
-            refs.append(v.valueReference)
-        self.groups = []  # _Group per type
-        for kind, (columns, refs) in by_type.items():
-            function, c_function, dtype = instance.getters[kind]
-            self.groups.append(_Group(function, c_function, (ctypes.c_uint32 * len(refs))(*refs),
-                                      columns, np.empty((max(capacity, 1), len(refs)), dtype)))
+        self.groups = [_Group(function, c_function, vrs, columns,
+                              np.empty((max(capacity, 1), len(columns)), dtype))
+                       for function, c_function, vrs, columns, dtype
+                       in instance.layout("read", names, lambda: read_layout(instance, names))]
         self.capacity = max(capacity, 1)
         self.n = 0
 
@@ -417,6 +430,32 @@ class Rows:
         return out
 
 
+def write_layout(instance: Instance, names) -> tuple:
+    """How the scalar variables `names` are set at once, in their order: (function name, C
+    function, value references, their positions in `names`, ctypes array type) per run of
+    names of one type. KeyError for a name that is not a variable, ValueError for an array
+    or a type not set so."""
+    runs = []  # (type, positions, value references): names of one type next to each other
+    for position, name in enumerate(names):
+        v = instance.variables.get(name)
+        if v is None:
+            raise KeyError(f"{name!r} is not a variable of the FMU")
+        if v.dimensions:
+            raise ValueError(f"{name!r} is an array: set it with set")
+        if v.type not in instance.setters:
+            raise ValueError(f"{name!r}: the FMU's type {v.type} is not one set at once")
+        if not runs or runs[-1][0] != v.type:
+            runs.append((v.type, [], []))
+        runs[-1][1].append(position)
+        runs[-1][2].append(v.valueReference)
+    out = []
+    for kind, positions, refs in runs:
+        function, c_function, c_type = instance.setters[kind]
+        out.append((function, c_function, (ctypes.c_uint32 * len(refs))(*refs),
+                    tuple(positions), c_type * len(refs)))
+    return tuple(out)
+
+
 class Values:
     """The scalar variables `names` of an instance set at once, in their order: one FMI call
     per run of names of one type, the values converted to the FMI type as fmpy's setters
@@ -428,24 +467,8 @@ class Values:
     def __init__(self, instance: Instance, names):
         self.instance = instance
         self.names = tuple(names)
-        runs = []  # (type, positions, value references): the names of one type next to each other
-        for position, name in enumerate(self.names):
-            v = instance.variables.get(name)
-            if v is None:
-                raise KeyError(f"{name!r} is not a variable of the FMU")
-            if v.dimensions:
-                raise ValueError(f"{name!r} is an array: set it with set")
-            if v.type not in instance.setters:
-                raise ValueError(f"{name!r}: the FMU's type {v.type} is not one set at once")
-            if not runs or runs[-1][0] != v.type:
-                runs.append((v.type, [], []))
-            runs[-1][1].append(position)
-            runs[-1][2].append(v.valueReference)
-        self.groups = []  # (function name, C function, value references, positions, array type)
-        for kind, positions, refs in runs:
-            function, c_function, c_type = instance.setters[kind]
-            self.groups.append((function, c_function, (ctypes.c_uint32 * len(refs))(*refs),
-                                tuple(positions), c_type * len(refs)))
+        self.groups = instance.layout("write", self.names,
+                                      lambda: write_layout(instance, self.names))
 
     def set(self, values) -> None:
         """Set the variables to `values`, in the order of `names`."""

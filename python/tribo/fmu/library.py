@@ -122,6 +122,19 @@ class LoadedFmu:
     template: object = field(repr=False)  # an fmpy slave never instantiated: the library
     getters: dict = field(repr=False)  # raw_getters of the library
     setters: dict = field(repr=False)  # raw_setters of the library
+    # what instance.Rows and instance.Values make of a list of names (which FMI function,
+    # which value references), by (what, names): made once per process, read only after
+    layouts: dict = field(default_factory=dict, repr=False)
+
+    def layout(self, what: str, names: tuple, make):
+        """`make()`'s layout of `names` for `what` ("read", "write"), made on first use (a
+        population's particle asked for the same ones' anew, tens of look-ups a run).
+        Threads that make the same one at once each make it; one is kept."""
+        key = (what, names)
+        found = self.layouts.get(key)
+        if found is None:
+            found = self.layouts.setdefault(key, make())
+        return found
 
     def slave(self, name: str):
         """A new fmpy slave on the loaded library, not yet instantiated: its instantiate
