@@ -367,19 +367,26 @@ def record(instance: Instance, times, names) -> tuple[np.ndarray, np.ndarray]:
     return np.array(reached), rows.table()
 
 
+def _scalar(instance: Instance, name: str, functions: dict, instead: str, how: str):
+    """The scalar variable `name`, of a type `functions` has: KeyError for a name that is
+    not a variable, ValueError for an array (`instead`: what to do) or another type."""
+    v = instance.variables.get(name)
+    if v is None:
+        raise KeyError(f"{name!r} is not a variable of the FMU")
+    if v.dimensions:
+        raise ValueError(f"{name!r} is an array: {instead}")
+    if v.type not in functions:
+        raise ValueError(f"{name!r}: the FMU's type {v.type} is not one {how}")
+    return v
+
+
 def read_layout(instance: Instance, names) -> tuple:
     """How the scalar variables `names` are read at once: (function name, C function, value
     references, their positions in `names`, numpy type) per FMI type. KeyError for a name
     that is not a variable, ValueError for an array or a type not read so."""
     by_type = {}
     for column, name in enumerate(names):
-        v = instance.variables.get(name)
-        if v is None:
-            raise KeyError(f"{name!r} is not a variable of the FMU")
-        if v.dimensions:
-            raise ValueError(f"{name!r} is an array: read it with get")
-        if v.type not in instance.getters:
-            raise ValueError(f"{name!r}: the FMU's type {v.type} is not one read in rows")
+        v = _scalar(instance, name, instance.getters, "read it with get", "read in rows")
         columns, refs = by_type.setdefault(v.type, ([], []))
         columns.append(column)
         refs.append(v.valueReference)
@@ -437,13 +444,7 @@ def write_layout(instance: Instance, names) -> tuple:
     or a type not set so."""
     runs = []  # (type, positions, value references): names of one type next to each other
     for position, name in enumerate(names):
-        v = instance.variables.get(name)
-        if v is None:
-            raise KeyError(f"{name!r} is not a variable of the FMU")
-        if v.dimensions:
-            raise ValueError(f"{name!r} is an array: set it with set")
-        if v.type not in instance.setters:
-            raise ValueError(f"{name!r}: the FMU's type {v.type} is not one set at once")
+        v = _scalar(instance, name, instance.setters, "set it with set", "set at once")
         if not runs or runs[-1][0] != v.type:
             runs.append((v.type, [], []))
         runs[-1][1].append(position)

@@ -79,33 +79,28 @@ _SETTERS = {
 def raw_setters(dll, version: int) -> dict:
     """The library's setters for raw calls, by the variable's type: (function name, the C
     function, the C type of its values), as raw_getters (instance.Values calls them)."""
-    out = {}
-    for kind, (function, c_type) in _SETTERS[version].items():
-        try:
-            c_function = dll[function]  # a new object: fmpy's keeps its own argtypes
-        except AttributeError:  # a library without it: its types are not set at once
-            continue
-        c_function.restype = c_int
-        c_function.argtypes = ((c_void_p, c_void_p, c_size_t, c_void_p, c_size_t) if version == 3
-                               else (c_void_p, c_void_p, c_size_t, c_void_p))
-        out[kind] = (function, c_function, c_type)
-    return out
+    return _raw_functions(dll, version, _SETTERS[version])
 
 
 def raw_getters(dll, version: int) -> dict:
     """The library's getters for raw calls, by the variable's type: (function name, the C
     function, the numpy type of its values). Each C function is an object of its own (not
     the one fmpy typed), its arguments plain addresses: instance.Rows passes numpy's."""
+    return _raw_functions(dll, version, _GETTERS[version])
+
+
+def _raw_functions(dll, version: int, table: dict) -> dict:
+    """`table`'s functions (type -> (name, values' type)) of the library, for raw calls."""
     out = {}
-    for kind, (function, dtype) in _GETTERS[version].items():
+    for kind, (function, values_type) in table.items():
         try:
             c_function = dll[function]  # a new object: fmpy's keeps its own argtypes
-        except AttributeError:  # a library without it: its types are not read in rows
+        except AttributeError:  # a library without it: its type is not read or set at once
             continue
         c_function.restype = c_int
         c_function.argtypes = ((c_void_p, c_void_p, c_size_t, c_void_p, c_size_t) if version == 3
                                else (c_void_p, c_void_p, c_size_t, c_void_p))
-        out[kind] = (function, c_function, dtype)
+        out[kind] = (function, c_function, values_type)
     return out
 
 
