@@ -480,9 +480,8 @@ class Values:
             data = array(*[values[i] for i in positions])
             status = (c_function(component, vrs, n, data, n) if fmi3
                       else c_function(component, vrs, n, data))
-            if status > WARNING:  # as fmpy's own setters
-                raise FMICallException(f"{function} (the FMU logged: {self.instance.errors()})",
-                                       status)
+            if status > WARNING:  # as fmpy's own setters (the FMU logged why)
+                raise FMICallException(function, status)
 
 
 class _Group:
