@@ -173,9 +173,9 @@ class Flights:
     fmi2Reset: the FMU frees its core and restores every start value, the state a new
     instance has), its parameters `names` and the inputs at the release are set by value
     reference (fmu/instance.py's Values: one FMI call per type, in fly's order) and its
-    outputs read in one call per type (Rows). A flight made this way costs about half of
-    fly's CPU beyond the core's (docs/line.md, "Benchmark"): an instance made and freed,
-    values set and read by name one by one, are each as costly as a tenth of the flight."""
+    outputs read in one call per type (Rows): an instance made and freed, values set and
+    read by name one by one, cost fly more CPU than the separator's core spends on the
+    flight (docs/line.md, "Benchmark: the line against its core")."""
 
     def __init__(self, separator: FmuImage, names, horizon: float = SEPARATOR_HORIZON):
         self.horizon = horizon
