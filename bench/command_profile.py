@@ -35,7 +35,7 @@ PARTS = [  # (what, the (file's end, function) whose cumulative CPU it is)
      ("particle.py", "run_particle")),
     ("a line's grain (run_line_grain): its chute and flights, the core included",
      ("grain.py", "run_line_grain")),
-    ("  its flights (fly)", ("grain.py", "fly")),
+    ("  its flights (Flights.fly)", ("grain.py", "fly")),
     ("an impact episode (run_episode), the core included", ("episode.py", "run_episode")),
     ("a calibration's batch of runs (run_runs), the core included", ("observables.py", "run_runs")),
     ("the rows written (ResultsFile.append)", ("results.py", "append")),

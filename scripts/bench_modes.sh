@@ -8,7 +8,8 @@
 #                           each with revision $before's package first where given, its CPU
 #                           appended to RESULTS ("<mode>-<before|after> <cpu> <system's>")
 #   modes_report RESULTS TITLE ROUNDS  the table of the medians, each against RESULTS' "core"
-#                           line's CPU
+#                           line's CPU, the parallel modes' also against its "core-2" line's
+#                           (the same runs through the core on 2 processes at once), if any
 
 cpu_of() {
   "$PYTHON" - "$@" <<'PY'
@@ -61,6 +62,10 @@ median = {name: statistics.median(values) for name, values in got.items()}
 median_system = {name: statistics.median(values) for name, values in system.items()}
 core = median["core"]
 print(f"{title}; the median of {rounds} round(s); the core alone: {core:.2f} s of CPU")
+core2 = median.get("core-2")
+if core2:  # the parallel modes against the same runs through the core on 2 processes at once
+    print(f"the core split over 2 processes at once: {core2:.2f} s of CPU, {core2 / core:.2f}x "
+          f"the core alone (in brackets: the parallel modes' CPU / this)")
 print()
 labels = (["before"] if before else []) + ["after"]
 names = {"before": f"before ({before})", "after": f"this tree ({after})"}
@@ -70,7 +75,9 @@ print("|---|" + "---|" * len(labels))
 for mode, text in (("serial", "in this process (--serial)"), ("threads", "2 threads (--workers 2)"),
                    ("processes", "2 worker processes (--workers 2 --processes)")):
     cells = [f"{median[f'{mode}-{l}']:.2f} ({median_system[f'{mode}-{l}']:.2f}), "
-             f"{median[f'{mode}-{l}'] / core:.2f}x" for l in labels]
+             f"{median[f'{mode}-{l}'] / core:.2f}x"
+             + (f" [{median[f'{mode}-{l}'] / core2:.2f}x]" if core2 and mode != "serial" else "")
+             for l in labels]
     print(f"| {text} | " + " | ".join(cells) + " |")
 PY
 }

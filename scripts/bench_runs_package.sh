@@ -14,7 +14,8 @@
 #               to record them)
 # With --before REV the package of revision REV (its python/tribo, on this build's FMUs) runs
 # each command first, so that one run gives the before and the after under the same load.
-# ROUNDS > 1 repeats it all and gives each number's median.
+# ROUNDS > 1 repeats it all and gives each number's median. The core also runs split in two
+# halves on 2 processes at once: the parallel modes' CPU against it too (bench_modes.sh).
 # Usage: [TRIBO_PYTHON=...] scripts/bench_runs_package.sh [--before REV] KIND [ROUNDS=1]
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -49,10 +50,21 @@ PYTHONPATH="$ROOT/python" "$PYTHON" "$ROOT/bench/runs_feed.py" "${args[@]}" --no
 voltages=$(sed -n 's/^voltages //p' "$tmp/feed.log")
 # shellcheck source=bench_modes.sh
 . "$ROOT/scripts/bench_modes.sh"
+# the same runs split in two (every other one), for the core on 2 processes at once: two busy
+# processes on this machine's 2 cores each take more CPU for the same work than one alone,
+# which the package's 2 threads or 2 worker processes pay too
+awk 'NR % 2 == 1' "$tmp/feed.txt" > "$tmp/feed_1.txt"
+awk 'NR % 2 == 0' "$tmp/feed.txt" > "$tmp/feed_2.txt"
+cpu_in() { sed -E 's/.*CPU ([0-9.]+) s.*/\1/' "$1"; }
 for ((r = 1; r <= rounds; r++)); do
   core=$("$ROOT/build/tribo_runs_core" "$tmp/feed.txt" $voltages)
   echo "core $(echo "$core" | sed -E 's/.*CPU ([0-9.]+) s.*/\1/')" >> "$tmp/results.txt"
   echo "$core" > "$tmp/core.txt"
+  "$ROOT/build/tribo_runs_core" "$tmp/feed_1.txt" $voltages > "$tmp/core_1.txt" &
+  "$ROOT/build/tribo_runs_core" "$tmp/feed_2.txt" $voltages > "$tmp/core_2.txt"
+  wait
+  echo "core-2 $(awk -v a="$(cpu_in "$tmp/core_1.txt")" -v b="$(cpu_in "$tmp/core_2.txt")" \
+    'BEGIN { print a + b }')" >> "$tmp/results.txt"
   modes_run "$tmp/results.txt" "${args[@]}"
 done
 modes_report "$tmp/results.txt" "tribo $kind (the core: $(cat "$tmp/core.txt"))" "$rounds"

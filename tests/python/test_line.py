@@ -380,3 +380,41 @@ def test_a_series_written_without_pandas_is_the_bytes_pandas_writes(columns, tmp
     write_series(frame.assign(text="x"), str(tmp_path / "t.csv"))
     assert (tmp_path / "t.csv").read_text() == frame.assign(text="x").to_csv(
         index=False, float_format=SERIES_FLOAT_FORMAT)
+
+
+def same_bits(a: dict, b: dict) -> bool:
+    """The same keys, and values of the same type and bits (-0.0 is not 0.0, NaN is NaN)."""
+    def bits(x):
+        return np.float64(x).view(np.int64) if isinstance(x, float) else x
+    return list(a) == list(b) and all(type(a[k]) is type(b[k]) and bits(a[k]) == bits(b[k])
+                                      for k in a)
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_a_grains_flights_on_one_instance_are_flys_to_the_bit(version, monkeypatch):
+    """Flights (one instance reset between flights, values set and read at once) against
+    fly (an instance per flight, values by name): each flight of a few grains of a mixture,
+    at three voltages, and the flights of a grain never released, from t = 0 and later."""
+    images = load_images(version, version, {}, [5e3, 20e3, 40e3])
+    specs = line_specs(Line(chute={"chute_length": 0.1}), 6, 3, 5.0, images.models,
+                       images.chute.model_description())
+    flown = []
+    original = grain_module.Flights.fly
+
+    def recorded(self, values, t_exit, inputs):
+        out = original(self, values, t_exit, inputs)
+        flown.append((list(self.parameters.names), list(values), t_exit, inputs, out))
+        return out
+
+    monkeypatch.setattr(grain_module.Flights, "fly", recorded)
+    for spec in specs:
+        grain_module.run_line_grain(images, spec)
+    assert len(flown) == 6 * 3 and all(f[3] is not None for f in flown)
+    names, values, t_exit, inputs, _ = flown[0]
+    with grain_module.Flights(images.separator, names) as flights:  # never released
+        for t in (0.0, t_exit):
+            flown.append((names, values, t, None, original(flights, values, t, None)))
+    for names, values, t_exit, inputs, out in flown:
+        released = None if inputs is None else dict(zip(grain_module.INPUTS, inputs))
+        expected = grain_module.fly(images.separator, dict(zip(names, values)), t_exit, released)
+        assert same_bits(out, expected), (out, expected)

@@ -10,7 +10,8 @@ fmu/library.py: the package's runs) or from an unpacked FMU's directory (its lib
 loaded for the instance and released with it).
 
 `record` and `Instance.reader` read many outputs at many times: one FMI call per type of
-variable and time, straight into numpy arrays (`Rows`), no Python object per value.
+variable and time, straight into numpy arrays (`Rows`), no Python object per value; `Values`
+sets many variables at once, one FMI call per type.
 """
 
 import ctypes
@@ -27,7 +28,7 @@ from fmpy.fmi3 import FMU3Slave, fmi3Boolean, fmi3Float64
 from fmpy.logging import addLoggerProxy
 
 from .image import FmuImage
-from .library import LIBRARY_LOAD, loaded, raw_getters
+from .library import LIBRARY_LOAD, loaded, raw_getters, raw_setters
 
 OK, WARNING, DISCARD, ERROR, FATAL = range(5)  # fmi2Status / fmi3Status
 PARAMETER_CAUSALITIES = ("parameter", "structuralParameter")
@@ -70,7 +71,8 @@ class Instance:
             library = loaded(fmu)
             self.md, self.version, self.variables = library.md, library.version, library.variables
             self.fmu = library.slave(name)
-            self.getters = library.getters
+            self.getters, self.setters = library.getters, library.setters
+            self._library = library
             self._owns_library = False
         else:
             self.md = model_description(fmu)
@@ -82,6 +84,8 @@ class Instance:
                                modelIdentifier=self.md.coSimulation.modelIdentifier,
                                instanceName=name)
             self.getters = raw_getters(self.fmu.dll, self.version)
+            self.setters = raw_setters(self.fmu.dll, self.version)
+            self._library = None
             self._owns_library = True
         # fmi3DoStep's output arguments, made once (_do_step3)
         self._step_flags = (fmi3Boolean(), fmi3Boolean(), fmi3Boolean(), fmi3Float64())
@@ -135,6 +139,10 @@ class Instance:
     def init(self, start=0.0, stop=None, **params):
         """Set parameters (before initialization), then initialize."""
         self.set(**params)
+        return self.initialize(start, stop)
+
+    def initialize(self, start=0.0, stop=None):
+        """Enter and exit initialization mode with the values set so far."""
         if self.version == 2:
             self.fmu.setupExperiment(startTime=start, stopTime=stop)
             self.fmu.enterInitializationMode()
@@ -252,11 +260,15 @@ class Instance:
     def set_parameters(self, params: dict):
         """Set parameters by name, each converted to its variable's type (an integer
         parameter given as 64.0 is set as 64)."""
+        values = []
         for name, value in params.items():
             v = self.variables.get(name)
             if v is None or v.causality not in PARAMETER_CAUSALITIES:
                 raise KeyError(f"{name!r} is not a parameter of the FMU")
-            self.set(**{name: float(value) if v.type in REAL_TYPES else int(value)})
+            values.append(float(value) if v.type in REAL_TYPES else int(value))
+        # in the order given, the values of one type next to each other in one call (a
+        # population's particle sets tens: by name, each cost an fmpy setter's checks)
+        Values(self, params).set(values)
 
     def get(self, name):
         v, getter = self._accessor("get", name)
@@ -265,8 +277,34 @@ class Instance:
         return getter([v.valueReference])[0] if self.version == 2 else \
             getter([v.valueReference], nValues=1)[0]
 
+    def layout(self, what: str, names, make):
+        """`make()` for `names`, once per loaded FMU (fmu/library.py's LoadedFmu.layout);
+        each time for an FMU this instance loaded itself."""
+        if self._library is None:
+            return make()
+        return self._library.layout(what, tuple(names), make)
+
     def get_many(self, names):
-        return {name: self.get(name) for name in names}
+        """The variables `names` as `get` reads them (Python floats, ints, bools as fmpy's
+        getters give), the scalars in one FMI call per type."""
+        names = list(names)
+        try:
+            groups = self.layout("read", names, lambda: read_layout(self, names))
+        except (KeyError, ValueError):  # arrays, types not read at once: one by one
+            return {name: self.get(name) for name in names}
+        read = {}
+        component, fmi3 = self.fmu.component, self.version == 3
+        for function, c_function, vrs, columns, dtype in groups:
+            n = len(columns)
+            values = np.empty(n, dtype)
+            address = values.__array_interface__["data"][0]
+            status = (c_function(component, vrs, n, address, n) if fmi3
+                      else c_function(component, vrs, n, address))
+            if status > WARNING:  # as fmpy's own getters
+                raise FMICallException(function, status)
+            # numpy's scalars as Python's, as fmpy's getters give them
+            read.update(zip((names[c] for c in columns), values.tolist()))
+        return {name: read[name] for name in names}
 
     def reader(self, names):
         """A function that reads the scalar variables `names` at once (one call per FMI
@@ -329,6 +367,34 @@ def record(instance: Instance, times, names) -> tuple[np.ndarray, np.ndarray]:
     return np.array(reached), rows.table()
 
 
+def _scalar(instance: Instance, name: str, functions: dict, instead: str, how: str):
+    """The scalar variable `name`, of a type `functions` has: KeyError for a name that is
+    not a variable, ValueError for an array (`instead`: what to do) or another type."""
+    v = instance.variables.get(name)
+    if v is None:
+        raise KeyError(f"{name!r} is not a variable of the FMU")
+    if v.dimensions:
+        raise ValueError(f"{name!r} is an array: {instead}")
+    if v.type not in functions:
+        raise ValueError(f"{name!r}: the FMU's type {v.type} is not one {how}")
+    return v
+
+
+def read_layout(instance: Instance, names) -> tuple:
+    """How the scalar variables `names` are read at once: (function name, C function, value
+    references, their positions in `names`, numpy type) per FMI type. KeyError for a name
+    that is not a variable, ValueError for an array or a type not read so."""
+    by_type = {}
+    for column, name in enumerate(names):
+        v = _scalar(instance, name, instance.getters, "read it with get", "read in rows")
+        columns, refs = by_type.setdefault(v.type, ([], []))
+        columns.append(column)
+        refs.append(v.valueReference)
+    return tuple((*instance.getters[kind][:2], (ctypes.c_uint32 * len(refs))(*refs),
+                  tuple(columns), instance.getters[kind][2])
+                 for kind, (columns, refs) in by_type.items())
+
+
 class Rows:
     """The scalar variables `names` of an instance read into a table, a row per `read`:
     one FMI call per type of variable, writing straight into a numpy array (grown as
@@ -337,23 +403,10 @@ class Rows:
 
     def __init__(self, instance: Instance, names, capacity: int = 64):
         self.instance, self.width = instance, len(names)
-        by_type = {}
-        for column, name in enumerate(names):
-            v = instance.variables.get(name)
-            if v is None:
-                raise KeyError(f"{name!r} is not a variable of the FMU")
-            if v.dimensions:
-                raise ValueError(f"{name!r} is an array: read it with get")
-            if v.type not in instance.getters:
-                raise ValueError(f"{name!r}: the FMU's type {v.type} is not one read in rows")
-            columns, refs = by_type.setdefault(v.type, ([], []))
-            columns.append(column)
-            refs.append(v.valueReference)
-        self.groups = []  # _Group per type
-        for kind, (columns, refs) in by_type.items():
-            function, c_function, dtype = instance.getters[kind]
-            self.groups.append(_Group(function, c_function, (ctypes.c_uint32 * len(refs))(*refs),
-                                      columns, np.empty((max(capacity, 1), len(refs)), dtype)))
+        self.groups = [_Group(function, c_function, vrs, columns,
+                              np.empty((max(capacity, 1), len(columns)), dtype))
+                       for function, c_function, vrs, columns, dtype
+                       in instance.layout("read", names, lambda: read_layout(instance, names))]
         self.capacity = max(capacity, 1)
         self.n = 0
 
@@ -382,6 +435,53 @@ class Rows:
         for g in self.groups:
             out[:, g.columns] = g.block[:self.n]
         return out
+
+
+def write_layout(instance: Instance, names) -> tuple:
+    """How the scalar variables `names` are set at once, in their order: (function name, C
+    function, value references, their positions in `names`, ctypes array type) per run of
+    names of one type. KeyError for a name that is not a variable, ValueError for an array
+    or a type not set so."""
+    runs = []  # (type, positions, value references): names of one type next to each other
+    for position, name in enumerate(names):
+        v = _scalar(instance, name, instance.setters, "set it with set", "set at once")
+        if not runs or runs[-1][0] != v.type:
+            runs.append((v.type, [], []))
+        runs[-1][1].append(position)
+        runs[-1][2].append(v.valueReference)
+    out = []
+    for kind, positions, refs in runs:
+        function, c_function, c_type = instance.setters[kind]
+        out.append((function, c_function, (ctypes.c_uint32 * len(refs))(*refs),
+                    tuple(positions), c_type * len(refs)))
+    return tuple(out)
+
+
+class Values:
+    """The scalar variables `names` of an instance set at once, in their order: one FMI call
+    per run of names of one type, the values converted to the FMI type as fmpy's setters
+    convert them (`Instance.set`: the same values reach the FMU, in the same order). A call
+    by name costs a look-up, an fmpy wrapper and its checks per value; the FMU checks one
+    call's values together (FMI's semantics), which a set of values accepted one by one
+    passes too."""
+
+    def __init__(self, instance: Instance, names):
+        self.instance = instance
+        self.names = tuple(names)
+        self.groups = instance.layout("write", self.names,
+                                      lambda: write_layout(instance, self.names))
+
+    def set(self, values) -> None:
+        """Set the variables to `values`, in the order of `names`."""
+        component = self.instance.fmu.component
+        fmi3 = self.instance.version == 3
+        for function, c_function, vrs, positions, array in self.groups:
+            n = len(positions)
+            data = array(*[values[i] for i in positions])
+            status = (c_function(component, vrs, n, data, n) if fmi3
+                      else c_function(component, vrs, n, data))
+            if status > WARNING:  # as fmpy's own setters (the FMU logged why)
+                raise FMICallException(function, status)
 
 
 class _Group:

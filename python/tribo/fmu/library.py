@@ -27,7 +27,8 @@ import shutil
 import tempfile
 import threading
 import zipfile
-from ctypes import c_int, c_size_t, c_void_p
+from ctypes import c_bool, c_double, c_float, c_int, c_int8, c_int16, c_int32, c_int64, \
+    c_size_t, c_uint8, c_uint16, c_uint32, c_uint64, c_void_p
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -60,20 +61,46 @@ _GETTERS = {
 }
 
 
+# the FMI setters instance.Values calls directly, by the variable's type: (function, the C
+# type of its values, as fmpy's own setters convert them)
+_SETTERS = {
+    2: {"Real": ("fmi2SetReal", c_double), "Integer": ("fmi2SetInteger", c_int32),
+        "Enumeration": ("fmi2SetInteger", c_int32), "Boolean": ("fmi2SetBoolean", c_int32)},
+    3: {"Float64": ("fmi3SetFloat64", c_double), "Float32": ("fmi3SetFloat32", c_float),
+        "Int64": ("fmi3SetInt64", c_int64), "Enumeration": ("fmi3SetInt64", c_int64),
+        "UInt64": ("fmi3SetUInt64", c_uint64), "Int32": ("fmi3SetInt32", c_int32),
+        "UInt32": ("fmi3SetUInt32", c_uint32),
+        "Int16": ("fmi3SetInt16", c_int16), "UInt16": ("fmi3SetUInt16", c_uint16),
+        "Int8": ("fmi3SetInt8", c_int8), "UInt8": ("fmi3SetUInt8", c_uint8),
+        "Boolean": ("fmi3SetBoolean", c_bool)},
+}
+
+
+def raw_setters(dll, version: int) -> dict:
+    """The library's setters for raw calls, by the variable's type: (function name, the C
+    function, the C type of its values), as raw_getters (instance.Values calls them)."""
+    return _raw_functions(dll, version, _SETTERS[version])
+
+
 def raw_getters(dll, version: int) -> dict:
     """The library's getters for raw calls, by the variable's type: (function name, the C
     function, the numpy type of its values). Each C function is an object of its own (not
     the one fmpy typed), its arguments plain addresses: instance.Rows passes numpy's."""
+    return _raw_functions(dll, version, _GETTERS[version])
+
+
+def _raw_functions(dll, version: int, table: dict) -> dict:
+    """`table`'s functions (type -> (name, values' type)) of the library, for raw calls."""
     out = {}
-    for kind, (function, dtype) in _GETTERS[version].items():
+    for kind, (function, values_type) in table.items():
         try:
             c_function = dll[function]  # a new object: fmpy's keeps its own argtypes
-        except AttributeError:  # a library without it: its types are not read in rows
+        except AttributeError:  # a library without it: its type is not read or set at once
             continue
         c_function.restype = c_int
         c_function.argtypes = ((c_void_p, c_void_p, c_size_t, c_void_p, c_size_t) if version == 3
                                else (c_void_p, c_void_p, c_size_t, c_void_p))
-        out[kind] = (function, c_function, dtype)
+        out[kind] = (function, c_function, values_type)
     return out
 
 
@@ -89,6 +116,20 @@ class LoadedFmu:
     variables: dict = field(repr=False)  # name -> fmpy ModelVariable
     template: object = field(repr=False)  # an fmpy slave never instantiated: the library
     getters: dict = field(repr=False)  # raw_getters of the library
+    setters: dict = field(repr=False)  # raw_setters of the library
+    # what instance.Rows and instance.Values make of a list of names (which FMI function,
+    # which value references), by (what, names): made once per process, read only after
+    layouts: dict = field(default_factory=dict, repr=False)
+
+    def layout(self, what: str, names: tuple, make):
+        """`make()`'s layout of `names` for `what` ("read", "write"), made on first use (a
+        population's particle asked for the same ones' anew, tens of look-ups a run).
+        Threads that make the same one at once each make it; one is kept."""
+        key = (what, names)
+        found = self.layouts.get(key)
+        if found is None:
+            found = self.layouts.setdefault(key, make())
+        return found
 
     def slave(self, name: str):
         """A new fmpy slave on the loaded library, not yet instantiated: its instantiate
@@ -124,7 +165,7 @@ def _load(image: FmuImage) -> LoadedFmu:
                    modelIdentifier=md.coSimulation.modelIdentifier, instanceName="tribo")
     return LoadedFmu(image.name, image.sha256, directory, md, version,
                      {v.name: v for v in md.modelVariables}, template,
-                     raw_getters(template.dll, version))
+                     raw_getters(template.dll, version), raw_setters(template.dll, version))
 
 
 # the process's loaded FMUs by SHA-256; written under LIBRARY_LOAD only, never emptied

@@ -146,8 +146,8 @@ def check_parameter_names(md, names) -> None:
         message = removed_message(md, name)
         if message:
             raise ParameterError(message)
-    known = _parameter_set(md)
-    fmu_only = [n for n in names if n in _by_fmu_name(md)]
+    known, by_fmu = _parameter_set(md), _by_fmu_name(md)  # once, not per name
+    fmu_only = [n for n in names if n in by_fmu]
     if fmu_only:
         raise _refusal(md, fmu_only[0], "parameter")
     unknown = [n for n in names if n not in known]

@@ -32,6 +32,7 @@ import numpy as np
 from ..batch.particle import RunResult
 from ..batch.specs import RunSpec
 from ..fmu import FmuImage, Instance
+from ..fmu.instance import Rows, Values
 from ..fmu.charge_models import charge_models, switches
 from ..fmu.locate import find_fmu
 from ..fmu.names import format_number, to_fmu
@@ -55,6 +56,8 @@ INTEGER_LANDING_COLUMNS = ("landed", "electrode", "bin")
 GRAIN_COLUMNS = ["charge_to_mass", "q_per_m", "mass", "equivalent_diameter"]
 OUTPUTS = ["landed", "electrode", "bin", "x_end", "z_end", "flight_time", "q_per_m", "mass",
            "equivalent_diameter"]
+# the separator's inputs at the release, in the order fly sets them
+INPUTS = ("u_entry", "v_entry", "charge_to_mass")
 
 
 class LineError(ValueError):
@@ -164,6 +167,60 @@ def fly(separator: FmuImage, fmu_params: dict, t_exit: float, inputs: dict | Non
     return out
 
 
+class Flights:
+    """One grain's flights (fly's, to the bit: tests/python/test_line.py) on one separator
+    instance: before each flight but the first the instance is reset (fmi3Reset /
+    fmi2Reset: the FMU frees its core and restores every start value, the state a new
+    instance has), its parameters `names` and the inputs at the release are set by value
+    reference (fmu/instance.py's Values: one FMI call per type, in fly's order) and its
+    outputs read in one call per type (Rows): an instance made and freed, values set and
+    read by name one by one, cost fly more CPU than the separator's core spends on the
+    flight (docs/line.md, "Benchmark: the line against its core")."""
+
+    def __init__(self, separator: FmuImage, names, horizon: float = SEPARATOR_HORIZON):
+        self.horizon = horizon
+        self.instance = Instance(separator, name="separator")
+        try:
+            self.parameters = Values(self.instance, names)
+            self.release = Values(self.instance, ("released",) + INPUTS)
+            self.outputs = Rows(self.instance, OUTPUTS + ["ended"], capacity=1)
+        except BaseException:
+            self.instance.free()
+            raise
+        self.flown = False
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.instance.free()
+        return False
+
+    def fly(self, values, t_exit: float, inputs) -> dict:
+        """fly's flight: the parameters' `values` (in the order of the names), the grain
+        held until t_exit, then released with `inputs` (INPUTS' values; None: never
+        released) and stepped in one step to t_exit + horizon. Returns fly's dict."""
+        s = self.instance
+        if self.flown:
+            s.reset()
+        self.flown = True
+        self.parameters.set(values)
+        s.initialize(0.0, None)
+        if t_exit > 0:
+            s.step_to(t_exit)
+        if inputs is not None:
+            self.release.set((True,) + tuple(inputs))
+            s.step_to(t_exit + self.horizon)
+        self.outputs.clear()
+        self.outputs.read()
+        values = self.outputs.table()[0].tolist()  # Python floats, as fmpy's getters give
+        out = dict(zip(OUTPUTS, values))
+        out["time_land"] = s.t if values[-1] else math.nan
+        for c in INTEGER_LANDING_COLUMNS:
+            out[c] = int(out[c])
+        return out
+
+
 # a grain's parameters that are not the chute FMU's: its material's name, its entry point
 # across the separator's gap (m)
 LINE_PARAMETERS = ("particle", "x_entry")
@@ -194,11 +251,17 @@ def run_line_grain(images: LineImages, spec: RunSpec) -> RunResult:
     if "x_entry" in spec.params:
         grain["x_entry"] = float(spec.params["x_entry"])
     grain = to_fmu(md, grain)  # once: the voltage alone differs between the flights
+    names = list(grain)
+    at = names.index("voltage")
+    values = list(grain.values())
+    released = None if inputs is None else [inputs[name] for name in INPUTS]
     landings = []
-    for voltage in images.voltages:
-        flight = fly(images.separator, dict(grain, voltage=float(voltage)), t_exit, inputs,
-                     images.horizon)
-        landings.append({"voltage": float(voltage), **{c: flight[c] for c in LANDING_COLUMNS}})
+    with Flights(images.separator, names, images.horizon) as flights:
+        for voltage in images.voltages:
+            values[at] = float(voltage)
+            flight = flights.fly(values, t_exit, released)
+            landings.append({"voltage": float(voltage),
+                             **{c: flight[c] for c in LANDING_COLUMNS}})
     first = landings[0]
     row.update(charge_to_mass=q, q_per_m=flight["q_per_m"], mass=flight["mass"],
                equivalent_diameter=flight["equivalent_diameter"])
