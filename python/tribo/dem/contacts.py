@@ -319,14 +319,15 @@ def read_dump_frames(path: str, columns: list[str]) -> pd.DataFrame:
 
 def parse_frames(path: str, text: bytes, columns: list[str]) -> pd.DataFrame:
     """The rows of the whole frames in text, with each frame's step."""
-    steps, chunks = [], []
+    steps, counts, chunks = [], [], []
     for m in FRAME.finditer(text):
         k = int(m.group(2))
         end = m.end()
         for _ in range(k):
             end = text.index(b"\n", end) + 1
         chunks.append(text[m.end():end])
-        steps.append(np.full(k, int(m.group(1)), dtype=np.int64))
+        steps.append(int(m.group(1)))
+        counts.append(k)
     if not chunks:
         return pd.DataFrame()
     try:
@@ -334,7 +335,7 @@ def parse_frames(path: str, text: bytes, columns: list[str]) -> pd.DataFrame:
                           dtype=float, engine="c")
     except (ValueError, pd.errors.ParserError):
         raise OutputError(f"{path}: a row is not {len(columns)} numbers") from None
-    out.insert(0, "step", np.concatenate(steps))
+    out.insert(0, "step", np.repeat(np.array(steps, dtype=np.int64), counts))
     return out
 
 
