@@ -10,7 +10,8 @@
 # the impacts a second and the q/m per impact, LIGGGHTS' and the charging's CPU; grain by
 # grain (the same draw: the same grains in the same order) the fed over the dilute q/m,
 # impacts and time on the plate; writes summary.md (the table), compare.csv (a row per
-# grain) and fed_feeder.png into out/bench-dem-fed-feeder/ (BENCH_OUT).
+# grain) and fed_feeder.png into out/bench-dem-fed-feeder/ (BENCH_OUT), the figure copied to
+# docs/dem/.
 #
 # BENCH_BACK=D (m) runs the fed stream a third time with the plate and its back wall D
 # further behind the drop points (the back wall's part in the fed stream's speed).
@@ -49,10 +50,12 @@ PYEOF
   fi
 fi
 "$PY" - "$N" "$LENGTH" "$RATE" "$LANES" <<'PYEOF'
-import json, math, os, sys
+import json, os, sys
 import numpy as np
 import pandas as pd
 from tribo.plotting import plt, save
+from tribo.populations.summary import grain_mass, stream_statistics
+from tribo.study.tables import markdown_table
 n, length, rate, lanes = int(sys.argv[1]), float(sys.argv[2]), float(sys.argv[3]), int(sys.argv[4])
 runs = {"dilute (a lane each)": "dilute", f"fed, {rate:g} grains/s in {lanes} lanes": "fed"}
 if os.path.exists("fed-back/particles.csv"):
@@ -68,23 +71,20 @@ for name, folder in runs.items():
     d, meta = data[name], json.load(open(f"{folder}/population.json"))
     stay[folder] = d["exit_time"] - entry[folder]
     left = d[d.exited == 1]
-    mass = math.pi / 6 * left["size"] ** 3 * left["density"]
     qm = left["charge_to_mass_static"]
-    mean = float((qm * mass).sum() / mass.sum())
-    spread = float(math.sqrt(((qm - mean) ** 2 * mass).sum() / mass.sum()))
+    stream = stream_statistics(d["charge_to_mass_static"], grain_mass(d), d["exited"])
     rows.append({"run": name, "left": f"{len(left)}/{n}",
                  "conveying speed (m/s)": length / stay[folder][d.exited == 1].mean(),
                  "impacts per grain": d["impacts"].mean(),
                  "side-wall impacts per grain": d["side_impacts"].mean(),
                  "impacts per second": (left["impacts"] / stay[folder][d.exited == 1]).mean(),
                  "q/m per impact (nC/kg)": (qm / left["impacts"]).mean() * 1e9,
-                 "stream q/m (uC/kg)": mean * 1e6, "spread (uC/kg)": spread * 1e6,
+                 "stream q/m (uC/kg)": stream["stream_mean"] * 1e6,
+                 "spread (uC/kg)": stream["stream_std"] * 1e6,
                  "LIGGGHTS CPU (s)": meta["dem_cpu_s"], "charging CPU (s)": meta["charging_cpu_s"]})
 table = pd.DataFrame(rows)
 with open("summary.md", "w") as f:
-    f.write("| " + " | ".join(table.columns) + " |\n|" + "---|" * len(table.columns) + "\n")
-    for row in table.itertuples(index=False):
-        f.write("| " + " | ".join(v if isinstance(v, str) else f"{v:.4g}" for v in row) + " |\n")
+    f.write(markdown_table(table, {c: ".4g" for c in table.columns[2:]}) + "\n")
 print(table.to_string(index=False))
 both = (a.exited == 1) & (b.exited == 1)
 compare = pd.DataFrame({"size": a["size"], "qm_dilute": a["charge_to_mass_static"],
@@ -127,3 +127,4 @@ fig.suptitle(f"{n} PE spheres of 0.6-1 mm on a level steel feeder {length:g} m l
              f"{lanes} lanes (static model; the grains that left both ways)")
 save(fig, "fed_feeder.png")
 PYEOF
+mkdir -p "$ROOT/docs/dem" && cp fed_feeder.png "$ROOT/docs/dem/"
