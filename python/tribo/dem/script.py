@@ -55,6 +55,11 @@ STEPS_PER_CONTACT = 40  # the time step: the fastest impact's Hertz contact time
 # interval (contacts.py); a sample costs LIGGGHTS the same whatever it holds, so that on a
 # feeder, its grains in flight most of the time, the fewer the cheaper (docs/dem.md)
 SAMPLES_PER_CONTACT = 1.5
+# a grain in contact is written, however slowly it moves along the normal, while the wall
+# presses on it with more than this many times its weight: an impact's turn (a grain at
+# rest on a plate is pressed with its weight, twice at most on a feeder that does not
+# throw it)
+PRESSED = 10.0
 # the most steps a run takes: LIGGGHTS' `run N` takes N up to 2^31 - 1 (a run is cut into
 # pieces of a two-hundredth of its steps, so this leaves a factor of 200 for the step
 # being shorter than the Rayleigh bound the horizon is checked with)
@@ -117,7 +122,7 @@ def _number(x: float) -> str:
 
 def _unflushed(dump: str) -> list[str]:
     """A dump's lines written to the file as its buffer fills, not at every frame: LIGGGHTS
-    flushes each frame by default, a write to the file every sample, most of the cost of a
+    flushes each frame by default, a write to the file every sample, much of the cost of a
     feeder's sparse contacts (docs/dem.md, what it costs). It writes the rest when it exits,
     stopped by a signal too (engine.py), and the outputs are read only then."""
     return [f"dump_modify {dump} flush no"]
@@ -224,16 +229,20 @@ def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *
             gap += "-v_wall"
             normal_speed += "-v_wall_speed"
         along = f"(x>{_number(chute.start(biggest))}-c_radius)*(x<{_number(L)}+c_radius)"
-        plate = f"({gap}<{_number(near)})*(abs({normal_speed})>{_number(slowest)})"
+        # ... or pressed on by more than PRESSED times its weight: the turn of an impact,
+        # its normal speed passing zero, whose one sample in contact may fall there
+        pressed = f"{_number(PRESSED * 9.81)}*mass"
+        written = (f"({gap}<{_number(near)})*((abs({normal_speed})>{_number(slowest)})"
+                   f"+(f_force_walls[3]>{pressed}))")
         columns = CONTACT_COLUMNS
         if chute.amplitude:
             # a feeder's one dump for the plate and the side walls (a dump's frames are
             # most of its cost, most of them empty: one set of them)
-            plate += (f"+({_number(half)}-abs(y)-c_radius<{_number(near)})"
-                      f"*(abs(vy)>{_number(slowest)})")
+            written += (f"+({_number(half)}-abs(y)-c_radius<{_number(near)})"
+                        f"*((abs(vy)>{_number(slowest)})+(abs(f_force_walls[2])>{pressed}))")
             columns = FEEDER_COLUMNS
         lines += ["compute radius all property/atom radius", *motion,
-                  f"variable written atom ({plate})*{along}",
+                  f"variable written atom ({written})*{along}",
                   f"dump contacts all custom {sample_every} {CONTACTS} " + " ".join(columns),
                   "dump_modify contacts thresh v_written > 0"]
         lines += [f'dump_modify contacts format "{FEEDER_FORMAT}"'] if chute.amplitude else []
