@@ -32,7 +32,7 @@ cd "$OUT"
 # contacts' output (its dump lines removed), four times each, alternately; the least CPU of each
 rm -rf withdump nodump && cp -r dilute/liggghts withdump && cp -r dilute/liggghts nodump
 rm -f withdump/*.dump nodump/*.dump
-grep -v "contacts\|variable near\|variable normal_speed\|compute radius" dilute/liggghts/in.liggghts > nodump/in.liggghts
+grep -v "contacts\|variable written\|variable wall\|compute radius" dilute/liggghts/in.liggghts > nodump/in.liggghts
 for k in 1 2 3 4; do
   for d in withdump nodump; do
     ( cd "$d" && /usr/bin/time -f "%U %S" -a -o cpu.txt liggghts -in in.liggghts -log log.liggghts -echo none > /dev/null )

@@ -322,9 +322,10 @@ def test_a_side_wall_impact_is_read_across_the_chute_relative_to_the_moving_wall
 
 def test_impacts_read_in_a_stream_are_those_of_the_dump_read_whole(tmp_path, monkeypatch):
     # 30 grains written every 5 steps or skipping (below `slowest`), in flight or touching
-    # in runs of 1-8 samples, over 3000 steps, on a moving plate: whatever blocks cut the
-    # dump (a frame at a time to the whole file), the impacts are the same, bit for bit,
-    # contacts that go on across a cut included
+    # in runs of 1-8 samples, over 3000 steps, on a moving feeder 10 mm wide, grains 1-15 at
+    # the plate and 16-30 at a side wall: whatever blocks cut the dump (a frame at a time to
+    # the whole file), the impacts are the same, bit for bit, contacts that go on across a
+    # cut included, and the dump read once for both walls gives each wall's impacts
     rng = np.random.default_rng(11)
     chute = Chute(0.05, 10.0, amplitude=3e-4, frequency=60.0, angle_deg=40.0)
     frames = []
@@ -338,20 +339,33 @@ def test_impacts_read_in_a_stream_are_those_of_the_dump_read_whole(tmp_path, mon
             state[g] = (touching, left - 1)
             if rng.uniform() < 0.1:
                 continue  # not written this sample
-            z = 1e-3 + (-2e-7 if touching else rng.uniform(1e-6, 5e-5))
-            rows.append((g, rng.uniform(0, 0.05), 0.0, z + float(chute.wall_z(step * 1e-5)),
-                         rng.normal(0, 0.2), rng.normal(0, 0.05), rng.normal(0, 0.2), 1e-3,
-                         0.0, rng.uniform(1e-6, 1e-4) if touching else 0.0))
+            gap = -2e-7 if touching else rng.uniform(1e-6, 5e-5)
+            force = rng.uniform(1e-6, 1e-4) if touching else 0.0
+            side = g > 15  # at the side y = -5 mm, 2 mm above the plate
+            z = 3e-3 if side else 1e-3 + gap + float(chute.wall_z(step * 1e-5))
+            y = -5e-3 + 1e-3 + gap if side else 0.0
+            rows.append((g, rng.uniform(0, 0.05), y, z, rng.normal(0, 0.2), rng.normal(0, 0.05),
+                         rng.normal(0, 0.2), 1e-3, force if side else 0.0,
+                         0.0 if side else force))
         frames.append((step, rows))
     path = tmp_path / script.CONTACTS
     _dump(path, frames, script.FEEDER_COLUMNS)
-    read = lambda: contacts.impacts(str(path), 1e-5, 5, (1.7, 0.0, -9.66), 30, wall=chute)
+    gravity = (1.7, 0.0, -9.66)
+    walls = [contacts.Wall(gravity, chute, others=True),
+             contacts.Wall(gravity, chute, side=True, half_width=5e-3, others=True)]
+    read = lambda wall: contacts.impacts(str(path), 1e-5, 5, gravity, 30, wall=wall)
     monkeypatch.setattr(contacts, "BLOCK", 1 << 30)
-    whole = read()
-    assert len(whole) > 500 and (whole["from_flight"] == 1).any()
+    whole = [read(wall) for wall in walls]
+    for found, grains in zip(whole, ((1, 15), (16, 30))):
+        assert len(found) > 250 and (found["from_flight"] == 1).any()
+        assert found["grain"].between(grains[0] - 1, grains[1] - 1).all()
+    assert read(chute).equals(whole[0])  # the plate as the chute's
     for block in (3000, 70000, len(path.read_text()) - 10):  # 3000: less than a frame
         monkeypatch.setattr(contacts, "BLOCK", block)
-        pd.testing.assert_frame_equal(read(), whole)
+        for wall, found in zip(walls, whole):
+            pd.testing.assert_frame_equal(read(wall), found)
+        for found, alone in zip(contacts.walls_impacts(str(path), 1e-5, 5, walls, 30), whole):
+            pd.testing.assert_frame_equal(found, alone)
 
 
 def test_a_dump_read_in_blocks_is_the_dump_read_whole(tmp_path, monkeypatch):

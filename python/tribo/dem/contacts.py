@@ -1,15 +1,16 @@
 """The grain-wall impacts and the exits, read from a LIGGGHTS run's outputs (script.py).
 
-**Sampling.** contacts.dump holds, every `sample_every` steps (a third of the fastest
+**Sampling.** contacts.dump holds, every `sample_every` steps (two thirds of the fastest
 impact's Hertz contact time, script.py), each grain whose gap to the plate is below `near`
 (twice what the fastest grain covers in a sample) and whose normal speed relative to it
-exceeds `slowest`; the wall's normal force on it says whether it touches. So every impact
-has at least one sample in flight just before it and several in contact: none is missed,
-and one that lasts less than a sample interval would be one the time step does not
-resolve. A feeder's holds the same for its side walls too, across the chute: a grain near
-the plate or a side wall, with the force along both normals (LIGGGHTS' one wall fix sums
-the plate's and the sides': a sample touches a wall where that wall's component is nonzero
-and the grain's gap to it is below TOUCHING).
+exceeds `slowest` or whom it presses on with more than script.PRESSED times its weight (an
+impact's turn); the wall's normal force on it says whether it touches. So every impact
+has at least one sample in flight just before it and one in contact: none is missed (a
+contact shorter than a sample interval would be shorter than the fastest impact's). A
+feeder's holds the same for its side walls too, across the chute: a grain near the plate or
+a side wall, with the force along both normals (LIGGGHTS' one wall fix sums the plate's and
+the sides': a sample touches a wall where that wall's component is nonzero and the grain's
+gap to it is below TOUCHING).
 
 **Against the moving wall.** Each sample is read in the wall's own axes (`Wall`): its gap
 to the wall and its velocity along the wall's normal and along the wall, each less the
@@ -131,13 +132,28 @@ def impacts(path: str, dt: float, sample_every: int, gravity: tuple, n: int,
     (device.Chute) whose plate it is, or None (a still plate). Sorted by grain and time."""
     if not isinstance(wall, Wall):
         wall = Wall(tuple(gravity), wall, others=bool(getattr(wall, "amplitude", 0)))
-    parts, carry = [], None
-    for block, last_step, final in dump_blocks(path, wall.columns):
-        d = block if carry is None else pd.concat([carry, block], ignore_index=True)
-        if d.empty:
-            continue
-        found, carry = _block_impacts(path, d, dt, sample_every, wall, last_step, final)
-        parts.append(found)
+    return walls_impacts(path, dt, sample_every, [wall], n)[0]
+
+
+def walls_impacts(path: str, dt: float, sample_every: int, walls: list, n: int) -> list:
+    """The impacts against each of `walls` (Walls of one dump's columns: a feeder's plate and
+    side walls) as `impacts` reads them, the dump read once for all."""
+    columns = walls[0].columns
+    if any(w.columns != columns for w in walls):
+        raise ValueError("walls: each read from the same dump's columns")
+    parts, carry = [[] for _ in walls], [None] * len(walls)
+    for block, last_step, final in dump_blocks(path, columns):
+        for k, wall in enumerate(walls):
+            d = block if carry[k] is None else pd.concat([carry[k], block], ignore_index=True)
+            if d.empty:
+                continue
+            found, carry[k] = _block_impacts(path, d, dt, sample_every, wall, last_step, final)
+            parts[k].append(found)
+    return [_sorted(path, found, n) for found in parts]
+
+
+def _sorted(path: str, parts: list, n: int) -> pd.DataFrame:
+    """A wall's impacts from its blocks' (the module's text), sorted by grain and time."""
     out = (pd.concat(parts, ignore_index=True) if parts
            else pd.DataFrame({c: np.zeros(0) for c in IMPACT_COLUMNS}))
     # a contact that begins leaving (a grain written first in contact, moving off): no impact
@@ -305,14 +321,15 @@ def read_dump_frames(path: str, columns: list[str]) -> pd.DataFrame:
 
 def parse_frames(path: str, text: bytes, columns: list[str]) -> pd.DataFrame:
     """The rows of the whole frames in text, with each frame's step."""
-    steps, chunks = [], []
+    steps, counts, chunks = [], [], []
     for m in FRAME.finditer(text):
         k = int(m.group(2))
         end = m.end()
         for _ in range(k):
             end = text.index(b"\n", end) + 1
         chunks.append(text[m.end():end])
-        steps.append(np.full(k, int(m.group(1)), dtype=np.int64))
+        steps.append(int(m.group(1)))
+        counts.append(k)
     if not chunks:
         return pd.DataFrame()
     try:
@@ -320,7 +337,7 @@ def parse_frames(path: str, text: bytes, columns: list[str]) -> pd.DataFrame:
                           dtype=float, engine="c")
     except (ValueError, pd.errors.ParserError):
         raise OutputError(f"{path}: a row is not {len(columns)} numbers") from None
-    out.insert(0, "step", np.concatenate(steps))
+    out.insert(0, "step", np.repeat(np.array(steps, dtype=np.int64), counts))
     return out
 
 

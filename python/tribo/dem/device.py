@@ -17,7 +17,10 @@ the plate and its side walls along a stroke at `angle_deg` to the plate's down-s
 `fix move/mesh ... wiggle`): a grain meets it many times, and a stroke inclined forward
 throws it forward at each hop, conveying it on a level plate too (tilt 0, taken only
 vibrating). The **side walls** along the plate (`sides_stl`), as high as the box, hold the
-grains on it; their impacts are charged like the plate's and counted apart.
+grains on it; their impacts are charged like the plate's and counted apart. A **back wall**
+across the plate where it begins (behind the drop points: `start`), as high, holds the
+grains a fed stream knocks backwards (without it a third of them fell off behind); its
+impacts are not read (contacts.py reads the plate's and the sides').
 
 The plate is as wide as the grains' lanes need: in the dilute limit each grain has its
 own lane, `lane_spacing` apart (wide enough that no two can meet: a sphere rolls and
@@ -158,10 +161,12 @@ class Chute:
 
     def sides_stl(self, width: float, height: float, start: float = 0.0) -> str:
         """The side walls along the plate, y = -width/2 and y = width/2, x in [start, L], z
-        in [0, height], facing into the chute, as ASCII STL."""
+        in [0, height], and the back wall across it at x = start, facing into the chute, as
+        ASCII STL."""
         L, h, x0 = self.chute_length, width / 2.0, start
         return _stl("sides", [((x0, -h, 0.0), (x0, -h, height), (L, -h, height), (L, -h, 0.0)),
-                              ((x0, h, 0.0), (L, h, 0.0), (L, h, height), (x0, h, height))])
+                              ((x0, h, 0.0), (L, h, 0.0), (L, h, height), (x0, h, height)),
+                              ((x0, -h, 0.0), (x0, h, 0.0), (x0, h, height), (x0, -h, height))])
 
 
 def _stl(name: str, quads) -> str:

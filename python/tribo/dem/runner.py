@@ -223,15 +223,14 @@ class DemJob(Job):
             previous = self._simulate(folder, run, size, contact, progress, wall0)
         cpu0 = time.process_time()
         gravity = tuple(9.81 * c for c in self.chute.gravity_vector)
-        found = contacts.impacts(os.path.join(folder, script.CONTACTS), dt, every, gravity,
-                                 self.n, wall=self.chute).assign(wall=PLATE_WALL)
+        walls = [contacts.Wall(gravity, self.chute, others=bool(self.chute.amplitude))]
         if self.chute.amplitude:  # the feeder's side walls: charged alike, counted apart
-            sides = contacts.Wall(gravity, self.chute, side=True,
-                                  half_width=self.entry.width / 2, others=True)
-            found = pd.concat([found, contacts.impacts(
-                os.path.join(folder, script.CONTACTS), dt, every, gravity, self.n,
-                wall=sides).assign(wall=SIDE_WALL)], ignore_index=True).sort_values(
-                ["grain", "time"], kind="stable").reset_index(drop=True)
+            walls.append(contacts.Wall(gravity, self.chute, side=True,
+                                       half_width=self.entry.width / 2, others=True))
+        found = pd.concat([f.assign(wall=kind) for kind, f in zip(
+            (PLATE_WALL, SIDE_WALL), contacts.walls_impacts(
+                os.path.join(folder, script.CONTACTS), dt, every, walls, self.n))],
+            ignore_index=True).sort_values(["grain", "time"], kind="stable").reset_index(drop=True)
         left = contacts.exits(os.path.join(folder, script.EXITS), dt, self.chute.chute_length, self.n)
         sigma0 = float(p0["sigma0"])
         # the materials' own moduli (not LIGGGHTS' scaled ones): the model's indentation

@@ -12,8 +12,9 @@ refuses Young's moduli above 1e9 Pa in SI units without it.
 
 The time step is a fraction of the smallest grain's Rayleigh time and of its Hertz contact
 time at the fastest impact (`time_step`); the wall contacts are written every
-`sample_every` steps, a third of that contact time, so that every contact is seen at least
-three times (contacts.py reads them).
+`sample_every` steps, two thirds of that contact time, so that every contact is seen in
+contact at least once (a slower one lasts longer) and every impact has a sample in flight
+before it (contacts.py reads them).
 
 Outputs (the run's folder):
 
@@ -49,7 +50,16 @@ EXIT_COLUMNS = ["id", "x", "y", "z", "vx", "vy", "vz", "omegay"]
 # a tenth of the smallest grain's Rayleigh time: LIGGGHTS warns above a fifth of it
 RAYLEIGH_FRACTION = 0.1
 STEPS_PER_CONTACT = 40  # the time step: the fastest impact's Hertz contact time over this
-SAMPLES_PER_CONTACT = 3  # the contacts' sampling: at least this many samples per contact
+# the contacts' sampling: this many samples in the fastest impact's contact, at least one
+# in every contact. The onset is the flight before it carried on to the wall, exact at any
+# interval (contacts.py); a sample costs LIGGGHTS the same whatever it holds, so that on a
+# feeder, its grains in flight most of the time, the fewer the cheaper (docs/dem.md)
+SAMPLES_PER_CONTACT = 1.5
+# a grain in contact is written, however slowly it moves along the normal, while the wall
+# presses on it with more than this many times its weight: an impact's turn (a grain at
+# rest on a plate is pressed with its weight, twice at most on a feeder that does not
+# throw it)
+PRESSED = 10.0
 # the most steps a run takes: LIGGGHTS' `run N` takes N up to 2^31 - 1 (a run is cut into
 # pieces of a two-hundredth of its steps, so this leaves a factor of 200 for the step
 # being shorter than the Rayleigh bound the horizon is checked with)
@@ -108,6 +118,14 @@ def time_step(diameters: np.ndarray, fastest: float, c: Contact) -> tuple[float,
 
 def _number(x: float) -> str:
     return f"{x:.10g}"
+
+
+def _unflushed(dump: str) -> list[str]:
+    """A dump's lines written to the file as its buffer fills, not at every frame: LIGGGHTS
+    flushes each frame by default, a write to the file every sample, much of the cost of a
+    feeder's sparse contacts (docs/dem.md, what it costs). It writes the rest when it exits,
+    stopped by a signal too (engine.py), and the outputs are read only then."""
+    return [f"dump_modify {dump} flush no"]
 
 
 def box_top(entry: Entry, diameters: np.ndarray) -> float:
@@ -186,44 +204,49 @@ def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *
         # the grains that leave the box (past the end, off the sides) are dropped
         "thermo_style custom step atoms", f"thermo {progress_every}",
         "thermo_modify lost ignore norm no",
-        f"variable past atom x>{_number(L)}",
         f"dump exits all custom {exit_every} {EXITS} " + " ".join(EXIT_COLUMNS),
-        "dump_modify exits thresh v_past == 1",
-    ]
+        f"dump_modify exits thresh x > {_number(L)}",
+    ] + _unflushed("exits")
     append = [] if restart is None else ["dump_modify exits append yes"]
     if contacts:
         # a grain is written while near the plate (its gap below `near`, so that the last
         # sample before a contact is in flight) and moving along the normal faster than
         # `slowest` relative to it: a grain at rest or rolling on the plate is not written
-        # (the plate where it is: a vibrating plate's stroke times sin(2 pi f t)); the same
-        # near a side wall, across the chute (the stroke moves the sides along themselves)
-        phase = f"2*PI*{_number(chute.frequency)}*step*{_number(dt)}"
-        sz = chute.stroke[1]
-        wall, wall_speed = ((f"{_number(sz)}*sin({phase})",
-                             f"{_number(sz * 2 * math.pi * chute.frequency)}*cos({phase})")
-                            if chute.amplitude else ("0", "0"))
+        # (the plate where it is: a vibrating plate's stroke times sin(2 pi f t)); a feeder's
+        # the same near a side wall, across the chute (the stroke moves the sides along
+        # themselves). One atom-style formula, naming no other atom-style variable: LIGGGHTS
+        # parses it, and each atom-style variable it names, at every sample, and evaluates
+        # it grain by grain (the plate's motion, the same for all, is an equal-style
+        # variable: one number); on a feeder most of the dump's cost is per sample,
+        # whatever it holds
+        gap, normal_speed, motion = "z-c_radius", "vz", []
+        if chute.amplitude:
+            phase = f"2*PI*{_number(chute.frequency)}*step*{_number(dt)}"
+            sz = chute.stroke[1]
+            motion = [f"variable wall equal {_number(sz)}*sin({phase})",
+                      f"variable wall_speed equal "
+                      f"{_number(sz * 2 * math.pi * chute.frequency)}*cos({phase})"]
+            gap += "-v_wall"
+            normal_speed += "-v_wall_speed"
         along = f"(x>{_number(chute.start(biggest))}-c_radius)*(x<{_number(L)}+c_radius)"
-        lines += ["compute radius all property/atom radius",
-                  f"variable wall equal {wall}", f"variable wall_speed equal {wall_speed}",
-                  f"variable near atom (z-c_radius-v_wall<{_number(near)})*{along}",
-                  "variable normal_speed atom abs(vz-v_wall_speed)"]
-        if not chute.amplitude:
-            lines += [f"dump contacts all custom {sample_every} {CONTACTS} "
-                      + " ".join(CONTACT_COLUMNS),
-                      f"dump_modify contacts thresh v_near == 1 thresh v_normal_speed > "
-                      f"{_number(slowest)}"]
-        else:
+        # ... or pressed on by more than PRESSED times its weight: the turn of an impact,
+        # its normal speed passing zero, whose one sample in contact may fall there
+        pressed = f"{_number(PRESSED * 9.81)}*mass"
+        written = (f"({gap}<{_number(near)})*((abs({normal_speed})>{_number(slowest)})"
+                   f"+(f_force_walls[3]>{pressed}))")
+        columns = CONTACT_COLUMNS
+        if chute.amplitude:
             # a feeder's one dump for the plate and the side walls (a dump's frames are
             # most of its cost, most of them empty: one set of them)
-            lines += [f"variable near_side atom ({_number(half)}-abs(y)-c_radius<{_number(near)})"
-                      f"*{along}",
-                      "variable side_speed atom abs(vy)",
-                      f"variable written atom v_near*(v_normal_speed>{_number(slowest)})"
-                      f"+v_near_side*(v_side_speed>{_number(slowest)})",
-                      f"dump contacts all custom {sample_every} {CONTACTS} "
-                      + " ".join(FEEDER_COLUMNS),
-                      "dump_modify contacts thresh v_written > 0",
-                      f'dump_modify contacts format "{FEEDER_FORMAT}"']
+            written += (f"+({_number(half)}-abs(y)-c_radius<{_number(near)})"
+                        f"*((abs(vy)>{_number(slowest)})+(abs(f_force_walls[2])>{pressed}))")
+            columns = FEEDER_COLUMNS
+        lines += ["compute radius all property/atom radius", *motion,
+                  f"variable written atom ({written})*{along}",
+                  f"dump contacts all custom {sample_every} {CONTACTS} " + " ".join(columns),
+                  "dump_modify contacts thresh v_written > 0"]
+        lines += [f'dump_modify contacts format "{FEEDER_FORMAT}"'] if chute.amplitude else []
+        lines += _unflushed("contacts")
         append += [] if restart is None else ["dump_modify contacts append yes"]
     lines += append
     # each grain enters at its step: a `run` to it, then the grain
