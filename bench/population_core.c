@@ -14,12 +14,7 @@
 #include <string.h>
 #include <time.h>
 
-static double cpu_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+#include "cpu_clock.h"
 
 static double per(long long count, double impacts)
 {

@@ -26,12 +26,7 @@
 #include <string.h>
 #include <time.h>
 
-static double cpu_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+#include "cpu_clock.h"
 
 static tribo_model *create(const tribo_si_scene *si, tribo_si_derived *d)
 {

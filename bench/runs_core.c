@@ -23,14 +23,9 @@
 #include <string.h>
 #include <time.h>
 
-enum { MAX_VOLTAGES = 256 };
+#include "cpu_clock.h"
 
-static double cpu_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+enum { MAX_VOLTAGES = 256 };
 
 /* What a chute's run hands the separator. */
 typedef struct chute_end {
