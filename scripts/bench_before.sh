@@ -17,3 +17,20 @@ before_package() {
     git -C "$ROOT" archive "$before" python/tribo | tar -x -C "$1/before"
   fi
 }
+
+# before_program SOURCE OUT: the C benchmark SOURCE compiled against revision $before's core
+# into OUT (bench_at_revision.sh); nothing without --before
+before_program() {
+  if [ -n "$before" ]; then
+    # shellcheck source=bench_at_revision.sh
+    . "$ROOT/scripts/bench_at_revision.sh"
+    bench_at_revision "$before" "$1" "$2"
+  fi
+}
+
+# tree_label [PATH...]: this checkout's revision, and ", modified" where PATH (default src)
+# differs from it, as the benchmarks name the tree they measured
+tree_label() {
+  [ $# -gt 0 ] || set -- src
+  echo "$(git -C "$ROOT" rev-parse --short HEAD)$(git -C "$ROOT" diff --quiet HEAD -- "$@" || echo ', modified')"
+}

@@ -19,15 +19,11 @@ mode=${2:-first}
 [ -x "$ROOT/build/tribo_feeder_state" ] || "$ROOT/scripts/setup.sh" >/dev/null
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-if [ -n "$before" ]; then
-  # shellcheck source=bench_at_revision.sh
-  . "$ROOT/scripts/bench_at_revision.sh"
-  bench_at_revision "$before" "$ROOT/bench/feeder_state.c" "$tmp/before"
-fi
+before_program "$ROOT/bench/feeder_state.c" "$tmp/before"
 "$ROOT/.venv/bin/python" "$ROOT/bench/population_feed.py" "$n" 1 > "$tmp/feed.txt"
 feeder="chute_length=0.5 tilt=0 vibration_amplitude=5e-4 vibration_frequency=50 vibration_angle=0.5235987755982988"
 after="$ROOT/build/tribo_feeder_state"
-label="$(git -C "$ROOT" rev-parse --short HEAD)$(git -C "$ROOT" diff --quiet HEAD -- src || echo ', modified')"
+label=$(tree_label)
 runs=("this tree ($label)|$after")
 [ -n "$before" ] && runs=("before ($before)|$tmp/before" "${runs[@]}")
 if [ "$mode" = full ]; then

@@ -20,9 +20,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 runs=("this tree|$ROOT/build/tribo_first_contacts")
 if [ -n "$before" ]; then
-  # shellcheck source=bench_at_revision.sh
-  . "$ROOT/scripts/bench_at_revision.sh"
-  bench_at_revision "$before" "$ROOT/bench/first_contacts.c" "$tmp/before"
+  before_program "$ROOT/bench/first_contacts.c" "$tmp/before"
   runs=("before ($before)|$tmp/before" "${runs[@]}")
 fi
 "$ROOT/.venv/bin/python" - "$n" "$seed" "$stick" > "$tmp/setups.txt" <<'PY'

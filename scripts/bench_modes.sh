@@ -48,7 +48,7 @@ modes_run() {
 
 modes_report() {
   "$PYTHON" - "$1" "$2" "$3" "${before:+$(git -C "$ROOT" rev-parse --short "$before")}" \
-    "$(git -C "$ROOT" rev-parse --short HEAD)$(git -C "$ROOT" diff --quiet HEAD -- python src || echo ', modified')" <<'PY'
+    "$(tree_label python src)" <<'PY'
 import statistics
 import sys
 

@@ -28,7 +28,7 @@ for ((r = 1; r <= rounds; r++)); do
     --grains "$grains" --label after >> "$tmp/results.jsonl"
 done
 "$ROOT/.venv/bin/python" - "$tmp/results.jsonl" "${before:+$(git -C "$ROOT" rev-parse --short "$before")}" \
-  "$(git -C "$ROOT" rev-parse --short HEAD)$(git -C "$ROOT" diff --quiet HEAD -- python || echo ', modified')" <<'PY'
+  "$(tree_label python)" <<'PY'
 import json
 import sys
 import numpy as np

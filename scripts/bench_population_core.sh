@@ -15,18 +15,14 @@ rounds=${2:-1}
 "$ROOT/scripts/setup.sh" >/dev/null
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-if [ -n "$before" ]; then
-  # shellcheck source=bench_at_revision.sh
-  . "$ROOT/scripts/bench_at_revision.sh"
-  bench_at_revision "$before" "$ROOT/bench/population_core.c" "$tmp/before"
-fi
+before_program "$ROOT/bench/population_core.c" "$tmp/before"
 declare -A feeds=([reference]="" [mu0.5]="mu=0.5" [discs-mu0.5]="epsilon=1 mu=0.5")
 for name in reference mu0.5 discs-mu0.5; do
   # shellcheck disable=SC2086
   "$ROOT/.venv/bin/python" "$ROOT/bench/population_feed.py" "$n" 1 ${feeds[$name]} > "$tmp/$name.txt"
 done
 after="$ROOT/build/tribo_population_core"
-label="$(git -C "$ROOT" rev-parse --short HEAD)$(git -C "$ROOT" diff --quiet HEAD -- src || echo ', modified')"
+label=$(tree_label)
 for ((r = 1; r <= rounds; r++)); do
   for name in reference mu0.5 discs-mu0.5; do
     if [ -n "$before" ]; then

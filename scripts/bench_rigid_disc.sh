@@ -12,9 +12,7 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 if [ -n "$before" ]; then
   tmp=$(mktemp -d)
   trap 'rm -rf "$tmp"' EXIT
-  # shellcheck source=bench_at_revision.sh
-  . "$ROOT/scripts/bench_at_revision.sh"
-  bench_at_revision "$before" "$ROOT/bench/rigid_disc.c" "$tmp/before"
+  before_program "$ROOT/bench/rigid_disc.c" "$tmp/before"
   echo "before ($(git -C "$ROOT" rev-parse --short "$before")): $("$tmp/before" "$@")"
 fi
-echo "this tree ($(git -C "$ROOT" rev-parse --short HEAD)$(git -C "$ROOT" diff --quiet HEAD -- src || echo ', modified')): $("$ROOT/build/tribo_bench_rigid_disc" "$@")"
+echo "this tree ($(tree_label)): $("$ROOT/build/tribo_bench_rigid_disc" "$@")"

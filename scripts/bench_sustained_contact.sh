@@ -13,12 +13,10 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 if [ -n "$before" ]; then
   tmp=$(mktemp -d)
   trap 'rm -rf "$tmp"' EXIT
-  # shellcheck source=bench_at_revision.sh
-  . "$ROOT/scripts/bench_at_revision.sh"
-  bench_at_revision "$before" "$ROOT/bench/sustained_contact.c" "$tmp/before"
+  before_program "$ROOT/bench/sustained_contact.c" "$tmp/before"
   echo "== before: $before ($(git -C "$ROOT" rev-parse --short "$before"))"
   "$tmp/before" "$@"
   echo
 fi
-echo "== this tree ($(git -C "$ROOT" rev-parse --short HEAD)$(git -C "$ROOT" diff --quiet HEAD -- src || echo ', modified'))"
+echo "== this tree ($(tree_label))"
 "$ROOT/build/tribo_sustained_contact" "$@"
