@@ -5,5 +5,7 @@
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 "$ROOT/scripts/setup.sh" >/dev/null
-echo "== $(git -C "$ROOT" rev-parse --short HEAD)$(git -C "$ROOT" diff --quiet HEAD -- src || echo ', modified'), $(nproc) cores"
+# shellcheck source=bench_before.sh
+. "$ROOT/scripts/bench_before.sh"
+echo "== $(tree_label), $(nproc) cores"
 "$ROOT/build/tribo_bench_rigid_limit"
