@@ -319,7 +319,7 @@ double tribo_flight_end_of(const tribo_flight *f, const tribo_dyn_params *p, dou
         if (delta >= -rounding) {
             const double vn = -c.rate, vn_rounding = tribo_velocity_rounding(p, c.V, c.spin);
             if (vn < -vn_rounding ||
-                (vn <= vn_rounding && tribo_pressed_in(p, c.curvature, c.curvature_rate))) {
+                (vn <= 0.0 && tribo_pressed_in(p, c.curvature, c.curvature_rate))) {
                 s_end = s;
                 *why = TRIBO_FLIGHT_CONTACT;
                 break;

@@ -610,7 +610,7 @@ static int approaching(const tribo_dyn_params *p, const tribo_pose *g, const dou
 {
     const double spin = g->cx * y[TRIBO_IOMEGA];
     const double vn = y[TRIBO_IV] + spin, rounding = tribo_velocity_rounding(p, y[TRIBO_IV], spin);
-    return vn < -rounding || (vn <= rounding && pressed_in(p, y));
+    return vn < -rounding || (vn <= 0.0 && pressed_in(p, y));
 }
 
 /* ---- the phase after an event: contact, normal rule, tangential rule -------------------- */

@@ -20,6 +20,24 @@ tribo_status tribo_fail(tribo_model *m, tribo_status status, const char *fmt, ..
     return status;
 }
 
+/* The drop's velocity relative to the plate, in the plate's axes (U, V): model.md §7, §9, at
+   drop_angle from the external vertical, towards down-slope when positive; §9b: given in
+   the lab (drop_frame), the plate's velocity at the drop's phase, d/dtau of (A/a) sin(vib_omega
+   tau + vib_phase) along the stroke, taken off. Returns whether it was taken off: a still
+   plate's drop is the same in either frame, to the bit. */
+static int drop_velocity(const tribo_scene *s, double *U, double *V)
+{
+    const double direction = s->beta + s->drop_angle;
+    *U = s->drop_speed * sin(direction);
+    *V = -s->drop_speed * cos(direction);
+    if (s->drop_frame != TRIBO_DROP_FRAME_LAB || s->vib_accel == 0.0)
+        return 0;
+    const double plate_speed = s->vib_accel / s->vib_omega * cos(s->vib_phase);
+    *U -= plate_speed * cos(s->vib_angle);
+    *V -= plate_speed * sin(s->vib_angle);
+    return 1;
+}
+
 void tribo_derive_params(tribo_model *m)
 {
     const tribo_scene *s = &m->scene;
@@ -46,7 +64,9 @@ void tribo_derive_params(tribo_model *m)
     /* the drop's first impact: its speed and a fall of gap0 / cos(beta) at Gamma (model.md
        §7; gap0 = 0: the drop speed, exactly) */
     const double fall = s->gap0 > 0.0 ? 2.0 * s->Gamma * s->gap0 / cos(beta) : 0.0;
-    m->motion_scales = tribo_motion_scales_of(s->Gamma, sqrt(s->drop_speed * s->drop_speed + fall));
+    double U, V;
+    const double speed2 = drop_velocity(s, &U, &V) ? U * U + V * V : s->drop_speed * s->drop_speed;
+    m->motion_scales = tribo_motion_scales_of(s->Gamma, sqrt(speed2 + fall));
     m->motion_decay_h = NAN; /* (the decay of the window before, if another) */
     /* model.md §9b: the plate's stroke; vib_slot is the instance's (set with its state) */
     d->vib_accel = s->vib_accel;
@@ -61,20 +81,19 @@ void tribo_derive_params(tribo_model *m)
 static void initial_point(const tribo_model *m, tribo_point *p)
 {
     const tribo_scene *s = &m->scene;
-    const double beta = s->beta; /* rad */
     tribo_pose pose;
     tribo_pose_at(m->dyn.eps2, s->phi0, &pose);
     memset(p, 0, sizeof *p);
-    /* model.md §7: centre at the height of first contact (plus the gap), dropped straight
-       down in the external frame; §9: or at drop_angle from the vertical, towards down-slope
-       when positive */
-    const double direction = beta + s->drop_angle;
+    /* model.md §7: centre at the height of first contact (plus the gap), with the drop's
+       velocity */
+    double U, V;
+    drop_velocity(s, &U, &V);
     p->y[TRIBO_IX] = s->X0;
     p->y[TRIBO_IY] = pose.h + s->gap0;
     p->y[TRIBO_IGAP] = s->gap0;
     p->y[TRIBO_IPHI] = s->phi0;
-    p->y[TRIBO_IU] = s->drop_speed * sin(direction);
-    p->y[TRIBO_IV] = -s->drop_speed * cos(direction);
+    p->y[TRIBO_IU] = U;
+    p->y[TRIBO_IV] = V;
     p->y[TRIBO_IOMEGA] = s->Omega0;
     tribo_charging_start(&m->charging, s, p->charge_globals);
     p->motion.current = TRIBO_MOTION_FLIGHT;

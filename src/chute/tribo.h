@@ -102,6 +102,12 @@ typedef enum tribo_breakdown_model {
     TRIBO_BREAKDOWN_PASCHEN = 1 /* each contact episode's region at its Paschen limit      */
 } tribo_breakdown_model;
 
+/* The frame of the drop's velocity (parameter drop_frame, docs/model.md §9b). */
+typedef enum tribo_drop_frame {
+    TRIBO_DROP_FRAME_PLATE = 0, /* the plate's: the grain moves with it (default)        */
+    TRIBO_DROP_FRAME_LAB = 1    /* the still external frame's                            */
+} tribo_drop_frame;
+
 #define TRIBO_CTYPE_REAL double
 #define TRIBO_CTYPE_INTEGER int
 #define TRIBO_CTYPE_COUNT int
