@@ -171,7 +171,7 @@ def worker_start_method() -> str:
 
 # a task holds at most this many runs, and each worker gets at least TASKS_PER_WORKER tasks
 # where there are runs enough: the slowest grain's task then ends about as the others do
-RUNS_PER_TASK = 16
+RUNS_PER_TASK = 64
 TASKS_PER_WORKER = 4
 
 
