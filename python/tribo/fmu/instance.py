@@ -229,9 +229,15 @@ class Instance:
         self.fmu.terminate()
 
     def reset(self):
+        """fmi3Reset / fmi2Reset: the state a new instance has (the tribo FMUs free their core
+        and restore every start value), and so this object's record of a run: its time, its
+        log (a new list: the earlier run's stays that run's), the work limit's returns."""
         self.fmu.reset()
         self.t = 0.0
         self.ended = False
+        self.messages = []
+        self.logged_instance_names = []
+        self.work_limit_returns = 0
 
     def free(self):
         if self._owns_library:

@@ -41,9 +41,6 @@ class Instances:
             instance = Instance(image, name=name)
         else:
             instance.reset()
-            instance.messages = []  # the earlier run's list stays that run's
-            instance.logged_instance_names = []
-            instance.work_limit_returns = 0
         try:
             yield instance
         except BaseException:
