@@ -27,7 +27,7 @@ kind=${1:?"usage: $0 [--before REV] impact-map|line|calibrate|all [ROUNDS]"}
 rounds=${2:-1}
 if [ "$kind" = all ]; then
   for kind in impact-map line calibrate; do
-    "$0" ${before:+--before "$before"} "$kind" "$rounds"
+    "$ROOT/scripts/bench_runs_package.sh" ${before:+--before "$before"} "$kind" "$rounds"
     echo
   done
   exit 0
