@@ -12,17 +12,26 @@
 #   calibrate   tribo calibrate against bench/calibration_data.py's 20 impacts and 3 chute
 #               runs of 50 grains (every run its fit asks for: runs_feed.py runs it once, serially,
 #               to record them)
+#   all         the three above, one after the other, each with its table
 # With --before REV the package of revision REV (its python/tribo, on this build's FMUs) runs
 # each command first, so that one run gives the before and the after under the same load.
 # ROUNDS > 1 repeats it all and gives each number's median. The core also runs split in two
 # halves on 2 processes at once: the parallel modes' CPU against it too (bench_modes.sh).
 # Usage: [TRIBO_PYTHON=...] scripts/bench_runs_package.sh [--before REV] KIND [ROUNDS=1]
+#   e.g. scripts/bench_runs_package.sh all 3: every mode's ratio for the three commands
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 # shellcheck source=bench_before.sh
 . "$ROOT/scripts/bench_before.sh"
-kind=${1:?"usage: $0 [--before REV] impact-map|line|calibrate [ROUNDS]"}
+kind=${1:?"usage: $0 [--before REV] impact-map|line|calibrate|all [ROUNDS]"}
 rounds=${2:-1}
+if [ "$kind" = all ]; then
+  for kind in impact-map line calibrate; do
+    "$ROOT/scripts/bench_runs_package.sh" ${before:+--before "$before"} "$kind" "$rounds"
+    echo
+  done
+  exit 0
+fi
 # TRIBO_PYTHON: another interpreter with the package's requirements (a git worktree's without
 # a venv of its own); the set-up (scripts/setup.sh) is then the caller's
 if [ -z "${TRIBO_PYTHON:-}" ]; then
@@ -43,7 +52,7 @@ case "$kind" in
   calibrate)
     PYTHONPATH="$ROOT/python" "$PYTHON" "$ROOT/bench/calibration_data.py" "$tmp" >/dev/null
     args=(calibrate --impacts "$tmp/impacts.csv" --chutes "$tmp/chutes.csv") ;;
-  *) echo "KIND $kind: impact-map, line or calibrate" >&2; exit 2 ;;
+  *) echo "KIND $kind: impact-map, line, calibrate or all" >&2; exit 2 ;;
 esac
 PYTHONPATH="$ROOT/python" "$PYTHON" "$ROOT/bench/runs_feed.py" "${args[@]}" --no-plot \
   > "$tmp/feed.txt" 2> "$tmp/feed.log" || { cat "$tmp/feed.log"; exit 1; }

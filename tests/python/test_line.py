@@ -83,9 +83,9 @@ def sweep(tmp_path_factory, monkeypatch_module):
     calls = []
     original = grain_module.run_particle
 
-    def counted(image, spec):
+    def counted(image, spec, *instances):
         calls.append(spec)
-        return original(image, spec)
+        return original(image, spec, *instances)
 
     monkeypatch_module.setattr(grain_module, "run_particle", counted)
     out = str(tmp_path_factory.mktemp("line") / "sweep")

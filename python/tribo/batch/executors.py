@@ -37,6 +37,8 @@ import time
 import zipfile
 from typing import Callable, Iterator
 
+from ..fmu.reuse import Instances, runs_share_instances
+
 # the whole package (tribo/, above batch/) goes to the workers of an existing cluster
 PACKAGE_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DEFAULT_SCHEDULER_PORT = 8786  # Dask's
@@ -118,15 +120,13 @@ class SerialExecutor:
 
     def run(self, function: Callable, image, specs, task_runs: int | None = None) -> Iterator:
         # task_runs: DaskExecutor's; a serial run is one run at a time
-        for i, spec in enumerate(specs):
-            with _sigint_held() as interrupted:
-                try:
-                    result = function(image, spec)
-                except Exception as e:  # one failed run does not stop the sweep
-                    result = e
-            yield i, result
-            if interrupted:  # after the run is handed over, so that it is kept
-                raise KeyboardInterrupt
+        with _runs(function, image, specs) as runs:
+            for i in range(len(specs)):
+                with _sigint_held() as interrupted:
+                    result = next(runs)
+                yield i, result
+                if interrupted:  # after the run is handed over, so that it is kept
+                    raise KeyboardInterrupt
 
 
 def executor_for(serial: bool = False, scheduler: str | None = None, workers: int | None = None,
@@ -171,7 +171,7 @@ def worker_start_method() -> str:
 
 # a task holds at most this many runs, and each worker gets at least TASKS_PER_WORKER tasks
 # where there are runs enough: the slowest grain's task then ends about as the others do
-RUNS_PER_TASK = 16
+RUNS_PER_TASK = 64
 TASKS_PER_WORKER = 4
 
 
@@ -184,13 +184,30 @@ def runs_per_task(runs: int, workers: int, most: int = RUNS_PER_TASK) -> int:
 def run_each(function: Callable, image, specs) -> list:
     """A Dask task of several runs: each run's result, or the exception it raised, in the
     order of `specs` (one failed run does not stop the others)."""
-    results = []
-    for spec in specs:
-        try:
-            results.append(function(image, spec))
-        except Exception as e:
-            results.append(e)
-    return results
+    with _runs(function, image, specs) as runs:
+        return list(runs)
+
+
+@contextlib.contextmanager
+def _runs(function: Callable, image, specs):
+    """An iterator of each run's result, or the exception it raised, in the order of
+    `specs`; the runs of a function that shares instances (fmu/reuse.py) share one task's
+    `Instances`, freed when the block ends."""
+    instances = Instances() if runs_share_instances(function) else None
+
+    def each():
+        for spec in specs:
+            try:
+                yield (function(image, spec) if instances is None
+                       else function(image, spec, instances))
+            except Exception as e:  # one failed run does not stop the others
+                yield e
+
+    try:
+        yield each()
+    finally:
+        if instances is not None:
+            instances.close()
 
 
 class DaskExecutor:

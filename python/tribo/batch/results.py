@@ -72,6 +72,8 @@ class ResultsFile:
             self.backup = backup_path(self.path)
             os.replace(self.path, self.backup)
         self.rows = self._open_or_create()  # the finished runs' rows, read once
+        self._column_set = frozenset(self.columns)
+        self._appending = None  # the file open for appending rows (append, release)
         self._synced = time.monotonic()  # when the rows appended were last forced to disk
 
     def _open_or_create(self) -> pd.DataFrame:
@@ -136,23 +138,36 @@ class ResultsFile:
         return set(self.rows[KEY])
 
     def append(self, row: dict) -> None:
-        if set(row) != set(self.columns):
+        """The row at the end of the file, handed to the system at once (the file stays open
+        for the next row, in append mode: each write goes to the end, wherever another
+        process's went; closed by `release` and `close`)."""
+        if row.keys() != self._column_set:
             missing, extra = set(self.columns) - set(row), set(row) - set(self.columns)
             raise ValueError(f"row does not match the header: missing {sorted(missing)}, "
                              f"extra {sorted(extra)}")
         line = csv_line([row[c] for c in self.columns])
-        with open(self.path, "a") as f:
-            f.write(line)
-            f.flush()
-            if time.monotonic() - self._synced >= SYNC_INTERVAL_S:
+        f = self._appending
+        if f is None:
+            f = self._appending = open(self.path, "a")
+        f.write(line)
+        f.flush()
+        if time.monotonic() - self._synced >= SYNC_INTERVAL_S:
+            os.fsync(f.fileno())
+            self._synced = time.monotonic()
+
+    def release(self) -> None:
+        """Close the file the rows were appended to (their last ones forced to the disk)."""
+        f, self._appending = self._appending, None
+        if f is not None:
+            with f:
                 os.fsync(f.fileno())
-                self._synced = time.monotonic()
 
     def close(self, keys: list[str], done=None) -> pd.DataFrame:
         """The rows of `keys` that are in the file (and `done(key)`, if given: e.g. their
         series are on disk too), in that order. A file that holds exactly those runs, all
         done, is rewritten in that order (a file several sweeps share keeps the order its
         rows came in)."""
+        self.release()
         with open(self.path, "a") as f:  # the rows since the last sync
             os.fsync(f.fileno())
         table = read_results(self.path).drop_duplicates(KEY, keep="first")

@@ -59,6 +59,12 @@ def normalise_values(params: dict, integer_names, exact_names=("Omega0",)) -> di
 
 
 def run_key(spec: RunSpec, fmu_sha256: str) -> str:
-    """A stable key of the run: 16 hex digits of the SHA-256 of the spec and the FMU."""
-    text = json.dumps({"fmu": fmu_sha256, "run": json.loads(spec.as_json())}, sort_keys=True)
+    """A stable key of the run: 16 hex digits of the SHA-256 of the spec and the FMU. The
+    text hashed is that of {"fmu": ..., "run": json.loads(spec.as_json())} with sorted keys,
+    made in one json.dumps: JSON's text of a spec reads back as the same values (Python's
+    floats in their shortest round-trip form, text keys), so that reading it back and
+    writing it again gave the same text (tests/python/test_study_sweep.py)."""
+    text = json.dumps({"fmu": fmu_sha256, "run": {"params": spec.params, "t_end": spec.t_end,
+                                                  "record_interval": spec.record_interval}},
+                      sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()[:16]

@@ -89,7 +89,8 @@ def run_sweep(specs: list[RunSpec], image, results_path: str, executor, *,
     def finished(key):
         return series_dir is None or os.path.exists(series_path(series_dir, key))
 
-    todo = [k for k in unique if not (k in results.finished and finished(k))]
+    done = results.finished  # a set made once, not per key
+    todo = [k for k in unique if not (k in done and finished(k))]
     report = Report(keys=unique, skipped=len(unique) - len(todo), backup=results.backup,
                     notes=[results.note] if results.note else [])
     if max_runs is not None:
@@ -98,23 +99,26 @@ def run_sweep(specs: list[RunSpec], image, results_path: str, executor, *,
     # a bar shows once the runs have taken PROGRESS_DELAY s: a study's short phases draw none
     with tqdm(total=len(todo), desc=desc, unit="run", disable=not progress or not todo,
               dynamic_ncols=True, delay=PROGRESS_DELAY) as bar:
-        for i, outcome in executor.run(run, image, [spec_of[k] for k in todo],
-                                       task_runs=task_runs):
-            key, spec = todo[i], spec_of[todo[i]]
-            bar.update()
-            if isinstance(outcome, BaseException):
-                report.failed.append((spec, outcome))
-                bar.write(f"run {key} failed: {outcome}")
-                continue
-            if series_dir:  # first the series, so that a row in the file implies its series
-                if outcome.segments is not None:
-                    write_series(outcome.segments, segments_path(series_dir, key))
-                write_series(outcome.series, series_path(series_dir, key))
-            row = {KEY: key, **constants, **spec.params, "t_end": spec.t_end,
-                   "record_interval": spec.record_interval, "fmu_sha256": image.sha256,
-                   **outcome.row}
-            results.append(row)
-            report.executed += 1
+        try:
+            for i, outcome in executor.run(run, image, [spec_of[k] for k in todo],
+                                           task_runs=task_runs):
+                key, spec = todo[i], spec_of[todo[i]]
+                bar.update()
+                if isinstance(outcome, BaseException):
+                    report.failed.append((spec, outcome))
+                    bar.write(f"run {key} failed: {outcome}")
+                    continue
+                if series_dir:  # first the series, so that a row in the file implies its series
+                    if outcome.segments is not None:
+                        write_series(outcome.segments, segments_path(series_dir, key))
+                    write_series(outcome.series, series_path(series_dir, key))
+                row = {KEY: key, **constants, **spec.params, "t_end": spec.t_end,
+                       "record_interval": spec.record_interval, "fmu_sha256": image.sha256,
+                       **outcome.row}
+                results.append(row)
+                report.executed += 1
+        finally:  # the rows' file closed, the sweep ended or interrupted
+            results.release()
 
     report.results = results.close(unique, done=finished)
     return report

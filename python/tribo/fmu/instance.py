@@ -229,9 +229,15 @@ class Instance:
         self.fmu.terminate()
 
     def reset(self):
+        """fmi3Reset / fmi2Reset: the state a new instance has (the tribo FMUs free their core
+        and restore every start value), and so this object's record of a run: its time, its
+        log (a new list: the earlier run's stays that run's), the work limit's returns."""
         self.fmu.reset()
         self.t = 0.0
         self.ended = False
+        self.messages = []
+        self.logged_instance_names = []
+        self.work_limit_returns = 0
 
     def free(self):
         if self._owns_library:
@@ -260,15 +266,13 @@ class Instance:
     def set_parameters(self, params: dict):
         """Set parameters by name, each converted to its variable's type (an integer
         parameter given as 64.0 is set as 64)."""
-        values = []
-        for name, value in params.items():
-            v = self.variables.get(name)
-            if v is None or v.causality not in PARAMETER_CAUSALITIES:
-                raise KeyError(f"{name!r} is not a parameter of the FMU")
-            values.append(float(value) if v.type in REAL_TYPES else int(value))
+        names = tuple(params)
+        real = self.layout("parameters", names, lambda: parameter_types(self, names))
+        values = [float(value) if is_real else int(value)
+                  for is_real, value in zip(real, params.values())]
         # in the order given, the values of one type next to each other in one call (a
         # population's particle sets tens: by name, each cost an fmpy setter's checks)
-        Values(self, params).set(values)
+        Values(self, names).set(values)
 
     def get(self, name):
         v, getter = self._accessor("get", name)
@@ -435,6 +439,18 @@ class Rows:
         for g in self.groups:
             out[:, g.columns] = g.block[:self.n]
         return out
+
+
+def parameter_types(instance: Instance, names) -> tuple:
+    """Whether each of `names` is a real parameter (else an integer one, Boolean and
+    enumeration included): KeyError for a name that is not a parameter."""
+    real = []
+    for name in names:
+        v = instance.variables.get(name)
+        if v is None or v.causality not in PARAMETER_CAUSALITIES:
+            raise KeyError(f"{name!r} is not a parameter of the FMU")
+        real.append(v.type in REAL_TYPES)
+    return tuple(real)
 
 
 def write_layout(instance: Instance, names) -> tuple:

@@ -158,13 +158,24 @@ def check_parameter_names(md, names) -> None:
 
 def to_fmu(md, params: dict) -> dict:
     """The parameters by the FMU's names and in its units."""
-    check_parameter_names(md, params)
-    table = renamed(md)
-    out = {}
-    for name, value in params.items():
-        r = table.get(name)
-        out[r.fmu_name if r else name] = r.to_fmu(float(value)) if r else value
-    return out
+    names = tuple(params)
+    plans = _to_fmu_plans(md)
+    plan = plans.get(names)
+    if plan is None:
+        check_parameter_names(md, names)
+        table = renamed(md)
+        plan = plans[names] = tuple((table[n].fmu_name, table[n].to_fmu) if n in table
+                                    else (n, None) for n in names)
+    return {fmu_name: value if convert is None else convert(float(value))
+            for (fmu_name, convert), value in zip(plan, params.values())}
+
+
+@per_description
+def _to_fmu_plans(md) -> dict:
+    """to_fmu's names (a tuple, checked) -> each one's (FMU name, conversion or None): a
+    sweep's runs set the same names, each run's checked and looked up once, not per run
+    (docs/populations.md, "Benchmark")."""
+    return {}
 
 
 def fmu_outputs(md, names) -> list[str]:

@@ -34,10 +34,11 @@ from fmpy.fmi1 import FMICallException
 
 from ..batch.particle import RunResult
 from ..batch.specs import RunSpec, check_count
-from ..fmu import FmuImage, Instance
+from ..fmu import FmuImage
 from ..fmu.image import per_description
 from ..fmu.charge_models import charge_models, per_model
 from ..fmu.names import failure, to_fmu
+from ..fmu.reuse import Instances, instance_for, shares_instances
 from ..materials import pair_values
 from ..model_time import check_limit
 
@@ -124,42 +125,42 @@ def episode_specs(grid: Grid, particle: str, wall: str, settings: dict, limit: f
 
 
 @per_description
-def episode_outputs(md) -> tuple[tuple, tuple]:
-    """(each charge model's outputs, those of AREA_COLUMN and end_reason the FMU has): once per
-    description, not a walk over its variables per episode (docs/populations.md, "Benchmark")."""
+def episode_outputs(md) -> tuple[tuple, tuple, tuple]:
+    """(each charge model's outputs, those of AREA_COLUMN and end_reason the FMU has, all
+    that an episode reads at its end): once per description, not a walk over its variables
+    per episode (docs/populations.md, "Benchmark")."""
     outputs = {v.name for v in md.modelVariables if v.causality == "output"}
-    return (tuple(per_model(MODEL_PREFIXES, charge_models(md))),
-            tuple(n for n in (AREA_COLUMN, "end_reason") if n in outputs))
+    charges = tuple(per_model(MODEL_PREFIXES, charge_models(md)))
+    optional = tuple(n for n in (AREA_COLUMN, "end_reason") if n in outputs)
+    return charges, optional, charges + ("u", "v", "omega", "contact_time", "lifted_off") + optional
 
 
-def run_episode(image: FmuImage, spec: RunSpec) -> RunResult:
-    """One impact episode: its row (`episode_columns` of the FMU's charge models)."""
+@shares_instances
+def run_episode(image: FmuImage, spec: RunSpec, instances: Instances | None = None) -> RunResult:
+    """One impact episode: its row (`episode_columns` of the FMU's charge models), on an
+    instance of `instances` (fmu/reuse.py: a task's, reset between its runs) or of its own."""
     wall0, cpu0 = time.perf_counter(), time.thread_time()
     md = image.model_description()
-    charges, optional = episode_outputs(md)
-    instance = Instance(image, name="tribo_impact")
-    try:
-        instance.set_parameters(to_fmu(md, spec.params))
-        instance.init(0.0)
-        t_star = instance.get("t_star")
-        instance.step_to(spec.t_end * t_star)
-        end = instance.get_many(charges + ("u", "v", "omega", "contact_time", "lifted_off")
-                                + optional)
-        reached = instance.t
-        instance.terminate()
-    except FMICallException as e:
-        raise RuntimeError(f"the impact episode failed: "
-                           f"{failure(md, instance.messages, e)}") from None
-    finally:
-        instance.free()
+    charges, optional, read = episode_outputs(md)
+    with instance_for(image, "tribo_impact", instances) as instance:
+        try:
+            instance.set_parameters(to_fmu(md, spec.params))
+            instance.initialize(0.0)
+            t_star = instance.get("t_star")
+            instance.step_to(spec.t_end * t_star)
+            end = instance.get_many(read)
+            reached = instance.t
+            instance.terminate()
+        except FMICallException as e:
+            raise RuntimeError(f"the impact episode failed: "
+                               f"{failure(md, instance.messages, e)}") from None
     row = {name: end[name] for name in charges}
+    u, v = end["u"], end["v"]
     row[AREA_COLUMN] = float(end.get(AREA_COLUMN, math.nan))
-    row.update({"rebound_u": end["u"], "rebound_v": end["v"],
-                "rebound_speed": math.hypot(end["u"], end["v"]),
-                "rebound_angle_deg": math.degrees(math.atan2(end["v"], end["u"])),
-                "rebound_omega": end["omega"], "contact_time": end["contact_time"],
-                "lifted_off": int(end["lifted_off"]),
-                "end_reason": int(end["end_reason"]) if "end_reason" in end else math.nan,
-                "time_end": reached, "t_star": t_star})
-    row.update(cpu_s=time.thread_time() - cpu0, wall_s=time.perf_counter() - wall0)
+    row.update(rebound_u=u, rebound_v=v, rebound_speed=math.hypot(u, v),
+               rebound_angle_deg=math.degrees(math.atan2(v, u)), rebound_omega=end["omega"],
+               contact_time=end["contact_time"], lifted_off=int(end["lifted_off"]),
+               end_reason=int(end["end_reason"]) if "end_reason" in end else math.nan,
+               time_end=reached, t_star=t_star,
+               cpu_s=time.thread_time() - cpu0, wall_s=time.perf_counter() - wall0)
     return RunResult(row, None)

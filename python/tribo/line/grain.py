@@ -37,6 +37,7 @@ from ..fmu.charge_models import charge_models, switches
 from ..fmu.locate import find_fmu
 from ..fmu.names import format_number, to_fmu
 from ..fmu.parameters import check_values
+from ..fmu.reuse import Instances, instance_for, shares_instances
 from ..populations.feed import result_columns as chute_columns
 from ..populations.feed import run_particle
 
@@ -177,15 +178,20 @@ class Flights:
     read by name one by one, cost fly more CPU than the separator's core spends on the
     flight (docs/line.md, "Benchmark: the line against its core")."""
 
-    def __init__(self, separator: FmuImage, names, horizon: float = SEPARATOR_HORIZON):
+    def __init__(self, separator: FmuImage, names, horizon: float = SEPARATOR_HORIZON,
+                 instance: Instance | None = None):
+        # `instance`: one in the state a new one has, that the caller frees (a task's kept
+        # instance, fmu/reuse.py); else one of the flights' own, freed on leaving
         self.horizon = horizon
-        self.instance = Instance(separator, name="separator")
+        self.own = instance is None
+        self.instance = Instance(separator, name="separator") if self.own else instance
         try:
             self.parameters = Values(self.instance, names)
             self.release = Values(self.instance, ("released",) + INPUTS)
             self.outputs = Rows(self.instance, OUTPUTS + ["ended"], capacity=1)
         except BaseException:
-            self.instance.free()
+            if self.own:
+                self.instance.free()
             raise
         self.flown = False
 
@@ -193,7 +199,8 @@ class Flights:
         return self
 
     def __exit__(self, *exc):
-        self.instance.free()
+        if self.own:
+            self.instance.free()
         return False
 
     def fly(self, values, t_exit: float, inputs) -> dict:
@@ -231,13 +238,17 @@ def chute_params_of(params: dict) -> dict:
     return {k: v for k, v in params.items() if k not in LINE_PARAMETERS}
 
 
-def run_line_grain(images: LineImages, spec: RunSpec) -> RunResult:
+@shares_instances
+def run_line_grain(images: LineImages, spec: RunSpec,
+                   instances: Instances | None = None) -> RunResult:
     """One grain: the chute once (its row: populations.feed.result_columns), then the
     separator at each voltage of `images`. The row gains GRAIN_COLUMNS and, for the first
-    voltage, LANDING_COLUMNS; `series` holds one row per voltage (LANDING_COLUMNS)."""
+    voltage, LANDING_COLUMNS; `series` holds one row per voltage (LANDING_COLUMNS). The
+    chute's and the separator's instances are `instances`' (fmu/reuse.py: a task's, reset
+    between its grains), or the grain's own."""
     wall0, cpu0 = time.perf_counter(), time.thread_time()
     chute_spec = RunSpec(chute_params_of(spec.params), spec.t_end, spec.record_interval)
-    chute = run_particle(images.chute, chute_spec)
+    chute = run_particle(images.chute, chute_spec, instances)
     row = dict(chute.row)  # the chute's outputs at its end
     model = the_charge_model(spec.params, images.models)
     q = float(row[f"charge_to_mass_{model}"])
@@ -256,7 +267,8 @@ def run_line_grain(images: LineImages, spec: RunSpec) -> RunResult:
     values = list(grain.values())
     released = None if inputs is None else [inputs[name] for name in INPUTS]
     landings = []
-    with Flights(images.separator, names, images.horizon) as flights:
+    with instance_for(images.separator, "separator", instances) as separator, \
+            Flights(images.separator, names, images.horizon, separator) as flights:
         for voltage in images.voltages:
             values[at] = float(voltage)
             flight = flights.fly(values, t_exit, released)

@@ -14,6 +14,7 @@ from ..batch.summary import MOTION_CLASSES
 from ..fmu import FmuImage
 from ..fmu.image import per_description
 from ..fmu.charge_models import charge_models, per_model
+from ..fmu.reuse import Instances, shares_instances
 
 # the SI FMU's outputs of each charge model a particle's row holds (charge_<model>, ...)
 MODEL_PREFIXES = ("charge_", "charge_to_mass_", "capped_fraction_")
@@ -38,6 +39,12 @@ def _optional_outputs(md) -> tuple:
     return tuple(c for c in (*END_COLUMNS, AREA_COLUMN) if c in names)
 
 
+@per_description
+def _outputs(md) -> tuple:
+    # once per description, not per grain
+    return tuple(outputs(charge_models(md), md))
+
+
 def outputs(models, md=None) -> list[str]:
     """The SI FMU's outputs a particle's run records, for the charge models `models` (and
     how the run ended, where the FMU's description `md` has those outputs)."""
@@ -46,14 +53,15 @@ def outputs(models, md=None) -> list[str]:
             + [f"fraction_{c}" for c in MOTION_CLASSES] + (optional_outputs(md) if md else []))
 
 
-def run_particle(image: FmuImage, spec: RunSpec) -> RunResult:
+@shares_instances
+def run_particle(image: FmuImage, spec: RunSpec, instances: Instances | None = None) -> RunResult:
     """One particle down the chute: its results row (`result_columns` of the FMU's charge
     models), no series. The row needs only the end: one step to the horizon or the exit
-    (batch/particle.py, run_to_end)."""
+    (batch/particle.py, run_to_end), on an instance of `instances` (fmu/reuse.py: a
+    task's, reset between its runs) or of its own."""
     wall0, cpu0 = time.perf_counter(), time.thread_time()
     md = image.model_description()
-    recorded = outputs(charge_models(md), md)
-    end = run_to_end(image, spec.params, spec.t_end, recorded)
+    end = run_to_end(image, spec.params, spec.t_end, _outputs(md), instances)
     values = end.values
     row = {"time_end": end.time, "exit_speed": math.hypot(values["u"], values["v"])}
     row.update(dict.fromkeys((*END_COLUMNS, AREA_COLUMN), math.nan))
