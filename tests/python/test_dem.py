@@ -118,6 +118,8 @@ def test_a_second_run_only_charges_again(dilute, maps):
     (["--epsilon", "1", "--vibration", "5e-4,50,120"], "vibration angle = 120"),
     (["--epsilon", "1", "--tilt-deg", "0"], "tilt_deg = 0"),
     (["--t-end", "1e308"], "t_end = 1e+308"),  # was an OverflowError in a started folder
+    (["--epsilon", "1", "--contact-law", " "], "law = ' '"),
+    (["--epsilon", "1", "--contact-property", "a\nb"], "law_properties = 'a\\nb'"),
 ])
 def test_bad_input_is_one_line_naming_it(tmp_path, argv, names):
     done = run_dem(tmp_path, "-n", "3", *argv, "--out", "o")
@@ -596,6 +598,35 @@ def test_a_grain_thrown_across_a_feeder_meets_its_side_walls(tmp_path):
     # along the wall (its hop's and gravity's, under 0.4 m/s in 40 ms) less the wall's (0.16
     # m/s at most, 5e-4 x 2 pi 50)
     assert (hits["tangential_speed"] < 0.16 + 0.4).all(), hits["tangential_speed"]
+
+
+@needs_liggghts
+def test_another_contact_law_is_the_one_liggghts_runs(tmp_path):
+    # a variant's law (docs/dem.md, the feeder beside the project's population): the linear
+    # `hooke` with the property it reads, in the grains' pair style and the wall's fix alike;
+    # one sphere dropped onto a still plate at 0.2 m/s bounces at the restitution asked (a
+    # linear spring-dashpot's is exact; the second impact's speed is the first's rebound,
+    # gravity taking back what it gave), where LIGGGHTS would refuse the law without the
+    # property (ERROR: Property characteristicVelocity not found)
+    chute, size = Chute(0.02, 10.0), np.array([1e-3])
+    entry = Entry(np.array([[0.005, 0.0, 5e-4 + 1e-5]]), np.array([[0.0, 0.0, -0.2]]),
+                  np.zeros(1), 3e-3)
+    law = "hooke tangential history rolling_friction cdt"
+    dt, every = 1e-6, 10
+    text, steps = script.write_input(
+        chute, entry, size, script.Contact(1e7, 0.4, 2e9, 0.3, 950.0, 0.7, 0.3, 0.01), dt=dt,
+        sample_every=every, t_end=0.04, exit_every=100, progress_every=4000, near=2e-4,
+        slowest=1e-3, law=law, law_properties=("characteristicVelocity scalar 0.2",))
+    assert text.count(f"model {law}") == 2 and script.LAW not in text
+    assert "property/global characteristicVelocity scalar 0.2" in text
+    (tmp_path / script.INPUT).write_text(text)
+    (tmp_path / script.PLATE).write_text(chute.stl(entry.width))
+    engine.run(str(tmp_path), script.INPUT, script.LOG, steps, progress=False)
+    gravity = tuple(9.81 * c for c in chute.gravity_vector)
+    hits = contacts.impacts(str(tmp_path / script.CONTACTS), dt, every, gravity, 1)
+    assert len(hits) >= 2
+    assert hits["normal_speed"].iloc[0] == pytest.approx(0.2, rel=1e-2)
+    assert hits["normal_speed"].iloc[1] / hits["normal_speed"].iloc[0] == pytest.approx(0.7, rel=0.02)
 
 
 @needs_liggghts
