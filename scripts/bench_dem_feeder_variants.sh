@@ -27,8 +27,12 @@
 # (the angular momentum about the contact point, which no force at the contact changes:
 # only the rolling resistance's torque); then, for one grain of 0.8 mm in the population,
 # L/(m a) at its impacts, dropped both ways, with and without rolling resistance.
-# About 8 min of LIGGGHTS' CPU at the defaults; a run already in BENCH_OUT (default
-# out/bench-dem-feeder-variants) with the same settings is kept (BENCH_FRESH=1: all again).
+# And whether LIGGGHTS' spheres move in their lane's plane (y and vy of every sample of the
+# default run's contacts, 0 where they do). About 10 min of LIGGGHTS' CPU at the defaults (6
+# of them the 1 m run); a run already in BENCH_OUT (default out/bench-dem-feeder-variants)
+# with the same settings is kept (BENCH_FRESH=1: all again). BENCH_T_END (default 60 s) the horizon: another cuts
+# LIGGGHTS' run into other pieces and the population's into other output steps, which moves
+# a chaotic hop's numbers by a few per cent (docs/dem.md).
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 PY=${PYTHON:-"$ROOT/.venv/bin/python"}
@@ -37,6 +41,7 @@ N=${BENCH_GRAINS:-10}
 LENGTH=${BENCH_LENGTH:-0.3}
 LONG=${BENCH_LONG:-1.0}
 STIFF=${BENCH_STIFFNESS:-0.01}
+T_END=${BENCH_T_END:-60}
 AMPLITUDE=5e-4 FREQUENCY=50 ANGLE=30
 FEED=(--seed 1 --epsilon 1 --size uniform:6e-4:1e-3 --tilt-deg 0
       --vibration "$AMPLITUDE,$FREQUENCY,$ANGLE" --no-progress)
@@ -52,12 +57,12 @@ cd "$OUT"
 
 pop() {  # NAME LENGTH [options]: the population, serially
   local name=$1 length=$2; shift 2
-  "$PY" -m tribo population -n "$N" "${FEED[@]}" --chute-length "$length" --t-end 60 "$@" \
+  "$PY" -m tribo population -n "$N" "${FEED[@]}" --chute-length "$length" --t-end "$T_END" "$@" \
     --serial --no-plot --out "pop-$name" --fresh > /dev/null
 }
 dem() {  # NAME LENGTH [options]: LIGGGHTS, one run at a time, one rank
   local name=$1 length=$2; shift 2
-  echo "dem-$name: $("$PY" -m tribo dem -n "$N" "${FEED[@]}" --chute-length "$length" --t-end 60 \
+  echo "dem-$name: $("$PY" -m tribo dem -n "$N" "${FEED[@]}" --chute-length "$length" --t-end "$T_END" \
     --stiffness-scale "$STIFF" --maps "$OUT/maps" --no-plot --out "dem-$name" "${FRESH[@]}" "$@" \
     | grep "CPU:")"
 }
@@ -131,6 +136,15 @@ for who, engine, name in (("LIGGGHTS", "dem", "default"), ("population", "pop", 
     assert (short.exited == 1).all() and (far.exited == 1).all(), name
     print(f"  {who}: {(long - length) / (far.exit_time - short.exit_time).mean():.4f} m/s between, "
           f"{long / far.exit_time.mean():.4f} over {long:g} m, {far.impacts.mean():.1f} impacts")
+
+# the sphere's plane: its lane's y and no velocity across it, in every sample of the contacts
+dump = pd.read_csv("dem-default/liggghts/contacts.dump", sep=r"\s+", header=None,
+                   names=["id", "x", "y", "z", "vx", "vy", "vz", "r", "fy", "fz"],
+                   comment="I", on_bad_lines="skip")
+dump = dump[dump["r"].notna()]
+across = dump.groupby("id")["y"].agg(lambda y: y.max() - y.min()).max()
+print(f"LIGGGHTS' default run: {len(dump)} samples of {dump['id'].nunique()} grains, the most a "
+      f"grain's y moves {across:.3g} m, the largest |vy| {dump['vy'].abs().max():.3g} m/s")
 
 # the invariant at a population grain's impacts: kept exactly without rolling resistance,
 # drawn by it towards the feeder's own, from either drop
