@@ -30,7 +30,9 @@
 # And whether LIGGGHTS' spheres move in their lane's plane (y and vy of every sample of the
 # default run's contacts, 0 where they do). About 10 min of LIGGGHTS' CPU at the defaults (6
 # of them the 1 m run); a run already in BENCH_OUT (default out/bench-dem-feeder-variants)
-# with the same settings is kept (BENCH_FRESH=1: all again). BENCH_T_END (default 60 s) the horizon: another cuts
+# with the same settings is kept (BENCH_FRESH=1: all again). BENCH_SPIN=1 runs LIGGGHTS'
+# rolling-off input again with the grains' velocity and spin dumped every 500 steps and
+# prints their L/(m r) in flight along the plate and at the last sample (2 min more). BENCH_T_END (default 60 s) the horizon: another cuts
 # LIGGGHTS' run into other pieces and the population's into other output steps, which moves
 # a chaotic hop's numbers by a few per cent (docs/dem.md).
 set -euo pipefail
@@ -82,6 +84,31 @@ dem epsd2 "$LENGTH" --contact-law "hertz tangential history rolling_friction eps
 dem hooke "$LENGTH" --contact-law "hooke tangential history rolling_friction cdt" \
   --contact-property "characteristicVelocity scalar 0.2"
 dem default-long "$LONG"
+
+if [[ ${BENCH_SPIN:-0} == 1 ]]; then  # the same input, one dump more, by hand
+  rm -rf spin && mkdir spin && cp dem-rolling-off/liggghts/{in.liggghts,plate.stl,sides.stl} spin/
+  sed -i '/^dump_modify contacts flush no$/a dump spin all custom 500 spin.dump id x z vx vz omegay radius\ndump_modify spin flush no' spin/in.liggghts
+  (cd spin && liggghts -in in.liggghts -log log.liggghts -echo none > /dev/null)
+  "$PY" - "$LENGTH" <<'PYEOF'
+import sys
+import numpy as np
+import pandas as pd
+length = float(sys.argv[1])
+d = pd.read_csv("spin/spin.dump", sep=r"\s+", header=None, comment="I", on_bad_lines="skip",
+                names=["id", "x", "z", "vx", "vz", "wy", "r"])
+d = d[d["r"].notna()]
+marks = np.linspace(0, length, 7)[1:-1].tolist() + [0.97 * length]
+print("LIGGGHTS without rolling friction: L/(m r) = vx + 2/5 r omega_y (m/s) in flight near x = "
+      + ", ".join(f"{x:.3g}" for x in marks) + " m, and at the grain's last sample:")
+for grain, s in d.groupby("id"):
+    L, x = (s["vx"] + 0.4 * s["r"] * s["wy"]).to_numpy(), s["x"].to_numpy()
+    flight = (s["z"] - s["r"] > 3e-4).to_numpy()  # above the plate's highest, 0.25 mm
+    near = [np.median(L[max(i - 20, 0):i + 20][flight[max(i - 20, 0):i + 20]])
+            for i in np.searchsorted(x, marks)]
+    print(f"  grain {int(grain)}: " + " ".join(f"{v:+.4f}" for v in near)
+          + f"; last {L[-1]:+.4f} at x = {x[-1]:.4f} m")
+PYEOF
+fi
 
 "$PY" - "$LENGTH" "$LONG" "$AMPLITUDE" "$FREQUENCY" "$ANGLE" <<'PYEOF'
 import math, sys
