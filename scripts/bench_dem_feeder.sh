@@ -18,7 +18,12 @@
 # LIGGGHTS (scripts/setup.sh). Sizes: BENCH_GRAINS (default 20),
 # BENCH_T_END (default 30 s: at about 0.03 m/s a grain crosses 0.3 m in some 10 s),
 # BENCH_STIFFNESS (default 0.01: LIGGGHTS' moduli, docs/dem.md). BENCH_REPORT_ONLY=1 makes
-# the table and the figure again from the runs already in BENCH_OUT.
+# the table and the figure again from the runs already in BENCH_OUT. BENCH_DROP: how the
+# population's grains are dropped, `lab` (the default) at rest in the lab, as LIGGGHTS drops
+# them (the population's drop velocity is relative to the plate, docs/model.md section 9b,
+# which moves at 2 pi f A along the stroke at the drop's phase: the drop speed 2 pi f A at
+# -(90 - 30) degrees from the vertical cancels it), or `plate` at rest on the plate (moving
+# with it, 0.157 m/s along the stroke, which the grain keeps for a metre: docs/dem.md).
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 PY=${PYTHON:-"$ROOT/.venv/bin/python"}
@@ -29,6 +34,12 @@ T_END=${BENCH_T_END:-30}
 STIFF=${BENCH_STIFFNESS:-0.01}
 FEED=(--seed 1 --epsilon 1 --size uniform:6e-4:1e-3 --chute-length "$LENGTH" --tilt-deg 0
       --vibration 5e-4,50,30 --t-end "$T_END" --no-progress)
+case ${BENCH_DROP:-lab} in
+  lab) DROP=(--drop-speed "$("$PY" -c "import math; print(2 * math.pi * 50 * 5e-4)")"
+             --drop-angle-deg -60) ;;
+  plate) DROP=() ;;
+  *) echo "bench_dem_feeder.sh: BENCH_DROP = ${BENCH_DROP}: lab or plate" >&2; exit 2 ;;
+esac
 mkdir -p "$OUT"
 cd "$OUT"
 if ! "$PY" -m tribo population --help | grep -q -- "--vibration"; then
@@ -36,7 +47,7 @@ if ! "$PY" -m tribo population --help | grep -q -- "--vibration"; then
   exit 2
 fi
 if [[ ${BENCH_REPORT_ONLY:-0} != 1 ]]; then
-  "$PY" -m tribo population -n "$N" "${FEED[@]}" --serial --no-plot --out population --fresh > /dev/null
+  "$PY" -m tribo population -n "$N" "${FEED[@]}" "${DROP[@]}" --serial --no-plot --out population --fresh > /dev/null
   "$PY" -m tribo dem -n "$N" "${FEED[@]}" --stiffness-scale "$STIFF" --maps "$OUT/maps" \
     --no-plot --out dem --fresh | grep "CPU:"
 fi

@@ -118,6 +118,8 @@ def test_a_second_run_only_charges_again(dilute, maps):
     (["--epsilon", "1", "--vibration", "5e-4,50,120"], "vibration angle = 120"),
     (["--epsilon", "1", "--tilt-deg", "0"], "tilt_deg = 0"),
     (["--t-end", "1e308"], "t_end = 1e+308"),  # was an OverflowError in a started folder
+    (["--epsilon", "1", "--contact-law", " "], "law = ' '"),
+    (["--epsilon", "1", "--contact-property", "a\nb"], "law_properties = 'a\\nb'"),
 ])
 def test_bad_input_is_one_line_naming_it(tmp_path, argv, names):
     done = run_dem(tmp_path, "-n", "3", *argv, "--out", "o")
@@ -599,35 +601,76 @@ def test_a_grain_thrown_across_a_feeder_meets_its_side_walls(tmp_path):
 
 
 @needs_liggghts
+@pytest.mark.parametrize("law, properties", [
+    (script.LAW, ()),
+    ("hooke tangential history rolling_friction cdt", ("characteristicVelocity scalar 0.2",)),
+])
+def test_the_contact_law_asked_is_the_one_liggghts_runs(tmp_path, law, properties):
+    # the default law and a variant's (docs/dem.md, the feeder beside the project's
+    # population): the linear `hooke` with the property it reads, in the grains' pair style
+    # and the wall's fix alike; one sphere dropped onto a still plate at 0.2 m/s bounces at
+    # the restitution asked, either law (the second impact's speed is the first's rebound,
+    # gravity taking back what it gave; measured 0.6993 and 0.6969: bound 2 %, four times the
+    # larger error), where LIGGGHTS would refuse hooke without its property
+    chute, size = Chute(0.02, 10.0), np.array([1e-3])
+    entry = Entry(np.array([[0.005, 0.0, 5e-4 + 1e-5]]), np.array([[0.0, 0.0, -0.2]]),
+                  np.zeros(1), 3e-3)
+    dt, every = 1e-6, 10
+    text, steps = script.write_input(
+        chute, entry, size, script.Contact(1e7, 0.4, 2e9, 0.3, 950.0, 0.7, 0.3, 0.01), dt=dt,
+        sample_every=every, t_end=0.04, exit_every=100, progress_every=4000, near=2e-4,
+        slowest=1e-3, law=law, law_properties=properties)
+    assert text.count(f"model {law}") == 2
+    assert all(f"property/global {p}" in text for p in properties)
+    (tmp_path / script.INPUT).write_text(text)
+    (tmp_path / script.PLATE).write_text(chute.stl(entry.width))
+    engine.run(str(tmp_path), script.INPUT, script.LOG, steps, progress=False)
+    gravity = tuple(9.81 * c for c in chute.gravity_vector)
+    hits = contacts.impacts(str(tmp_path / script.CONTACTS), dt, every, gravity, 1)
+    assert len(hits) >= 2
+    assert hits["normal_speed"].iloc[0] == pytest.approx(0.2, rel=1e-2)
+    bounce = hits["normal_speed"].iloc[1] / hits["normal_speed"].iloc[0]
+    assert bounce == pytest.approx(0.7, rel=0.02)
+
+
+@needs_liggghts
 def test_a_dilute_feeder_agrees_with_the_population_within_the_explained_differences(tmp_path,
                                                                                      maps):
     """docs/dem.md, "The feeder beside the project's population", on 4 grains and 0.1 m: the
-    same draw through the same level feeder both ways. The impacts come at nearly the same
-    rate (measured: LIGGGHTS' 1.11 times the population's, the mean of the grains' ratios,
-    1.05 over 0.3 m) and charge alike, each impact's charge being the FMU's own at its speed
-    and angle (0.96 times; over 0.3 m the lamina's later impacts charge less, landing on
-    spots charged before); the sphere is slower: its exit time 2.32 times the lamina's here
-    (2.23 to 2.38 over the 4 grains), 1.53 over 0.3 m, of which the inertia explains a part
-    (the sphere's centre takes 2/7 of the slip at a landing, the lamina's 1/3) and the rest is
-    not traced (docs/dem.md). Bound 3: 0.68 above the measured mean, the grains' spread seven
-    times over. (Before the rolling lock of a landing without spin was judged by the forces'
-    rates, the lamina stayed locked through its first contacts and the ratio was 1.54.) Over
-    5 cm the first bounces dominate, hence 0.1 m: about 9 s of LIGGGHTS' CPU."""
+    same draw through the same level feeder both ways. Dropped alike, at rest in the lab as
+    LIGGGHTS drops its grains, they take the same time (measured: LIGGGHTS' exit time 1.010
+    times the population's, the mean of the grains' ratios, 0.957 to 1.058; bound 0.2, over
+    three times the farthest grain's) and meet the plate at the same rate (0.957 times, 0.914
+    to 1.022; bound 0.2). Each impact charges more in LIGGGHTS (1.20 times, 1.16 to 1.23;
+    1.30 over 0.3 m): the lamina's later impacts land on spots it charged before, the sphere's
+    account spreads its charge over its whole surface (bound 1 to 1.4). Dropped at rest on the
+    plate, the population's default (its drop velocity is relative to the plate, docs/model.md
+    section 9b, which moves along the stroke at 0.157 m/s at the drop's phase), the lamina
+    keeps that speed's angular momentum about its contact point, which only the rolling
+    resistance changes, and leaves far sooner (2.32 times, 2.23 to 2.38; bound: above 1.5).
+    Over 5 cm the first bounces dominate, hence 0.1 m: about 9 s of LIGGGHTS' CPU."""
     feed = ["-n", "4", "--seed", "1", *FEED, "--chute-length", "0.1", "--tilt-deg", "0",
             "--vibration", "5e-4,50,30", "--t-end", "15", "--no-plot", "--no-progress"]
     done = run_dem(tmp_path, *feed, "--stiffness-scale", "0.01", "--out", "dem", "--maps", maps)
     assert done.returncode == 0, done.stderr[-2000:]
-    done = subprocess.run([command("tribo"), "population", *feed, "--serial", "--out", "pop"],
-                          cwd=tmp_path, capture_output=True, text=True, timeout=TIMEOUT)
-    assert done.returncode == 0, done.stderr[-2000:]
     dem = pd.read_csv(tmp_path / "dem" / "particles.csv")
-    pop = pd.read_csv(tmp_path / "pop" / "particles.csv")
-    assert list(dem["size"]) == list(pop["size"])
-    assert (dem["exited"] == 1).all() and (pop["exited"] == 1).all()
+    assert (dem["exited"] == 1).all()
+    pops = {}
+    for drop, how in (("plate", []), ("lab", ["--drop-speed", str(2 * math.pi * 50 * 5e-4),
+                                              "--drop-angle-deg", "-60"])):
+        done = subprocess.run([command("tribo"), "population", *feed, *how, "--serial", "--out",
+                               drop], cwd=tmp_path, capture_output=True, text=True,
+                              timeout=TIMEOUT)
+        assert done.returncode == 0, done.stderr[-2000:]
+        pops[drop] = pd.read_csv(tmp_path / drop / "particles.csv")
+        assert list(dem["size"]) == list(pops[drop]["size"])
+        assert (pops[drop]["exited"] == 1).all()
+    pop = pops["lab"]
     rate = (dem["impacts"] / dem["exit_time"]) / (pop["impacts"] / pop["exit_time"])
     per_impact = (dem["charge_to_mass_static"] / dem["impacts"]) / (
         pop["charge_to_mass_static"] / pop["impacts"])
-    slower = dem["exit_time"] / pop["exit_time"]
     assert abs(rate.mean() - 1) < 0.2, rate
-    assert abs(per_impact.mean() - 1) < 0.15, per_impact
-    assert 1 < slower.mean() < 3, slower
+    assert 1 < per_impact.mean() < 1.4, per_impact
+    slower = (dem["exit_time"] / pop["exit_time"]).mean()
+    assert abs(slower - 1) < 0.2, slower
+    assert (dem["exit_time"] / pops["plate"]["exit_time"]).mean() > 1.5

@@ -65,6 +65,14 @@ def add_arguments(p) -> None:
                         "(default 1; less: a larger time step, docs/dem.md)")
     p.add_argument("--maps", default=os.path.join("out", "impact-maps"), metavar="FOLDER",
                    help="where the impact maps are kept (default out/impact-maps)")
+    p.add_argument("--contact-law", default=None, metavar="WORDS",
+                   help="LIGGGHTS' contact law, the words after `model` of its pair style "
+                        "(default: hertz tangential history rolling_friction cdt), for "
+                        "comparing laws (docs/dem.md)")
+    p.add_argument("--contact-property", action="append", default=[], metavar="LINE",
+                   help="a property the contact law reads, NAME STYLE VALUES of LIGGGHTS' "
+                        "fix property/global (e.g. 'characteristicVelocity scalar 0.2' for "
+                        "hooke); repeatable")
     add_class_options(p)
     add_si_job_options(p, os.path.join("out", "dem"))
 
@@ -72,13 +80,14 @@ def add_arguments(p) -> None:
 def job_of(args):
     # the job's modules (and numpy, pandas, fmpy, scipy) once it runs: --help and a mistake in
     # the options need none of them (common.py)
-    from ..dem import DemJob
+    from ..dem import DemJob, script
     return DemJob(feed_of(args), args.particles, args.seed, args.t_end, args.fmu,
                   feed_rate=args.feed_rate, lanes=args.lanes, ranks=args.ranks,
                   vibration=_vibration(args.vibration),
                   stiffness_scale=args.stiffness_scale, maps=args.maps,
                   figure=not args.no_plot, shape_edges=args.shape_classes,
-                  size_edges=args.size_classes)
+                  size_edges=args.size_classes, law=args.contact_law or script.LAW,
+                  law_properties=tuple(args.contact_property))
 
 
 def _vibration(values):

@@ -91,7 +91,9 @@ class DemJob(Job):
     the plate and its side walls moved along the stroke (device.py). ranks: LIGGGHTS' MPI
     ranks. stiffness_scale: the Young's moduli LIGGGHTS takes, as a fraction of the
     materials' (a larger time step; the charges are the map's, at the impact speeds). maps:
-    the folder the impact maps are kept in."""
+    the folder the impact maps are kept in. law, law_properties: LIGGGHTS' contact law and
+    the properties it reads (script.py; by default its Hertz-Mindlin law), for comparing
+    laws."""
 
     kind, noun, results_file = "dem", "grain", PARTICLES
 
@@ -100,7 +102,8 @@ class DemJob(Job):
                  lane_spacing: float | None = None, vibration: tuple | None = None,
                  ranks: int = 1, stiffness_scale: float = 1.0,
                  maps: str = os.path.join("out", "impact-maps"), figure: bool = True,
-                 shape_edges=None, size_edges=None):
+                 shape_edges=None, size_edges=None, law: str = script.LAW,
+                 law_properties: tuple = ()):
         self.feed, self.n, self.seed, self.t_end, self.fmu = feed, n, seed, t_end, fmu
         self.feed_rate, self.lanes, self.lane_spacing = feed_rate, lanes, lane_spacing
         self.vibration = tuple(vibration) if vibration else None
@@ -108,6 +111,7 @@ class DemJob(Job):
             self.vibration += (90.0,)
         self.ranks, self.stiffness_scale, self.maps = ranks, stiffness_scale, maps
         self.figure, self.shape_edges, self.size_edges = figure, shape_edges, size_edges
+        self.law, self.law_properties = law, tuple(law_properties)
         self.keys = []
 
     def prepare(self) -> None:
@@ -122,6 +126,10 @@ class DemJob(Job):
         if self.lanes is not None and self.feed_rate is None:
             raise DemError(f"lanes = {self.lanes!r}: the lanes of a fed stream, taken with a "
                            f"feed rate only (the dilute limit gives each grain its own)")
+        for name, text in (("law", self.law), *(("law_properties", p) for p in self.law_properties)):
+            if not isinstance(text, str) or not text.strip() or "\n" in text:
+                raise DemError(f"{name} = {text!r}: words of one line of LIGGGHTS' input "
+                               f"(the contact law's, or a property it reads)")
         _spheres(self.feed)
         check_class_edges(self.shape_edges, self.size_edges)
         if self.vibration is not None and len(self.vibration) != 3:
@@ -174,7 +182,14 @@ class DemJob(Job):
         return {"n": self.n, "seed": self.seed, "t_end_s": self.t_end, "feed": self.feed.describe(),
                 "feed_rate": self.feed_rate, "lanes": self.lanes, "lane_spacing": self.lane_spacing,
                 "vibration": list(self.vibration) if self.vibration else None,
-                "ranks": self.ranks, "stiffness_scale": self.stiffness_scale}
+                "ranks": self.ranks, "stiffness_scale": self.stiffness_scale, **self._law()}
+
+    def _law(self) -> dict:
+        """The contact law where it is not the default (a folder of a default run stays
+        valid)."""
+        if (self.law, self.law_properties) == (script.LAW, ()):
+            return {}
+        return {"law": [self.law, *self.law_properties]}
 
     def describe(self, out: str, executor) -> str:
         how = ("dilute: a lane each, dropped at once" if self.feed_rate is None
@@ -218,6 +233,7 @@ class DemJob(Job):
                "youngs_modulus_wall": contact.youngs_wall, "ranks": self.ranks}
         if self.chute.amplitude:  # a feeder: its stroke, and its side walls
             run["vibration"] = list(self.vibration)
+        run.update(self._law())
         previous = _read(done_path)
         if previous is None or previous.get("run") != run:
             previous = self._simulate(folder, run, size, contact, progress, wall0)
@@ -272,7 +288,7 @@ class DemJob(Job):
             self.chute, self.entry, size, contact, dt=run["dt"], sample_every=run["sample_every"],
             t_end=self.t_end, exit_every=run["exit_every"],
             progress_every=max(1, int(self.t_end / run["dt"] / 200)), near=run["near"],
-            slowest=SLOWEST, restart=restart)
+            slowest=SLOWEST, restart=restart, law=self.law, law_properties=self.law_properties)
         with open(os.path.join(folder, input_name), "w") as f:
             f.write(text)
         with open(os.path.join(folder, script.PLATE), "w") as f:

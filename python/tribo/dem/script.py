@@ -64,6 +64,10 @@ PRESSED = 10.0
 # pieces of a two-hundredth of its steps, so this leaves a factor of 200 for the step
 # being shorter than the Rayleigh bound the horizon is checked with)
 MAX_STEPS = 2**31 - 1
+# the contact law: the words after `model` in the grains' pair style and in the wall's fix
+# (the module's text); another law is for comparing with the project's own (docs/dem.md,
+# the feeder beside the project's population), with the properties it reads
+LAW = "hertz tangential history rolling_friction cdt"
 
 
 @dataclass(frozen=True)
@@ -137,7 +141,8 @@ def box_top(entry: Entry, diameters: np.ndarray) -> float:
 def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *, dt: float,
                 sample_every: int, t_end: float, exit_every: int, progress_every: int,
                 near: float, slowest: float, contacts: bool = True,
-                restart: tuple | None = None) -> tuple[str, int]:
+                restart: tuple | None = None, law: str = LAW,
+                law_properties: tuple[str, ...] = ()) -> tuple[str, int]:
     """The LIGGGHTS input (the module's text) and its number of steps. The grains enter
     in the order given (grain i is LIGGGHTS' atom i + 1), each at its entry time; the run
     stops once every grain has left the box (past the chute's end or off its sides) or at
@@ -145,7 +150,9 @@ def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *
     restart (file, step, created): the input that resumes a run LIGGGHTS stopped at `step`,
     writing the restart `file`, with `created` grains in: the scene read from it (the
     grains, their contact histories with the wall), the outputs appended to, the grains
-    not yet in and the steps left."""
+    not yet in and the steps left. law: the contact law's words (LAW: the module's text),
+    law_properties: what else it reads, each `NAME STYLE VALUES` of a property/global fix
+    (e.g. `characteristicVelocity scalar 0.2` for `hooke`)."""
     n = len(diameters)
     biggest = float(np.max(diameters))
     L, half = chute.chute_length, entry.width / 2.0
@@ -181,7 +188,8 @@ def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *
         + " ".join([_number(c.friction)] * 4),
         f"fix m5 all property/global coefficientRollingFriction peratomtypepair 2 "
         + " ".join([_number(c.rolling_friction)] * 4),
-        "pair_style gran model hertz tangential history rolling_friction cdt",
+        *[f"fix law{i} all property/global {p}" for i, p in enumerate(law_properties)],
+        f"pair_style gran model {law}",
         "pair_coeff * *",
         f"timestep {_number(dt)}",
         f"fix gravity all gravity 9.81 vector {_number(gx)} {_number(gy)} {_number(gz)}",
@@ -197,7 +205,7 @@ def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *
     # one wall fix for every mesh (LIGGGHTS takes no second): its force is the sum of the
     # plate's and the sides' on a grain (contacts.py tells them apart by the grain's gap)
     lines += [
-        "fix walls all wall/gran model hertz tangential history rolling_friction cdt "
+        f"fix walls all wall/gran model {law} "
         f"mesh n_meshes {len(meshes)} meshes {' '.join(meshes)} store_force yes",
 
         "fix integrate all nve/sphere",
