@@ -20,10 +20,10 @@
 # BENCH_STIFFNESS (default 0.01: LIGGGHTS' moduli, docs/dem.md). BENCH_REPORT_ONLY=1 makes
 # the table and the figure again from the runs already in BENCH_OUT. BENCH_DROP: how the
 # population's grains are dropped, `lab` (the default) at rest in the lab, as LIGGGHTS drops
-# them (the population's drop velocity is relative to the plate, docs/model.md section 9b,
-# which moves at 2 pi f A along the stroke at the drop's phase: the drop speed 2 pi f A at
-# -(90 - 30) degrees from the vertical cancels it), or `plate` at rest on the plate (moving
-# with it, 0.157 m/s along the stroke, which the grain keeps for a metre: docs/dem.md).
+# them (drop_frame=1: the drop's velocity in the lab, the plate's taken off, docs/model.md
+# section 9b), or `plate` at rest on the plate (the SI FMU's default: moving with it,
+# 0.157 m/s along the stroke at the drop's phase, which the grain keeps for a metre:
+# docs/dem.md).
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 PY=${PYTHON:-"$ROOT/.venv/bin/python"}
@@ -35,8 +35,7 @@ STIFF=${BENCH_STIFFNESS:-0.01}
 FEED=(--seed 1 --epsilon 1 --size uniform:6e-4:1e-3 --chute-length "$LENGTH" --tilt-deg 0
       --vibration 5e-4,50,30 --t-end "$T_END" --no-progress)
 case ${BENCH_DROP:-lab} in
-  lab) DROP=(--drop-speed "$("$PY" -c "import math; print(2 * math.pi * 50 * 5e-4)")"
-             --drop-angle-deg -60) ;;
+  lab) DROP=(--set drop_frame=1) ;;
   plate) DROP=() ;;
   *) echo "bench_dem_feeder.sh: BENCH_DROP = ${BENCH_DROP}: lab or plate" >&2; exit 2 ;;
 esac
