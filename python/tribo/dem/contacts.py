@@ -352,3 +352,47 @@ def count(found: pd.DataFrame, n: int) -> np.ndarray:
     return np.bincount(found["grain"].to_numpy(dtype=np.int64), minlength=n) if len(found) \
         else np.zeros(n, dtype=int)
 
+
+
+def compare_impacts(found: pd.DataFrame, reference: pd.DataFrame, interval: float) -> pd.DataFrame:
+    """The impacts `found` by a run's sampling against those of a dense `reference` written
+    beside it in the same run (script.REFERENCE), impact by impact: each reference impact
+    (a row, its grain, wall, time, normal_speed) with the found one of the same grain and wall
+    whose onset is nearest its own within `interval` (s, the sampling's: the onsets of both
+    are the flight before carried on, so that they agree far closer), or none (`missed`);
+    then the found impacts no reference impact matched (`extra`). Columns: grain, wall,
+    time, normal_speed (the reference's; the found one's where there is none), dt and
+    dv_n (found less reference), missed, extra, and sustained_differs (1 where the two
+    read the contact's end differently: a slow contact's, interval-dependent, docs/dem.md).
+    """
+    keys, kept = ["grain", "wall"], ["time", "normal_speed", "sustained"]
+    ref = reference[keys + kept].astype({"grain": np.int64, "wall": np.int64})
+    got = found[keys + kept].astype({"grain": np.int64, "wall": np.int64})
+    ref = ref.sort_values("time", kind="stable").reset_index(drop=True)
+    got = got.sort_values("time", kind="stable").reset_index(drop=True)
+    got["found"] = np.arange(len(got))
+    matched = pd.merge_asof(ref, got.rename(columns={"time": "time_found",
+                                                     "normal_speed": "speed_found",
+                                                     "sustained": "sustained_found"}),
+                            left_on="time", right_on="time_found", by=keys,
+                            direction="nearest", tolerance=interval)
+    # a found impact matched twice is one of them: the nearer keeps it
+    taken = matched["found"].notna()
+    gap = (matched["time_found"] - matched["time"]).abs()
+    first = matched[taken].assign(gap=gap[taken]).sort_values("gap", kind="stable").duplicated(
+        "found", keep="first")
+    matched.loc[first[first].index, ["found", "time_found", "speed_found"]] = np.nan
+    taken = matched["found"].notna()
+    out = pd.DataFrame({"grain": matched["grain"], "wall": matched["wall"],
+                        "time": matched["time"], "normal_speed": matched["normal_speed"],
+                        "dt": matched["time_found"] - matched["time"],
+                        "dv_n": matched["speed_found"] - matched["normal_speed"],
+                        "missed": (~taken).astype(int), "extra": 0,
+                        "sustained_differs": (taken & (matched["sustained_found"]
+                                                       != matched["sustained"])).astype(int)})
+    left = got[~got["found"].isin(matched.loc[taken, "found"])]
+    extra = pd.DataFrame({"grain": left["grain"], "wall": left["wall"], "time": left["time"],
+                          "normal_speed": left["normal_speed"], "dt": np.nan, "dv_n": np.nan,
+                          "missed": 0, "extra": 1, "sustained_differs": 0})
+    return pd.concat([out, extra], ignore_index=True).sort_values(
+        ["grain", "wall", "time"], kind="stable").reset_index(drop=True)
