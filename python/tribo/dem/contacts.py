@@ -135,9 +135,15 @@ def impacts(path: str, dt: float, sample_every: int, gravity: tuple, n: int,
     return walls_impacts(path, dt, sample_every, [wall], n)[0]
 
 
-def walls_impacts(path: str, dt: float, sample_every: int, walls: list, n: int) -> list:
+def walls_impacts(path: str, dt: float, sample_every: int, walls: list, n: int,
+                  joined: int | None = None) -> list:
     """The impacts against each of `walls` (Walls of one dump's columns: a feeder's plate and
-    side walls) as `impacts` reads them, the dump read once for all."""
+    side walls) as `impacts` reads them, the dump read once for all. joined: two samples of
+    a grain this many steps apart or less are consecutive (default two sample intervals: a
+    contact's samples either side of its turn, slower than `slowest`, unwritten); a dense
+    reference is read with its sampling's, so that a contact is joined across the same
+    turn (compare_impacts)."""
+    joined = 2 * sample_every if joined is None else joined
     columns = walls[0].columns
     if any(w.columns != columns for w in walls):
         raise ValueError("walls: each read from the same dump's columns")
@@ -147,7 +153,8 @@ def walls_impacts(path: str, dt: float, sample_every: int, walls: list, n: int) 
             d = block if carry[k] is None else pd.concat([carry[k], block], ignore_index=True)
             if d.empty:
                 continue
-            found, carry[k] = _block_impacts(path, d, dt, sample_every, wall, last_step, final)
+            found, carry[k] = _block_impacts(path, d, dt, sample_every, wall, last_step, final,
+                                             joined)
             parts[k].append(found)
     return [_sorted(path, found, n) for found in parts]
 
@@ -165,9 +172,11 @@ def _sorted(path: str, parts: list, n: int) -> pd.DataFrame:
     return out
 
 
-def _block_impacts(path, d, dt, sample_every, wall: Wall, last_step: int, final: bool):
+def _block_impacts(path, d, dt, sample_every, wall: Wall, last_step: int, final: bool,
+                   close: int):
     """The impacts of the contacts that have ended among samples `d` (the samples carried
-    and a block's), and the samples a later block needs (the module's text)."""
+    and a block's), and the samples a later block needs (the module's text); two samples of
+    a grain `close` steps apart or less are consecutive."""
     force = wall.force
     d = d.sort_values(["id", "step"], kind="stable").reset_index(drop=True)
     grain = d["id"].to_numpy(dtype=np.int64)
@@ -182,7 +191,6 @@ def _block_impacts(path, d, dt, sample_every, wall: Wall, last_step: int, final:
         touch &= gap < TOUCHING
     # consecutive samples of a grain: a sample apart, or two where one fell below `slowest`
     # (the turn of an impact, its normal speed passing zero)
-    close = 2 * sample_every
     same = np.r_[False, (grain[1:] == grain[:-1]) & (step[1:] - step[:-1] <= close)]
     before_touch = np.r_[False, touch[:-1]] & same
     onset = touch & ~before_touch

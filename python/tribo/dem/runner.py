@@ -259,16 +259,20 @@ class DemJob(Job):
         report.maps_built = charger.built
         if self.reference_every:
             path = os.path.join(out, REFERENCE_IMPACTS)
+            # its contacts joined across a turn as the sampling's are (contacts.py)
             self._impacts(os.path.join(folder, script.REFERENCE), dt, self.reference_every,
-                          walls).to_csv(path, index=False)
+                          walls, joined=2 * every).to_csv(path, index=False)
             report.files.append(path)
         return report
 
-    def _impacts(self, path: str, dt: float, every: int, walls: list) -> pd.DataFrame:
+    def _impacts(self, path: str, dt: float, every: int, walls: list,
+                 joined: int | None = None) -> pd.DataFrame:
         """The impacts of a contacts' dump sampled every `every` steps against `walls` (the
-        plate's, a feeder's side walls'), with the wall each met, by grain and time."""
+        plate's, a feeder's side walls'), with the wall each met, by grain and time (joined:
+        contacts.walls_impacts)."""
         return pd.concat([f.assign(wall=kind) for kind, f in zip(
-            (PLATE_WALL, SIDE_WALL), contacts.walls_impacts(path, dt, every, walls, self.n))],
+            (PLATE_WALL, SIDE_WALL), contacts.walls_impacts(path, dt, every, walls, self.n,
+                                                            joined))],
             ignore_index=True).sort_values(["grain", "time"], kind="stable").reset_index(drop=True)
 
     def _simulate(self, folder, run, size, contact, progress, wall0) -> dict:
