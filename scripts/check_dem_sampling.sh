@@ -5,7 +5,9 @@
 # every step; reference.dump); the impacts read from each are compared impact by impact
 # (contacts.compare_impacts: grain, wall, onset time, normal speed), and the reference's
 # shortest contact is said against the sampling's interval. Exit 1 where an impact of the
-# reference is missed or the sampling finds one it has not.
+# reference is missed or the sampling finds one it has not (a settling grain's speed
+# crossing the threshold below which a grain is not written, for a step or two, is said
+# apart: no impact).
 #
 #   scripts/check_dem_sampling.sh                     # the feeder of bench_dem_sampling.sh
 #   scripts/check_dem_sampling.sh -n 4 --seed 2 ...   # any other `tribo dem` options
@@ -49,19 +51,29 @@ run = json.load(open("dem/liggghts/done.json"))["run"]
 dt, sampled = run["dt"], run["sample_every"]
 found, reference = pd.read_csv("dem/impacts.csv"), pd.read_csv("dem/reference_impacts.csv")
 compared = contacts.compare_impacts(found, reference, sampled * dt)
+# a missed one that begins in contact (no sample in flight before it) at about the speed
+# below which a grain is not written: a settling grain's speed crossing that threshold
+# for a step or two, not an impact
+first = reference.merge(compared[compared["missed"] == 1][["grain", "wall", "time"]])
+settling = int(((first["from_flight"] == 0)
+                & (first["normal_speed"] < 2 * run["slowest"])).sum())
 compared.to_csv("compared.csv", index=False)
 both = compared[(compared["missed"] == 0) & (compared["extra"] == 0)]
 shortest = reference["duration"].min() / dt
+missed = int(compared["missed"].sum())
 print(f"sampled every {sampled} steps, the reference every {every} (dt {dt:.4g} s): "
       f"{len(found)} impacts found, {len(reference)} in the reference; "
-      f"{int(compared['missed'].sum())} missed, {int(compared['extra'].sum())} not in the reference")
+      f"{missed} missed ({settling} of them a settling grain's, beginning in contact below "
+      f"{2 * run['slowest']:g} m/s), {int(compared['extra'].sum())} not in the reference")
 if len(both):
     print(f"the {len(both)} found in both: onsets at most {both['dt'].abs().max():.3g} s apart, "
           f"normal speeds {both['dv_n'].abs().max():.3g} m/s; "
           f"{int((both['dv_n'].abs() > 1e-6).sum())} more than 1e-6 m/s apart; "
           f"{int(both['sustained_differs'].sum())} read as ending in sustained contact by one "
           f"and not the other")
-print(f"the reference's shortest contact: {shortest:.0f} steps (to {every}), against a sample "
-      f"every {sampled}; its fastest impact {reference['normal_speed'].max():.4g} m/s")
-sys.exit(1 if compared["missed"].any() or compared["extra"].any() else 0)
+flown = reference[reference["from_flight"] == 1]
+print(f"the reference's shortest contact: {shortest:.0f} steps (to {every}), of an impact from "
+      f"flight {flown['duration'].min() / dt:.0f}, against a sample every {sampled}; its "
+      f"fastest impact {reference['normal_speed'].max():.4g} m/s")
+sys.exit(1 if missed > settling or compared["extra"].any() else 0)
 PYEOF

@@ -1,12 +1,13 @@
 """The grain-wall impacts and the exits, read from a LIGGGHTS run's outputs (script.py).
 
-**Sampling.** contacts.dump holds, every `sample_every` steps (two thirds of the fastest
-impact's Hertz contact time, script.py), each grain whose gap to the plate is below `near`
+**Sampling.** contacts.dump holds, every `sample_every` steps (the fastest impact's Hertz
+contact time over 1.1 on a feeder, over 1.5 on a still chute: script.py), each grain whose gap to the plate is below `near`
 (twice what the fastest grain covers in a sample) and whose normal speed relative to it
 exceeds `slowest` or whom it presses on with more than script.PRESSED times its weight (an
 impact's turn); the wall's normal force on it says whether it touches. So every impact
 has at least one sample in flight just before it and one in contact: none is missed (a
-contact shorter than a sample interval would be shorter than the fastest impact's). A
+contact shorter than a sample interval would be shorter than the fastest impact's;
+compare_impacts checks it against a reference written every step beside it). A
 feeder's holds the same for its side walls too, across the chute: a grain near the plate or
 a side wall, with the force along both normals (LIGGGHTS' one wall fix sums the plate's and
 the sides': a sample touches a wall where that wall's component is nonzero and the grain's

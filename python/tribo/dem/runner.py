@@ -216,7 +216,9 @@ class DemJob(Job):
                         + np.max(self.drawn["drop_speed"]) + math.sqrt(
             2 * g * (float(np.max(self.drawn["drop_height"])) + self.chute.chute_length
                      * math.sin(math.radians(self.chute.tilt_deg)))))
-        dt, every = script.time_step(size, fastest, contact)
+        dt, every = script.time_step(size, fastest, contact, script.SAMPLES_PER_CONTACT
+                                     if self.chute.amplitude else
+                                     script.STILL_SAMPLES_PER_CONTACT)
         near = 2.0 * fastest * every * dt
         folder = os.path.join(out, RUN_FOLDER)
         done_path = os.path.join(folder, engine.DONE)

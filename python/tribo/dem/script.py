@@ -12,10 +12,11 @@ refuses Young's moduli above 1e9 Pa in SI units without it.
 
 The time step is a fraction of the smallest grain's Rayleigh time and of its Hertz contact
 time at the fastest impact (`time_step`); the wall contacts are written every
-`sample_every` steps, that contact time over 1.1, so that every contact is seen in
-contact at least once (a slower one lasts longer) and every impact has a sample in flight
-before it (contacts.py reads them; scripts/check_dem_sampling.sh checks it against a
-reference written every step beside it, REFERENCE).
+`sample_every` steps, that contact time over 1.1 (a still chute's: over 1.5), so that
+every contact is seen in contact at least once (a slower one lasts longer) and every
+impact has a sample in flight before it (contacts.py reads them;
+scripts/check_dem_sampling.sh checks it against a reference written every step beside
+it, REFERENCE).
 
 Outputs (the run's folder):
 
@@ -59,8 +60,14 @@ STEPS_PER_CONTACT = 40  # the time step: the fastest impact's Hertz contact time
 # margin: a contact lasts longer than its Hertz time (LIGGGHTS' damping), and the shorter
 # the faster the impact only as its speed to the -1/5: an interval a tenth shorter than
 # the fastest estimated impact's contact still sees one 1.6 times as fast (measured on the
-# feeder of docs/dem.md: its shortest contact 44 steps, a sample every 36)
+# feeder of docs/dem.md: its shortest contact 43 steps, a sample every 36)
 SAMPLES_PER_CONTACT = 1.1
+# a still chute's: its grains settle and roll, and a contact's end is read as sustained
+# from when its grain stops being written, which the interval moves (measured on 12 grains
+# of docs/dem.md's dilute run: 28 sustained contacts of 221 at 26 steps, 20 at 36); kept
+# where its results were made (a still chute's grains are in flight little: the sampling
+# costs it little)
+STILL_SAMPLES_PER_CONTACT = 1.5
 # a grain in contact is written, however slowly it moves along the normal, while the wall
 # presses on it with more than this many times its weight: an impact's turn (a grain at
 # rest on a plate is pressed with its weight, twice at most on a feeder that does not
@@ -114,12 +121,14 @@ def hertz_time(diameter, speed, c: Contact):
     return 2.87 * (m * m / (r * c.effective_modulus ** 2 * v)) ** 0.2
 
 
-def time_step(diameters: np.ndarray, fastest: float, c: Contact) -> tuple[float, int]:
-    """The time step (s) and the contacts' sampling interval (steps): the module's text."""
+def time_step(diameters: np.ndarray, fastest: float, c: Contact,
+              samples: float = SAMPLES_PER_CONTACT) -> tuple[float, int]:
+    """The time step (s) and the contacts' sampling interval (steps), `samples` in the
+    fastest impact's contact: the module's text."""
     small = float(np.min(diameters))
     contact = float(hertz_time(small, fastest, c))
     dt = min(RAYLEIGH_FRACTION * rayleigh_time(small, c), contact / STEPS_PER_CONTACT)
-    return dt, max(1, int(contact / dt / SAMPLES_PER_CONTACT))
+    return dt, max(1, int(contact / dt / samples))
 
 
 def _number(x: float) -> str:
@@ -169,8 +178,8 @@ def _contacts_dumps(chute: Chute, entry: Entry, diameters: np.ndarray, dumps: di
                f"+(f_force_walls[3]>{pressed}))")
     columns = CONTACT_COLUMNS
     if chute.amplitude:
-        # a feeder's one dump for the plate and the side walls (a dump's frames are most of
-        # its cost, most of them empty: one set of them)
+        # a feeder's one dump for the plate and the side walls (a dump evaluates its
+        # formula for every grain at every sample, most of them written by none: one set)
         written += (f"+(abs(y)+r>{_number(half - near)})"
                     f"*((abs(vy)>{_number(slowest)})+(abs(f_force_walls[2])>{pressed}))")
         columns = FEEDER_COLUMNS
