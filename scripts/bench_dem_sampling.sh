@@ -58,8 +58,10 @@ wo = cpu["without"]
 def said(name, folder, runs):
     """The sampling of the input `runs` ran and the charging of its tribo dem run (folder's
     population.json, where there is one): each, and together, in % of LIGGGHTS' CPU."""
-    least, median = 100 * (runs[0] / wo[0] - 1), 100 * (statistics.median(runs) / statistics.median(wo) - 1)
-    line = f"{name}: the sampling +{least:.3g} % of LIGGGHTS' CPU (the least of each), +{median:.3g} % (the medians)"
+    least = 100 * (runs[0] / wo[0] - 1)
+    median = 100 * (statistics.median(runs) / statistics.median(wo) - 1)
+    line = (f"{name}: the sampling +{least:.3g} % of LIGGGHTS' CPU (the least of each), "
+            f"+{median:.3g} % (the medians)")
     path = f"{folder}/population.json"
     if os.path.exists(path):
         meta = json.load(open(path))

@@ -1,17 +1,17 @@
 """The grain-wall impacts and the exits, read from a LIGGGHTS run's outputs (script.py).
 
 **Sampling.** contacts.dump holds, every `sample_every` steps (the fastest impact's Hertz
-contact time over 1.1 on a feeder, over 1.5 on a still chute: script.py), each grain whose gap to the plate is below `near`
-(twice what the fastest grain covers in a sample) and whose normal speed relative to it
-exceeds `slowest` or whom it presses on with more than script.PRESSED times its weight (an
-impact's turn); the wall's normal force on it says whether it touches. So every impact
-has at least one sample in flight just before it and one in contact: none is missed (a
-contact shorter than a sample interval would be shorter than the fastest impact's;
-compare_impacts checks it against a reference written every step beside it). A
-feeder's holds the same for its side walls too, across the chute: a grain near the plate or
-a side wall, with the force along both normals (LIGGGHTS' one wall fix sums the plate's and
-the sides': a sample touches a wall where that wall's component is nonzero and the grain's
-gap to it is below TOUCHING).
+contact time over 1.1 on a feeder, over 1.5 on a still chute: script.py), each grain whose
+gap to the plate is below `near` (twice what the fastest grain covers in a sample) and
+whose normal speed relative to it exceeds `slowest` or whom it presses on with more than
+script.PRESSED times its weight (an impact's turn); the wall's normal force on it says
+whether it touches. So every impact has at least one sample in flight just before it and
+one in contact: none is missed (a contact shorter than a sample interval would be shorter
+than the fastest impact's; compare_impacts checks it against a reference written every
+step beside it). A feeder's holds the same for its side walls too, across the chute: a
+grain near the plate or a side wall, with the force along both normals (LIGGGHTS' one wall
+fix sums the plate's and the sides': a sample touches a wall where that wall's component
+is nonzero and the grain's gap to it is below TOUCHING).
 
 **Against the moving wall.** Each sample is read in the wall's own axes (`Wall`): its gap
 to the wall and its velocity along the wall's normal and along the wall, each less the
@@ -362,8 +362,8 @@ def count(found: pd.DataFrame, n: int) -> np.ndarray:
         else np.zeros(n, dtype=int)
 
 
-
-def compare_impacts(found: pd.DataFrame, reference: pd.DataFrame, interval: float) -> pd.DataFrame:
+def compare_impacts(found: pd.DataFrame, reference: pd.DataFrame,
+                    interval: float) -> pd.DataFrame:
     """The impacts `found` by a run's sampling against those of a dense `reference` written
     beside it in the same run (script.REFERENCE), impact by impact: each reference impact
     (a row, its grain, wall, time, normal_speed) with the found one of the same grain and wall
@@ -388,9 +388,9 @@ def compare_impacts(found: pd.DataFrame, reference: pd.DataFrame, interval: floa
     # a found impact matched twice is one of them: the nearer keeps it
     taken = matched["found"].notna()
     gap = (matched["time_found"] - matched["time"]).abs()
-    first = matched[taken].assign(gap=gap[taken]).sort_values("gap", kind="stable").duplicated(
+    twice = matched[taken].assign(gap=gap[taken]).sort_values("gap", kind="stable").duplicated(
         "found", keep="first")
-    matched.loc[first[first].index, ["found", "time_found", "speed_found"]] = np.nan
+    matched.loc[twice[twice].index, ["found", "time_found", "speed_found"]] = np.nan
     taken = matched["found"].notna()
     out = pd.DataFrame({"grain": matched["grain"], "wall": matched["wall"],
                         "time": matched["time"], "normal_speed": matched["normal_speed"],
