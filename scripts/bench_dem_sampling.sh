@@ -4,8 +4,9 @@
 # at 50 Hz along a stroke at 30 degrees), `tribo dem` once (LIGGGHTS' CPU and the
 # charging's, which reads the contacts' output and charges it); then its LIGGGHTS input
 # again with and without the contacts' output (its dump, the variables and compute it
-# alone uses), BENCH_ROUNDS times each (default 5), alternately: the least CPU of each and
-# their medians; the sampling and the charging together, the issue's number. --before REV:
+# alone uses), BENCH_ROUNDS times each (default 5), alternately: the least CPU of each,
+# their medians, and the median of each round's ratio (paired: a round's runs share the
+# machine's load); the sampling and the charging together, the issue's number. --before REV:
 # the same `tribo dem` command by revision REV's package too (its LIGGGHTS run and its
 # charging), its input run alternately with the others (`also`). BENCH_ALSO=FOLDER instead
 # runs that folder's in.liggghts (with its STL files) alternately with them (an input
@@ -50,25 +51,30 @@ for k in $(seq "$ROUNDS"); do
 done
 BEFORE_DEM=${before:+before_dem} "$PY" - "${variants[@]}" <<'PYEOF'
 import json, os, statistics, sys
-cpu = {v: sorted(sum(map(float, line.split())) for line in open(f"{v}/cpu.txt") if line.strip())
-       for v in sys.argv[1:]}
+# each run's CPU in the order run (rounds alternate: the same load for a round's inputs)
+runs = {v: [sum(map(float, line.split())) for line in open(f"{v}/cpu.txt") if line.strip()]
+        for v in sys.argv[1:]}
+cpu = {v: sorted(c) for v, c in runs.items()}
 wo = cpu["without"]
 
 
-def said(name, folder, runs):
-    """The sampling of the input `runs` ran and the charging of its tribo dem run (folder's
-    population.json, where there is one): each, and together, in % of LIGGGHTS' CPU."""
-    least = 100 * (runs[0] / wo[0] - 1)
-    median = 100 * (statistics.median(runs) / statistics.median(wo) - 1)
+def said(name, folder, variant):
+    """The sampling of `variant`'s input and the charging of its tribo dem run (folder's
+    population.json, where there is one): each, and together, in % of LIGGGHTS' CPU: the
+    least of each, their medians, and the median of each round's ratio to the round's run
+    without the contacts' output (paired)."""
+    least = 100 * (cpu[variant][0] / wo[0] - 1)
+    median = 100 * (statistics.median(cpu[variant]) / statistics.median(wo) - 1)
+    paired = 100 * (statistics.median(a / b for a, b in zip(runs[variant], runs["without"])) - 1)
     line = (f"{name}: the sampling +{least:.3g} % of LIGGGHTS' CPU (the least of each), "
-            f"+{median:.3g} % (the medians)")
+            f"+{median:.3g} % (the medians), +{paired:.3g} % (paired)")
     path = f"{folder}/population.json"
     if os.path.exists(path):
         meta = json.load(open(path))
         charging = 100 * meta["charging_cpu_s"] / meta["dem_cpu_s"]
         line += (f"; the charging {charging:.3g} % ({meta['charging_cpu_s']:.3g} s of "
                  f"{meta['dem_cpu_s']:.3g} s); together {least + charging:.3g} % (the least), "
-                 f"{median + charging:.3g} % (the medians)")
+                 f"{median + charging:.3g} % (the medians), {paired + charging:.3g} % (paired)")
     print(line)
 
 
@@ -76,8 +82,8 @@ frames = sum(line.startswith(b"ITEM: TIMESTEP") for line in open("with/contacts.
 print(f"contacts.dump: {frames} frames")
 for v, c in cpu.items():
     print(f"{v}: " + " ".join(f"{x:.3g}" for x in c) + " s")
-said("this tree", "dem", cpu["with"])
+said("this tree", "dem", "with")
 if "also" in cpu:
     said(os.environ["BEFORE_DEM"] and "the revision before" or "the other input",
-         os.environ["BEFORE_DEM"] or "-", cpu["also"])
+         os.environ["BEFORE_DEM"] or "-", "also")
 PYEOF
