@@ -42,6 +42,15 @@ if [[ -n $ALSO ]]; then
   cp "$ALSO"/in.liggghts "$ALSO"/*.stl also/
   variants+=(also)
 fi
+# BENCH_SAMPLE_EVERY=N: every input's contacts written every N steps instead, its run cut
+# to BENCH_PIECES pieces (default 20, a quarter of it): a sample's cost, many times over,
+# the inputs' formulas compared at one interval
+if [[ -n ${BENCH_SAMPLE_EVERY:-} ]]; then
+  for d in "${variants[@]}"; do
+    sed -i -e "s/^\(dump contacts all custom \)[0-9]* /\1$BENCH_SAMPLE_EVERY /" \
+      -e "s/^variable piece loop .*/variable piece loop ${BENCH_PIECES:-20}/" "$d/in.liggghts"
+  done
+fi
 for d in "${variants[@]}"; do rm -f "$d"/*.dump "$d"/cpu.txt "$d"/restart*; done
 for k in $(seq "$ROUNDS"); do
   for d in "${variants[@]}"; do
@@ -49,13 +58,14 @@ for k in $(seq "$ROUNDS"); do
         -log log.liggghts -echo none > /dev/null )
   done
 done
-BEFORE_DEM=${before:+before_dem} "$PY" - "${variants[@]}" <<'PYEOF'
+BEFORE_DEM=${before:+before_dem} SAMPLE_EVERY=${BENCH_SAMPLE_EVERY:-} "$PY" - "${variants[@]}" <<'PYEOF'
 import json, os, statistics, sys
 # each run's CPU in the order run (rounds alternate: the same load for a round's inputs)
 runs = {v: [sum(map(float, line.split())) for line in open(f"{v}/cpu.txt") if line.strip()]
         for v in sys.argv[1:]}
 cpu = {v: sorted(c) for v, c in runs.items()}
 wo = cpu["without"]
+frames = sum(line.startswith(b"ITEM: TIMESTEP") for line in open("with/contacts.dump", "rb"))
 
 
 def said(name, folder, variant):
@@ -69,7 +79,10 @@ def said(name, folder, variant):
     line = (f"{name}: the sampling +{least:.3g} % of LIGGGHTS' CPU (the least of each), "
             f"+{median:.3g} % (the medians), +{paired:.3g} % (paired)")
     path = f"{folder}/population.json"
-    if os.path.exists(path):
+    if os.environ["SAMPLE_EVERY"]:  # not the run tribo dem charged: a sample's cost
+        each = (statistics.median(cpu[variant]) - statistics.median(wo)) / frames
+        line += f"; a sample {1e6 * each:.3g} us of CPU (the medians' over {frames} frames)"
+    elif os.path.exists(path):
         meta = json.load(open(path))
         charging = 100 * meta["charging_cpu_s"] / meta["dem_cpu_s"]
         line += (f"; the charging {charging:.3g} % ({meta['charging_cpu_s']:.3g} s of "
@@ -78,7 +91,6 @@ def said(name, folder, variant):
     print(line)
 
 
-frames = sum(line.startswith(b"ITEM: TIMESTEP") for line in open("with/contacts.dump", "rb"))
 print(f"contacts.dump: {frames} frames")
 for v, c in cpu.items():
     print(f"{v}: " + " ".join(f"{x:.3g}" for x in c) + " s")
