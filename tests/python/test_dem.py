@@ -684,3 +684,16 @@ def test_the_sampling_misses_no_impact_of_a_reference_written_every_step(tmp_pat
     assert len(compared) >= 30 and not compared["missed"].any() and not compared["extra"].any()
     assert (compared["dv_n"].abs() < 1e-3).all(), compared["dv_n"].abs().max()
     assert reference["duration"].min() > run["sample_every"] * run["dt"]
+
+
+@pytest.mark.parametrize("every", [0, -3, 1.5, True, "2"])
+def test_a_bad_reference_interval_is_one_line_naming_it(every):
+    from tribo.cli.dem import job_of
+    from tribo.cli.main import parser
+    argv = ["dem", "-n", "3"]
+    job = job_of(parser(argv).parse_args(argv))
+    job.reference_every = every
+    with pytest.raises(runner.DemError) as e:
+        job.prepare()
+    assert str(e.value).startswith(f"reference_every = {every!r}:")
+    assert len(str(e.value).splitlines()) == 1
