@@ -1,16 +1,17 @@
 """The grain-wall impacts and the exits, read from a LIGGGHTS run's outputs (script.py).
 
-**Sampling.** contacts.dump holds, every `sample_every` steps (two thirds of the fastest
-impact's Hertz contact time, script.py), each grain whose gap to the plate is below `near`
-(twice what the fastest grain covers in a sample) and whose normal speed relative to it
-exceeds `slowest` or whom it presses on with more than script.PRESSED times its weight (an
-impact's turn); the wall's normal force on it says whether it touches. So every impact
-has at least one sample in flight just before it and one in contact: none is missed (a
-contact shorter than a sample interval would be shorter than the fastest impact's). A
-feeder's holds the same for its side walls too, across the chute: a grain near the plate or
-a side wall, with the force along both normals (LIGGGHTS' one wall fix sums the plate's and
-the sides': a sample touches a wall where that wall's component is nonzero and the grain's
-gap to it is below TOUCHING).
+**Sampling.** contacts.dump holds, every `sample_every` steps (the fastest impact's Hertz
+contact time over 1.1 on a feeder, over 1.5 on a still chute: script.py), each grain whose
+gap to the plate is below `near` (twice what the fastest grain covers in a sample) and
+whose normal speed relative to it exceeds `slowest` or whom it presses on with more than
+script.PRESSED times its weight (an impact's turn); the wall's normal force on it says
+whether it touches. So every impact has at least one sample in flight just before it and
+one in contact: none is missed (a contact shorter than a sample interval would be shorter
+than the fastest impact's; compare_impacts checks it against a reference written every
+step beside it). A feeder's holds the same for its side walls too, across the chute: a
+grain near the plate or a side wall, with the force along both normals (LIGGGHTS' one wall
+fix sums the plate's and the sides': a sample touches a wall where that wall's component
+is nonzero and the grain's gap to it is below TOUCHING).
 
 **Against the moving wall.** Each sample is read in the wall's own axes (`Wall`): its gap
 to the wall and its velocity along the wall's normal and along the wall, each less the
@@ -135,9 +136,15 @@ def impacts(path: str, dt: float, sample_every: int, gravity: tuple, n: int,
     return walls_impacts(path, dt, sample_every, [wall], n)[0]
 
 
-def walls_impacts(path: str, dt: float, sample_every: int, walls: list, n: int) -> list:
+def walls_impacts(path: str, dt: float, sample_every: int, walls: list, n: int,
+                  joined: int | None = None) -> list:
     """The impacts against each of `walls` (Walls of one dump's columns: a feeder's plate and
-    side walls) as `impacts` reads them, the dump read once for all."""
+    side walls) as `impacts` reads them, the dump read once for all. joined: two samples of
+    a grain this many steps apart or less are consecutive (default two sample intervals: a
+    contact's samples either side of its turn, slower than `slowest`, unwritten); a dense
+    reference is read with its sampling's, so that a contact is joined across the same
+    turn (compare_impacts)."""
+    joined = 2 * sample_every if joined is None else joined
     columns = walls[0].columns
     if any(w.columns != columns for w in walls):
         raise ValueError("walls: each read from the same dump's columns")
@@ -147,7 +154,8 @@ def walls_impacts(path: str, dt: float, sample_every: int, walls: list, n: int) 
             d = block if carry[k] is None else pd.concat([carry[k], block], ignore_index=True)
             if d.empty:
                 continue
-            found, carry[k] = _block_impacts(path, d, dt, sample_every, wall, last_step, final)
+            found, carry[k] = _block_impacts(path, d, dt, sample_every, wall, last_step, final,
+                                             joined)
             parts[k].append(found)
     return [_sorted(path, found, n) for found in parts]
 
@@ -165,9 +173,11 @@ def _sorted(path: str, parts: list, n: int) -> pd.DataFrame:
     return out
 
 
-def _block_impacts(path, d, dt, sample_every, wall: Wall, last_step: int, final: bool):
+def _block_impacts(path, d, dt, sample_every, wall: Wall, last_step: int, final: bool,
+                   close: int):
     """The impacts of the contacts that have ended among samples `d` (the samples carried
-    and a block's), and the samples a later block needs (the module's text)."""
+    and a block's), and the samples a later block needs (the module's text); two samples of
+    a grain `close` steps apart or less are consecutive."""
     force = wall.force
     d = d.sort_values(["id", "step"], kind="stable").reset_index(drop=True)
     grain = d["id"].to_numpy(dtype=np.int64)
@@ -182,7 +192,6 @@ def _block_impacts(path, d, dt, sample_every, wall: Wall, last_step: int, final:
         touch &= gap < TOUCHING
     # consecutive samples of a grain: a sample apart, or two where one fell below `slowest`
     # (the turn of an impact, its normal speed passing zero)
-    close = 2 * sample_every
     same = np.r_[False, (grain[1:] == grain[:-1]) & (step[1:] - step[:-1] <= close)]
     before_touch = np.r_[False, touch[:-1]] & same
     onset = touch & ~before_touch
@@ -352,3 +361,47 @@ def count(found: pd.DataFrame, n: int) -> np.ndarray:
     return np.bincount(found["grain"].to_numpy(dtype=np.int64), minlength=n) if len(found) \
         else np.zeros(n, dtype=int)
 
+
+def compare_impacts(found: pd.DataFrame, reference: pd.DataFrame,
+                    interval: float) -> pd.DataFrame:
+    """The impacts `found` by a run's sampling against those of a dense `reference` written
+    beside it in the same run (script.REFERENCE), impact by impact: each reference impact
+    (a row, its grain, wall, time, normal_speed) with the found one of the same grain and wall
+    whose onset is nearest its own within `interval` (s, the sampling's: the onsets of both
+    are the flight before carried on, so that they agree far closer), or none (`missed`);
+    then the found impacts no reference impact matched (`extra`). Columns: grain, wall,
+    time, normal_speed (the reference's; the found one's where there is none), dt and
+    dv_n (found less reference), missed, extra, and sustained_differs (1 where the two
+    read the contact's end differently: a slow contact's, interval-dependent, docs/dem.md).
+    """
+    keys, kept = ["grain", "wall"], ["time", "normal_speed", "sustained"]
+    ref = reference[keys + kept].astype({"grain": np.int64, "wall": np.int64})
+    got = found[keys + kept].astype({"grain": np.int64, "wall": np.int64})
+    ref = ref.sort_values("time", kind="stable").reset_index(drop=True)
+    got = got.sort_values("time", kind="stable").reset_index(drop=True)
+    got["found"] = np.arange(len(got))
+    matched = pd.merge_asof(ref, got.rename(columns={"time": "time_found",
+                                                     "normal_speed": "speed_found",
+                                                     "sustained": "sustained_found"}),
+                            left_on="time", right_on="time_found", by=keys,
+                            direction="nearest", tolerance=interval)
+    # a found impact matched twice is one of them: the nearer keeps it
+    taken = matched["found"].notna()
+    gap = (matched["time_found"] - matched["time"]).abs()
+    twice = matched[taken].assign(gap=gap[taken]).sort_values("gap", kind="stable").duplicated(
+        "found", keep="first")
+    matched.loc[twice[twice].index, ["found", "time_found", "speed_found"]] = np.nan
+    taken = matched["found"].notna()
+    out = pd.DataFrame({"grain": matched["grain"], "wall": matched["wall"],
+                        "time": matched["time"], "normal_speed": matched["normal_speed"],
+                        "dt": matched["time_found"] - matched["time"],
+                        "dv_n": matched["speed_found"] - matched["normal_speed"],
+                        "missed": (~taken).astype(int), "extra": 0,
+                        "sustained_differs": (taken & (matched["sustained_found"]
+                                                       != matched["sustained"])).astype(int)})
+    left = got[~got["found"].isin(matched.loc[taken, "found"])]
+    extra = pd.DataFrame({"grain": left["grain"], "wall": left["wall"], "time": left["time"],
+                          "normal_speed": left["normal_speed"], "dt": np.nan, "dv_n": np.nan,
+                          "missed": 0, "extra": 1, "sustained_differs": 0})
+    return pd.concat([out, extra], ignore_index=True).sort_values(
+        ["grain", "wall", "time"], kind="stable").reset_index(drop=True)

@@ -49,6 +49,7 @@ from .charging import Charger, GasLimits, band, charges
 from .device import Chute, DeviceError, entries
 
 IMPACTS = "impacts.csv"
+REFERENCE_IMPACTS = "reference_impacts.csv"  # the dense reference's (reference_every)
 STOPPED = "stopped.json"  # a run stopped by a signal: its settings, CPU so far, parts run
 RUN_FOLDER = "liggghts"
 SLOWEST = 1e-3  # m/s: contacts slower along the normal are not written (contacts.py)
@@ -93,7 +94,9 @@ class DemJob(Job):
     materials' (a larger time step; the charges are the map's, at the impact speeds). maps:
     the folder the impact maps are kept in. law, law_properties: LIGGGHTS' contact law and
     the properties it reads (script.py; by default its Hertz-Mindlin law), for comparing
-    laws."""
+    laws. reference_every: LIGGGHTS also writes the contacts every that many steps
+    (script.REFERENCE), whose impacts go to reference_impacts.csv, to check the sampling
+    against (contacts.compare_impacts, scripts/check_dem_sampling.sh)."""
 
     kind, noun, results_file = "dem", "grain", PARTICLES
 
@@ -103,7 +106,8 @@ class DemJob(Job):
                  ranks: int = 1, stiffness_scale: float = 1.0,
                  maps: str = os.path.join("out", "impact-maps"), figure: bool = True,
                  shape_edges=None, size_edges=None, law: str = script.LAW,
-                 law_properties: tuple = ()):
+                 law_properties: tuple = (), reference_every: int | None = None):
+        self.reference_every = reference_every
         self.feed, self.n, self.seed, self.t_end, self.fmu = feed, n, seed, t_end, fmu
         self.feed_rate, self.lanes, self.lane_spacing = feed_rate, lanes, lane_spacing
         self.vibration = tuple(vibration) if vibration else None
@@ -123,6 +127,10 @@ class DemJob(Job):
                            f"LIGGGHTS takes, in (0, 1]")
         if not (isinstance(self.t_end, (int, float)) and math.isfinite(self.t_end) and self.t_end > 0):
             raise DemError(f"t_end = {self.t_end!r}: the horizon in s, a positive number")
+        r = self.reference_every
+        if r is not None and (isinstance(r, bool) or not isinstance(r, int) or r < 1):
+            raise DemError(f"reference_every = {r!r}: the reference's sample interval in "
+                           f"steps, a whole number >= 1")
         if self.lanes is not None and self.feed_rate is None:
             raise DemError(f"lanes = {self.lanes!r}: the lanes of a fed stream, taken with a "
                            f"feed rate only (the dilute limit gives each grain its own)")
@@ -222,7 +230,9 @@ class DemJob(Job):
                         + np.max(self.drawn["drop_speed"]) + math.sqrt(
             2 * g * (float(np.max(self.drawn["drop_height"])) + self.chute.chute_length
                      * math.sin(math.radians(self.chute.tilt_deg)))))
-        dt, every = script.time_step(size, fastest, contact)
+        dt, every = script.time_step(size, fastest, contact, script.SAMPLES_PER_CONTACT
+                                     if self.chute.amplitude else
+                                     script.STILL_SAMPLES_PER_CONTACT)
         near = 2.0 * fastest * every * dt
         folder = os.path.join(out, RUN_FOLDER)
         done_path = os.path.join(folder, engine.DONE)
@@ -234,6 +244,8 @@ class DemJob(Job):
         if self.chute.amplitude:  # a feeder: its stroke, and its side walls
             run["vibration"] = list(self.vibration)
         run.update(self._law())
+        if self.reference_every:
+            run["reference_every"] = self.reference_every
         previous = _read(done_path)
         if previous is None or previous.get("run") != run:
             previous = self._simulate(folder, run, size, contact, progress, wall0)
@@ -243,10 +255,7 @@ class DemJob(Job):
         if self.chute.amplitude:  # the feeder's side walls: charged alike, counted apart
             walls.append(contacts.Wall(gravity, self.chute, side=True,
                                        half_width=self.entry.width / 2, others=True))
-        found = pd.concat([f.assign(wall=kind) for kind, f in zip(
-            (PLATE_WALL, SIDE_WALL), contacts.walls_impacts(
-                os.path.join(folder, script.CONTACTS), dt, every, walls, self.n))],
-            ignore_index=True).sort_values(["grain", "time"], kind="stable").reset_index(drop=True)
+        found = self._impacts(os.path.join(folder, script.CONTACTS), dt, every, walls)
         left = contacts.exits(os.path.join(folder, script.EXITS), dt, self.chute.chute_length, self.n)
         sigma0 = float(p0["sigma0"])
         # the materials' own moduli (not LIGGGHTS' scaled ones): the model's indentation
@@ -265,7 +274,23 @@ class DemJob(Job):
         report = self._rows(out, found, left, charged, size, previous, charging_cpu,
                             time.perf_counter() - wall0)
         report.maps_built = charger.built
+        if self.reference_every:
+            path = os.path.join(out, REFERENCE_IMPACTS)
+            # its contacts joined across a turn as the sampling's are (contacts.py)
+            self._impacts(os.path.join(folder, script.REFERENCE), dt, self.reference_every,
+                          walls, joined=2 * every).to_csv(path, index=False)
+            report.files.append(path)
         return report
+
+    def _impacts(self, path: str, dt: float, every: int, walls: list,
+                 joined: int | None = None) -> pd.DataFrame:
+        """The impacts of a contacts' dump sampled every `every` steps against `walls` (the
+        plate's, a feeder's side walls'), with the wall each met, by grain and time (joined:
+        contacts.walls_impacts)."""
+        return pd.concat([f.assign(wall=kind) for kind, f in zip(
+            (PLATE_WALL, SIDE_WALL), contacts.walls_impacts(path, dt, every, walls, self.n,
+                                                            joined))],
+            ignore_index=True).sort_values(["grain", "time"], kind="stable").reset_index(drop=True)
 
     def _simulate(self, folder, run, size, contact, progress, wall0) -> dict:
         """LIGGGHTS' run into `folder`, resumed from the restart file of a run stopped by a
@@ -288,7 +313,8 @@ class DemJob(Job):
             self.chute, self.entry, size, contact, dt=run["dt"], sample_every=run["sample_every"],
             t_end=self.t_end, exit_every=run["exit_every"],
             progress_every=max(1, int(self.t_end / run["dt"] / 200)), near=run["near"],
-            slowest=SLOWEST, restart=restart, law=self.law, law_properties=self.law_properties)
+            slowest=SLOWEST, reference_every=run.get("reference_every"), restart=restart,
+            law=self.law, law_properties=self.law_properties)
         with open(os.path.join(folder, input_name), "w") as f:
             f.write(text)
         with open(os.path.join(folder, script.PLATE), "w") as f:

@@ -12,9 +12,11 @@ refuses Young's moduli above 1e9 Pa in SI units without it.
 
 The time step is a fraction of the smallest grain's Rayleigh time and of its Hertz contact
 time at the fastest impact (`time_step`); the wall contacts are written every
-`sample_every` steps, two thirds of that contact time, so that every contact is seen in
-contact at least once (a slower one lasts longer) and every impact has a sample in flight
-before it (contacts.py reads them).
+`sample_every` steps, that contact time over 1.1 (a still chute's: over 1.5), so that
+every contact is seen in contact at least once (a slower one lasts longer) and every
+impact has a sample in flight before it (contacts.py reads them;
+scripts/check_dem_sampling.sh checks it against a reference written every step beside
+it, REFERENCE).
 
 Outputs (the run's folder):
 
@@ -23,6 +25,7 @@ Outputs (the run's folder):
                    normal force on it (LIGGGHTS' wall contact: nonzero while touching)
                    (a feeder's: near the plate or near a side wall, moving across the
                    chute, with the walls' force across it too, to 10 digits)
+    reference.dump the same grains every reference_every steps, where asked (the check)
     exits.dump     every exit_every steps, the grains whose centre has passed the chute's
                    end (x > chute_length): id, position, velocity, spin
     log.liggghts   LIGGGHTS' log; its thermo lines (step, grains in the box) show progress
@@ -36,7 +39,7 @@ import numpy as np
 from .device import Chute, Entry
 
 INPUT, PLATE, SIDES, LOG = "in.liggghts", "plate.stl", "sides.stl", "log.liggghts"
-CONTACTS, EXITS = "contacts.dump", "exits.dump"
+CONTACTS, EXITS, REFERENCE = "contacts.dump", "exits.dump", "reference.dump"
 # the columns contacts.dump holds (each frame headed by its step): the grain's id, centre, velocity and radius,
 # and the normal component of the force the wall exerts on it (fix wall/gran's
 # store_force: nonzero while the grain touches the wall)
@@ -53,8 +56,18 @@ STEPS_PER_CONTACT = 40  # the time step: the fastest impact's Hertz contact time
 # the contacts' sampling: this many samples in the fastest impact's contact, at least one
 # in every contact. The onset is the flight before it carried on to the wall, exact at any
 # interval (contacts.py); a sample costs LIGGGHTS the same whatever it holds, so that on a
-# feeder, its grains in flight most of the time, the fewer the cheaper (docs/dem.md)
-SAMPLES_PER_CONTACT = 1.5
+# feeder, its grains in flight most of the time, the fewer the cheaper (docs/dem.md). The
+# margin: a contact lasts longer than its Hertz time (LIGGGHTS' damping), and the shorter
+# the faster the impact only as its speed to the -1/5: an interval a tenth shorter than
+# the fastest estimated impact's contact still sees one 1.6 times as fast (measured on the
+# feeder of docs/dem.md: its shortest contact 43 steps, a sample every 36)
+SAMPLES_PER_CONTACT = 1.1
+# a still chute's: its grains settle and roll, and a contact's end is read as sustained
+# from when its grain stops being written, which the interval moves (measured on 12 grains
+# of docs/dem.md's dilute run: 28 sustained contacts of 221 at 26 steps, 20 at 36); kept
+# where its results were made (a still chute's grains are in flight little: the sampling
+# costs it little)
+STILL_SAMPLES_PER_CONTACT = 1.5
 # a grain in contact is written, however slowly it moves along the normal, while the wall
 # presses on it with more than this many times its weight: an impact's turn (a grain at
 # rest on a plate is pressed with its weight, twice at most on a feeder that does not
@@ -112,12 +125,14 @@ def hertz_time(diameter, speed, c: Contact):
     return 2.87 * (m * m / (r * c.effective_modulus ** 2 * v)) ** 0.2
 
 
-def time_step(diameters: np.ndarray, fastest: float, c: Contact) -> tuple[float, int]:
-    """The time step (s) and the contacts' sampling interval (steps): the module's text."""
+def time_step(diameters: np.ndarray, fastest: float, c: Contact,
+              samples: float = SAMPLES_PER_CONTACT) -> tuple[float, int]:
+    """The time step (s) and the contacts' sampling interval (steps), `samples` in the
+    fastest impact's contact: the module's text."""
     small = float(np.min(diameters))
     contact = float(hertz_time(small, fastest, c))
     dt = min(RAYLEIGH_FRACTION * rayleigh_time(small, c), contact / STEPS_PER_CONTACT)
-    return dt, max(1, int(contact / dt / SAMPLES_PER_CONTACT))
+    return dt, max(1, int(contact / dt / samples))
 
 
 def _number(x: float) -> str:
@@ -132,6 +147,57 @@ def _unflushed(dump: str) -> list[str]:
     return [f"dump_modify {dump} flush no"]
 
 
+def _contacts_dumps(chute: Chute, entry: Entry, diameters: np.ndarray, dumps: dict, *,
+                    dt: float, near: float, slowest: float) -> list[str]:
+    """The contacts' dumps (name: (file, every so many steps)), each the grains the module's
+    text says: near a wall, and moving along its normal or pressed on by it.
+
+    A grain is written while near the plate (its gap below `near`, so that the last sample
+    before a contact is in flight) and moving along the normal faster than `slowest`
+    relative to it: a grain at rest or rolling on the plate is not written (the plate where
+    it is: a vibrating plate's stroke times sin(2 pi f t)); a feeder's the same near a side
+    wall, across the chute (the stroke moves the sides along themselves). One atom-style
+    formula, as few nodes as it takes: LIGGGHTS parses it at every sample and evaluates
+    each node grain by grain, the dump's cost on a feeder (docs/dem.md, what it costs):
+    the radius is the grain's own `r`, the plate's motion numbers in it (an equal-style
+    variable named in it is parsed again wherever it is named), and where along the chute
+    a grain may touch a wall a threshold of the dump on x (a comparison, no formula),
+    covering the plate's ends wherever its stroke carries them."""
+    biggest = float(np.max(diameters))
+    L, half = chute.chute_length, entry.width / 2.0
+    top, speed = f"{_number(near)}", "vz"
+    # the farthest a grain touching the plate is from it along x: its radius and the stroke
+    reach = (abs(chute.stroke[0]) if chute.amplitude else 0.0) + biggest / 2.0
+    if chute.amplitude:
+        # the phase 2 pi f t as one number times the step, to all its digits (each token
+        # is parsed at every sample)
+        phase = f"step*{2 * math.pi * chute.frequency * float(_number(dt)):.17g}"
+        sz = chute.stroke[1]
+        top += f"+{_number(sz)}*sin({phase})"
+        speed += f"-{_number(sz * 2 * math.pi * chute.frequency)}*cos({phase})"
+    # ... or pressed on by more than PRESSED times its weight: the turn of an impact, its
+    # normal speed passing zero, whose one sample in contact may fall there
+    pressed = f"{_number(PRESSED * 9.81)}*mass"
+    written = (f"(z-r<{top})*((abs({speed})>{_number(slowest)})"
+               f"+(f_force_walls[3]>{pressed}))")
+    columns = CONTACT_COLUMNS
+    if chute.amplitude:
+        # a feeder's one dump for the plate and the side walls (a dump evaluates its
+        # formula for every grain at every sample, most of them written by none: one set)
+        written += (f"+(abs(y)+r>{_number(half - near)})"
+                    f"*((abs(vy)>{_number(slowest)})+(abs(f_force_walls[2])>{pressed}))")
+        columns = FEEDER_COLUMNS
+    lines = [f"variable written atom {written}"]
+    for name, (path, every) in dumps.items():
+        lines += [f"dump {name} all custom {every} {path} " + " ".join(columns),
+                  f"dump_modify {name} thresh v_written > 0 "
+                  f"thresh x > {_number(chute.start(biggest) - reach)} "
+                  f"thresh x < {_number(L + reach)}"]
+        lines += [f'dump_modify {name} format "{FEEDER_FORMAT}"'] if chute.amplitude else []
+        lines += _unflushed(name)
+    return lines
+
+
 def box_top(entry: Entry, diameters: np.ndarray) -> float:
     """The box's height above the plate (m): the highest drop, ten grains and 2 cm more (a
     feeder's side walls are as high)."""
@@ -141,12 +207,15 @@ def box_top(entry: Entry, diameters: np.ndarray) -> float:
 def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *, dt: float,
                 sample_every: int, t_end: float, exit_every: int, progress_every: int,
                 near: float, slowest: float, contacts: bool = True,
+                reference_every: int | None = None,
                 restart: tuple | None = None, law: str = LAW,
                 law_properties: tuple[str, ...] = ()) -> tuple[str, int]:
     """The LIGGGHTS input (the module's text) and its number of steps. The grains enter
     in the order given (grain i is LIGGGHTS' atom i + 1), each at its entry time; the run
     stops once every grain has left the box (past the chute's end or off its sides) or at
     t_end. contacts=False: without the contacts' output (what it costs: bench_dem.sh).
+    reference_every: the same grains written every that many steps too, into REFERENCE
+    (the dense reference the sampling is checked against: contacts.compare_impacts).
     restart (file, step, created): the input that resumes a run LIGGGHTS stopped at `step`,
     writing the restart `file`, with `created` grains in: the scene read from it (the
     grains, their contact histories with the wall), the outputs appended to, the grains
@@ -217,45 +286,12 @@ def write_input(chute: Chute, entry: Entry, diameters: np.ndarray, c: Contact, *
     ] + _unflushed("exits")
     append = [] if restart is None else ["dump_modify exits append yes"]
     if contacts:
-        # a grain is written while near the plate (its gap below `near`, so that the last
-        # sample before a contact is in flight) and moving along the normal faster than
-        # `slowest` relative to it: a grain at rest or rolling on the plate is not written
-        # (the plate where it is: a vibrating plate's stroke times sin(2 pi f t)); a feeder's
-        # the same near a side wall, across the chute (the stroke moves the sides along
-        # themselves). One atom-style formula, naming no other atom-style variable: LIGGGHTS
-        # parses it, and each atom-style variable it names, at every sample, and evaluates
-        # it grain by grain (the plate's motion, the same for all, is an equal-style
-        # variable: one number); on a feeder most of the dump's cost is per sample,
-        # whatever it holds
-        gap, normal_speed, motion = "z-c_radius", "vz", []
-        if chute.amplitude:
-            phase = f"2*PI*{_number(chute.frequency)}*step*{_number(dt)}"
-            sz = chute.stroke[1]
-            motion = [f"variable wall equal {_number(sz)}*sin({phase})",
-                      f"variable wall_speed equal "
-                      f"{_number(sz * 2 * math.pi * chute.frequency)}*cos({phase})"]
-            gap += "-v_wall"
-            normal_speed += "-v_wall_speed"
-        along = f"(x>{_number(chute.start(biggest))}-c_radius)*(x<{_number(L)}+c_radius)"
-        # ... or pressed on by more than PRESSED times its weight: the turn of an impact,
-        # its normal speed passing zero, whose one sample in contact may fall there
-        pressed = f"{_number(PRESSED * 9.81)}*mass"
-        written = (f"({gap}<{_number(near)})*((abs({normal_speed})>{_number(slowest)})"
-                   f"+(f_force_walls[3]>{pressed}))")
-        columns = CONTACT_COLUMNS
-        if chute.amplitude:
-            # a feeder's one dump for the plate and the side walls (a dump's frames are
-            # most of its cost, most of them empty: one set of them)
-            written += (f"+({_number(half)}-abs(y)-c_radius<{_number(near)})"
-                        f"*((abs(vy)>{_number(slowest)})+(abs(f_force_walls[2])>{pressed}))")
-            columns = FEEDER_COLUMNS
-        lines += ["compute radius all property/atom radius", *motion,
-                  f"variable written atom ({written})*{along}",
-                  f"dump contacts all custom {sample_every} {CONTACTS} " + " ".join(columns),
-                  "dump_modify contacts thresh v_written > 0"]
-        lines += [f'dump_modify contacts format "{FEEDER_FORMAT}"'] if chute.amplitude else []
-        lines += _unflushed("contacts")
-        append += [] if restart is None else ["dump_modify contacts append yes"]
+        dumps = {"contacts": (CONTACTS, sample_every)}
+        if reference_every:
+            dumps["reference"] = (REFERENCE, reference_every)
+        lines += _contacts_dumps(chute, entry, diameters, dumps, dt=dt, near=near,
+                                 slowest=slowest)
+        append += [] if restart is None else [f"dump_modify {d} append yes" for d in dumps]
     lines += append
     # each grain enters at its step: a `run` to it, then the grain
     start = np.rint(entry.time / dt).astype(np.int64)
