@@ -105,6 +105,16 @@ static inline double tribo_velocity_rounding(const tribo_dyn_params *p, double a
     return 10.0 * (p->rtol * (fabs(a) + fabs(b)) + p->atol);
 }
 
+/* Whether the lowest point reaching the plate makes a contact (model.md §3b), for the flight's
+   search and the phase after it alike: it approaches, its normal velocity vn below minus its
+   rounding, or it does not move away and is pressed in. A touch that moves away, however
+   slowly, makes none: a grain that has just lifted off below the rounding, pressed in by its
+   weight, would be taken as touching again at the same instant (an event cascade). */
+static inline int tribo_touch_makes_contact(double vn, double rounding, int pressed_in)
+{
+    return vn < -rounding || (vn <= 0.0 && pressed_in);
+}
+
 /* The normal velocity the dashpot opposes (model.md §3): the contact point's
    vn = V + cx Omega (= -d delta_y/dtau), or the centre's V (damping_point = 1). */
 static inline double tribo_damped_velocity(const tribo_dyn_params *p, const tribo_pose *g,

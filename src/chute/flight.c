@@ -317,9 +317,8 @@ double tribo_flight_end_of(const tribo_flight *f, const tribo_dyn_params *p, dou
         const double rounding = 8.0 * DBL_EPSILON * (fabs(c.Y) + c.h);
         double delta = c.delta, escape = 0.0;
         if (delta >= -rounding) {
-            const double vn = -c.rate, vn_rounding = tribo_velocity_rounding(p, c.V, c.spin);
-            if (vn < -vn_rounding ||
-                (vn <= 0.0 && tribo_pressed_in(p, c.curvature, c.curvature_rate))) {
+            if (tribo_touch_makes_contact(-c.rate, tribo_velocity_rounding(p, c.V, c.spin),
+                                          tribo_pressed_in(p, c.curvature, c.curvature_rate))) {
                 s_end = s;
                 *why = TRIBO_FLIGHT_CONTACT;
                 break;

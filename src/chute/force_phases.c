@@ -603,14 +603,14 @@ static int creeps(const tribo_dyn_params *p, const tribo_force_law *ph, const do
 }
 
 /* Whether a contact made at y (delta_y = 0) is made: the contact point approaches the plate,
-   vn = -d(delta_y)/dtau < 0, or, at rest on it (vn within its rounding of 0), is pressed in.
-   A contact "made" while it moves away is delta_y reaching 0 by rounding: no contact, and no
-   impact (model.md §3b). */
+   vn = -d(delta_y)/dtau below minus its rounding, or, not moving away (vn in [-rounding, 0]),
+   is pressed in (tribo_touch_makes_contact, the flight's rule too). A contact "made" while it
+   moves away is delta_y reaching 0 by rounding: no contact, and no impact (model.md §3b). */
 static int approaching(const tribo_dyn_params *p, const tribo_pose *g, const double *y)
 {
     const double spin = g->cx * y[TRIBO_IOMEGA];
     const double vn = y[TRIBO_IV] + spin, rounding = tribo_velocity_rounding(p, y[TRIBO_IV], spin);
-    return vn < -rounding || (vn <= 0.0 && pressed_in(p, y));
+    return tribo_touch_makes_contact(vn, rounding, pressed_in(p, y));
 }
 
 /* ---- the phase after an event: contact, normal rule, tangential rule -------------------- */
