@@ -36,7 +36,7 @@ if [ -n "$before" ]; then
 fi
 variants=(with without)
 rm -rf with without also && cp -r dem/liggghts with && cp -r dem/liggghts without
-grep -v "contacts\|variable written\|variable wall\|compute radius" dem/liggghts/in.liggghts > without/in.liggghts
+grep -v "contacts\|variable written" dem/liggghts/in.liggghts > without/in.liggghts
 if [[ -n $ALSO ]]; then
   mkdir also
   cp "$ALSO"/in.liggghts "$ALSO"/*.stl also/

@@ -107,7 +107,6 @@ class DemJob(Job):
                  maps: str = os.path.join("out", "impact-maps"), figure: bool = True,
                  shape_edges=None, size_edges=None, law: str = script.LAW,
                  law_properties: tuple = (), reference_every: int | None = None):
-        self.reference_every = reference_every
         self.feed, self.n, self.seed, self.t_end, self.fmu = feed, n, seed, t_end, fmu
         self.feed_rate, self.lanes, self.lane_spacing = feed_rate, lanes, lane_spacing
         self.vibration = tuple(vibration) if vibration else None
@@ -116,6 +115,7 @@ class DemJob(Job):
         self.ranks, self.stiffness_scale, self.maps = ranks, stiffness_scale, maps
         self.figure, self.shape_edges, self.size_edges = figure, shape_edges, size_edges
         self.law, self.law_properties = law, tuple(law_properties)
+        self.reference_every = reference_every
         self.keys = []
 
     def prepare(self) -> None:
