@@ -12,11 +12,11 @@
 #     impacts' normal speed; the same restitution);
 #   the population (`tribo population`, the SI FMU): its default, the compliant stick
 #     (stick_model 0: the tangential spring in every contact), no rolling resistance
-#     (mu_roll 0), and the grains dropped at rest in the lab as LIGGGHTS drops them (the
-#     population's drop velocity is the grain's relative to the plate, docs/model.md section
-#     9b, which moves along the stroke at 2 pi f A = 0.157 m/s at the drop's phase: a drop
-#     speed of 2 pi f A at -(90 - 30) degrees from the vertical cancels it), with and without
-#     rolling resistance, and with only the plate's velocity along the plate cancelled;
+#     (mu_roll 0), and the grains dropped at rest in the lab as LIGGGHTS drops them
+#     (drop_frame=1: by default the population's drop velocity is the grain's relative to
+#     the plate, docs/model.md section 9b, which moves along the stroke at 2 pi f A =
+#     0.157 m/s at the drop's phase), with and without rolling resistance, and with only the
+#     plate's velocity along the plate cancelled (a drop speed against it);
 #   both again over BENCH_LONG (default 1 m), the default drops and the population's at
 #     rest in the lab: the speed between BENCH_LENGTH and BENCH_LONG, the same grains, is
 #     the feeder's own, its drop forgotten.
@@ -49,9 +49,9 @@ FEED=(--seed 1 --epsilon 1 --size uniform:6e-4:1e-3 --tilt-deg 0
       --vibration "$AMPLITUDE,$FREQUENCY,$ANGLE" --no-progress)
 FRESH=()
 [[ ${BENCH_FRESH:-0} == 1 ]] && FRESH=(--fresh)
-# the population's grain dropped at rest in the lab: the plate's velocity at phase 0 cancelled
-LAB=(--drop-speed "$("$PY" -c "import math; print(2 * math.pi * $FREQUENCY * $AMPLITUDE)")"
-     --drop-angle-deg "$("$PY" -c "print($ANGLE - 90)")")
+# the population's grain dropped at rest in the lab (model.md section 9b)
+LAB=(--set drop_frame=1)
+# only the plate's velocity along the plate cancelled, at phase 0
 ALONG=(--drop-speed "$("$PY" -c "import math; print(2 * math.pi * $FREQUENCY * $AMPLITUDE * math.cos(math.radians($ANGLE)))")"
        --drop-angle-deg -90)
 mkdir -p "$OUT"
@@ -178,13 +178,12 @@ print(f"LIGGGHTS' default run: {len(dump)} samples of {dump['id'].nunique()} gra
 print(f"L/(m a) (m/s) of a 0.8 mm grain at its impacts 1, 2, 6, 21, 41 and the last before "
       f"{length:g} m or 3 s:")
 for mu_roll in (0.0, 0.01):
-    for label, speed, angle in (("at rest on the plate", 0.0, 0.0),
-                                ("at rest in the lab", A * w, psi - 90)):
+    for label, frame in (("at rest on the plate", 0), ("at rest in the lab", 1)):
         s = tribo.run_si("PE", "steel", t_end=3.0, record_interval=1e-4,
                          outputs=["impacts", "u", "omega"], size=8e-4, epsilon=1.0,
                          chute_length=length, tilt_deg=0, vibration_amplitude=A,
                          vibration_frequency=f, vibration_angle_deg=psi, mu_roll=mu_roll,
-                         drop_speed=speed, drop_angle_deg=angle)
+                         drop_frame=frame)
         L = s["u"] + plate_u(s["time"]) - 0.5 * 4e-4 * s["omega"]
         hits = s.index[s["impacts"].diff() > 0]
         at = L[hits - 1].to_numpy()
